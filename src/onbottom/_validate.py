@@ -1,0 +1,98 @@
+"""Uniform input checks: every failure names the field, the value and the allowed range."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Iterable
+from numbers import Real
+
+from onbottom.errors import InputError, OutOfRangeWarning
+
+__all__ = [
+    "finite",
+    "in_range",
+    "non_negative",
+    "one_of",
+    "positive",
+    "warn_outside",
+]
+
+
+def _number(field: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise InputError(f"{field} = {value!r} is invalid: expected a real number")
+    x = float(value)
+    if math.isnan(x):
+        raise InputError(f"{field} = nan is invalid: expected a finite real number")
+    return x
+
+
+def finite(field: str, value: object) -> float:
+    """Return ``value`` as float; raise :class:`InputError` unless it is a finite real."""
+    x = _number(field, value)
+    if not math.isfinite(x):
+        raise InputError(f"{field} = {x!r} is invalid: expected a finite real number")
+    return x
+
+
+def positive(field: str, value: object) -> float:
+    """Return ``value`` as float; raise unless it is finite and > 0."""
+    x = finite(field, value)
+    if x <= 0.0:
+        raise InputError(f"{field} = {x!r} is invalid: must be > 0 (allowed range (0, inf))")
+    return x
+
+
+def non_negative(field: str, value: object) -> float:
+    """Return ``value`` as float; raise unless it is finite and >= 0."""
+    x = finite(field, value)
+    if x < 0.0:
+        raise InputError(f"{field} = {x!r} is invalid: must be >= 0 (allowed range [0, inf))")
+    return x
+
+
+def in_range(
+    field: str,
+    value: object,
+    low: float,
+    high: float,
+    *,
+    low_inclusive: bool = True,
+    high_inclusive: bool = True,
+) -> float:
+    """Return ``value`` as float; raise unless ``low <= value <= high`` (bounds as chosen)."""
+    x = _number(field, value)
+    lo_ok = x >= low if low_inclusive else x > low
+    hi_ok = x <= high if high_inclusive else x < high
+    if not (lo_ok and hi_ok):
+        lb = "[" if low_inclusive else "("
+        hb = "]" if high_inclusive else ")"
+        raise InputError(f"{field} = {x!r} is invalid: must lie in {lb}{low:g}, {high:g}{hb}")
+    return x
+
+
+def one_of(field: str, value: object, allowed: Iterable[str]) -> str:
+    """Return ``value``; raise unless it is one of the ``allowed`` names."""
+    options = tuple(allowed)
+    if value not in options:
+        raise InputError(
+            f"{field} = {value!r} is invalid: must be one of {', '.join(map(repr, options))}"
+        )
+    return str(value)
+
+
+def warn_outside(
+    name: str, value: float, low: float, high: float, source: str, *, stacklevel: int = 3
+) -> None:
+    """Emit :class:`OutOfRangeWarning` if ``value`` is outside ``[low, high]``.
+
+    ``source`` names the correlation whose calibration range is exceeded.
+    """
+    if not (low <= value <= high):
+        warnings.warn(
+            f"{name} = {value:.4g} is outside the calibration range [{low:g}, {high:g}] "
+            f"of {source}; the result is an extrapolation",
+            OutOfRangeWarning,
+            stacklevel=stacklevel,
+        )

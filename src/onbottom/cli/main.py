@@ -1,0 +1,56 @@
+"""``onbottom`` command-line entry point.
+
+Each command group lives in its own module of this package and exposes ``command`` (a click
+command or group); :data:`COMMAND_MODULES` lists them in help order.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+import click
+
+from onbottom._version import __version__
+
+COMMAND_MODULES: tuple[str, ...] = ()
+"""Modules of ``onbottom.cli`` that each define ``command``."""
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.version_option(__version__, prog_name="onbottom")
+def cli() -> None:
+    """onbottom — subsea pipeline–seabed interaction.
+
+    Pipe–soil resistance models (Verley & Sotberg sand and its calcareous calibration,
+    Verley & Lund clay, Coulomb), DNVGL-RP-F114 vertical penetration, load-controlled pipe
+    section simulations of centrifuge tests, calibration, and a 2D DEM of pipe penetration.
+
+    Inputs are SI (m, N, N/m, Pa) unless an option name carries a unit (e.g. --gamma-kn).
+    Every command accepts --json for scripting. Input errors exit with status 1 and a message
+    naming the field, its value and the allowed range.
+    """
+
+
+for _name in COMMAND_MODULES:
+    _mod = importlib.import_module(f"onbottom.cli.{_name}")
+    cli.add_command(_mod.command)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (for tests, ``main([...])``)."""
+    try:
+        cli.main(args=argv, prog_name="onbottom", standalone_mode=False)
+    except click.exceptions.Abort:
+        click.echo("Aborted!", err=True)
+        return 1
+    except click.ClickException as exc:
+        exc.show()
+        return exc.exit_code
+    except SystemExit as exc:  # --help / --version
+        return int(exc.code or 0)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,29 @@
+"""Exceptions and warnings shared by every onbottom package.
+
+* :class:`InputError` — an input value is invalid. It names the field, the value and the
+  allowed range. Subclass of :class:`ValueError` so generic handlers still catch it.
+* :class:`OutOfRangeWarning` — a value lies outside the calibration range of an empirical
+  correlation. The computation goes on; the message gives the range and the source.
+* :class:`SolutionError` — an equation has no solution in the admissible interval (for example
+  no embedment ``0 < z <= D`` balances the applied load).
+"""
+
+from __future__ import annotations
+
+__all__ = ["InputError", "OnbottomError", "OutOfRangeWarning", "SolutionError"]
+
+
+class OnbottomError(Exception):
+    """Base class of every error raised on purpose by onbottom."""
+
+
+class InputError(OnbottomError, ValueError):
+    """An input value is invalid (wrong sign, outside its physical range, wrong type)."""
+
+
+class SolutionError(OnbottomError, RuntimeError):
+    """A requested solution does not exist within the admissible interval."""
+
+
+class OutOfRangeWarning(UserWarning):
+    """A value lies outside the range over which an empirical correlation was calibrated."""

@@ -1,0 +1,103 @@
+"""Result conventions: variable names and units, provenance, atomic NetCDF files.
+
+Every xarray Dataset that onbottom returns takes the ``long_name`` and ``units`` of its
+variables from :data:`VARIABLES` (add an entry when you add a variable) and carries
+provenance attributes made by :func:`provenance`.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import os
+import tempfile
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from onbottom._version import __version__
+
+__all__ = ["VARIABLES", "annotate", "load_dataset", "provenance", "save_dataset"]
+
+VARIABLES: dict[str, tuple[str, str]] = {
+    # name: (long_name, units)
+    "time": ("time", "s"),
+    "u": ("lateral displacement of the pipe", "m"),
+    "u_dot": ("lateral velocity of the pipe", "m/s"),
+    "w": ("penetration (embedment) of the pipe invert", "m"),
+    "z": ("penetration (embedment) of the pipe invert", "m"),
+    "H": ("applied horizontal load per unit length", "N/m"),
+    "V": ("vertical contact load per unit length", "N/m"),
+    "F_soil": ("total lateral soil resistance on the pipe", "N/m"),
+    "F_friction": ("Coulomb friction part of the lateral resistance", "N/m"),
+    "F_passive": ("passive part of the lateral resistance", "N/m"),
+    "work": ("accumulated work in the current trough", "N"),
+    "region": ("displacement region of the soil model", "1"),
+    "Q_v": ("vertical penetration resistance per unit length", "N/m"),
+}
+
+
+def provenance(model: str, parameters: Mapping[str, Any] | None = None, **extra: Any) -> dict:
+    """Attributes recording what produced a result.
+
+    Parameters
+    ----------
+    model
+        Name of the model or solver.
+    parameters
+        Model parameters (SI); stored as a JSON string under ``parameters``.
+    **extra
+        Any further attributes (``seed``, ``standard_edition``, ...). Values that are not
+        str/int/float are JSON-encoded so that the attributes survive NetCDF.
+    """
+    attrs: dict[str, Any] = {
+        "onbottom_version": __version__,
+        "model": model,
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+    }
+    if parameters is not None:
+        attrs["parameters"] = json.dumps(dict(parameters), sort_keys=True, default=float)
+    for k, v in extra.items():
+        attrs[k] = (
+            v
+            if isinstance(v, (str, int, float, np.integer, np.floating))
+            else json.dumps(v, default=str)
+        )
+    return attrs
+
+
+def annotate(ds: xr.Dataset) -> xr.Dataset:
+    """Fill ``long_name``/``units`` of variables and coordinates from :data:`VARIABLES`."""
+    for name in list(ds.variables):
+        if name in VARIABLES:
+            long_name, units = VARIABLES[str(name)]
+            ds[name].attrs.setdefault("long_name", long_name)
+            ds[name].attrs.setdefault("units", units)
+    return ds
+
+
+def save_dataset(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write ``ds`` to NetCDF atomically (temporary file in the same folder, then rename).
+
+    A reader never sees a half-written file, even if the process is killed mid-write.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return path
+
+
+def load_dataset(path: str | os.PathLike) -> xr.Dataset:
+    """Load a NetCDF file written by :func:`save_dataset` fully into memory."""
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        return ds.load()

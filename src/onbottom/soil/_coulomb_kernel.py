@@ -1,0 +1,94 @@
+"""Numba kernel for elastic–perfectly-plastic Coulomb friction (private).
+
+params: [mu, mobilisation_displacement]
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from onbottom.soil.base import (
+    OUT_FRICTION,
+    OUT_PASSIVE,
+    OUT_R,
+    OUT_REGION,
+    OUT_TANGENT,
+    OUT_WORK,
+    OUT_Z,
+    S_FRICTION,
+    S_REGION,
+    S_U,
+    S_WORK,
+    S_Z,
+)
+
+P_MU = 0
+P_DELTA = 1
+
+
+@njit(cache=True)
+def friction_return_map(f_old: float, du: float, v_load: float, mu: float, delta: float):
+    """Elastic predictor / plastic corrector for the Coulomb force (resisting +u).
+
+    Stiffness k = μ·V/δ so that full friction μV mobilises after a displacement δ from rest.
+    Returns (force, tangent). With V <= 0 the pipe is lifted off: force 0, tangent 0.
+    """
+    if v_load <= 0.0:
+        return 0.0, 0.0
+    cap = mu * v_load
+    k = cap / delta
+    f_trial = f_old + k * du
+    if f_trial > cap:
+        return cap, 0.0
+    if f_trial < -cap:
+        return -cap, 0.0
+    return f_trial, k
+
+
+@njit(cache=True)
+def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
+    mu = params[P_MU]
+    delta = params[P_DELTA]
+    du = u_new - state_old[S_U]
+    f, k = friction_return_map(state_old[S_FRICTION], du, v_load, mu, delta)
+    for i in range(state_old.shape[0]):
+        state_new[i] = state_old[i]
+    state_new[S_U] = u_new
+    state_new[S_FRICTION] = f
+    state_new[S_Z] = 0.0
+    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
+    state_new[S_REGION] = 0.0
+    out[OUT_R] = f
+    out[OUT_FRICTION] = f
+    out[OUT_PASSIVE] = 0.0
+    out[OUT_TANGENT] = k
+    out[OUT_Z] = 0.0
+    out[OUT_WORK] = state_new[S_WORK]
+    out[OUT_REGION] = 0.0
+
+
+def friction_return_map_py(f_old, du, v_load, mu, delta):
+    """Plain-Python twin of :func:`friction_return_map`."""
+    if v_load <= 0.0:
+        return 0.0, 0.0
+    cap = mu * v_load
+    k = cap / delta
+    f_trial = f_old + k * du
+    if f_trial > cap:
+        return cap, 0.0
+    if f_trial < -cap:
+        return -cap, 0.0
+    return f_trial, k
+
+
+def coulomb_kernel_py(params, state_old, u_new, v_load, state_new, out):
+    """Plain-Python twin of :func:`coulomb_kernel`."""
+    du = u_new - state_old[S_U]
+    f, k = friction_return_map_py(state_old[S_FRICTION], du, v_load, params[P_MU], params[P_DELTA])
+    state_new[:] = state_old
+    state_new[S_U] = u_new
+    state_new[S_FRICTION] = f
+    state_new[S_Z] = 0.0
+    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
+    state_new[S_REGION] = 0.0
+    out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0)

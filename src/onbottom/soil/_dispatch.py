@@ -1,0 +1,29 @@
+"""Static dispatch from a model id to its numba kernel (private).
+
+numba cannot cache functions that receive other jitted functions as arguments, so solvers call
+:func:`lateral_step` with the integer ``model_id`` of the model class instead. Adding a model:
+give its class a new ``model_id`` and add one branch here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from onbottom.soil._coulomb_kernel import coulomb_kernel
+
+MODEL_COULOMB = 0
+MODEL_VERLEY_SOTBERG = 1
+MODEL_VERLEY_LUND = 2
+
+
+@njit(cache=True)
+def lateral_step(model_id, params, state_old, u_new, v_load, state_new, out):
+    """Call the kernel of model ``model_id`` (contract: :mod:`onbottom.soil.base`)."""
+    if model_id == MODEL_COULOMB:
+        coulomb_kernel(params, state_old, u_new, v_load, state_new, out)
+    else:
+        # unknown id: signal with NaN resistance; the Python layer validates ids beforehand
+        for i in range(out.shape[0]):
+            out[i] = 0.0
+        out[0] = np.nan

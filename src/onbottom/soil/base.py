@@ -1,0 +1,120 @@
+"""The lateral pipe–soil resistance model interface and its numba kernel contract.
+
+A lateral resistance model is a *thin Python class* (validated parameters, references,
+calibration range) in front of a *numba kernel* that later solvers call increment by increment.
+The pattern follows openpile (numba spring laws behind model classes) and scipy's ``OdeSolver``
+(an explicit implementer contract).
+
+Kernel contract
+---------------
+Every model provides ``model_id`` (its branch in :mod:`onbottom.soil._dispatch`; solvers call
+``lateral_step(model_id, ...)`` because numba cannot cache jitted functions passed as
+arguments), ``kernel`` (an ``@njit(cache=True)`` function) and ``python_kernel`` (its
+plain-Python twin, used by the tests), both with the signature::
+
+    kernel(params, state_old, u_new, v_load, state_new, out) -> None
+
+1. ``params`` — float64 array from :meth:`LateralResistanceModel.packed_parameters`; read only.
+2. ``state_old`` — float64 array of length ``model.state_size``: the last *committed* state;
+   read only. The first slots are common to all models (indices below); the rest are the
+   model's own.
+3. ``u_new`` — trial total lateral displacement of the pipe u [m] (any sign).
+4. ``v_load`` — vertical contact load V = W_s − F_L [N/m]. V <= 0 means lift-off: the kernel
+   must then return zero resistance, not NaN.
+5. ``state_new`` — float64 array, same length as the state; the kernel writes the trial state
+   reached by moving from ``state_old`` to ``u_new`` under ``v_load``. The caller *commits* it
+   (copies it into ``state_old``) once the time step is accepted, so a kernel may be called
+   many times from the same ``state_old`` (Newton iterations) without side effects.
+6. ``out`` — float64 array of length :data:`OUT_SIZE`; the kernel writes
+   ``out[OUT_R]`` resistance R [N/m], ``out[OUT_FRICTION]`` Coulomb part, ``out[OUT_PASSIVE]``
+   passive part, ``out[OUT_TANGENT]`` dR/du [N/m²], ``out[OUT_Z]`` penetration z [m],
+   ``out[OUT_WORK]`` accumulated work [N], ``out[OUT_REGION]`` region code.
+7. Sign: R is the soil force *resisting* positive pipe motion, so the equation of lateral motion
+   of a pipe section is ``m·ü = H − R``; R > 0 pushes the pipe towards −y.
+8. No allocation, no Python objects, no printing inside the kernel; float64 only.
+
+Common state slots: ``S_U`` committed displacement u [m]; ``S_FRICTION`` friction force
+[N/m] (elastic–plastic, see :mod:`onbottom.soil.coulomb`); ``S_Z`` penetration z [m];
+``S_WORK`` accumulated work E [N]; ``S_REGION`` region code.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Mapping
+from typing import Any, ClassVar
+
+import numpy as np
+
+__all__ = [
+    "N_COMMON_STATE",
+    "OUT_FRICTION",
+    "OUT_PASSIVE",
+    "OUT_R",
+    "OUT_REGION",
+    "OUT_SIZE",
+    "OUT_TANGENT",
+    "OUT_WORK",
+    "OUT_Z",
+    "S_FRICTION",
+    "S_REGION",
+    "S_U",
+    "S_WORK",
+    "S_Z",
+    "LateralResistanceModel",
+]
+
+# common state slots
+S_U = 0
+S_FRICTION = 1
+S_Z = 2
+S_WORK = 3
+S_REGION = 4
+N_COMMON_STATE = 5
+
+# output slots
+OUT_R = 0
+OUT_FRICTION = 1
+OUT_PASSIVE = 2
+OUT_TANGENT = 3
+OUT_Z = 4
+OUT_WORK = 5
+OUT_REGION = 6
+OUT_SIZE = 7
+
+KernelFn = Callable[[np.ndarray, np.ndarray, float, float, np.ndarray, np.ndarray], None]
+
+
+class LateralResistanceModel(ABC):
+    """Base class of lateral pipe–soil resistance models (see the module docstring)."""
+
+    name: ClassVar[str]
+    """Short model name used in results and case files."""
+    reference: ClassVar[str]
+    """Source of the model (authors, year, journal/standard, edition)."""
+    state_size: ClassVar[int]
+    """Length of the state vector."""
+    model_id: ClassVar[int]
+    """Integer id used by :func:`onbottom.soil._dispatch.lateral_step` (cacheable dispatch)."""
+
+    @property
+    @abstractmethod
+    def kernel(self) -> KernelFn:
+        """The numba kernel (see contract)."""
+
+    @property
+    @abstractmethod
+    def python_kernel(self) -> KernelFn:
+        """Plain-Python twin of :attr:`kernel` (same signature, same results)."""
+
+    @abstractmethod
+    def packed_parameters(self) -> np.ndarray:
+        """Model parameters packed as a float64 array for the kernel."""
+
+    @abstractmethod
+    def initial_state(self) -> np.ndarray:
+        """State of the pipe at the start of lateral loading (u = 0)."""
+
+    @abstractmethod
+    def parameters(self) -> Mapping[str, Any]:
+        """Model parameters as a name → value mapping (SI) for provenance and calibration."""

@@ -1,0 +1,1 @@
+"""onbottom.study."""
