@@ -155,7 +155,8 @@ class VerleyLund(LateralResistanceModel):
     undrained_shear_strength : float
         s_u [Pa], > 0 (mudline value).
     unit_weight : float
-        γ_s [N/m³] used in G_c, > 0 (the total/dry unit weight for F109).
+        γ_s [N/m³] used in G_c, in (0, 3·10⁶] (the total/dry unit weight for F109;
+        model-scale centrifuge values γ_s·N are allowed).
     friction_coefficient : float
         μ [-], in (0, 2].
     installation_load : float
@@ -195,7 +196,7 @@ class VerleyLund(LateralResistanceModel):
         cls = "VerleyLund"
         positive(f"{cls}.outer_diameter", self.outer_diameter)
         positive(f"{cls}.undrained_shear_strength", self.undrained_shear_strength)
-        in_range(f"{cls}.unit_weight", self.unit_weight, 0.0, 3.0e4, low_inclusive=False)
+        in_range(f"{cls}.unit_weight", self.unit_weight, 0.0, 3.0e6, low_inclusive=False)
         in_range(
             f"{cls}.friction_coefficient",
             self.friction_coefficient,

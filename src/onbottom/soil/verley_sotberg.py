@@ -86,6 +86,9 @@ magnitude envelope (open item in ``docs/theory/verley_sotberg.md``)."""
 Z_OVER_D_RANGE: tuple[float, float] = (0.0, 0.5)
 """z/D range over which the power laws in z/D are used here (pipe at most half buried)."""
 
+MAX_UNIT_WEIGHT = 2.0e6
+"""Upper bound of γ' [N/m³]: 100 × a dense soil, so model-scale centrifuge inputs (γ'·N) pass."""
+
 _SILICA_LIMITS = (0.02, 0.5, 1.0)
 _CALCAREOUS_LIMITS = (0.01, 0.25, 0.75)
 
@@ -267,7 +270,7 @@ class VerleySotberg(LateralResistanceModel):
     outer_diameter : float
         D [m], > 0.
     submerged_unit_weight : float
-        γ' [N/m³], in (0, 20 000].
+        γ' [N/m³], in (0, 2·10⁶] (model-scale centrifuge values γ'·N are allowed).
     friction_coefficient : float
         μ [-], in (0, 2].
     installation_load : float
@@ -322,7 +325,7 @@ class VerleySotberg(LateralResistanceModel):
             f"{cls}.submerged_unit_weight",
             self.submerged_unit_weight,
             0.0,
-            2.0e4,
+            MAX_UNIT_WEIGHT,
             low_inclusive=False,
         )
         in_range(
