@@ -503,6 +503,34 @@ class VerleySotberg(LateralResistanceModel):
             "F_f": self.friction_coefficient * v,
         }
 
+    def check_validity(self, vertical_load: Any, penetration: Any) -> None:
+        """Warn (OutOfRangeWarning) if a run left the calibration ranges of the correlations.
+
+        The kernel cannot warn; call this after a simulation with its vertical loads and
+        penetrations. Checks K_s = γ'D²/V for V > 0 against :data:`KS_CALIBRATION_RANGE` and
+        z/D against :data:`Z_OVER_D_RANGE`.
+
+        Parameters
+        ----------
+        vertical_load : array-like
+            V [N/m] along the run (V <= 0, lift-off, is ignored).
+        penetration : array-like
+            z [m] along the run.
+        """
+        v = np.asarray(vertical_load, dtype=float).ravel()
+        v = v[v > 0.0]
+        g, d = self.submerged_unit_weight, self.outer_diameter
+        if v.size:
+            ks = g * d * d / v
+            src = "Verley & Sotberg (1994) Eqs 3-8"
+            warn_outside("K_s (min)", float(ks.min()), *KS_CALIBRATION_RANGE, src)
+            warn_outside("K_s (max)", float(ks.max()), *KS_CALIBRATION_RANGE, src)
+        z = np.asarray(penetration, dtype=float).ravel()
+        if z.size:
+            warn_outside(
+                "z/D (max)", float(z.max()) / d, *Z_OVER_D_RANGE, "Verley & Sotberg (1994)"
+            )
+
     # ---- kernel contract ---------------------------------------------------------------
     @property
     def kernel(self):
