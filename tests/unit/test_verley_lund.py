@@ -125,3 +125,14 @@ def test_bad_input_names_the_field(field, kwargs):
     }
     with pytest.raises(InputError, match=field):
         VerleyLund(**{**base, **kwargs})
+
+
+def test_backbone_points_match_the_kernel(clay_model):
+    m = clay_model
+    pts = m.backbone_points(W)
+    uu = np.linspace(0.0, pts["y3"] + 0.1, 20001)[1:]
+    h, _ = _drive(m, uu, W)
+    i_brk = np.argmin(np.abs(uu - pts["y1"]))
+    assert h[i_brk, OUT_PASSIVE] == pytest.approx(pts["F_r2"], rel=1e-3)
+    assert h[-1, OUT_PASSIVE] == pytest.approx(pts["F_r3"], rel=1e-12)
+    assert pts["F_f"] == pytest.approx(0.2 * W)

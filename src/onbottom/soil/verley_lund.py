@@ -298,6 +298,30 @@ class VerleyLund(LateralResistanceModel):
         b0, b1 = self.breakout_over_d
         return (b0 + b1 * penetration / self.outer_diameter) * self.outer_diameter
 
+    def backbone_points(self, vertical_load: float) -> dict[str, float]:
+        """Backbone of the installation trough in the keys of the V&S backbone (for plots).
+
+        y1 = y2 = y_brk (no accumulation region), y3 = y_res; F_r1 = F_r2 = F_R(z_i),
+        F_r3 = F_R(z_res); F_f = μV [N/m]; z_i, z2 = z_i, z3 = z_res [m].
+        """
+        v = positive("vertical_load", vertical_load)
+        zi = self.initial_penetration
+        z_res = self.residual_penetration_ratio * zi
+        y_brk = self.breakout_displacement(zi)
+        fr = self.passive(zi)
+        return {
+            "y1": y_brk,
+            "y2": y_brk,
+            "y3": self.residual_over_d * self.outer_diameter,
+            "z_i": zi,
+            "z2": zi,
+            "z3": z_res,
+            "F_r1": fr,
+            "F_r2": fr,
+            "F_r3": self.passive(z_res),
+            "F_f": self.friction_coefficient * v,
+        }
+
     # ---- kernel contract ---------------------------------------------------------------
     @property
     def kernel(self):
