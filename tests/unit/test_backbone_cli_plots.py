@@ -62,3 +62,10 @@ def test_path_response_dataset_and_plot():
     assert len(fig.axes) == 2
     with pytest.raises(InputError, match="amplitude"):
         cyclic_path(0.0, 2.0)
+
+
+def test_cli_reports_range_warnings(capsys):
+    args = ["backbone", "--weight-kn", "0.01", "--gamma-kn", "10", "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert any("K_s" in w for w in out["warnings"])

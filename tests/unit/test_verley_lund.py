@@ -136,3 +136,17 @@ def test_backbone_points_match_the_kernel(clay_model):
     assert h[i_brk, OUT_PASSIVE] == pytest.approx(pts["F_r2"], rel=1e-3)
     assert h[-1, OUT_PASSIVE] == pytest.approx(pts["F_r3"], rel=1e-12)
     assert pts["F_f"] == pytest.approx(0.2 * W)
+
+
+def test_model_warns_once_outside_the_fit_range():
+    with pytest.warns(OutOfRangeWarning, match="penetration group") as rec:
+        m = VerleyLund(
+            outer_diameter=D,
+            undrained_shear_strength=SU,
+            unit_weight=GS,
+            friction_coefficient=0.2,
+            installation_load=20.0e3,
+        )
+        m.packed_parameters()
+        m.initial_state()
+    assert len(rec) == 1

@@ -311,3 +311,16 @@ def test_check_validity_warns_after_a_run(calc_model):
         calc_model.check_validity([10.0], [0.1])
     with pytest.warns(OutOfRangeWarning, match="z/D"):
         calc_model.check_validity([10.0e3], [0.7])
+
+
+def test_model_warns_once_outside_the_ks_range():
+    with pytest.warns(OutOfRangeWarning, match="K_s") as rec:
+        m = VerleySotberg(
+            outer_diameter=1.0,
+            submerged_unit_weight=1.0e4,
+            friction_coefficient=0.5,
+            installation_load=100.0,
+        )
+        m.packed_parameters()
+        m.initial_state()
+    assert len(rec) == 1

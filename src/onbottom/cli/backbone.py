@@ -6,6 +6,7 @@ writes the backbone (and path) plots.
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import click
@@ -95,17 +96,51 @@ def command(
     Example: onbottom backbone --model calcareous --diameter 1.0 --weight-kn 10.52
     --load-kn 42.98 --gamma-kn 7.5 --mu 0.48 --cycles 5 --plot bb.png
     """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        payload = _run(
+            variant,
+            diameter,
+            weight_kn,
+            load_kn,
+            gamma_kn,
+            mu,
+            {"A": a_factor, "B": b_factor, "C": c_factor},
+            z2_over_d,
+            cycles,
+            amplitude,
+            plot_path,
+        )
+    messages = list(dict.fromkeys(str(w.message) for w in caught))
+    payload["warnings"] = messages
+    if as_json:
+        emit_json(payload)
+        return
+    _print_table(payload, diameter)
+    for msg in messages:
+        click.echo(f"warning: {msg}", err=True)
+
+
+def _run(
+    variant: str,
+    diameter: float,
+    weight_kn: float,
+    load_kn: float | None,
+    gamma_kn: float,
+    mu: float,
+    abc: dict[str, float | None],
+    z2_over_d: float | None,
+    cycles: float | None,
+    amplitude: float | None,
+    plot_path: Path | None,
+) -> dict:
     from onbottom.soil.response import cyclic_path, path_response
     from onbottom.soil.verley_sotberg import VerleySotberg
 
     v = weight_kn * _KN
     pipe = Pipe(outer_diameter=diameter, submerged_weight=v)
     sand = Sand(submerged_unit_weight=gamma_kn * _KN, friction_coefficient=mu)
-    factors = {
-        name: val
-        for name, val in (("A", a_factor), ("B", b_factor), ("C", c_factor))
-        if val is not None
-    }
+    factors = {name: val for name, val in abc.items() if val is not None}
     w = None if load_kn is None else load_kn * _KN
     build = {"silica": VerleySotberg.silica, "f109": VerleySotberg.f109}.get(variant)
     if build is None:
@@ -142,11 +177,12 @@ def command(
             p2 = plot_path.with_name(plot_path.stem + "_path" + plot_path.suffix)
             plot_path_response(ds, diameter=diameter).savefig(p2, dpi=150)
             payload["plots"].append(str(p2))
+    return payload
 
-    if as_json:
-        emit_json(payload)
-        return
-    d = diameter
+
+def _print_table(payload: dict, d: float) -> None:
+    pts = payload["backbone"]
+    variant = payload["model"]
     click.echo(f"Verley & Sotberg backbone ({variant}); SI inputs converted from kN")
     rows = [
         ("K_s = γ'D²/V", f"{pts['K_s']:.6g}", "-"),

@@ -215,6 +215,22 @@ class VerleyLund(LateralResistanceModel):
         in_range(f"{cls}.breakout_over_d[1]", b[1], 0.0, math.inf)
         object.__setattr__(self, "breakout_over_d", (float(b[0]), float(b[1])))
         in_range(f"{cls}.residual_penetration_ratio", self.residual_penetration_ratio, 0.0, 1.0)
+        # validity of the penetration fit, warned once here (Bai 2005: S·G^0.3 < 2.5)
+        x = penetration_group(
+            self.installation_load,
+            self.outer_diameter,
+            self.undrained_shear_strength,
+            self.unit_weight,
+            self.penetration_form,
+        )
+        warn_outside(
+            f"penetration group ({self.penetration_form})",
+            x,
+            0.0,
+            GROUP_VALIDITY_MAX,
+            "Verley & Lund (1995)",
+            stacklevel=4,
+        )
         zi = self.initial_penetration
         y_brk = (b[0] + b[1] * zi / self.outer_diameter) * self.outer_diameter
         in_range(
@@ -267,13 +283,14 @@ class VerleyLund(LateralResistanceModel):
     @property
     def initial_penetration(self) -> float:
         """z_i [m] (F109 §3.4.6 with W = ``installation_load``)."""
-        return clay_initial_penetration(
+        x = penetration_group(
             self.installation_load,
             self.outer_diameter,
             self.undrained_shear_strength,
             self.unit_weight,
             self.penetration_form,
         )
+        return self.outer_diameter * (0.0071 * x**3.2 + 0.062 * x**0.7)
 
     @property
     def delta(self) -> float:

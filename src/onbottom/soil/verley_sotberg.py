@@ -369,7 +369,8 @@ class VerleySotberg(LateralResistanceModel):
             "K_s (installation)",
             self.submerged_unit_weight * self.outer_diameter**2 / self.installation_load,
             *KS_CALIBRATION_RANGE,
-            "Verley & Sotberg (1994)",
+            "Verley & Sotberg (1994) Eq 7",
+            stacklevel=4,
         )
 
     # ---- constructors ------------------------------------------------------------------
@@ -452,9 +453,9 @@ class VerleySotberg(LateralResistanceModel):
     @property
     def initial_penetration(self) -> float:
         """z_i [m] of the first trough (Eq 7/15 with W = ``installation_load``)."""
-        return initial_penetration(
-            self.submerged_unit_weight, self.outer_diameter, self.installation_load, self.C
-        )
+        # Eq 7 without re-checking the range: __post_init__ warned once already
+        ks = self.submerged_unit_weight * self.outer_diameter**2 / self.installation_load
+        return self.outer_diameter * self.C * 0.037 * ks ** (-0.67)
 
     def peak_passive(self, vertical_load: float, penetration: float) -> float:
         """F_r [N/m] from Eqs 3–4 (or F109) with this model's A and passive law."""
