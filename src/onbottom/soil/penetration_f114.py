@@ -280,7 +280,7 @@ def _quiet_resistance(model: PenetrationModel, z: NDArray[np.float64]) -> NDArra
         return np.asarray(model.resistance(z), dtype=float)
 
 
-def _root(model: PenetrationModel, target: float, grid: NDArray[np.float64], xtol: float) -> float:
+def _root(model: PenetrationModel, target: float, grid: NDArray[np.float64], rtol: float) -> float:
     """Shallowest z in (0, D] with Q_v(z) = target (grid scan, then brentq)."""
     q = _quiet_resistance(model, grid)
     d = model.diameter
@@ -293,13 +293,15 @@ def _root(model: PenetrationModel, target: float, grid: NDArray[np.float64], xto
     i = int(np.argmax(q >= target))
     if q[i] == target:
         return float(grid[i])
-    lo = grid[i - 1]
-    hi = grid[i]
+    lo = 0.0 if i == 0 else float(grid[i - 1])  # Q_v(0) = 0 < target
+    hi = float(grid[i])
 
     def f(zz: float) -> float:
         return float(_quiet_resistance(model, np.array(zz))) - target
 
-    return float(brentq(f, lo, hi, xtol=xtol, rtol=4.0 * np.finfo(float).eps, maxiter=200))
+    return float(
+        brentq(f, lo, hi, xtol=1e-14 * d, rtol=max(rtol, 4.0 * np.finfo(float).eps), maxiter=200)
+    )
 
 
 def solve_embedment(
@@ -326,7 +328,7 @@ def solve_embedment(
     n_scan : int
         Grid points in (0, D] scanned to bracket the *shallowest* root before brentq.
     tolerance : float
-        Relative tolerance on z/D for brentq and for the lay-factor iteration.
+        Relative tolerance on z for brentq and for the lay-factor iteration, in (0, 0.01].
     max_iterations : int
         Maximum fixed-point iterations on k_lay.
 
@@ -345,10 +347,8 @@ def solve_embedment(
         raise InputError(f"n_scan = {n_scan!r} is invalid: must be >= 2")
     in_range("tolerance", tolerance, 0.0, 1e-2, low_inclusive=False)
     grid = np.linspace(0.0, d, int(n_scan) + 1)[1:]
-    grid = np.concatenate(([d * 1e-9], grid))
-    xtol = tolerance * d
 
-    z = _root(model, w, grid, xtol)
+    z = _root(model, w, grid, tolerance)
     k = 1.0
     history = [z]
     iterations = 1
@@ -371,9 +371,9 @@ def solve_embedment(
                 secant_stiffness=q / z,
                 bottom_tension=lay.bottom_tension,
             )
-            z_new = _root(model, k * w, grid, xtol)
+            z_new = _root(model, k * w, grid, tolerance)
             history.append(z_new)
-            converged = abs(z_new - z) <= 10.0 * xtol
+            converged = abs(z_new - z) <= 10.0 * tolerance * z_new
             z = z_new
             if converged:
                 status, message = 0, f"converged (k_lay = {k:.4g})"

@@ -15,6 +15,8 @@ Equations (DNVGL-RP-F114, May 2017; third-party transcription, see docs/theory/d
     A_bm = asin(B/D)·D²/4 − B·(D/4)·cos(asin(B/D))          z <  D/2
     A_bm = π·D²/8 + D·(z − D/2)                             z >= D/2
 
+The segment is evaluated as ``(D²/4)·(α − sin α·cos α)`` with ``α = atan2(B/D, 1 − 2z/D)``,
+algebraically identical to the asin form above (α = asin(B/D) for z <= D/2).
 For ``z >= D/2`` the area counts the whole displaced soil column above the pipe's widest
 section (the standard's convention), not only the immersed part of the pipe. Both functions are
 continuous at ``z = D/2`` (B = D, A_bm = πD²/8) and vanish at ``z = 0``.
@@ -54,7 +56,7 @@ def as_penetration(z: ArrayLike, diameter: float, *, field: str = "z") -> NDArra
     if not np.all(np.isfinite(arr)):
         raise InputError(f"{field} contains non-finite values: expected finite penetrations [m]")
     if arr.size and (arr.min() < 0.0 or arr.max() > d * (1.0 + 1e-12)):
-        bad = arr.min() if arr.min() < 0.0 else arr.max()
+        bad = float(arr.min() if arr.min() < 0.0 else arr.max())
         raise InputError(
             f"{field} = {bad!r} m is invalid: must lie in [0, D] = [0, {d:g}] m "
             "(partially embedded pipe)"
@@ -104,7 +106,10 @@ def penetrated_area(z: ArrayLike, diameter: float) -> NDArray[np.float64]:
     zz = as_penetration(z, diameter)
     d = float(diameter)
     b = contact_width(zz, d)
-    angle = np.arcsin(np.clip(b / d, 0.0, 1.0))
-    segment = angle * d * d / 4.0 - b * (d / 4.0) * np.cos(angle)
+    # half-angle α of the wetted arc: sin α = B/D, cos α = 1 − 2z/D. arctan2 keeps full
+    # precision near z = D/2, where asin(B/D) of the textbook form loses half the digits.
+    cos_a = 1.0 - 2.0 * zz / d
+    angle = np.arctan2(b / d, cos_a)
+    segment = (d * d / 4.0) * (angle - (b / d) * cos_a)
     deep = np.pi * d * d / 8.0 + d * (zz - 0.5 * d)
     return np.where(zz < 0.5 * d, segment, deep)
