@@ -255,6 +255,16 @@ def test_embedment_with_lay_factor_is_self_consistent():
     assert res.z > static.z and static.lay_factor == 1.0
 
 
+def test_lay_iteration_not_converged_is_reported_not_raised():
+    model = DrainedPenetration(diameter=D, unit_weight=16.7e3, friction_angle_deg=33)
+    lay = LayConditions(bending_stiffness=1e8, bottom_tension=5e5)
+    res = solve_embedment(model, 4e3, lay=lay, max_iterations=1)
+    assert not res.success and res.status == 1 and "did not converge" in res.message
+    assert res.iterations == 1 and len(res.history) == 2
+    with pytest.raises(InputError, match="max_iterations"):
+        solve_embedment(model, 4e3, lay=lay, max_iterations=0)
+
+
 def test_resistance_model_from_inputs():
     pipe = Pipe(outer_diameter=D, submerged_weight=3e3)
     sand = Sand(submerged_unit_weight=16.7e3, friction_angle_deg=33)

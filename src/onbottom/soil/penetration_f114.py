@@ -346,6 +346,8 @@ def solve_embedment(
     if int(n_scan) < 2:
         raise InputError(f"n_scan = {n_scan!r} is invalid: must be >= 2")
     in_range("tolerance", tolerance, 0.0, 1e-2, low_inclusive=False)
+    if int(max_iterations) < 1:
+        raise InputError(f"max_iterations = {max_iterations!r} is invalid: must be >= 1")
     grid = np.linspace(0.0, d, int(n_scan) + 1)[1:]
 
     z = _root(model, w, grid, tolerance)
