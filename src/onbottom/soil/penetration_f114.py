@@ -43,7 +43,6 @@ from onbottom.soil.penetration_geometry import as_penetration, contact_width
 from onbottom.soil.penetration_sand import DrainedBounds, DrainedPenetration
 
 __all__ = [
-    "CURVE_VARIABLES",
     "STANDARD",
     "EmbedmentResult",
     "LayConditions",
@@ -59,14 +58,6 @@ log = logging.getLogger(__name__)
 
 STANDARD = "DNVGL-RP-F114 (May 2017), equations as transcribed by third parties"
 """Edition note stored in the provenance of every result."""
-
-CURVE_VARIABLES: dict[str, tuple[str, str]] = {
-    "z_over_D": ("normalised penetration z/D", "1"),
-    "B": ("contact width of the pipe at the seabed", "m"),
-    "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
-    "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
-}
-"""long_name/units of the curve variables not (yet) in :data:`onbottom.results.VARIABLES`."""
 
 
 @runtime_checkable
@@ -487,10 +478,6 @@ def penetration_curve(
         extra["embedment_z"] = embedment.z
         extra["embedment_load"] = embedment.load
         extra["embedment_lay_factor"] = embedment.lay_factor
-    for name, (long_name, units) in CURVE_VARIABLES.items():
-        if name in ds.variables:
-            ds[name].attrs.setdefault("long_name", long_name)
-            ds[name].attrs.setdefault("units", units)
     annotate(ds)
     ds.attrs.update(provenance(str(model.name), model.parameters(), **extra))
     return ds
