@@ -324,3 +324,15 @@ def test_model_warns_once_outside_the_ks_range():
         m.packed_parameters()
         m.initial_state()
     assert len(rec) == 1
+
+
+def test_f109_sand_passive_in_the_standard_form():
+    # DNV-RP-F109 §3.4.6: F_R/F_C = (5κ_s − 0.15κ_s²)(z/D)^1.25 for κ_s <= 26.7,
+    # F_R/F_C = κ_s(z/D)^1.25 above; κ_s = γ'D²/F_C. D = 0.5 m, γ' = 10 kN/m³, z/D = 0.1.
+    g, d, zd = 10.0 * KN, 0.5, 0.1
+    # F_C = 0.2 kN/m: κ_s = 12.5 → F_R = 0.2·(62.5 − 23.4375)·0.1^1.25 = 0.439329 kN/m
+    f = peak_passive_resistance(g, d, 0.2 * KN, zd * d, law="dnv_f109")
+    assert f / KN == pytest.approx(0.439329, rel=1e-5)
+    # F_C = 0.09 kN/m: κ_s = 27.78 → F_R = 0.09·27.78·0.1^1.25 = γ'D²·0.1^1.25 = 0.140585 kN/m
+    f = peak_passive_resistance(g, d, 0.09 * KN, zd * d, law="dnv_f109")
+    assert f / KN == pytest.approx(0.140585, rel=1e-5)
