@@ -117,10 +117,12 @@ def loads_at(t, pt, ph, pv, i0):
 
 
 @njit(cache=True)
-def solve_step(model_id, params, state_old, u_hat, c0, h1, v1, u0, rtol, max_iter, trial, out):
-    """Solve r(u) = c0·(u − u_hat) + R(u) − h1 = 0 (safeguarded Newton, see module docstring).
+def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_iter, trial, out):
+    """Solve r(Δu) = c0·(Δu − Δû) + R(u0 + Δu) − h1 = 0 for the increment Δu.
 
-    Returns (u, converged, iterations); on return ``trial``/``out`` hold the kernel result at u.
+    Safeguarded Newton (see module docstring). Working with the increment keeps the inertia
+    term exact when c0 = m/Δt² is large (u0 itself may be metres). Returns
+    (Δu, converged, iterations); on return ``trial``/``out`` hold the kernel result at u0 + Δu.
     """
     scale = abs(h1) + abs(v1) + 1.0
     tol_r = rtol * scale
@@ -128,40 +130,44 @@ def solve_step(model_id, params, state_old, u_hat, c0, h1, v1, u0, rtol, max_ite
     have_hi = False
     lo = 0.0
     hi = 0.0
-    u = u0
+    du = du_hat
+    eps_u = 4.0e-16 * (abs(u0) + abs(du_hat) + 1e-12)
     for it in range(max_iter):
-        lateral_step(model_id, params, state_old, u, v1, trial, out)
+        lateral_step(model_id, params, state_old, u0 + du, v1, trial, out)
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
-            return u, False, it + 1
-        r = c0 * (u - u_hat) + big_r - h1
+            return du, False, it + 1
+        r = c0 * (du - du_hat) + big_r - h1
         if abs(r) <= tol_r:
-            return u, True, it + 1
+            return du, True, it + 1
         if r > 0.0:
-            hi = u
+            hi = du
             have_hi = True
         else:
-            lo = u
+            lo = du
             have_lo = True
-        if have_lo and have_hi and (hi - lo) <= 1e-13 * (1.0 + abs(u)):
-            # a jump of R across the root (discontinuous law): accept the bracket point
-            return u, True, it + 1
+        if have_lo and have_hi and (hi - lo) <= eps_u:
+            # a jump of R across the root (discontinuous law), or the root resolved to the
+            # precision of u: accept the bracket point
+            return du, True, it + 1
         jac = c0 + out[OUT_TANGENT]
         if jac > 0.0:
-            u_next = u - r / jac
+            du_next = du - r / jac
         else:
-            u_next = u - r / c0
+            du_next = du - r / c0
         if have_lo and have_hi:
-            if not (lo < u_next < hi):
-                u_next = 0.5 * (lo + hi)
-        elif have_hi and u_next >= hi:
-            u_next = u - r / c0
-        elif have_lo and u_next <= lo:
-            u_next = u - r / c0
-        if u_next == u:
-            u_next = 0.5 * (lo + hi) if (have_lo and have_hi) else u - r / c0
-        u = u_next
-    return u, False, max_iter
+            if not (lo < du_next < hi):
+                du_next = 0.5 * (lo + hi)
+        elif have_hi and du_next >= hi:
+            du_next = du - r / c0
+        elif have_lo and du_next <= lo:
+            du_next = du - r / c0
+        if abs(du_next - du) <= eps_u:
+            # Newton correction below the resolution of u: converged to machine precision
+            lateral_step(model_id, params, state_old, u0 + du_next, v1, trial, out)
+            return du_next, True, it + 1
+        du = du_next
+    return du, False, max_iter
 
 
 @njit(cache=True)
@@ -232,16 +238,16 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
         h1, v1, idx1 = loads_at(t1, pt, ph, pv, idx)
         if scheme == SCHEME_NEWMARK:
             c0 = m / (beta * dt * dt)
-            u_hat = u + dt * v + dt * dt * (0.5 - beta) * a
+            du_hat = dt * v + dt * dt * (0.5 - beta) * a
         else:
             c0 = m / (dt * dt)
-            u_hat = u + dt * v
-        u1, conv, iters = solve_step(
-            model_id, params, state, u_hat, c0, h1, v1, u_hat, rtol, max_iter, trial, out
+            du_hat = dt * v
+        du, conv, iters = solve_step(
+            model_id, params, state, u, du_hat, c0, h1, v1, rtol, max_iter, trial, out
         )
         if not math.isfinite(out[OUT_R]):
             return n, STATUS_SOIL_NAN
-        du = u1 - u
+        u1 = u + du
         ok = conv and abs(du) <= du_max and (c0 + out[OUT_TANGENT]) > 0.0
         if not ok:
             if dt > dt_min * 1.000001:
@@ -253,7 +259,7 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
             # at dt_min: accept a converged step even if large or locally non-unique
         # ---- commit
         if scheme == SCHEME_NEWMARK:
-            a1 = (u1 - u_hat) / (beta * dt * dt)
+            a1 = (du - du_hat) / (beta * dt * dt)
             v1dot = v + dt * ((1.0 - gam) * a + gam * a1)
         else:
             v1dot = du / dt
