@@ -17,10 +17,11 @@ pytestmark = pytest.mark.validation
 _INCLINED_2_REASON = (
     "model reaches the limit in cycle 13 (12.30 cycles) instead of 13.75: on the 30° path the "
     "friction-only sliding load μV_i/(1 + μ/tan α) = 2.82 kN/m is below the 3.0 kN/m amplitude "
-    "of cycle 12, and the passive resistance of the calcareous model (A = 0.25, z ≈ 0.15 m: "
-    "< 0.9 kN/m) cannot hold the 3.25 kN/m of cycle 13; the test held because its pipe had "
-    "embedded and built passive resistance during earlier small cycles, which the rigid–plastic "
-    "friction of V&S (no motion below μV + F_r1) does not produce (see the validation page)"
+    "of cycle 12, and the passive resistance the calcareous model builds once the pipe slides "
+    "(A = 0.25, z ≈ 0.15 m: about 0.8 kN/m) cannot hold 3.25 kN/m in cycle 13 (a friction-only "
+    "run gives the same 12.30). The test pipe probably held because it had embedded and built "
+    "passive resistance during the earlier small cycles, which V&S's rigid–plastic friction "
+    "(no motion below μV) does not produce; see docs/validation/youssef_cassidy_2014.md"
 )
 
 
