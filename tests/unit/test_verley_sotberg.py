@@ -234,3 +234,105 @@ def test_out_of_range_warning():
         initial_penetration(10.0e3, 1.0, 10.0, C=1.0)
     with pytest.warns(OutOfRangeWarning, match="z/D"):
         peak_passive_resistance(10.0e3, 1.0, 1.0e4, 0.8)
+
+
+# ---- kernel against the pure functions -----------------------------------------------------
+def _silica_model(**kw):
+    pipe = Pipe(outer_diameter=0.5, submerged_weight=2.0 * KN)
+    return VerleySotberg.silica(pipe, Sand(submerged_unit_weight=10.0 * KN), **kw)
+
+
+def test_kernel_penetration_equals_eq6_eq8_with_its_own_work():
+    m = _silica_model()
+    v = 2.0 * KN
+    u = np.linspace(0.0, 0.9 * m.y2, 4001)[1:]
+    h, _ = _drive(m, u, v)
+    zi = m.initial_penetration
+    in2 = u > m.y1
+    for ui, zk, ek in zip(
+        u[in2][::200], h[in2, OUT_Z][::200], h[in2, OUT_WORK][::200], strict=True
+    ):
+        z6 = work_penetration(zi, ek, 10.0 * KN, 0.5, v, ui)
+        z8 = max_cyclic_penetration(zi, 10.0 * KN, 0.5, v, ui)
+        assert zk == pytest.approx(max(min(z6, z8), zi), rel=1e-12)
+    # the work is the integral of |R| over the region-2 part of the path (trapezoid rule)
+    r = np.abs(h[:, OUT_R])
+    e_trap = np.trapezoid(r[in2], u[in2]) + r[in2][0] * (u[in2][0] - m.y1)
+    assert h[-1, OUT_WORK] == pytest.approx(e_trap, rel=2e-3)
+
+
+@pytest.mark.parametrize(
+    ("law", "factor"), [("reconstruction", 0.5), ("reconstruction_no_half", 1.0)]
+)
+def test_cyclic_motion_converges_to_eq8_cap(law, factor):
+    m = _silica_model(max_penetration_law=law)
+    v = 2.0 * KN
+    amp = 0.2 * 0.5
+    t = np.linspace(0.0, 20.0, 20 * 400 + 1)[1:]
+    h, state = _drive(m, amp * np.sin(2 * np.pi * t), v)
+    ks = 10.0 * KN * 0.25 / v
+    cap = m.initial_penetration + factor * 0.5 * (amp / (ks * 0.5)) ** 0.5
+    assert h[-1, OUT_Z] == pytest.approx(cap, rel=1e-9)
+    assert state[k.S_SMAX] == pytest.approx(amp, rel=1e-6)
+
+
+def test_work_law_none_and_passive_integrand():
+    v = 2.0 * KN
+    t = np.linspace(0.0, 3.0, 1201)[1:]
+    u = 0.05 * np.sin(2 * np.pi * t)
+    h_none, _ = _drive(_silica_model(work_law="none"), u, v)
+    np.testing.assert_allclose(h_none[:, OUT_Z], h_none[0, OUT_Z], rtol=0, atol=0)
+    h_tot, _ = _drive(_silica_model(), u, v)
+    h_pas, _ = _drive(_silica_model(work_integrand="passive"), u, v)
+    assert 0.0 < h_pas[-1, OUT_WORK] < 0.5 * h_tot[-1, OUT_WORK]
+    # less work → slower growth (both reach the Eq 8 cap eventually)
+    assert np.all(h_pas[:, OUT_Z] <= h_tot[:, OUT_Z])
+    assert np.any(h_pas[:, OUT_Z] < h_tot[:, OUT_Z])
+
+
+def test_return_from_breakout_keeps_penetration_and_frozen_envelope(calc_model):
+    m = calc_model
+    v = 10.52 * KN
+    u = np.concatenate([np.linspace(0.0, 0.5, 2001)[1:], np.linspace(0.5, 0.1, 801)[1:]])
+    h, state = _drive(m, u, v)
+    assert state[k.S_PHASE] == k.PHASE_BREAKOUT
+    z2 = state[k.S_Z2]
+    z3 = residual_penetration_ratio(z2) * z2
+    z_reached = z2 + (z3 - z2) * (0.5 - m.y2) / (m.y3 - m.y2)
+    assert h[-1, OUT_Z] == pytest.approx(z_reached, rel=1e-12)
+    fr2 = m.peak_passive(v, z2)
+    expected = 0.3 * fr2 + 0.7 * fr2 * (0.1 - m.y1) / (m.y2 - m.y1)
+    assert h[-1, OUT_PASSIVE] == pytest.approx(expected, rel=1e-9)
+
+
+def test_check_validity_warns_after_a_run(calc_model):
+    calc_model.check_validity([10.0e3, -1.0], [0.1])  # inside: silent
+    with pytest.warns(OutOfRangeWarning, match="K_s"):
+        calc_model.check_validity([10.0], [0.1])
+    with pytest.warns(OutOfRangeWarning, match="z/D"):
+        calc_model.check_validity([10.0e3], [0.7])
+
+
+def test_model_warns_once_outside_the_ks_range():
+    with pytest.warns(OutOfRangeWarning, match="K_s") as rec:
+        m = VerleySotberg(
+            outer_diameter=1.0,
+            submerged_unit_weight=1.0e4,
+            friction_coefficient=0.5,
+            installation_load=100.0,
+        )
+        m.packed_parameters()
+        m.initial_state()
+    assert len(rec) == 1
+
+
+def test_f109_sand_passive_in_the_standard_form():
+    # DNV-RP-F109 §3.4.6: F_R/F_C = (5κ_s − 0.15κ_s²)(z/D)^1.25 for κ_s <= 26.7,
+    # F_R/F_C = κ_s(z/D)^1.25 above; κ_s = γ'D²/F_C. D = 0.5 m, γ' = 10 kN/m³, z/D = 0.1.
+    g, d, zd = 10.0 * KN, 0.5, 0.1
+    # F_C = 0.2 kN/m: κ_s = 12.5 → F_R = 0.2·(62.5 − 23.4375)·0.1^1.25 = 0.439329 kN/m
+    f = peak_passive_resistance(g, d, 0.2 * KN, zd * d, law="dnv_f109")
+    assert f / KN == pytest.approx(0.439329, rel=1e-5)
+    # F_C = 0.09 kN/m: κ_s = 27.78 → F_R = 0.09·27.78·0.1^1.25 = γ'D²·0.1^1.25 = 0.140585 kN/m
+    f = peak_passive_resistance(g, d, 0.09 * KN, zd * d, law="dnv_f109")
+    assert f / KN == pytest.approx(0.140585, rel=1e-5)

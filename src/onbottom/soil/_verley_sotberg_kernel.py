@@ -4,9 +4,7 @@ Contract: :mod:`onbottom.soil.base`. Physics and the choices made where the pape
 :mod:`onbottom.soil.verley_sotberg` and ``docs/theory/verley_sotberg.md``.
 
 The Python twin :func:`verley_sotberg_kernel_py` is the *same source* executed by the Python
-interpreter: every jitted helper is rebound to its ``py_func`` (see :func:`pure_python`), so the
-twin test compares numba's compiled semantics with plain Python semantics without keeping two
-copies of the algorithm in sync by hand.
+interpreter (:func:`onbottom.soil._twin.pure_python`).
 
 params (float64, :data:`N_PARAMS`): see the ``P_*`` indices below.
 state (float64, :data:`N_STATE`): common slots of :mod:`onbottom.soil.base` then the ``S_*``
@@ -15,12 +13,19 @@ slots below.
 
 from __future__ import annotations
 
-import types
-
 from numba import njit
-from numba.core.dispatcher import Dispatcher
 
 from onbottom.soil._coulomb_kernel import friction_return_map
+from onbottom.soil._trough import (
+    PHASE_BREAKOUT,
+    PHASE_OUT,
+    PHASE_TROUGH,
+    envelope,
+    overlap,
+    region_of,
+    sign,
+)
+from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
     OUT_FRICTION,
@@ -65,9 +70,8 @@ S_PASSIVE = N_COMMON_STATE + 6  # committed passive force [N/m] (for the work in
 N_STATE = N_COMMON_STATE + 7
 
 # ---- codes -----------------------------------------------------------------------------------
-PHASE_TROUGH = 0.0  # regions 1-2 of a trough, y2 not yet passed
-PHASE_BREAKOUT = 1.0  # y2 passed, y3 not passed
-PHASE_OUT = 2.0  # y3 passed: out of the trough until the next reversal
+# phases (onbottom.soil._trough): PHASE_TROUGH regions 1-2, y2 not yet passed;
+# PHASE_BREAKOUT y2 passed, y3 not; PHASE_OUT y3 passed, out of the trough until next reversal
 
 PASSIVE_VERLEY_SOTBERG = 0  # Eqs 3-4 (switch at K_s = 20)
 PASSIVE_DNV_F109 = 1  # DNV-RP-F109 §3.4.6 (switch at κ_s = 26.7)
@@ -113,56 +117,6 @@ def residual_ratio(z2_over_d):
     if z2_over_d <= 0.1:
         return 0.82 - 3.2 * z2_over_d
     return 0.5
-
-
-@njit(cache=True)
-def envelope(a, fr1, fr2, fr3, y1, y2, y3):
-    """Passive envelope magnitude and slope at distance ``a`` = |u - y0| from the trough centre.
-
-    Piecewise linear through (0, 0), (y1, fr1), (y2, fr2), (y3, fr3), constant beyond y3.
-    """
-    if a <= y1:
-        k = fr1 / y1
-        return k * a, k
-    if a <= y2:
-        k = (fr2 - fr1) / (y2 - y1)
-        return fr1 + k * (a - y1), k
-    if a <= y3:
-        k = (fr3 - fr2) / (y3 - y2)
-        return fr2 + k * (a - y2), k
-    return fr3, 0.0
-
-
-@njit(cache=True)
-def overlap(a, b, lo, hi):
-    """Length of the segment between ``a`` and ``b`` that lies inside [lo, hi]."""
-    s0 = min(a, b)
-    s1 = max(a, b)
-    lo2 = max(s0, lo)
-    hi2 = min(s1, hi)
-    if hi2 > lo2:
-        return hi2 - lo2
-    return 0.0
-
-
-@njit(cache=True)
-def sign(x):
-    if x > 0.0:
-        return 1.0
-    if x < 0.0:
-        return -1.0
-    return 0.0
-
-
-@njit(cache=True)
-def region_of(a, y1, y2, y3):
-    if a <= y1:
-        return 1.0
-    if a <= y2:
-        return 2.0
-    if a <= y3:
-        return 3.0
-    return 4.0
 
 
 @njit(cache=True)
@@ -293,27 +247,6 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_Z] = z
     out[OUT_WORK] = work
     out[OUT_REGION] = region
-
-
-def pure_python(fn, _memo=None):
-    """Return ``fn`` with every jitted function it reaches rebound to plain Python.
-
-    ``fn`` is a numba dispatcher (or a Python function). The result executes the same source
-    in the Python interpreter; helpers called through module globals are rebound recursively.
-    """
-    memo = {} if _memo is None else _memo
-    py = fn.py_func if isinstance(fn, Dispatcher) else fn
-    if py in memo:
-        return memo[py]
-    glb = dict(py.__globals__)
-    twin = types.FunctionType(py.__code__, glb, py.__name__ + "_py", py.__defaults__)
-    twin.__doc__ = f"Plain-Python twin of :func:`{py.__name__}`."
-    memo[py] = twin
-    for name in py.__code__.co_names:
-        obj = glb.get(name)
-        if isinstance(obj, Dispatcher):
-            glb[name] = pure_python(obj, memo)
-    return twin
 
 
 verley_sotberg_kernel_py = pure_python(verley_sotberg_kernel)

@@ -86,6 +86,9 @@ magnitude envelope (open item in ``docs/theory/verley_sotberg.md``)."""
 Z_OVER_D_RANGE: tuple[float, float] = (0.0, 0.5)
 """z/D range over which the power laws in z/D are used here (pipe at most half buried)."""
 
+MAX_UNIT_WEIGHT = 2.0e6
+"""Upper bound of γ' [N/m³]: 100 × a dense soil, so model-scale centrifuge inputs (γ'·N) pass."""
+
 _SILICA_LIMITS = (0.02, 0.5, 1.0)
 _CALCAREOUS_LIMITS = (0.01, 0.25, 0.75)
 
@@ -267,7 +270,7 @@ class VerleySotberg(LateralResistanceModel):
     outer_diameter : float
         D [m], > 0.
     submerged_unit_weight : float
-        γ' [N/m³], in (0, 20 000].
+        γ' [N/m³], in (0, 2·10⁶] (model-scale centrifuge values γ'·N are allowed).
     friction_coefficient : float
         μ [-], in (0, 2].
     installation_load : float
@@ -322,7 +325,7 @@ class VerleySotberg(LateralResistanceModel):
             f"{cls}.submerged_unit_weight",
             self.submerged_unit_weight,
             0.0,
-            2.0e4,
+            MAX_UNIT_WEIGHT,
             low_inclusive=False,
         )
         in_range(
@@ -366,7 +369,8 @@ class VerleySotberg(LateralResistanceModel):
             "K_s (installation)",
             self.submerged_unit_weight * self.outer_diameter**2 / self.installation_load,
             *KS_CALIBRATION_RANGE,
-            "Verley & Sotberg (1994)",
+            "Verley & Sotberg (1994) Eq 7",
+            stacklevel=4,
         )
 
     # ---- constructors ------------------------------------------------------------------
@@ -449,9 +453,9 @@ class VerleySotberg(LateralResistanceModel):
     @property
     def initial_penetration(self) -> float:
         """z_i [m] of the first trough (Eq 7/15 with W = ``installation_load``)."""
-        return initial_penetration(
-            self.submerged_unit_weight, self.outer_diameter, self.installation_load, self.C
-        )
+        # Eq 7 without re-checking the range: __post_init__ warned once already
+        ks = self.submerged_unit_weight * self.outer_diameter**2 / self.installation_load
+        return self.outer_diameter * self.C * 0.037 * ks ** (-0.67)
 
     def peak_passive(self, vertical_load: float, penetration: float) -> float:
         """F_r [N/m] from Eqs 3–4 (or F109) with this model's A and passive law."""
@@ -499,6 +503,34 @@ class VerleySotberg(LateralResistanceModel):
             "F_r3": self.peak_passive(v, z3),
             "F_f": self.friction_coefficient * v,
         }
+
+    def check_validity(self, vertical_load: Any, penetration: Any) -> None:
+        """Warn (OutOfRangeWarning) if a run left the calibration ranges of the correlations.
+
+        The kernel cannot warn; call this after a simulation with its vertical loads and
+        penetrations. Checks K_s = γ'D²/V for V > 0 against :data:`KS_CALIBRATION_RANGE` and
+        z/D against :data:`Z_OVER_D_RANGE`.
+
+        Parameters
+        ----------
+        vertical_load : array-like
+            V [N/m] along the run (V <= 0, lift-off, is ignored).
+        penetration : array-like
+            z [m] along the run.
+        """
+        v = np.asarray(vertical_load, dtype=float).ravel()
+        v = v[v > 0.0]
+        g, d = self.submerged_unit_weight, self.outer_diameter
+        if v.size:
+            ks = g * d * d / v
+            src = "Verley & Sotberg (1994) Eqs 3-8"
+            warn_outside("K_s (min)", float(ks.min()), *KS_CALIBRATION_RANGE, src)
+            warn_outside("K_s (max)", float(ks.max()), *KS_CALIBRATION_RANGE, src)
+        z = np.asarray(penetration, dtype=float).ravel()
+        if z.size:
+            warn_outside(
+                "z/D (max)", float(z.max()) / d, *Z_OVER_D_RANGE, "Verley & Sotberg (1994)"
+            )
 
     # ---- kernel contract ---------------------------------------------------------------
     @property
