@@ -50,10 +50,13 @@ def command(
     """
     from onbottom.study.youssef_cassidy import reproduce
 
+    figure = None
+    if not no_plots:
+        from onbottom.plotting.section import reproduction_figure as figure
     t0 = time.perf_counter()
     res = reproduce(
         out,
-        plots=not no_plots,
+        figure=figure,
         netcdf=not no_netcdf,
         sensitivity=not no_sensitivity,
         gamma=None if gamma_kn is None else gamma_kn * 1e3,

@@ -29,6 +29,7 @@ __all__ = [
     "plot_penetration_path",
     "plot_section_result",
     "plot_time_histories",
+    "reproduction_figure",
 ]
 
 PAPER_AXES: dict[str, dict[str, tuple[float, float]]] = {
@@ -191,3 +192,25 @@ def plot_section_result(
     if title:
         fig.suptitle(title)
     return fig
+
+
+def reproduction_figure(row: Any, result: Any) -> Figure:
+    """Figure of one run of the Youssef & Cassidy reproduction (onbottom.study.youssef_cassidy).
+
+    ``row`` is a ``ReproductionRow`` (test, parameter set, A, B, C, μ, γ'); ``result`` its
+    SectionResult. Axis ranges follow the paper's figure for the test's kind.
+    """
+    attrs = result.data.attrs
+    name = str(row.test)
+    kind = "regular" if name == "Regular" else "irregular" if name == "Irregular" else "inclined"
+    cp = attrs.get("cycle_period")
+    lim = attrs.get("displacement_limit")
+    return plot_section_result(
+        result,
+        title=f"{name} — {row.parameter_set} (A={row.A:g}, B={row.B:g}, C={row.C:g},"
+        f" μ={row.mu:g}, γ'={row.gamma_kn:g} kN/m³)",
+        kind=kind,
+        installation_load=float(attrs["installation_load"]),
+        cycle_period=float(cp) if isinstance(cp, (int, float)) else None,
+        displacement_limit=float(lim) if isinstance(lim, (int, float)) else None,
+    )

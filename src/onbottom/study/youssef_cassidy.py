@@ -14,7 +14,7 @@ import csv
 import logging
 import math
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
@@ -242,7 +242,7 @@ def write_csv(rows: Sequence[ReproductionRow], path: str | Path) -> Path:
 def reproduce(
     out: str | Path,
     *,
-    plots: bool = True,
+    figure: Callable[[ReproductionRow, SectionResult], Any] | None = None,
     netcdf: bool = True,
     sensitivity: bool = True,
     gamma: float | None = None,
@@ -251,7 +251,21 @@ def reproduce(
     """Run the reproduction and write everything under ``out``.
 
     Files: ``table.md``, ``table.csv`` (all runs), ``gamma_sensitivity.md/.csv``,
-    ``netcdf/<test>_<set>.nc``, ``plots/<test>_<set>.png``.
+    ``netcdf/<test>_<set>.nc`` and, if ``figure`` is given, ``plots/<test>_<set>.png``.
+
+    Parameters
+    ----------
+    out : path
+        Output folder.
+    figure : callable or None
+        ``figure(row, result) -> matplotlib Figure`` for each run (study does not import
+        plotting; the CLI passes :func:`onbottom.plotting.section.reproduction_figure`).
+    netcdf, sensitivity : bool
+        Write NetCDF files / the γ' sensitivity table.
+    gamma : float or None
+        γ' [N/m³].
+    progress : bool
+        tqdm over runs.
 
     Returns
     -------
@@ -273,29 +287,18 @@ def reproduce(
     if netcdf:
         for row, res in runs:
             files.append(res.save(out / "netcdf" / f"{slug(row.test)}_{row.parameter_set}.nc"))
-    if plots:
-        import matplotlib.pyplot as plt
-
-        from onbottom.plotting.section import plot_section_result
-
+    if figure is not None:
         for row, res in runs:
-            t = get_test(row.test)
-            fig = plot_section_result(
-                res,
-                title=f"{t.name} — {row.parameter_set} (A={row.A:g}, B={row.B:g}, C={row.C:g},"
-                f" μ={row.mu:g}, γ'={row.gamma_kn:g} kN/m³)",
-                kind=t.kind,
-                installation_load=t.installation_load,
-                cycle_period=res.data.attrs.get("cycle_period")
-                if isinstance(res.data.attrs.get("cycle_period"), float)
-                else None,
-                displacement_limit=t.displacement_limit,
-            )
-            p = out / "plots" / f"{slug(t.name)}_{row.parameter_set}.png"
+            fig = figure(row, res)
+            p = out / "plots" / f"{slug(row.test)}_{row.parameter_set}.png"
             p.parent.mkdir(parents=True, exist_ok=True)
             fig.savefig(p, dpi=110)
-            plt.close(fig)
             files.append(p)
+            close = getattr(getattr(fig, "canvas", None), "manager", None)
+            if close is not None:  # pyplot-managed figure: release it
+                import matplotlib.pyplot as plt
+
+                plt.close(fig)
     if sensitivity:
         base = SUBMERGED_UNIT_WEIGHT if gamma is None else gamma
         srows = gamma_sensitivity((0.8 * base, base, 1.2 * base))
