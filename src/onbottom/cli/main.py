@@ -13,7 +13,7 @@ import click
 
 from onbottom._version import __version__
 
-COMMAND_MODULES: tuple[str, ...] = ("penetration", "backbone")
+COMMAND_MODULES: tuple[str, ...] = ("penetration", "backbone", "reproduce", "simulate")
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 
