@@ -1,1 +1,38 @@
-"""onbottom.soil."""
+"""onbottom.soil — pipe–soil resistance models.
+
+Lateral (stateful, behind the kernel contract of :mod:`onbottom.soil.base`): Coulomb friction,
+Verley & Sotberg sand (silica, calcareous, DNV-RP-F109 variant), Verley & Lund clay.
+Vertical: DNVGL-RP-F114 penetration resistance and the embedment solver.
+"""
+
+from onbottom.soil.coulomb import CoulombFriction
+from onbottom.soil.factory import lateral_model
+from onbottom.soil.penetration_f114 import (
+    DrainedBounds,
+    DrainedPenetration,
+    UndrainedModel1,
+    UndrainedModel2,
+    lay_factor,
+    penetration_curve,
+    resistance_model,
+    solve_embedment,
+)
+from onbottom.soil.response import path_response
+from onbottom.soil.verley_lund import VerleyLund
+from onbottom.soil.verley_sotberg import VerleySotberg
+
+__all__ = [
+    "CoulombFriction",
+    "DrainedBounds",
+    "DrainedPenetration",
+    "UndrainedModel1",
+    "UndrainedModel2",
+    "VerleyLund",
+    "VerleySotberg",
+    "lateral_model",
+    "lay_factor",
+    "path_response",
+    "penetration_curve",
+    "resistance_model",
+    "solve_embedment",
+]
