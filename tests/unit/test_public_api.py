@@ -14,4 +14,4 @@ def test_exported_name_resolves(name):
 
 def test_unknown_attribute_raises():
     with pytest.raises(AttributeError, match="no attribute 'nope'"):
-        onbottom.nope  # noqa: B018
+        onbottom.nope
