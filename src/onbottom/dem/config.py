@@ -269,7 +269,7 @@ class Preparation:
     n_layers: int = 5
     undercompaction: float = 0.1
     prep_friction: float = 0.1
-    lid_speed: float = 0.2
+    lid_speed: float = 0.5
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
 
@@ -327,7 +327,7 @@ class Numerics:
         Record the pipe force every this many steps [-].
     """
 
-    dt_safety: float = 0.2
+    dt_safety: float = 0.5
     skin_ratio: float = 0.3
     record_every: int = 200
 
