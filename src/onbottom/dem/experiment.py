@@ -230,7 +230,7 @@ def penetrate(
         snaps = []
         meta = {"surf0": surf0, "xc": xc}
     surf0 = float(meta["surf0"])
-    steps_total = int(math.ceil(w_end / v / sim.dt))
+    steps_total = math.ceil(w_end / v / sim.dt)
     next_ck = (sim.step_count // checkpoint_every + 1) * checkpoint_every
     done_here = 0
     while True:

@@ -183,7 +183,7 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
                 progress(
                     "compaction", (li + 1 - (t_end - sim.time) / max(travel_time, 1e-12)) / n_l
                 )
-        ok, r = settle(
+        _ok, r = settle(
             sim,
             prep.equilibrium_ratio,
             prep.max_settle_time / 5.0,
@@ -216,7 +216,7 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
     ramp = config.loading.gravity_ramp_time
     if ramp > 0:
         n_chunks = max(1, int(ramp / (200 * sim.dt)))
-        steps = max(1, int(round(ramp / sim.dt / n_chunks)))
+        steps = max(1, round(ramp / sim.dt / n_chunks))
         for c in range(n_chunks):
             f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
             sim.set_gravity(0.0, -f * GRAVITY)
