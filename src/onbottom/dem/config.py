@@ -268,7 +268,7 @@ class Preparation:
 
     n_layers: int = 5
     undercompaction: float = 0.1
-    prep_friction: float = 0.1
+    prep_friction: float = 0.0
     lid_speed: float = 0.5
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
@@ -302,7 +302,7 @@ class Loading:
     gravity_factor: float = 25.0
     pipe_velocity: float = 0.01
     final_embedment_ratio: float = 0.5
-    gravity_ramp_time: float = 0.05
+    gravity_ramp_time: float = 0.02
 
     def __post_init__(self) -> None:
         v.in_range("gravity_factor", self.gravity_factor, 1.0, 1000.0)
@@ -420,7 +420,7 @@ SM = DEMConfig(
     geometry=Geometry(width=13 * _D, height=5.5 * _D, pipe_diameter=_D),
     psd=ParticleSizeDistribution(d50=0.68e-3, cu=1.67),
     target=Target(void_ratio=0.227),
-    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.2),
+    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.0),
     seed=1,
 )
 """Medium-dense specimen of the paper (D_r = 48 %, e = 0.227)."""
