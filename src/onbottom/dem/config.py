@@ -264,6 +264,9 @@ class Preparation:
         Equilibrium criterion: mean unbalanced force / mean contact force below this [-].
     max_settle_time
         Upper bound of simulated time for each equilibrium stage [s].
+    lid_pressure_limit
+        The lid stops early when its mean pressure exceeds this [Pa]; ``None`` → the N g
+        overburden at the specimen base, ρ_s(1 − n)·N·g·H.
     """
 
     n_layers: int = 5
@@ -272,6 +275,7 @@ class Preparation:
     lid_speed: float = 0.5
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
+    lid_pressure_limit: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.n_layers, int) or self.n_layers < 1:
@@ -281,6 +285,8 @@ class Preparation:
         v.positive("lid_speed", self.lid_speed)
         v.in_range("equilibrium_ratio", self.equilibrium_ratio, 0.0, 1.0, low_inclusive=False)
         v.positive("max_settle_time", self.max_settle_time)
+        if self.lid_pressure_limit is not None:
+            v.positive("lid_pressure_limit", self.lid_pressure_limit)
 
 
 @dataclass(frozen=True)

@@ -218,6 +218,14 @@ class Simulation:
         """Lid height [m] or ``None``."""
         return float(self.prm[K.P_LID_Y]) if self.prm[K.P_LID_ON] > 0.5 else None
 
+    def lid_force(self) -> float:
+        """Normal force of the disks on the lid [N per m] (0 without a lid)."""
+        y = self.lid
+        if y is None:
+            return 0.0
+        ov = self.rad - (y - self.pos[:, 1])
+        return float(self.contacts.wall.k_n * np.sum(ov[ov > 0.0]))
+
     @property
     def time(self) -> float:
         """Simulated time [s]."""
