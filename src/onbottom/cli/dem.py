@@ -23,8 +23,11 @@ from onbottom.dem.config import PRESETS, DEMConfig, get_preset
 __all__ = ["command"]
 
 
-def _config(preset: str, seed: int | None, threads: int | None) -> DEMConfig:
-    cfg = get_preset(preset)
+def _config(preset: str, seed: int | None, config_file: Path | None) -> DEMConfig:
+    if config_file is not None:
+        cfg = DEMConfig.from_json(config_file.read_text())
+    else:
+        cfg = get_preset(preset)
     if seed is not None:
         cfg = cfg.replace(seed=seed)
     return cfg
@@ -62,6 +65,13 @@ preset_option = click.option(
     help="Experiment preset (SM/SD: the paper's full size; -reduced: minutes).",
 )
 seed_option = click.option("--seed", type=int, default=None, help="Override the preset seed.")
+config_option = click.option(
+    "--config",
+    "config_file",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    default=None,
+    help="DEMConfig as JSON (DEMConfig.to_json); overrides --preset.",
+)
 threads_option = click.option(
     "--threads", type=int, default=None, help="Numba threads (default: automatic)."
 )
@@ -96,13 +106,21 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool):
 @command.command("prepare")
 @preset_option
 @seed_option
+@config_option
 @click.option("--out", type=click.Path(dir_okay=False, path_type=Path), required=True)
 @progress_option
 @json_option
 @handle_errors
-def prepare_cmd(preset: str, seed: int | None, out: Path, progress: bool, as_json: bool) -> None:
+def prepare_cmd(
+    preset: str,
+    seed: int | None,
+    config_file: Path | None,
+    out: Path,
+    progress: bool,
+    as_json: bool,
+) -> None:
     """Prepare a specimen (multi-layer under-compaction, 1 g then N g equilibrium)."""
-    cfg = _config(preset, seed, None)
+    cfg = _config(preset, seed, config_file)
     sample, wall = _prepare(cfg, out, progress and not as_json)
     summary = {
         "preset": cfg.name,
@@ -123,6 +141,7 @@ def prepare_cmd(preset: str, seed: int | None, out: Path, progress: bool, as_jso
 @command.command("penetrate")
 @preset_option
 @seed_option
+@config_option
 @click.option(
     "--sample",
     "sample_path",
@@ -158,6 +177,7 @@ def prepare_cmd(preset: str, seed: int | None, out: Path, progress: bool, as_jso
 def penetrate_cmd(
     preset: str,
     seed: int | None,
+    config_file: Path | None,
     sample_path: Path,
     out: Path,
     checkpoint: Path | None,
@@ -173,7 +193,7 @@ def penetrate_cmd(
     from onbottom.dem.sample import Sample
     from onbottom.results import save_dataset
 
-    cfg = _config(preset, seed, threads)
+    cfg = _config(preset, seed, config_file)
     show = progress and not as_json
     if sample_path.exists():
         sample = Sample.load(sample_path)
