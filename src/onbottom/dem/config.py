@@ -265,8 +265,8 @@ class Preparation:
     max_settle_time
         Upper bound of simulated time for each equilibrium stage [s].
     lid_pressure_limit
-        The lid stops early when its mean pressure exceeds this [Pa]; ``None`` → the N g
-        overburden at the specimen base, ρ_s(1 − n)·N·g·H.
+        The lid stops early when its mean pressure exceeds this [Pa] after a pause;
+        ``None`` → ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H.
     """
 
     n_layers: int = 5

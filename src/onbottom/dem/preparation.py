@@ -10,9 +10,9 @@ Method (Jiang, Konrad & Leroueil 2003, Computers and Geotechnics 30:579–597, "
    and the lid equals ``n_i = n_t(1 + U_i)``, ``U_i = U_1 (n − i)/(n − 1)``. Compacting the
    upper layers further densifies the lower ones, which is why they start under-compacted.
    The lid also stops, and holds, when its mean pressure exceeds ``lid_pressure_limit``
-   (default: the N g overburden at the specimen base, ρ_s(1 − n)·N·g·H): a thin layer next
-   to walls cannot always reach the target porosity without large overlaps (this cap is an
-   addition to Jiang et al.; the attributes record which layers were capped).
+   (default: ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H): a thin
+   layer next to walls cannot always reach the target porosity without large overlaps (this
+   cap is an addition to Jiang et al.; the attributes record which layers were capped).
 3. The lid is removed, the design μ and μ_r are restored, gravity 1 g is applied and the
    system is cycled to equilibrium; then gravity is ramped linearly to N g and cycled to a new
    equilibrium (as in the paper).
@@ -156,7 +156,12 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
     p_cap = (
         prep.lid_pressure_limit
         if prep.lid_pressure_limit is not None
-        else config.material.density * (1 - config.target.porosity) * n_g * GRAVITY * g.height
+        else 10.0
+        * config.material.density
+        * (1 - config.target.porosity)
+        * n_g
+        * GRAVITY
+        * g.height
     )
     for li, ix in enumerate(layers):
         y_base = float(np.max(pos[:, 1] + rad)) if len(rad) else 0.0
@@ -192,7 +197,7 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
                 # pause and let the layer relax: a fast lid hitting loose disks also gives
                 # large transient forces; only a force that persists means a jammed layer
                 sim.set_lid(sim.lid, 0.0)
-                sim.run(500)
+                sim.run(2000)
                 if sim.lid_force() > p_cap * g.width:
                     capped = True
                     break
