@@ -94,11 +94,13 @@ def measuring_circles(
     surface: float,
     diameter: float,
     n_columns: int = 8,
+    row_spacing: float | None = None,
 ) -> xr.Dataset:
     """Porosity, σ_h, σ_v and K0 = σ_h/σ_v from rows of measuring circles.
 
     Circles of ``diameter`` are laid in rows from ``diameter/2`` below ``surface`` down to the
-    bottom, ``n_columns`` per row spread over the width (one circle diameter clear of the side
+    bottom, ``row_spacing`` apart (default ``diameter/2``: overlapping rows, for a finer depth
+    profile), ``n_columns`` per row spread over the width (one circle diameter clear of the side
     walls); each row is averaged. Porosity from the exact disk–circle intersection areas;
     stress from the contact forces whose contact point lies in the circle (Love–Weber average,
     compression positive): ``σ_ab = (1/A) Σ_c f_a l_b``, with ``l`` the branch vector and
@@ -115,7 +117,8 @@ def measuring_circles(
     """
     rc = 0.5 * diameter
     x0, x1, y0 = box[0], box[1], box[2]
-    n_rows = max(1, int((surface - y0) / diameter))
+    step = 0.5 * diameter if row_spacing is None else row_spacing
+    n_rows = max(1, int((surface - y0 - diameter) / step) + 1)
     xs = np.linspace(x0 + diameter, x1 - diameter, n_columns)
     ci, cj = contacts["i"], contacts["j"]
     bx = positions[cj, 0] - positions[ci, 0]
@@ -134,7 +137,7 @@ def measuring_circles(
     sv = np.empty(n_rows)
     npart = np.empty(n_rows)
     for k in range(n_rows):
-        yc = surface - rc - k * diameter
+        yc = surface - rc - k * step
         depth[k] = surface - yc
         p_acc, sh_acc, sv_acc, n_acc = [], [], [], []
         for xc in xs:
@@ -171,6 +174,7 @@ def measuring_circles(
     )
     ds.attrs["circle_diameter"] = diameter
     ds.attrs["n_columns"] = n_columns
+    ds.attrs["row_spacing"] = step
     return ds
 
 
