@@ -243,10 +243,6 @@ def penetrate_cmd(
             (ds["surface"] - ds["surface0"]).max() / float(ds.attrs["pipe_diameter"])
         ),
         "wall_time_s": wall,
-        "particle_steps_per_s": float(ds.attrs["n_particles"])
-        * len(w)
-        * cfg.numerics.record_every
-        / max(wall, 1e-9),
     }
     if as_json:
         emit_json(summary)
