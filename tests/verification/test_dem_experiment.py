@@ -52,7 +52,7 @@ def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample):
     np.testing.assert_array_equal(rest["w"].values, full["w"].values)
     np.testing.assert_array_equal(rest["x"].values, full["x"].values)
     np.testing.assert_array_equal(rest["rotation"].values, full["rotation"].values)
-    assert full["V"].values[-1] > 0.0
+    assert full["V"].values.max() > 0.0  # the pipe did push on the soil
 
 
 def _run(cfg: DEMConfig):
