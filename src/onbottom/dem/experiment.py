@@ -1,7 +1,8 @@
 """The penetration experiment: a rigid pipe pushed down at constant speed into the specimen.
 
-The pipe (diameter D) starts with its invert on the local soil surface above the box centre
-and moves down at ``Loading.pipe_velocity`` under N g until ``w = final_embedment_ratio·D``.
+The pipe (diameter D) starts just touching the rough soil surface above the box centre
+(w = 0 at first contact) and moves down at ``Loading.pipe_velocity`` under N g until
+``w = final_embedment_ratio·D``.
 The soil force on the pipe is the sum of its contact forces (``V`` = vertical component,
 positive = soil pushes the pipe up, N per metre of pipe at model scale). Prototype values:
 lengths × N, force per metre × N.
@@ -98,9 +99,13 @@ def initial_state(
     )
 
 
-def _local_surface(sample: Sample, xc: float, half_width: float) -> float:
-    sel = np.abs(sample.positions[:, 0] - xc) < half_width
-    return float(np.max(sample.positions[sel, 1] + sample.radii[sel]))
+def _touch_height(sample: Sample, xc: float, radius: float) -> float:
+    """Lowest pipe-centre height at which the pipe (centre abscissa xc) touches no disk [m]."""
+    dx = sample.positions[:, 0] - xc
+    reach = radius + sample.radii
+    sel = np.abs(dx) < reach
+    y = sample.positions[sel, 1] + np.sqrt(reach[sel] ** 2 - dx[sel] ** 2)
+    return float(np.max(y))
 
 
 def _state_dataset(sim: Simulation) -> xr.Dataset:
@@ -222,7 +227,8 @@ def penetrate(
     else:
         sim = make_simulation(config, sample, threads)
         xc = 0.5 * (sample.box[0] + sample.box[1])
-        surf0 = _local_surface(sample, xc, 0.5 * D)
+        # w = 0 when the pipe first touches the rough surface
+        surf0 = _touch_height(sample, xc, 0.5 * D) - 0.5 * D
         sim.set_pipe(PipeState(xc, surf0 + 0.5 * D, 0.5 * D, -v))
         sim.time = 0.0
         theta0 = sim.th.copy()
