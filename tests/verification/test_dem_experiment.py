@@ -39,6 +39,25 @@ def test_preparation_is_reproducible(tiny_sample):
     assert tiny_sample.attrs["equilibrium_Ng_converged"]
 
 
+class _Interrupt(Exception):
+    pass
+
+
+def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
+    ck = tmp_path / "prep.nc"
+
+    def stop_after_first_layer(stage, fraction):
+        if stage == "compaction" and ck.exists():
+            raise _Interrupt
+
+    with pytest.raises(_Interrupt):
+        prepare_sample(TINY, progress=stop_after_first_layer, checkpoint=ck)
+    resumed = prepare_sample(TINY, checkpoint=ck)
+    np.testing.assert_array_equal(resumed.positions, tiny_sample.positions)
+    np.testing.assert_array_equal(resumed.radii, tiny_sample.radii)
+    assert not ck.exists()
+
+
 def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample):
     snaps = (0.02, 0.04)
     full = penetrate(TINY, tiny_sample, snapshots=snaps)

@@ -27,6 +27,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 
@@ -114,7 +115,11 @@ def settle(
     return False, r
 
 
-def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sample:
+def prepare_sample(
+    config: DEMConfig,
+    progress: Progress | None = None,
+    checkpoint: str | Path | None = None,
+) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
     Parameters
@@ -123,6 +128,10 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
         Experiment configuration.
     progress
         Optional callback ``progress(stage, fraction_done)``.
+    checkpoint
+        Optional file written (atomically) after each compacted layer and read back when it
+        exists, so an interrupted preparation resumes at the last finished layer with the same
+        result (the random-generator state is stored with it). Deleted when done.
 
     Returns
     -------
@@ -151,8 +160,45 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
     om = np.zeros(0)
     attrs: dict[str, object] = {"config": config.to_json(), "layers": n_l}
     sim: Simulation | None = None
-    dt = None
     n_g = config.loading.gravity_factor
+    m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
+    c = config.contacts
+    dt = config.numerics.dt_safety * math.sqrt(
+        m_min / max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+    )
+
+    def new_sim(sample: Sample) -> Simulation:
+        s = Simulation(
+            sample,
+            config.contacts,
+            density=config.material.density,
+            damping=config.material.damping,
+            dt=dt,
+            skin=config.numerics.skin_ratio * float(diam.min()),
+            gravity=(0.0, 0.0),
+        )
+        s.set_soil_contact(prep_soil)
+        return s
+
+    first_layer = 0
+    ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and ck.exists():
+        saved = Sample.load(ck)
+        meta = saved.attrs.pop("_checkpoint")
+        first_layer = int(meta["layers_done"])
+        rng.bit_generator.state = meta["rng_state"]
+        attrs = saved.attrs
+        pos, rad, vel, om, history = (
+            saved.positions,
+            saved.radii,
+            saved.velocities,
+            saved.omega,
+            saved.contacts,
+        )
+        sim = new_sim(saved)
+        sim.time = float(meta["time"])
+        sim.set_lid(float(meta["lid"]), 0.0)
+        log.info("resumed preparation from %s after layer %d", ck, first_layer)
     p_cap = (
         prep.lid_pressure_limit
         if prep.lid_pressure_limit is not None
@@ -164,6 +210,8 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
         * g.height
     )
     for li, ix in enumerate(layers):
+        if li < first_layer:
+            continue
         y_base = float(np.max(pos[:, 1] + rad)) if len(rad) else 0.0
         new_pos = _lattice(diam[ix], 0.0, g.width, y_base, rng)
         pos = np.concatenate([pos, new_pos])
@@ -171,22 +219,9 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
         vel = np.concatenate([vel, np.zeros((len(ix), 2))])
         om = np.concatenate([om, np.zeros(len(ix))])
         sample = Sample(pos, rad, box, velocities=vel, omega=om, contacts=history)
-        if dt is None:
-            d_all = diam
-            m_min = config.material.density * math.pi * (d_all.min() / 2) ** 2
-            c = config.contacts
-            k_max = max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
-            dt = config.numerics.dt_safety * math.sqrt(m_min / k_max)
-        sim = Simulation(
-            sample,
-            config.contacts,
-            density=config.material.density,
-            damping=config.material.damping,
-            dt=dt,
-            skin=config.numerics.skin_ratio * float(diam.min()),
-            gravity=(0.0, 0.0),
-        )
-        sim.set_soil_contact(prep_soil)
+        t_prev = sim.time if sim is not None else 0.0
+        sim = new_sim(sample)
+        sim.time = t_prev
         lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
         stop = float(tops[li])
         sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
@@ -223,6 +258,15 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
             snap.omega,
             snap.contacts,
         )
+        if ck is not None:
+            snap.attrs = dict(attrs)
+            snap.attrs["_checkpoint"] = {
+                "layers_done": li + 1,
+                "rng_state": rng.bit_generator.state,
+                "time": sim.time,
+                "lid": sim.lid,
+            }
+            snap.save(ck)
         if progress is not None:
             progress("compaction", (li + 1) / n_l)
     assert sim is not None
@@ -271,4 +315,6 @@ def prepare_sample(config: DEMConfig, progress: Progress | None = None) -> Sampl
         dt=sim.dt,
         time_prepared=sim.time,
     )
+    if ck is not None and ck.exists():
+        ck.unlink()
     return out
