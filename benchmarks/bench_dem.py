@@ -16,6 +16,10 @@ import argparse
 import os
 import time
 
+# OpenMP threads that spin at barriers lose badly when other processes share the cores;
+# passive waiting must be chosen before the OpenMP runtime starts (override by exporting it).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
 import numba
 import numpy as np
 
