@@ -13,7 +13,13 @@ import click
 
 from onbottom._version import __version__
 
-COMMAND_MODULES: tuple[str, ...] = ("penetration", "backbone", "reproduce", "simulate")
+COMMAND_MODULES: tuple[str, ...] = (
+    "reproduce",
+    "simulate",
+    "backbone",
+    "penetration",
+    "dem",
+)
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 

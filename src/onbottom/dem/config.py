@@ -1,0 +1,473 @@
+"""Configuration of the 2D DEM pipe-penetration experiment (frozen, validated dataclasses).
+
+All quantities are SI at **model scale** (the centrifuge model, not the prototype). Disks have
+unit thickness (1 m), as in PFC2D, so contact stiffnesses are in N/m, contact forces in N (per
+metre of out-of-plane thickness) and the pipe resistance ``V`` in N/m.
+
+Source of the presets: the penetration paper, §4.1 and Table 3 (centrifuge at 25 g, 2D DEM,
+most likely Itasca PFC2D); decoded in ``shared/spec/dem-penetration.md``.
+
+* :data:`SM` — medium-dense, D_r = 48 %, e = 0.227 (paper: 58,710 disks).
+* :data:`SD` — dense, D_r = 78 %, e = 0.197 (paper: 60,150 disks).
+* :data:`SM_REDUCED`, :data:`SD_REDUCED` — same contact law, stiffnesses, damping, void
+  ratios, pipe diameter and g-level, but particles 3× larger (D/d50 ≈ 9.8), a 7D × 3D box and a
+  pipe 5× faster, so that a case runs in about a minute. They keep the *contrast* between the
+  two densities (initial stiffness, heave) but not the paper's absolute resistances; their
+  inertial number is larger than 1e-3 and is reported for every run.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from onbottom import _validate as v
+from onbottom.errors import InputError
+
+__all__ = [
+    "PRESETS",
+    "SD",
+    "SD_REDUCED",
+    "SM",
+    "SM_REDUCED",
+    "ContactParameters",
+    "ContactSet",
+    "DEMConfig",
+    "Geometry",
+    "Loading",
+    "Material",
+    "Numerics",
+    "ParticleSizeDistribution",
+    "Preparation",
+    "Target",
+    "get_preset",
+]
+
+
+@dataclass(frozen=True)
+class ContactParameters:
+    """Linear contact with Coulomb friction and linear rolling resistance (PFC ``rrlinear``).
+
+    Parameters
+    ----------
+    k_n
+        Normal stiffness [N/m] (per metre of disk thickness).
+    k_s
+        Shear stiffness [N/m].
+    mu
+        Sliding friction coefficient [-]; shear force capped at ``mu·F_n``.
+    mu_r
+        Rolling-resistance coefficient [-]; rolling moment capped at ``mu_r·R̄·F_n``
+        with rolling stiffness ``k_r = k_s·R̄²``. 0 disables rolling resistance.
+    """
+
+    k_n: float
+    k_s: float
+    mu: float
+    mu_r: float = 0.0
+
+    def __post_init__(self) -> None:
+        v.positive("k_n", self.k_n)
+        v.non_negative("k_s", self.k_s)
+        v.in_range("mu", self.mu, 0.0, 10.0)
+        v.in_range("mu_r", self.mu_r, 0.0, 10.0)
+
+
+@dataclass(frozen=True)
+class ContactSet:
+    """Contact parameters per pair type: soil–soil, soil–pipe, soil–wall (Table 3)."""
+
+    soil: ContactParameters
+    pipe: ContactParameters
+    wall: ContactParameters
+
+    def __post_init__(self) -> None:
+        for name in ("soil", "pipe", "wall"):
+            if not isinstance(getattr(self, name), ContactParameters):
+                raise InputError(f"contacts.{name} is invalid: expected ContactParameters")
+
+
+@dataclass(frozen=True)
+class Material:
+    """Particle material.
+
+    Parameters
+    ----------
+    density
+        Solid density ρ_s [kg/m³]; disk mass m = ρ_s·π·r²·(1 m), inertia I = ½·m·r².
+    damping
+        Local (non-viscous, Cundall) damping coefficient α [-], 0 ≤ α < 1.
+    """
+
+    density: float = 2650.0
+    damping: float = 0.7
+
+    def __post_init__(self) -> None:
+        v.positive("density", self.density)
+        v.in_range("damping", self.damping, 0.0, 1.0, high_inclusive=False)
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Box and pipe (model scale).
+
+    Parameters
+    ----------
+    width
+        Inner width of the box W [m] (rigid frictionless side walls).
+    height
+        Height of the soil specimen H [m] (rigid bottom wall; open top).
+    pipe_diameter
+        Pipe outer diameter D [m].
+    """
+
+    width: float
+    height: float
+    pipe_diameter: float
+
+    def __post_init__(self) -> None:
+        v.positive("width", self.width)
+        v.positive("height", self.height)
+        v.positive("pipe_diameter", self.pipe_diameter)
+        if self.pipe_diameter >= self.width:
+            raise InputError(
+                f"pipe_diameter = {self.pipe_diameter!r} is invalid: must be < width "
+                f"= {self.width!r}"
+            )
+
+
+@dataclass(frozen=True)
+class ParticleSizeDistribution:
+    """Disk-diameter distribution, uniform between ``d_min`` and ``d_max``.
+
+    The grading curve is a straight line between ``d_min`` (0 % passing) and ``d_max``
+    (100 %), so ``d_p = d_min + p·(d_max − d_min)``; ``d_min`` and ``d_max`` follow from
+    ``d50`` and ``Cu = d60/d10``. ``basis = "number"`` (default) takes the percentages by
+    number of particles, as PFC's ``ball distribute``/``generate`` with a uniform radius
+    range does; with the paper's d50 = 0.68 mm, Cu = 1.67 and e = 0.227 this gives about
+    60,000 disks in a 13D × 5.5D box, within 3 % of the paper's 58,710. ``basis = "mass"``
+    takes them by solid area (mass in 2D), like a sieve curve. Valid for 1 ≤ Cu < 6.
+
+    Parameters
+    ----------
+    d50
+        Median diameter [m].
+    cu
+        Uniformity coefficient d60/d10 [-].
+    basis
+        ``"number"`` or ``"mass"``.
+    """
+
+    d50: float
+    cu: float
+    basis: str = "number"
+
+    def __post_init__(self) -> None:
+        v.positive("d50", self.d50)
+        v.in_range("cu", self.cu, 1.0, 6.0, high_inclusive=False)
+        v.one_of("basis", self.basis, ("number", "mass"))
+
+    @property
+    def d_min(self) -> float:
+        """Smallest diameter [m]."""
+        # d_p = a + p·Δ; Cu = (a + 0.6Δ)/(a + 0.1Δ) → Δ = a(Cu − 1)/(0.6 − 0.1·Cu)
+        ratio = (self.cu - 1.0) / (0.6 - 0.1 * self.cu)
+        return self.d50 / (1.0 + 0.5 * ratio)
+
+    @property
+    def d_max(self) -> float:
+        """Largest diameter [m]."""
+        ratio = (self.cu - 1.0) / (0.6 - 0.1 * self.cu)
+        return self.d_min * (1.0 + ratio)
+
+    def quantile(self, p: float) -> float:
+        """Diameter d_p [m] with a fraction ``p`` (0..1) passing, on the chosen basis."""
+        return self.d_min + p * (self.d_max - self.d_min)
+
+    def sample_diameters(self, n: int, rng: Any) -> Any:
+        """Draw ``n`` diameters [m] with ``rng`` (a :class:`numpy.random.Generator`)."""
+        u = rng.random(n)
+        a, b = self.d_min, self.d_max
+        if self.basis == "number" or b == a:
+            return a + u * (b - a)
+        # uniform by area ⇒ number density ∝ 1/d²; inverse CDF of that
+        return 1.0 / (1.0 / a - u * (1.0 / a - 1.0 / b))
+
+    def mean_area(self) -> float:
+        """Mean disk area per particle (number mean) [m²]."""
+        a, b = self.d_min, self.d_max
+        if b == a:
+            return math.pi * a * a / 4.0
+        if self.basis == "number":
+            return math.pi / 4.0 * (a * a + a * b + b * b) / 3.0
+        return math.pi / 4.0 * a * b
+
+
+@dataclass(frozen=True)
+class Target:
+    """Target state of the specimen (2D void ratios, area-based).
+
+    Parameters
+    ----------
+    void_ratio
+        Target void ratio e = A_voids/A_solids [-].
+    e_max, e_min
+        2D maximum/minimum void ratios [-] (paper: 0.275, 0.175) used for D_r.
+    """
+
+    void_ratio: float
+    e_max: float = 0.275
+    e_min: float = 0.175
+
+    def __post_init__(self) -> None:
+        v.in_range("void_ratio", self.void_ratio, 0.05, 2.0)
+        v.positive("e_max", self.e_max)
+        v.positive("e_min", self.e_min)
+        if self.e_min >= self.e_max:
+            raise InputError(f"e_min = {self.e_min!r} is invalid: must be < e_max = {self.e_max!r}")
+
+    @property
+    def porosity(self) -> float:
+        """Target porosity n = e/(1+e) [-]."""
+        return self.void_ratio / (1.0 + self.void_ratio)
+
+    @property
+    def relative_density(self) -> float:
+        """D_r = (e_max − e)/(e_max − e_min) [-]."""
+        return (self.e_max - self.void_ratio) / (self.e_max - self.e_min)
+
+
+@dataclass(frozen=True)
+class Preparation:
+    """Multi-layer under-compaction (Jiang, Konrad & Leroueil 2003, Comput. Geotech. 30:579).
+
+    Layer i (1 = bottom) is compacted by a rigid lid, with gravity off, until its porosity
+    between its design bottom ``(i−1)·H/n`` and the lid equals ``n_i = n_t·(1 + U_i)`` with
+    ``U_i = U_1·(n − i)/(n − 1)`` (linear under-compaction, 0 for the top layer). The top layer
+    thus closes the specimen at height H with the target mean porosity n_t.
+
+    Parameters
+    ----------
+    n_layers
+        Number of layers n [-].
+    undercompaction
+        Under-compaction U_1 of the bottom layer [-] (Jiang et al.: 0.05–0.15 in 2D).
+    prep_friction
+        Sliding friction μ used while compacting [-] (lower ⇒ denser jammed state); the
+        design μ and μ_r are restored before gravity is applied.
+    lid_speed
+        Speed of the compaction lid [m/s].
+    equilibrium_ratio
+        Equilibrium criterion: mean unbalanced force / mean contact force below this [-].
+    max_settle_time
+        Upper bound of simulated time for each equilibrium stage [s].
+    lid_pressure_limit
+        The lid stops early when its mean pressure exceeds this [Pa] after a pause;
+        ``None`` → ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H.
+    """
+
+    n_layers: int = 5
+    undercompaction: float = 0.1
+    prep_friction: float = 0.0
+    lid_speed: float = 0.5
+    equilibrium_ratio: float = 1e-3
+    max_settle_time: float = 0.5
+    lid_pressure_limit: float | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.n_layers, int) or self.n_layers < 1:
+            raise InputError(f"n_layers = {self.n_layers!r} is invalid: must be an integer >= 1")
+        v.in_range("undercompaction", self.undercompaction, 0.0, 0.5)
+        v.in_range("prep_friction", self.prep_friction, 0.0, 10.0)
+        v.positive("lid_speed", self.lid_speed)
+        v.in_range("equilibrium_ratio", self.equilibrium_ratio, 0.0, 1.0, low_inclusive=False)
+        v.positive("max_settle_time", self.max_settle_time)
+        if self.lid_pressure_limit is not None:
+            v.positive("lid_pressure_limit", self.lid_pressure_limit)
+
+
+@dataclass(frozen=True)
+class Loading:
+    """Centrifuge and pipe drive.
+
+    Parameters
+    ----------
+    gravity_factor
+        Centrifuge acceleration N [-] (gravity = N·g).
+    pipe_velocity
+        Prescribed downward pipe velocity [m/s].
+    final_embedment_ratio
+        Final embedment w/D [-].
+    gravity_ramp_time
+        Time over which gravity is ramped from 1 g to N g [s].
+    """
+
+    gravity_factor: float = 25.0
+    pipe_velocity: float = 0.01
+    final_embedment_ratio: float = 0.5
+    gravity_ramp_time: float = 0.02
+
+    def __post_init__(self) -> None:
+        v.in_range("gravity_factor", self.gravity_factor, 1.0, 1000.0)
+        v.positive("pipe_velocity", self.pipe_velocity)
+        v.in_range(
+            "final_embedment_ratio", self.final_embedment_ratio, 0.0, 1.0, low_inclusive=False
+        )
+        v.non_negative("gravity_ramp_time", self.gravity_ramp_time)
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Integration settings.
+
+    Parameters
+    ----------
+    dt_safety
+        Time step = ``dt_safety`` × critical step √(m_min/k_max) [-].
+    skin_ratio
+        Verlet skin as a fraction of d_min [-]; lists rebuilt when a disk moved > skin/2.
+    record_every
+        Record the pipe force every this many steps [-].
+    """
+
+    dt_safety: float = 0.5
+    skin_ratio: float = 0.3
+    record_every: int = 200
+
+    def __post_init__(self) -> None:
+        v.in_range("dt_safety", self.dt_safety, 0.0, 1.0, low_inclusive=False)
+        v.in_range("skin_ratio", self.skin_ratio, 0.0, 2.0, low_inclusive=False)
+        if not isinstance(self.record_every, int) or self.record_every < 1:
+            raise InputError(
+                f"record_every = {self.record_every!r} is invalid: must be an integer >= 1"
+            )
+
+
+@dataclass(frozen=True)
+class DEMConfig:
+    """A complete DEM penetration experiment (model scale, SI)."""
+
+    name: str
+    geometry: Geometry
+    psd: ParticleSizeDistribution
+    target: Target
+    material: Material = field(default_factory=Material)
+    contacts: ContactSet = field(
+        default_factory=lambda: ContactSet(
+            soil=ContactParameters(7.5e7, 5e7, 0.4, 0.8),
+            pipe=ContactParameters(1e9, 1e9, 0.3, 0.0),
+            wall=ContactParameters(1e9, 1e9, 0.0, 0.0),
+        )
+    )
+    preparation: Preparation = field(default_factory=Preparation)
+    loading: Loading = field(default_factory=Loading)
+    numerics: Numerics = field(default_factory=Numerics)
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.seed, int) or self.seed < 0:
+            raise InputError(f"seed = {self.seed!r} is invalid: must be an integer >= 0")
+        if self.psd.d_max >= 0.5 * self.geometry.pipe_diameter:
+            raise InputError(
+                f"psd.d_max = {self.psd.d_max!r} is invalid: must be < pipe_diameter/2"
+            )
+
+    def replace(self, **changes: Any) -> DEMConfig:
+        """Copy with top-level fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+    def estimated_particle_count(self) -> int:
+        """Number of disks that fill W×H at the target void ratio [-]."""
+        solids = self.geometry.width * self.geometry.height / (1.0 + self.target.void_ratio)
+        return round(solids / self.psd.mean_area())
+
+    def to_dict(self) -> dict[str, Any]:
+        """Nested plain dict (JSON-able)."""
+        return dataclasses.asdict(self)
+
+    def to_json(self) -> str:
+        """JSON string of :meth:`to_dict`."""
+        return json.dumps(self.to_dict(), sort_keys=True)
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> DEMConfig:
+        """Inverse of :meth:`to_dict`."""
+        c = d["contacts"]
+        return cls(
+            name=d["name"],
+            geometry=Geometry(**d["geometry"]),
+            psd=ParticleSizeDistribution(**d["psd"]),
+            target=Target(**d["target"]),
+            material=Material(**d["material"]),
+            contacts=ContactSet(
+                soil=ContactParameters(**c["soil"]),
+                pipe=ContactParameters(**c["pipe"]),
+                wall=ContactParameters(**c["wall"]),
+            ),
+            preparation=Preparation(**d["preparation"]),
+            loading=Loading(**d["loading"]),
+            numerics=Numerics(**d["numerics"]),
+            seed=int(d["seed"]),
+        )
+
+    @classmethod
+    def from_json(cls, s: str) -> DEMConfig:
+        """Inverse of :meth:`to_json`."""
+        return cls.from_dict(json.loads(s))
+
+
+_D = 0.020  # pipe diameter of the paper [m]
+
+SM = DEMConfig(
+    name="SM",
+    geometry=Geometry(width=13 * _D, height=5.5 * _D, pipe_diameter=_D),
+    psd=ParticleSizeDistribution(d50=0.68e-3, cu=1.67),
+    target=Target(void_ratio=0.227),
+    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.0),
+    seed=1,
+)
+"""Medium-dense specimen of the paper (D_r = 48 %, e = 0.227)."""
+
+SD = DEMConfig(
+    name="SD",
+    geometry=Geometry(width=13 * _D, height=5.5 * _D, pipe_diameter=_D),
+    psd=ParticleSizeDistribution(d50=0.68e-3, cu=1.67),
+    target=Target(void_ratio=0.197),
+    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.0),
+    seed=2,
+)
+"""Dense specimen of the paper (D_r = 78 %, e = 0.197)."""
+
+_REDUCED_GEOMETRY = Geometry(width=7 * _D, height=3 * _D, pipe_diameter=_D)
+_REDUCED_PSD = ParticleSizeDistribution(d50=3 * 0.68e-3, cu=1.67)
+_REDUCED_LOADING = Loading(gravity_factor=25.0, pipe_velocity=0.05, final_embedment_ratio=0.5)
+
+SM_REDUCED = SM.replace(
+    name="SM-reduced",
+    geometry=_REDUCED_GEOMETRY,
+    psd=_REDUCED_PSD,
+    loading=_REDUCED_LOADING,
+    preparation=dataclasses.replace(SM.preparation, n_layers=4),
+)
+"""Reduced SM: 3× larger disks, 7D × 3D box, pipe at 0.05 m/s (about 2,000 disks)."""
+
+SD_REDUCED = SD.replace(
+    name="SD-reduced",
+    geometry=_REDUCED_GEOMETRY,
+    psd=_REDUCED_PSD,
+    loading=_REDUCED_LOADING,
+    preparation=dataclasses.replace(SD.preparation, n_layers=4),
+)
+"""Reduced SD: 3× larger disks, 7D × 3D box, pipe at 0.05 m/s (about 2,000 disks)."""
+
+PRESETS: dict[str, DEMConfig] = {c.name: c for c in (SM, SD, SM_REDUCED, SD_REDUCED)}
+"""Presets by name: ``SM``, ``SD``, ``SM-reduced``, ``SD-reduced``."""
+
+
+def get_preset(name: str) -> DEMConfig:
+    """Return the preset called ``name`` (see :data:`PRESETS`)."""
+    v.one_of("preset", name, PRESETS)
+    return PRESETS[name]
