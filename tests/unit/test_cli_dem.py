@@ -43,6 +43,13 @@ def test_dem_prepare_penetrate_resume_plot(tmp_path):
     assert r.exit_code == 0, r.output
     figs = json.loads(r.output)["figures"]
     assert any("V_w" in f for f in figs)
+    assert not any("f114" in f for f in figs)  # preset "tiny" has no default unit weight
+    r = runner.invoke(
+        cli,
+        ["dem", "plot", str(out), "--outdir", str(tmp_path / "g"), "--gamma-kn", "16.7", "--json"],
+    )
+    assert r.exit_code == 0, r.output
+    assert any(f.endswith("dem_V_w_f114.png") for f in json.loads(r.output)["figures"])
 
 
 def test_dem_bad_preset_is_reported():

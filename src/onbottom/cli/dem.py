@@ -256,6 +256,19 @@ def penetrate_cmd(
         click.echo(json.dumps(summary, indent=2))
 
 
+def _f114_unit_weight(ds, gamma_kn: float | None) -> float | None:
+    """γ_d [N/m³] for the F114 bounds: the option, else the preset's estimate, else None."""
+    if gamma_kn is not None:
+        return gamma_kn * 1e3
+    from onbottom.plotting.dem_f114 import DEFAULT_DRY_UNIT_WEIGHT
+
+    preset = str(ds.attrs.get("preset", "")).upper()
+    for key, value in DEFAULT_DRY_UNIT_WEIGHT.items():
+        if preset.startswith(key):
+            return value
+    return None
+
+
 @command.command("plot")
 @click.argument(
     "results", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, path_type=Path)
@@ -280,6 +293,27 @@ def penetrate_cmd(
     show_default=True,
     help="Rotation highlight [deg].",
 )
+@click.option(
+    "--gamma-kn",
+    type=float,
+    default=None,
+    help="Prototype dry unit weight of the sand for the F114 bounds [kN/m³]; default by "
+    "preset (SM 15.9, SD 16.7: estimates, see onbottom.plotting.dem_f114).",
+)
+@click.option(
+    "--phi-lower-deg",
+    type=float,
+    default=33.0,
+    show_default=True,
+    help="φ' of the F114 lower bound [deg] (φ_c of the test sand).",
+)
+@click.option(
+    "--phi-upper-deg",
+    type=float,
+    default=40.0,
+    show_default=True,
+    help="φ' of the F114 upper bound [deg] (peak angle implied by the paper).",
+)
 @json_option
 @handle_errors
 def plot_cmd(
@@ -287,6 +321,9 @@ def plot_cmd(
     outdir: Path,
     chain_threshold: float,
     rotation_threshold: float,
+    gamma_kn: float | None,
+    phi_lower_deg: float,
+    phi_upper_deg: float,
     as_json: bool,
 ) -> None:
     """Plot V–w, initial profiles, heave, velocity, rotation and force-chain fields."""
@@ -308,6 +345,14 @@ def plot_cmd(
 
     save(P.plot_resistance(runs, prototype=True), "dem_V_w_prototype.png")
     save(P.plot_resistance(runs, prototype=False), "dem_V_w_model.png")
+    gamma = _f114_unit_weight(runs[0], gamma_kn)
+    if gamma is not None:
+        from onbottom.plotting.dem_f114 import plot_dem_against_f114
+
+        fig = plot_dem_against_f114(
+            runs, unit_weight=gamma, phi_lower_deg=phi_lower_deg, phi_upper_deg=phi_upper_deg
+        )
+        save(fig, "dem_V_w_f114.png")
     save(P.plot_surface(runs), "dem_heave.png")
     inis = []
     for ds in runs:
