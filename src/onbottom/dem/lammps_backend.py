@@ -741,10 +741,11 @@ _EXTRA_VARIABLES = {
 
 
 def _read_curve(case: LammpsPenetrationCase, deck: LammpsDeck, meta: dict[str, Any]) -> xr.Dataset:
-    if deck.curve.exists() and deck.curve.stat().st_size > 0:
-        arr = np.loadtxt(deck.curve, comments="#", ndmin=2)
-    else:
-        arr = np.zeros((0, 5))
+    rows: list[list[float]] = []
+    if deck.curve.exists():
+        with open(deck.curve, encoding="ascii") as fh:
+            rows = [[float(x) for x in ln.split()] for ln in fh if ln.strip() and ln[0] != "#"]
+    arr = np.array(rows, dtype=np.float64).reshape(-1, 5)
     t0 = (case.n_ramp + case.n_settle) * case.dt
     ds = xr.Dataset(
         {

