@@ -685,13 +685,17 @@ def write_lammps_case(case: LammpsPenetrationCase, directory: str | os.PathLike[
             "# stage 2: settle at full gravity, pipe at rest",
             f"run             {n_settle}",
         ]
+    if n_pen > 0:
+        lines += [
+            "",
+            "# stage 3: penetration; record t, w, V, H and the number of pipe contacts",
+            f"fix             curve all print {every} "
+            '"${t} ${w} ${V} ${H} ${ncontact}" '
+            f'file {deck.curve.name} screen no title "# time w V H n_contacts"',
+            f"run             {n_pen}",
+        ]
     lines += [
         "",
-        "# stage 3: penetration; record t, w, V, H and the number of pipe contacts",
-        f"fix             curve all print {every} "
-        '"${t} ${w} ${V} ${H} ${ncontact}" '
-        f'file {deck.curve.name} screen no title "# time w V H n_contacts"',
-        f"run             {n_pen}",
         f"write_dump      all custom {deck.final.name} id x y radius vx vy omegaz "
         "modify sort id format float %.17g",
     ]
