@@ -187,3 +187,109 @@ def test_pipe_on_a_disk_column_gives_the_series_stiffness(tmp_path):
     assert slope == pytest.approx(k_series, rel=0.02)
     assert abs(intercept / slope) < 0.15e-6
     assert c.V.attrs["units"] == "N/m" and c.w.attrs["units"] == "m"
+
+
+# --------------------------------------------------------------------------------------------
+# against onbottom's own engine (same initial state, same stages)
+
+
+def _run_engine(case: lb.LammpsPenetrationCase) -> tuple[np.ndarray, np.ndarray, object]:
+    """Run ``case`` with onbottom's engine; (w, V) at the LAMMPS output steps, and the sim."""
+    engine = pytest.importorskip("onbottom.dem.engine")
+    from onbottom.dem.config import ContactParameters, ContactSet
+    from onbottom.dem.sample import Sample
+
+    contacts = ContactSet(
+        *(ContactParameters(c.k_n, c.k_s, c.mu, c.mu_r) for c in (case.soil, case.pipe, case.wall))
+    )
+    sample = Sample(
+        case.positions, case.radii, case.box, velocities=case.velocities, omega=case.omega
+    )
+    r_pipe = 0.5 * case.pipe_diameter
+    y0 = case.pipe_start_centre_y
+    sim = engine.Simulation(
+        sample,
+        contacts,
+        density=case.density,
+        damping=case.damping,
+        dt=case.dt,
+        skin=case.skin,
+        gravity=(0.0, -case.gravity * case.gravity_factor),
+        pipe=engine.PipeState(case.pipe_x, y0, r_pipe, 0.0),
+    )
+    sim.run(case.n_settle)
+    sim.set_pipe(engine.PipeState(case.pipe_x, y0, r_pipe, -case.pipe_velocity))
+    every = case.record_every
+    w, V = [], []
+    for k in range(1, case.n_penetration // every + 1):
+        sim.run(every)
+        # the force of the last step was computed with the pipe k·every − 1 steps down
+        w.append(case.pipe_start_embedment + case.pipe_velocity * (k * every - 1) * case.dt)
+        V.append(sim.pipe_force()[1])
+    return np.array(w), np.array(V), sim
+
+
+def _hex_bed(n_rows: int, n_cols: int) -> tuple[np.ndarray, np.ndarray, tuple]:
+    pos = []
+    for row in range(n_rows):
+        k, off = (n_cols, R) if row % 2 == 0 else (n_cols - 1, 2 * R)
+        pos += [(off + 2 * R * c, R + row * R * math.sqrt(3)) for c in range(k)]
+    pos = np.array(pos)
+    return pos, np.full(len(pos), R), (0.0, 2 * R * n_cols, 0.0, 2 * R * n_rows)
+
+
+def test_engines_agree_on_an_oblique_collision_with_friction_and_rolling(tmp_path):
+    # unequal disks, spinning, oblique impact: exercises the shear spring, its cap, the rolling
+    # spring k_s·R̄² and its cap μ_r·R̄·F_n; without rolling resistance the spins end far apart
+    spins = {}
+    for mu_r in (0.8, 0.0):
+        case = _case(
+            [[0.01, 0.01], [0.0122, 0.0105]],
+            [R, 0.8 * R],
+            (0.0, 0.03, 0.0, 0.02),
+            soil=lb.LammpsContact(7.5e7, 5e7, 0.4, mu_r),
+            damping=0.0,
+            gravity_factor=0.0,
+            settle_time=1e-3,
+            dt=2e-8,
+            velocities=[[0.5, 0.0], [-0.5, 0.1]],
+            omega=[300.0, -500.0],
+        )
+        res = lb.run_lammps_case(case, tmp_path / f"mur{mu_r}")
+        assert res.success, res.message
+        _, _, sim = _run_engine(case)
+        lmp = res.final_sample
+        np.testing.assert_allclose(lmp.velocities, sim.vel, rtol=0.01, atol=1e-3)
+        np.testing.assert_allclose(lmp.omega, sim.om, rtol=0.01)
+        np.testing.assert_allclose(lmp.positions, sim.pos, rtol=0, atol=1e-6)
+        spins[mu_r] = sim.om.copy()
+    assert np.max(np.abs(spins[0.8] - spins[0.0])) > 100.0  # rad/s: the rolling term matters
+
+
+def test_engines_agree_on_a_regular_packing_under_the_pipe(tmp_path):
+    # 57 equal disks in a hexagonal packing, pipe off-centre: a deterministic multi-contact
+    # case (sliding and rolling at the pipe and in the packing); observed agreement ≈ 0.5 %
+    pos, radii, box = _hex_bed(6, 10)
+    surface = float(np.max(pos[:, 1])) + R
+    case = _case(
+        pos,
+        radii,
+        box,
+        pipe_x=0.5 * box[1] + 0.3 * R,
+        surface_y=surface,
+        pipe_start_embedment=-20e-6,
+        final_embedment=300e-6,
+        pipe_velocity=0.05,
+        settle_time=2e-3,
+        record_every=500,
+    )
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    w_e, V_e, _ = _run_engine(case)
+    w_l, V_l = res.curve.w.values[1:], res.curve.V.values[1:]
+    np.testing.assert_allclose(w_l, w_e, rtol=0, atol=1e-12)
+    assert V_e.max() > 1e4  # N/m: the pipe is loaded through several contacts
+    np.testing.assert_allclose(V_l, V_e, rtol=0, atol=0.02 * V_e.max())
+    for lo, hi in ((0.0, 100e-6), (100e-6, 200e-6), (200e-6, 300e-6)):
+        sel = (w_e >= lo) & (w_e < hi)
+        assert V_l[sel].mean() == pytest.approx(V_e[sel].mean(), rel=0.02)
