@@ -264,14 +264,18 @@ class Preparation:
         Equilibrium criterion: mean unbalanced force / mean contact force below this [-].
     max_settle_time
         Upper bound of simulated time for each equilibrium stage [s].
+    lid_pressure_limit
+        The lid stops early when its mean pressure exceeds this [Pa] after a pause;
+        ``None`` → ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H.
     """
 
     n_layers: int = 5
     undercompaction: float = 0.1
-    prep_friction: float = 0.1
-    lid_speed: float = 0.2
+    prep_friction: float = 0.0
+    lid_speed: float = 0.5
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
+    lid_pressure_limit: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.n_layers, int) or self.n_layers < 1:
@@ -281,6 +285,8 @@ class Preparation:
         v.positive("lid_speed", self.lid_speed)
         v.in_range("equilibrium_ratio", self.equilibrium_ratio, 0.0, 1.0, low_inclusive=False)
         v.positive("max_settle_time", self.max_settle_time)
+        if self.lid_pressure_limit is not None:
+            v.positive("lid_pressure_limit", self.lid_pressure_limit)
 
 
 @dataclass(frozen=True)
@@ -302,7 +308,7 @@ class Loading:
     gravity_factor: float = 25.0
     pipe_velocity: float = 0.01
     final_embedment_ratio: float = 0.5
-    gravity_ramp_time: float = 0.05
+    gravity_ramp_time: float = 0.02
 
     def __post_init__(self) -> None:
         v.in_range("gravity_factor", self.gravity_factor, 1.0, 1000.0)
@@ -327,7 +333,7 @@ class Numerics:
         Record the pipe force every this many steps [-].
     """
 
-    dt_safety: float = 0.2
+    dt_safety: float = 0.5
     skin_ratio: float = 0.3
     record_every: int = 200
 
@@ -420,7 +426,7 @@ SM = DEMConfig(
     geometry=Geometry(width=13 * _D, height=5.5 * _D, pipe_diameter=_D),
     psd=ParticleSizeDistribution(d50=0.68e-3, cu=1.67),
     target=Target(void_ratio=0.227),
-    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.2),
+    preparation=Preparation(n_layers=10, undercompaction=0.1, prep_friction=0.0),
     seed=1,
 )
 """Medium-dense specimen of the paper (D_r = 48 %, e = 0.227)."""

@@ -122,11 +122,18 @@ class Sample:
         return float(np.nanmedian(tops))
 
     def void_ratio(self, top: float | None = None) -> float:
-        """Bulk 2D void ratio of the box up to ``top`` (default: :meth:`surface_height`)."""
+        """Bulk 2D void ratio [-] of the band one largest diameter clear of the bottom wall
+        and of the (rough) surface; disks are clipped exactly at the band edges.
+
+        ``top`` overrides the surface height [m] (e.g. a compaction lid).
+        """
+        from onbottom.dem.analysis import band_void_ratio
+
         top = self.surface_height() if top is None else top
-        total = self.width * (top - self.box[2])
-        solids = self.solid_area()
-        return (total - solids) / solids
+        dmax = 2.0 * float(self.radii.max())
+        return band_void_ratio(
+            self.positions, self.radii, (self.box[0], self.box[1]), (self.box[2] + dmax, top - dmax)
+        )
 
     def mass(self, density: float) -> np.ndarray:
         """Disk masses [kg] for unit thickness."""

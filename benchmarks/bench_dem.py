@@ -1,0 +1,82 @@
+"""Throughput of the 2D DEM engine: particle-steps per second on 1 and 2 threads.
+
+The bed: ~60,000 equal disks (d = 0.74 mm, the paper's SM count in its 13D × 5.5D box) on a
+triangular lattice, each touching its six neighbours with a 1e-4·r overlap, under 25 g with the
+paper's contact parameters — a settled bed with the contact density of a dense packing (three
+half-list neighbours per disk), built without minutes of settling. ``--sample FILE`` measures
+a prepared specimen instead (``onbottom dem prepare``).
+
+Run: ``python benchmarks/bench_dem.py [--steps 400] [--sample sm.nc]``. Other processes on a
+shared machine lower the figures; the script prints the load average next to them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+
+# OpenMP threads that spin at barriers lose badly when other processes share the cores;
+# passive waiting must be chosen before the OpenMP runtime starts (override by exporting it).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numba
+import numpy as np
+
+from onbottom.constants import GRAVITY
+from onbottom.dem.config import SM
+from onbottom.dem.engine import Simulation
+from onbottom.dem.sample import Sample
+
+
+def lattice_bed(width: float = 0.26, height: float = 0.11, d: float = 0.74e-3) -> Sample:
+    a = d
+    h = a * np.sqrt(3.0) / 2.0
+    rows = int((height - a) / h)
+    cols = int((width - a) / a)
+    pts = [
+        ((c + 0.5 + 0.5 * (r % 2)) * a, 0.5 * a + r * h)
+        for r in range(rows)
+        for c in range(cols - (r % 2))
+    ]
+    pos = np.array(pts)
+    return Sample(pos, np.full(len(pos), 0.5 * a * (1 + 1e-4)), (0.0, width, 0.0, height))
+
+
+def measure(sample: Sample, threads: int, steps: int) -> float:
+    sim = Simulation(
+        sample,
+        SM.contacts,
+        damping=0.7,
+        gravity=(0.0, -25 * GRAVITY),
+        threads=threads,
+    )
+    sim.run(50)  # compile + warm caches
+    t0 = time.perf_counter()
+    sim.run(steps)
+    wall = time.perf_counter() - t0
+    return sim.n * steps / wall
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--steps", type=int, default=400)
+    ap.add_argument("--sample", default=None)
+    args = ap.parse_args()
+    sample = Sample.load(args.sample) if args.sample else lattice_bed()
+    print(
+        f"disks: {sample.n}, steps: {args.steps}, numba threads available: "
+        f"{numba.config.NUMBA_NUM_THREADS}, load average: {os.getloadavg()[0]:.2f}"
+    )
+    for threads in (1, 2):
+        if threads > numba.config.NUMBA_NUM_THREADS:
+            break
+        rate = measure(sample, threads, args.steps)
+        print(
+            f"threads={threads}: {rate:.3e} particle-steps/s "
+            f"(load average {os.getloadavg()[0]:.2f})"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,578 @@
+"""Numba kernels of the 2D DEM engine (private).
+
+Physics (PFC2D ``linear`` + ``rrlinear``, see ``docs/theory/dem.md``):
+
+* normal force ``F_n = k_n·δ`` (δ = overlap), no tension, no dashpot;
+* incremental shear spring ``F_s ← F_s + k_s·v_t·Δt``, capped at ``μ·F_n``; reset when the
+  contact opens;
+* rolling spring ``M_r ← M_r + k_r·(ω_j − ω_i)·Δt``, ``k_r = k_s·R̄²``, capped at
+  ``μ_r·R̄·F_n``, ``R̄ = R_i R_j/(R_i + R_j)`` (``R̄ = R_i`` against walls/pipe);
+* local damping: each component of the unbalanced force and moment gets ``−α·|F|·sign(v)``;
+* leapfrog (PFC's velocity-Verlet with half-step velocities).
+
+Data layout
+-----------
+Particle pairs are a half neighbour list in CSR form: the candidates of disk ``i`` are
+``nbr[start[i]:start[i+1]]`` (all ``j > i``, ascending), with per-pair shear force ``fs`` and
+rolling moment ``mr`` (history, force on/moment on ``i``). ``rstart``/``ridx`` is the transposed
+index (contacts in which a disk is the ``j`` side, ascending contact index). Pair forces are
+computed in one parallel pass into per-contact arrays, then each disk gathers its contacts in a
+fixed order, so the result does not depend on the number of threads (bitwise).
+
+Walls: 0 left (x = x0), 1 right (x = x1), 2 bottom (y = y0), 3 lid (y = lid, moving, only
+when active). The pipe is a rigid disk moving at a prescribed velocity. Wall/pipe shear and
+rolling histories are per particle: ``fsw[i, w]``, ``mrw[i, w]``, w = 0..3, 4 = pipe.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit, prange
+
+# indices into the parameter vector ``prm``
+P_DT = 0
+P_GX = 1
+P_GY = 2
+P_ALPHA = 3
+P_KN = 4
+P_KS = 5
+P_MU = 6
+P_MUR = 7
+P_KN_P = 8
+P_KS_P = 9
+P_MU_P = 10
+P_MUR_P = 11
+P_KN_W = 12
+P_KS_W = 13
+P_MU_W = 14
+P_MUR_W = 15
+P_X0 = 16
+P_X1 = 17
+P_Y0 = 18
+P_LID_Y = 19
+P_LID_V = 20
+P_LID_ON = 21
+P_LID_STOP = 22
+P_PIPE_X = 23
+P_PIPE_Y = 24
+P_PIPE_R = 25
+P_PIPE_V = 26
+P_PIPE_ON = 27
+P_SKIN = 28
+P_TIME = 29
+P_DIAG = 30
+N_PRM = 31
+
+N_WALL = 5  # 4 walls + pipe in the per-particle history arrays
+PIPE = 4
+
+
+@njit(cache=True)
+def contact_update(dnx, dny, overlap, vtan, dw, rbar, kn, ks, mu, mur, fs, mr, dt):
+    """Contact law for one contact: returns (F_n, F_s, M_r) after one step.
+
+    ``vtan``: tangential relative velocity of the other body w.r.t. this one at the contact
+    (along t = (−n_y, n_x), n pointing from this body to the other); ``dw``: ω_other − ω_this.
+    F_s and M_r act on *this* body. Open contact (overlap ≤ 0) → all zero (history reset).
+    """
+    if overlap <= 0.0:
+        return 0.0, 0.0, 0.0
+    fn = kn * overlap
+    fs_new = fs + ks * vtan * dt
+    cap = mu * fn
+    if fs_new > cap:
+        fs_new = cap
+    elif fs_new < -cap:
+        fs_new = -cap
+    mr_new = 0.0
+    if mur > 0.0:
+        kr = ks * rbar * rbar
+        mr_new = mr + kr * dw * dt
+        mcap = mur * rbar * fn
+        if mr_new > mcap:
+            mr_new = mcap
+        elif mr_new < -mcap:
+            mr_new = -mcap
+    return fn, fs_new, mr_new
+
+
+@njit(cache=True, parallel=True)
+def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag):
+    """Forces of all listed disk pairs (force on i in cfx/cfy; j gets the opposite)."""
+    n = rad.shape[0]
+    dt = prm[P_DT]
+    kn = prm[P_KN]
+    ks = prm[P_KS]
+    mu = prm[P_MU]
+    mur = prm[P_MUR]
+    diag = prm[P_DIAG] > 0.5
+    for i in prange(n):
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        ri = rad[i]
+        for k in range(start[i], start[i + 1]):
+            j = nbr[k]
+            dx = pos[j, 0] - xi
+            dy = pos[j, 1] - yi
+            rsum = ri + rad[j]
+            d2 = dx * dx + dy * dy
+            if d2 >= rsum * rsum:
+                fs[k] = 0.0
+                mr[k] = 0.0
+                cfx[k] = 0.0
+                cfy[k] = 0.0
+                cti[k] = 0.0
+                ctj[k] = 0.0
+                if diag:
+                    cmag[k] = 0.0
+                continue
+            d = np.sqrt(d2)
+            nx = dx / d
+            ny = dy / d
+            tx = -ny
+            ty = nx
+            rj = rad[j]
+            vt = (vel[j, 0] - vel[i, 0]) * tx + (vel[j, 1] - vel[i, 1]) * ty
+            vt -= om[j] * rj + om[i] * ri
+            rbar = ri * rj / rsum
+            fn, fsn, mrn = contact_update(
+                nx, ny, rsum - d, vt, om[j] - om[i], rbar, kn, ks, mu, mur, fs[k], mr[k], dt
+            )
+            fs[k] = fsn
+            mr[k] = mrn
+            cfx[k] = -fn * nx + fsn * tx
+            cfy[k] = -fn * ny + fsn * ty
+            cti[k] = ri * fsn + mrn
+            ctj[k] = rj * fsn - mrn
+            if diag:
+                cmag[k] = np.sqrt(fn * fn + fsn * fsn)
+
+
+@njit(cache=True)
+def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, kn, ks, mu, mur, dt):
+    """Contact of disk i with wall/pipe w (normal n from disk to wall; wall velocity vb).
+
+    Returns (fx, fy, torque) on the disk and updates the per-particle history.
+    """
+    if overlap <= 0.0:
+        fsw[i, w] = 0.0
+        mrw[i, w] = 0.0
+        return 0.0, 0.0, 0.0
+    ri = rad[i]
+    tx = -ny
+    ty = nx
+    vt = (vbx - vel[i, 0]) * tx + (vby - vel[i, 1]) * ty - om[i] * ri
+    fn, fsn, mrn = contact_update(
+        nx, ny, overlap, vt, -om[i], ri, kn, ks, mu, mur, fsw[i, w], mrw[i, w], dt
+    )
+    fsw[i, w] = fsn
+    mrw[i, w] = mrn
+    return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn
+
+
+@njit(cache=True, parallel=True)
+def gather_integrate(
+    prm,
+    pos,
+    vel,
+    om,
+    th,
+    rad,
+    mass,
+    inert,
+    start,
+    rstart,
+    ridx,
+    cfx,
+    cfy,
+    cti,
+    ctj,
+    cmag,
+    fsw,
+    mrw,
+    pfx,
+    pfy,
+    unb,
+    app,
+    fixed,
+):
+    """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update."""
+    n = rad.shape[0]
+    dt = prm[P_DT]
+    gx = prm[P_GX]
+    gy = prm[P_GY]
+    alpha = prm[P_ALPHA]
+    knw = prm[P_KN_W]
+    ksw = prm[P_KS_W]
+    muw = prm[P_MU_W]
+    murw = prm[P_MUR_W]
+    knp = prm[P_KN_P]
+    ksp = prm[P_KS_P]
+    mup = prm[P_MU_P]
+    murp = prm[P_MUR_P]
+    x0 = prm[P_X0]
+    x1 = prm[P_X1]
+    y0 = prm[P_Y0]
+    lid_on = prm[P_LID_ON] > 0.5
+    lid_y = prm[P_LID_Y]
+    lid_v = prm[P_LID_V]
+    pipe_on = prm[P_PIPE_ON] > 0.5
+    px = prm[P_PIPE_X]
+    py = prm[P_PIPE_Y]
+    pr = prm[P_PIPE_R]
+    pv = prm[P_PIPE_V]
+    diag = prm[P_DIAG] > 0.5
+    for i in prange(n):
+        fx = 0.0
+        fy = 0.0
+        tq = 0.0
+        a = 0.0
+        for k in range(start[i], start[i + 1]):
+            fx += cfx[k]
+            fy += cfy[k]
+            tq += cti[k]
+        for q in range(rstart[i], rstart[i + 1]):
+            k = ridx[q]
+            fx -= cfx[k]
+            fy -= cfy[k]
+            tq += ctj[k]
+        if diag:
+            for k in range(start[i], start[i + 1]):
+                a += cmag[k]
+            for q in range(rstart[i], rstart[i + 1]):
+                a += cmag[ridx[q]]
+        ri = rad[i]
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        # walls: left, right, bottom, lid
+        wx, wy, wt = wall_contact(
+            i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        if lid_on:
+            wx, wy, wt = wall_contact(
+                i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
+                knw, ksw, muw, murw, dt,
+            )  # fmt: skip
+            fx += wx
+            fy += wy
+            tq += wt
+            if diag:
+                a += np.sqrt(wx * wx + wy * wy)
+        pfx[i] = 0.0
+        pfy[i] = 0.0
+        if pipe_on:
+            dx = px - xi
+            dy = py - yi
+            d = np.sqrt(dx * dx + dy * dy)
+            if d > 0.0 and d < ri + pr:
+                wx, wy, wt = wall_contact(
+                    i, PIPE, dx / d, dy / d, ri + pr - d, 0.0, pv, pos, vel, om, rad, fsw,
+                    mrw, knp, ksp, mup, murp, dt,
+                )  # fmt: skip
+                fx += wx
+                fy += wy
+                tq += wt
+                if diag:
+                    a += np.sqrt(wx * wx + wy * wy)
+                pfx[i] = wx
+                pfy[i] = wy
+            else:
+                fsw[i, PIPE] = 0.0
+                mrw[i, PIPE] = 0.0
+        m = mass[i]
+        fx += m * gx
+        fy += m * gy
+        if diag:
+            a += m * np.sqrt(gx * gx + gy * gy)
+            unb[i] = np.sqrt(fx * fx + fy * fy)
+            app[i] = a
+        if fixed[i]:
+            vel[i, 0] = 0.0
+            vel[i, 1] = 0.0
+            om[i] = 0.0
+            continue
+        # local (non-viscous) damping, PFC: -alpha |F| sign(v) per component
+        vx = vel[i, 0]
+        vy = vel[i, 1]
+        w = om[i]
+        if alpha > 0.0:
+            if vx > 0.0:
+                fx -= alpha * abs(fx)
+            elif vx < 0.0:
+                fx += alpha * abs(fx)
+            if vy > 0.0:
+                fy -= alpha * abs(fy)
+            elif vy < 0.0:
+                fy += alpha * abs(fy)
+            if w > 0.0:
+                tq -= alpha * abs(tq)
+            elif w < 0.0:
+                tq += alpha * abs(tq)
+        vx += dt * fx / m
+        vy += dt * fy / m
+        w += dt * tq / inert[i]
+        vel[i, 0] = vx
+        vel[i, 1] = vy
+        om[i] = w
+        pos[i, 0] = xi + dt * vx
+        pos[i, 1] = yi + dt * vy
+        th[i] += dt * w
+
+
+@njit(cache=True)
+def max_displacement2(pos, ref):
+    """Largest squared displacement since the last list build [m²] (serial, deterministic)."""
+    n = pos.shape[0]
+    m = 0.0
+    for i in range(n):
+        dx = pos[i, 0] - ref[i, 0]
+        dy = pos[i, 1] - ref[i, 1]
+        d2 = dx * dx + dy * dy
+        if d2 > m:
+            m = d2
+    return m
+
+
+@njit(cache=True)
+def _insertion_sort(a, lo, hi):
+    for p in range(lo + 1, hi):
+        v = a[p]
+        q = p - 1
+        while q >= lo and a[q] > v:
+            a[q + 1] = a[q]
+            q -= 1
+        a[q + 1] = v
+
+
+@njit(cache=True, parallel=True)
+def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
+    """Cell-list half neighbour list with cut-off ``r_i + r_j + skin``; history carried over.
+
+    Returns (start, nbr, fs, mr, rstart, ridx). The history of a pair (i, j) present in both
+    the old and the new list is copied (sorted two-pointer merge per disk).
+    """
+    n = rad.shape[0]
+    rmax = 0.0
+    xmin = np.inf
+    xmax = -np.inf
+    ymin = np.inf
+    ymax = -np.inf
+    for i in range(n):
+        if rad[i] > rmax:
+            rmax = rad[i]
+        x = pos[i, 0]
+        y = pos[i, 1]
+        xmin = min(xmin, x)
+        xmax = max(xmax, x)
+        ymin = min(ymin, y)
+        ymax = max(ymax, y)
+    cs = 2.0 * rmax + skin
+    ncx = max(1, int((xmax - xmin) / cs) + 1)
+    ncy = max(1, int((ymax - ymin) / cs) + 1)
+    ncell = ncx * ncy
+    cell_of = np.empty(n, np.int64)
+    ccount = np.zeros(ncell + 1, np.int64)
+    for i in range(n):
+        cx = min(ncx - 1, max(0, int((pos[i, 0] - xmin) / cs)))
+        cy = min(ncy - 1, max(0, int((pos[i, 1] - ymin) / cs)))
+        c = cy * ncx + cx
+        cell_of[i] = c
+        ccount[c + 1] += 1
+    for c in range(ncell):
+        ccount[c + 1] += ccount[c]
+    cfill = ccount[:-1].copy()
+    cpart = np.empty(n, np.int64)
+    for i in range(n):
+        c = cell_of[i]
+        cpart[cfill[c]] = i
+        cfill[c] += 1
+    cnt = np.zeros(n + 1, np.int64)
+    for i in prange(n):
+        c = cell_of[i]
+        cx = c % ncx
+        cy = c // ncx
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        ri = rad[i]
+        m = 0
+        for oy in range(max(0, cy - 1), min(ncy, cy + 2)):
+            for ox in range(max(0, cx - 1), min(ncx, cx + 2)):
+                cc = oy * ncx + ox
+                for q in range(ccount[cc], ccount[cc + 1]):
+                    j = cpart[q]
+                    if j <= i:
+                        continue
+                    dx = pos[j, 0] - xi
+                    dy = pos[j, 1] - yi
+                    cut = ri + rad[j] + skin
+                    if dx * dx + dy * dy < cut * cut:
+                        m += 1
+        cnt[i + 1] = m
+    for i in range(n):
+        cnt[i + 1] += cnt[i]
+    start = cnt
+    m_tot = start[n]
+    nbr = np.empty(m_tot, np.int64)
+    fs = np.zeros(m_tot)
+    mr = np.zeros(m_tot)
+    for i in prange(n):
+        c = cell_of[i]
+        cx = c % ncx
+        cy = c // ncx
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        ri = rad[i]
+        p = start[i]
+        for oy in range(max(0, cy - 1), min(ncy, cy + 2)):
+            for ox in range(max(0, cx - 1), min(ncx, cx + 2)):
+                cc = oy * ncx + ox
+                for q in range(ccount[cc], ccount[cc + 1]):
+                    j = cpart[q]
+                    if j <= i:
+                        continue
+                    dx = pos[j, 0] - xi
+                    dy = pos[j, 1] - yi
+                    cut = ri + rad[j] + skin
+                    if dx * dx + dy * dy < cut * cut:
+                        nbr[p] = j
+                        p += 1
+        _insertion_sort(nbr, start[i], start[i + 1])
+        # merge the history of the old list (both sorted by j)
+        a = old_start[i]
+        a_end = old_start[i + 1]
+        for k in range(start[i], start[i + 1]):
+            j = nbr[k]
+            while a < a_end and old_nbr[a] < j:
+                a += 1
+            if a < a_end and old_nbr[a] == j:
+                fs[k] = old_fs[a]
+                mr[k] = old_mr[a]
+    rstart = np.zeros(n + 1, np.int64)
+    for k in range(m_tot):
+        rstart[nbr[k] + 1] += 1
+    for i in range(n):
+        rstart[i + 1] += rstart[i]
+    rfill = rstart[:-1].copy()
+    ridx = np.empty(m_tot, np.int64)
+    for k in range(m_tot):
+        j = nbr[k]
+        ridx[rfill[j]] = k
+        rfill[j] += 1
+    return start, nbr, fs, mr, rstart, ridx
+
+
+@njit(cache=True)
+def run_steps(
+    nsteps,
+    prm,
+    pos,
+    vel,
+    om,
+    th,
+    rad,
+    mass,
+    inert,
+    fixed,
+    ref,
+    start,
+    nbr,
+    fs,
+    mr,
+    rstart,
+    ridx,
+    fsw,
+    mrw,
+    pfx,
+    pfy,
+    unb,
+    app,
+):
+    """Advance ``nsteps`` steps; rebuild the list when a disk moved more than skin/2.
+
+    Moves the pipe and the lid (``prm`` is updated in place, as is the time ``prm[P_TIME]``).
+    Returns the (possibly new) list arrays and the number of rebuilds.
+    """
+    skin = prm[P_SKIN]
+    half2 = 0.25 * skin * skin
+    nreb = 0
+    m = nbr.shape[0]
+    cfx = np.empty(m)
+    cfy = np.empty(m)
+    cti = np.empty(m)
+    ctj = np.empty(m)
+    cmag = np.empty(m)
+    dt = prm[P_DT]
+    for s in range(nsteps):
+        # diagnostics (unbalanced-force ratio) only on the last step of the call
+        prm[P_DIAG] = 1.0 if s == nsteps - 1 else 0.0
+        if max_displacement2(pos, ref) > half2:
+            start, nbr, fs, mr, rstart, ridx = build_list(pos, rad, skin, start, nbr, fs, mr)
+            ref[:, :] = pos
+            nreb += 1
+            m = nbr.shape[0]
+            cfx = np.empty(m)
+            cfy = np.empty(m)
+            cti = np.empty(m)
+            ctj = np.empty(m)
+            cmag = np.empty(m)
+        pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag)
+        gather_integrate(
+            prm, pos, vel, om, th, rad, mass, inert, start, rstart, ridx, cfx, cfy, cti, ctj,
+            cmag, fsw, mrw, pfx, pfy, unb, app, fixed,
+        )  # fmt: skip
+        prm[P_TIME] += dt
+        if prm[P_PIPE_ON] > 0.5:
+            prm[P_PIPE_Y] += prm[P_PIPE_V] * dt
+        if prm[P_LID_ON] > 0.5:
+            y = prm[P_LID_Y] + prm[P_LID_V] * dt
+            if prm[P_LID_V] < 0.0 and y <= prm[P_LID_STOP]:
+                y = prm[P_LID_STOP]
+                prm[P_LID_V] = 0.0
+            prm[P_LID_Y] = y
+    return start, nbr, fs, mr, rstart, ridx, nreb
+
+
+@njit(cache=True)
+def pipe_force(pfx, pfy):
+    """Force of the soil on the pipe (serial sum in disk order) [N per m]: (F_x, F_y)."""
+    sx = 0.0
+    sy = 0.0
+    for i in range(pfx.shape[0]):
+        sx -= pfx[i]
+        sy -= pfy[i]
+    return sx, sy
+
+
+@njit(cache=True)
+def ratio_sums(unb, app):
+    """(Σ unbalanced-force magnitudes, Σ applied-force magnitudes), serial."""
+    su = 0.0
+    sa = 0.0
+    for i in range(unb.shape[0]):
+        su += unb[i]
+        sa += app[i]
+    return su, sa

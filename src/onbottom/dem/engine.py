@@ -1,0 +1,366 @@
+"""The 2D DEM engine: disks, walls, a driven rigid pipe (numba kernels in ``_kernels``).
+
+:class:`Simulation` owns the state arrays and advances them with :meth:`Simulation.run`.
+Model-scale SI units; disks of unit thickness (mass ρπr²·1 m, inertia ½mr²); y is up.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+
+from onbottom import _validate as v
+from onbottom.constants import GRAVITY
+from onbottom.dem import _kernels as K
+from onbottom.dem.config import ContactParameters, ContactSet
+from onbottom.dem.sample import Sample
+
+__all__ = ["PARALLEL_MIN_DISKS", "PipeState", "Simulation", "critical_time_step"]
+
+PARALLEL_MIN_DISKS = 20000
+"""Below this number of disks the engine runs on one thread unless told otherwise."""
+
+
+def critical_time_step(mass_min: float, k_max: float) -> float:
+    """Critical time step √(m_min/k_max) [s] (PFC's definition for a mass on a spring).
+
+    The leapfrog scheme is stable for Δt < 2/ω; with a disk touching a stiff wall and sticking
+    in shear (translational + rotational coupling ≈ 3 k_s/m) the engine uses a safety factor
+    (``Numerics.dt_safety``, default 0.5) on this value.
+    """
+    v.positive("mass_min", mass_min)
+    v.positive("k_max", k_max)
+    return math.sqrt(mass_min / k_max)
+
+
+@dataclass
+class PipeState:
+    """Rigid pipe: centre (x, y) [m], radius [m], prescribed vertical velocity [m/s] (y up)."""
+
+    x: float
+    y: float
+    radius: float
+    velocity: float = 0.0
+    active: bool = True
+
+
+class Simulation:
+    """A running DEM system.
+
+    Parameters
+    ----------
+    sample
+        Disks and box (the sample's arrays are copied).
+    contacts
+        Contact parameters per pair type.
+    density
+        Solid density [kg/m³].
+    damping
+        Local damping α [-].
+    dt
+        Time step [s]; ``None`` → ``dt_safety·critical_time_step``.
+    dt_safety
+        Safety factor on the critical time step [-].
+    skin
+        Verlet skin [m]; ``None`` → 0.3·d_min.
+    gravity
+        Gravity vector (g_x, g_y) [m/s²]; default (0, −g).
+    pipe
+        Optional :class:`PipeState`.
+    threads
+        Numba threads for the kernels; ``None`` → 1 below :data:`PARALLEL_MIN_DISKS` disks
+        (thread start-up dominates on small systems and on a loaded machine), else all.
+    """
+
+    def __init__(
+        self,
+        sample: Sample,
+        contacts: ContactSet,
+        *,
+        density: float = 2650.0,
+        damping: float = 0.7,
+        dt: float | None = None,
+        dt_safety: float = 0.5,
+        skin: float | None = None,
+        gravity: tuple[float, float] = (0.0, -GRAVITY),
+        pipe: PipeState | None = None,
+        threads: int | None = None,
+    ) -> None:
+        v.positive("density", density)
+        v.in_range("damping", damping, 0.0, 1.0, high_inclusive=False)
+        self.contacts = contacts
+        self.density = float(density)
+        n = sample.n
+        self.pos = sample.positions.copy()
+        self.vel = sample.velocities.copy()
+        self.om = sample.omega.copy()
+        self.th = sample.theta.copy()
+        self.rad = sample.radii.copy()
+        self.mass = density * np.pi * self.rad**2
+        self.inert = 0.5 * self.mass * self.rad**2
+        self.fixed = np.zeros(n, np.bool_)
+        self.box = sample.box
+        self.attrs = dict(sample.attrs)
+        self.fsw = np.zeros((n, K.N_WALL))
+        self.mrw = np.zeros((n, K.N_WALL))
+        self.pfx = np.zeros(n)
+        self.pfy = np.zeros(n)
+        self.unb = np.zeros(n)
+        self.app = np.zeros(n)
+        self.prm = np.zeros(K.N_PRM)
+        k_max = max(contacts.soil.k_n, contacts.soil.k_s, contacts.pipe.k_n, contacts.wall.k_n)
+        if n:
+            m_min = float(self.mass.min())
+            self.dt = dt if dt is not None else dt_safety * critical_time_step(m_min, k_max)
+        else:
+            self.dt = dt if dt is not None else 1e-6
+        v.positive("dt", self.dt)
+        d_min = 2.0 * float(self.rad.min()) if n else 1e-3
+        self.skin = float(skin) if skin is not None else 0.3 * d_min
+        p = self.prm
+        p[K.P_DT] = self.dt
+        p[K.P_ALPHA] = damping
+        self._set_contacts(contacts)
+        p[K.P_X0], p[K.P_X1], p[K.P_Y0] = self.box[0], self.box[1], self.box[2]
+        p[K.P_SKIN] = self.skin
+        self.set_gravity(*gravity)
+        self.set_pipe(pipe)
+        self.step_count = 0
+        self.rebuilds = 0
+        if threads is None:
+            threads = 1 if n < PARALLEL_MIN_DISKS else numba.config.NUMBA_NUM_THREADS
+        self.threads = int(min(max(1, threads), numba.config.NUMBA_NUM_THREADS))
+        # empty list, then the first build (history from the sample if present)
+        self.start = np.zeros(n + 1, np.int64)
+        self.nbr = np.zeros(0, np.int64)
+        self.fs = np.zeros(0)
+        self.mr = np.zeros(0)
+        self.rstart = np.zeros(n + 1, np.int64)
+        self.ridx = np.zeros(0, np.int64)
+        self.ref = self.pos.copy()
+        self._load_history(sample.contacts)
+        self.rebuild()
+
+    # ------------------------------------------------------------------ setup
+    def _set_contacts(self, c: ContactSet) -> None:
+        p = self.prm
+        p[K.P_KN], p[K.P_KS], p[K.P_MU], p[K.P_MUR] = c.soil.k_n, c.soil.k_s, c.soil.mu, c.soil.mu_r
+        p[K.P_KN_P], p[K.P_KS_P], p[K.P_MU_P], p[K.P_MUR_P] = (
+            c.pipe.k_n,
+            c.pipe.k_s,
+            c.pipe.mu,
+            c.pipe.mu_r,
+        )
+        p[K.P_KN_W], p[K.P_KS_W], p[K.P_MU_W], p[K.P_MUR_W] = (
+            c.wall.k_n,
+            c.wall.k_s,
+            c.wall.mu,
+            c.wall.mu_r,
+        )
+
+    def set_soil_contact(self, soil: ContactParameters) -> None:
+        """Change the soil–soil contact parameters (e.g. friction during compaction)."""
+        self.contacts = ContactSet(soil=soil, pipe=self.contacts.pipe, wall=self.contacts.wall)
+        self._set_contacts(self.contacts)
+
+    def set_gravity(self, gx: float, gy: float) -> None:
+        """Gravity vector [m/s²]."""
+        self.prm[K.P_GX] = gx
+        self.prm[K.P_GY] = gy
+
+    @property
+    def gravity(self) -> tuple[float, float]:
+        """Current gravity vector [m/s²]."""
+        return float(self.prm[K.P_GX]), float(self.prm[K.P_GY])
+
+    def set_pipe(self, pipe: PipeState | None) -> None:
+        """Place (or remove, with ``None``) the rigid pipe."""
+        p = self.prm
+        if pipe is None or not pipe.active:
+            p[K.P_PIPE_ON] = 0.0
+            return
+        p[K.P_PIPE_ON] = 1.0
+        p[K.P_PIPE_X], p[K.P_PIPE_Y], p[K.P_PIPE_R], p[K.P_PIPE_V] = (
+            pipe.x,
+            pipe.y,
+            pipe.radius,
+            pipe.velocity,
+        )
+
+    @property
+    def pipe(self) -> PipeState | None:
+        """Current pipe state (``None`` if there is none)."""
+        p = self.prm
+        if p[K.P_PIPE_ON] < 0.5:
+            return None
+        return PipeState(
+            float(p[K.P_PIPE_X]), float(p[K.P_PIPE_Y]), float(p[K.P_PIPE_R]), float(p[K.P_PIPE_V])
+        )
+
+    def set_lid(self, y: float | None, velocity: float = 0.0, stop: float = -np.inf) -> None:
+        """Activate a horizontal lid at height ``y`` moving at ``velocity`` (stops at ``stop``)."""
+        p = self.prm
+        if y is None:
+            p[K.P_LID_ON] = 0.0
+            self.fsw[:, 3] = 0.0
+            self.mrw[:, 3] = 0.0
+            return
+        p[K.P_LID_ON] = 1.0
+        p[K.P_LID_Y] = y
+        p[K.P_LID_V] = velocity
+        p[K.P_LID_STOP] = stop
+
+    @property
+    def lid(self) -> float | None:
+        """Lid height [m] or ``None``."""
+        return float(self.prm[K.P_LID_Y]) if self.prm[K.P_LID_ON] > 0.5 else None
+
+    def lid_force(self) -> float:
+        """Normal force of the disks on the lid [N per m] (0 without a lid)."""
+        y = self.lid
+        if y is None:
+            return 0.0
+        ov = self.rad - (y - self.pos[:, 1])
+        return float(self.contacts.wall.k_n * np.sum(ov[ov > 0.0]))
+
+    @property
+    def time(self) -> float:
+        """Simulated time [s]."""
+        return float(self.prm[K.P_TIME])
+
+    @time.setter
+    def time(self, t: float) -> None:
+        self.prm[K.P_TIME] = t
+
+    @property
+    def n(self) -> int:
+        """Number of disks."""
+        return int(self.rad.shape[0])
+
+    # ------------------------------------------------------------- history
+    def _load_history(self, contacts: dict[str, np.ndarray] | None) -> None:
+        """Install contact history from a sample (pairs i<j and wall/pipe codes j<0)."""
+        if not contacts or len(contacts["i"]) == 0:
+            return
+        i = np.asarray(contacts["i"], np.int64)
+        j = np.asarray(contacts["j"], np.int64)
+        fs = np.asarray(contacts["fs"], np.float64)
+        mr = np.asarray(contacts["mr"], np.float64)
+        walls = j < 0
+        for code in range(K.N_WALL):
+            sel = walls & (j == -(code + 1))
+            self.fsw[i[sel], code] = fs[sel]
+            self.mrw[i[sel], code] = mr[sel]
+        pairs = ~walls
+        order = np.lexsort((j[pairs], i[pairs]))
+        pi, pj = i[pairs][order], j[pairs][order]
+        self.start = np.searchsorted(pi, np.arange(self.n + 1)).astype(np.int64)
+        self.nbr = pj.copy()
+        self.fs = fs[pairs][order].copy()
+        self.mr = mr[pairs][order].copy()
+
+    def contact_history(self) -> dict[str, np.ndarray]:
+        """Non-zero contact history: pairs (i<j) and wall/pipe contacts (j = −1 − wall code)."""
+        counts = np.diff(self.start)
+        i_pairs = np.repeat(np.arange(self.n, dtype=np.int64), counts)
+        keep = (self.fs != 0.0) | (self.mr != 0.0)
+        wi, wc = np.nonzero((self.fsw != 0.0) | (self.mrw != 0.0))
+        return {
+            "i": np.concatenate([i_pairs[keep], wi.astype(np.int64)]),
+            "j": np.concatenate([self.nbr[keep], -(wc.astype(np.int64) + 1)]),
+            "fs": np.concatenate([self.fs[keep], self.fsw[wi, wc]]),
+            "mr": np.concatenate([self.mr[keep], self.mrw[wi, wc]]),
+        }
+
+    def rebuild(self) -> None:
+        """Rebuild the neighbour list now (history carried over)."""
+        previous = numba.get_num_threads()
+        numba.set_num_threads(self.threads)
+        try:
+            out = K.build_list(
+                self.pos, self.rad, self.skin, self.start, self.nbr, self.fs, self.mr
+            )
+        finally:
+            numba.set_num_threads(previous)
+        self.start, self.nbr, self.fs, self.mr, self.rstart, self.ridx = out
+        self.ref[:, :] = self.pos
+        self.rebuilds += 1
+
+    # ---------------------------------------------------------------- stepping
+    def run(self, nsteps: int) -> None:
+        """Advance ``nsteps`` time steps."""
+        if nsteps <= 0 or self.n == 0:
+            return
+        previous = numba.get_num_threads()
+        numba.set_num_threads(self.threads)
+        try:
+            out = self._run(nsteps)
+        finally:
+            numba.set_num_threads(previous)
+        self.start, self.nbr, self.fs, self.mr, self.rstart, self.ridx, nreb = out
+        self.rebuilds += int(nreb)
+        self.step_count += int(nsteps)
+
+    def _run(self, nsteps: int) -> tuple:
+        return K.run_steps(
+            int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
+            self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
+            self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
+        )  # fmt: skip
+
+    # -------------------------------------------------------------- diagnostics
+    def pipe_force(self) -> tuple[float, float]:
+        """Force of the soil on the pipe (F_x, F_y) [N per m] at the last step.
+
+        The vertical penetration resistance is ``V = F_y`` (soil pushes the pipe up).
+        """
+        fx, fy = K.pipe_force(self.pfx, self.pfy)
+        return float(fx), float(fy)
+
+    def unbalanced_ratio(self) -> float:
+        """Mean unbalanced force / mean applied force (contacts + body forces) [-]."""
+        su, sa = K.ratio_sums(self.unb, self.app)
+        return float(su / sa) if sa > 0 else 0.0
+
+    def kinetic_energy(self) -> float:
+        """Translational + rotational kinetic energy [J per m] (half-step velocities)."""
+        return float(
+            0.5 * np.sum(self.mass * np.sum(self.vel**2, axis=1))
+            + 0.5 * np.sum(self.inert * self.om**2)
+        )
+
+    def contact_forces(self) -> dict[str, np.ndarray]:
+        """Current disk–disk contacts: i, j, normal force F_n [N], shear force F_s [N].
+
+        Evaluated from the current positions (F_n = k_n·overlap) and the shear history.
+        """
+        counts = np.diff(self.start)
+        i = np.repeat(np.arange(self.n, dtype=np.int64), counts)
+        j = self.nbr
+        d = np.hypot(*(self.pos[j] - self.pos[i]).T)
+        ov = self.rad[i] + self.rad[j] - d
+        touch = ov > 0.0
+        return {
+            "i": i[touch],
+            "j": j[touch],
+            "fn": self.contacts.soil.k_n * ov[touch],
+            "fs": self.fs[touch],
+        }
+
+    def to_sample(self, **attrs: object) -> Sample:
+        """Snapshot as a :class:`Sample` (with contact history)."""
+        a = dict(self.attrs)
+        a.update(attrs)
+        return Sample(
+            positions=self.pos.copy(),
+            radii=self.rad.copy(),
+            box=self.box,
+            velocities=self.vel.copy(),
+            omega=self.om.copy(),
+            theta=self.th.copy(),
+            contacts=self.contact_history(),
+            attrs=a,
+        )

@@ -1,0 +1,349 @@
+"""The penetration experiment: a rigid pipe pushed down at constant speed into the specimen.
+
+The pipe (diameter D) starts just touching the rough soil surface above the box centre
+(w = 0 at first contact) and moves down at ``Loading.pipe_velocity`` under N g until
+``w = final_embedment_ratio·D``.
+The soil force on the pipe is the sum of its contact forces (``V`` = vertical component,
+positive = soil pushes the pipe up, N per metre of pipe at model scale). Prototype values:
+lengths × N, force per metre × N.
+
+Checkpoints: the whole state (disks, contact history, engine parameters, records, snapshots)
+is written atomically every ``checkpoint_every`` steps; ``penetrate(..., checkpoint=path)``
+resumes from it. Pair forces are gathered in a fixed order and the neighbour list only adds
+exact zeros, so a resumed run reproduces the uninterrupted one bitwise (tested).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import math
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from onbottom.constants import GRAVITY
+from onbottom.dem import _kernels as K
+from onbottom.dem.analysis import inertial_number, measuring_circles, surface_profile
+from onbottom.dem.config import DEMConfig
+from onbottom.dem.engine import PipeState, Simulation
+from onbottom.dem.sample import Sample
+from onbottom.results import load_dataset, provenance, save_dataset
+
+__all__ = ["DEFAULT_SNAPSHOTS", "initial_state", "make_simulation", "penetrate"]
+
+log = logging.getLogger(__name__)
+
+DEFAULT_SNAPSHOTS = (0.1, 0.2, 0.3, 0.4, 0.5)
+"""Embedment ratios w/D at which fields (velocity, rotation, force chains) are stored."""
+
+_LONG = {
+    "time": ("time since the pipe started", "s"),
+    "w": ("embedment of the pipe invert below the initial surface (model)", "m"),
+    "w_over_D": ("normalised embedment w/D", "1"),
+    "V": ("vertical soil force on the pipe per unit length (model)", "N/m"),
+    "H": ("horizontal soil force on the pipe per unit length (model)", "N/m"),
+    "w_prototype": ("embedment at prototype scale (w·N)", "m"),
+    "V_prototype": ("vertical force per unit length at prototype scale (V·N)", "N/m"),
+    "unbalanced_ratio": ("mean unbalanced / mean applied force", "1"),
+    "vx": ("disk velocity, x", "m/s"),
+    "vy": ("disk velocity, y", "m/s"),
+    "rotation": ("disk rotation since the start of penetration (ccw +)", "rad"),
+    "x": ("disk centre x", "m"),
+    "y": ("disk centre y", "m"),
+    "radius": ("disk radius", "m"),
+    "chain_fn": ("normal contact force", "N"),
+    "surface": ("soil surface height", "m"),
+    "surface0": ("initial soil surface height", "m"),
+}
+
+Progress = Callable[[float], None]
+
+
+def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = None) -> Simulation:
+    """A :class:`Simulation` of ``sample`` with the design contacts at N g (no pipe yet)."""
+    c = config.contacts
+    m_min = config.material.density * math.pi * float(sample.radii.min()) ** 2
+    k_max = max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+    dt = config.numerics.dt_safety * math.sqrt(m_min / k_max)
+    return Simulation(
+        sample,
+        c,
+        density=config.material.density,
+        damping=config.material.damping,
+        dt=dt,
+        skin=config.numerics.skin_ratio * 2.0 * float(sample.radii.min()),
+        gravity=(0.0, -config.loading.gravity_factor * GRAVITY),
+        threads=threads,
+    )
+
+
+def initial_state(
+    config: DEMConfig, sample: Sample, circle_diameter: float | None = None
+) -> xr.Dataset:
+    """Measuring-circle profiles (porosity, σ_h, σ_v, K0 vs depth) of the prepared specimen.
+
+    ``circle_diameter`` defaults to 0.5D (the paper) when the circles hold about 100 disks or
+    more, otherwise 1.0D (reduced presets).
+    """
+    sim = make_simulation(config, sample)
+    surf = sample.surface_height()
+    D = config.geometry.pipe_diameter
+    if circle_diameter is None:
+        per_circle = math.pi * (0.25 * D) ** 2 / config.psd.mean_area()
+        circle_diameter = 0.5 * D if per_circle >= 100 else D
+    return measuring_circles(
+        sim.pos, sim.rad, sim.contact_forces(), sample.box, surf, circle_diameter
+    )
+
+
+def _touch_height(sample: Sample, xc: float, radius: float) -> float:
+    """Lowest pipe-centre height at which the pipe (centre abscissa xc) touches no disk [m]."""
+    dx = sample.positions[:, 0] - xc
+    reach = radius + sample.radii
+    sel = np.abs(dx) < reach
+    y = sample.positions[sel, 1] + np.sqrt(reach[sel] ** 2 - dx[sel] ** 2)
+    return float(np.max(y))
+
+
+def _state_dataset(sim: Simulation) -> xr.Dataset:
+    s = sim.to_sample()
+    return s.to_dataset()
+
+
+def _save_checkpoint(
+    path: Path,
+    sim: Simulation,
+    records: dict[str, list[float]],
+    snaps: list[xr.Dataset],
+    meta: dict,
+    theta0: np.ndarray,
+) -> None:
+    ds = _state_dataset(sim)
+    ds["engine_prm"] = ("prm", sim.prm.copy())
+    ds["theta0"] = ("particle", theta0)
+    for k, vals in records.items():
+        ds[f"rec_{k}"] = ("record", np.asarray(vals, float))
+    ds.attrs["checkpoint_meta"] = json.dumps(
+        {**meta, "step_count": sim.step_count, "n_snapshots": len(snaps)}
+    )
+    for q, snap in enumerate(snaps):
+        for name, da in snap.data_vars.items():
+            ds[f"snap{q}_{name}"] = da.rename({d: f"snap{q}_{d}" for d in da.dims})
+    save_dataset(ds, path)
+
+
+def _load_checkpoint(path: Path, config: DEMConfig, threads: int | None):
+    ds = load_dataset(path)
+    meta = json.loads(ds.attrs["checkpoint_meta"])
+    sample = Sample.from_dataset(ds)
+    sim = make_simulation(config, sample, threads)
+    sim.prm[:] = ds["engine_prm"].values
+    sim.step_count = int(meta["step_count"])
+    records = {str(k)[4:]: list(ds[k].values) for k in ds.data_vars if str(k).startswith("rec_")}
+    snaps = []
+    for q in range(int(meta["n_snapshots"])):
+        pre = f"snap{q}_"
+        vars_ = {
+            str(k)[len(pre) :]: ds[k].rename({d: str(d)[len(pre) :] for d in ds[k].dims})
+            for k in ds.data_vars
+            if str(k).startswith(pre)
+        }
+        snaps.append(xr.Dataset(vars_))
+    return sim, records, snaps, meta, ds["theta0"].values
+
+
+def _snapshot(sim: Simulation, theta0: np.ndarray, ratio: float, w: float) -> xr.Dataset:
+    c = sim.contact_forces()
+    return xr.Dataset(
+        {
+            "x": ("particle", sim.pos[:, 0].copy()),
+            "y": ("particle", sim.pos[:, 1].copy()),
+            "vx": ("particle", sim.vel[:, 0].copy()),
+            "vy": ("particle", sim.vel[:, 1].copy()),
+            "rotation": ("particle", sim.th - theta0),
+            "chain_i": ("chain", c["i"]),
+            "chain_j": ("chain", c["j"]),
+            "chain_fn": ("chain", c["fn"]),
+            "info": ("info", np.array([ratio, w, sim.pipe.y if sim.pipe else np.nan])),
+        }
+    )
+
+
+def penetrate(
+    config: DEMConfig,
+    sample: Sample,
+    *,
+    checkpoint: str | Path | None = None,
+    checkpoint_every: int = 200_000,
+    resume: bool = True,
+    snapshots: tuple[float, ...] = DEFAULT_SNAPSHOTS,
+    threads: int | None = None,
+    max_steps: int | None = None,
+    progress: Progress | None = None,
+) -> xr.Dataset:
+    """Push the pipe into ``sample`` and return the V–w record and the field snapshots.
+
+    Parameters
+    ----------
+    config
+        Experiment configuration (velocity, final embedment, contacts ...).
+    sample
+        Specimen at N g equilibrium (from :func:`~onbottom.dem.preparation.prepare_sample`).
+    checkpoint
+        Checkpoint file (NetCDF); written every ``checkpoint_every`` steps, read when it exists
+        and ``resume`` is true.
+    checkpoint_every
+        Steps between checkpoints [-].
+    snapshots
+        Embedment ratios w/D at which fields are stored.
+    threads
+        Numba threads (``None`` → automatic, see :class:`~onbottom.dem.engine.Simulation`).
+    max_steps
+        Stop after this many steps of this call (the run can then be resumed); ``None`` → run
+        to the final embedment.
+    progress
+        Callback receiving the fraction of the final embedment reached.
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables on ``record``: time, w, w_over_D, V, H, prototype values, unbalanced ratio;
+        snapshot fields on ``snapshot`` × ``particle``; force chains flattened on ``chain``
+        with ``chain_snapshot``; initial/final surface profiles; attributes with the inertial
+        number, the time step and ``complete`` (False when stopped by ``max_steps``).
+    """
+    D = config.geometry.pipe_diameter
+    N = config.loading.gravity_factor
+    w_end = config.loading.final_embedment_ratio * D
+    v = config.loading.pipe_velocity
+    rec_every = config.numerics.record_every
+    ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and resume and ck.exists():
+        sim, records, snaps, meta, theta0 = _load_checkpoint(ck, config, threads)
+        log.info("resumed from %s at step %d", ck, sim.step_count)
+    else:
+        sim = make_simulation(config, sample, threads)
+        xc = 0.5 * (sample.box[0] + sample.box[1])
+        # w = 0 when the pipe first touches the rough surface
+        surf0 = _touch_height(sample, xc, 0.5 * D) - 0.5 * D
+        sim.set_pipe(PipeState(xc, surf0 + 0.5 * D, 0.5 * D, -v))
+        sim.time = 0.0
+        theta0 = sim.th.copy()
+        records = {k: [] for k in ("time", "w", "V", "H", "unbalanced_ratio")}
+        snaps = []
+        meta = {"surf0": surf0, "xc": xc}
+    surf0 = float(meta["surf0"])
+    steps_total = math.ceil(w_end / v / sim.dt)
+    next_ck = (sim.step_count // checkpoint_every + 1) * checkpoint_every
+    done_here = 0
+    while True:
+        assert sim.pipe is not None
+        w = surf0 - (sim.pipe.y - 0.5 * D)
+        while len(snaps) < len(snapshots) and w >= snapshots[len(snaps)] * D - 0.5 * v * sim.dt:
+            snaps.append(_snapshot(sim, theta0, snapshots[len(snaps)], w))
+        if sim.step_count >= steps_total:
+            break
+        if max_steps is not None and done_here >= max_steps:
+            break
+        n = min(rec_every, steps_total - sim.step_count)
+        sim.run(n)
+        done_here += n
+        fx, fy = sim.pipe_force()
+        records["time"].append(sim.time)
+        records["w"].append(surf0 - (sim.pipe.y - 0.5 * D))
+        records["V"].append(fy)
+        records["H"].append(fx)
+        records["unbalanced_ratio"].append(sim.unbalanced_ratio())
+        if progress is not None:
+            progress(min(1.0, sim.step_count / steps_total))
+        if ck is not None and sim.step_count >= next_ck:
+            _save_checkpoint(ck, sim, records, snaps, meta, theta0)
+            next_ck += checkpoint_every
+    complete = sim.step_count >= steps_total
+    if ck is not None and not complete:
+        _save_checkpoint(ck, sim, records, snaps, meta, theta0)
+    return _assemble(config, sample, sim, records, snaps, surf0, complete, N)
+
+
+def _assemble(
+    config: DEMConfig,
+    sample: Sample,
+    sim: Simulation,
+    records: dict[str, list[float]],
+    snaps: list[xr.Dataset],
+    surf0: float,
+    complete: bool,
+    N: float,
+) -> xr.Dataset:
+    D = config.geometry.pipe_diameter
+    w = np.asarray(records["w"], float)
+    V = np.asarray(records["V"], float)
+    bin_w = 2.0 * config.psd.d_max
+    xs, top0 = surface_profile(sample.positions, sample.radii, sample.box, bin_w)
+    _, top1 = surface_profile(sim.pos, sim.rad, sample.box, bin_w)
+    data: dict[str, tuple] = {
+        "time": ("record", np.asarray(records["time"], float)),
+        "w": ("record", w),
+        "w_over_D": ("record", w / D),
+        "V": ("record", V),
+        "H": ("record", np.asarray(records["H"], float)),
+        "w_prototype": ("record", w * N),
+        "V_prototype": ("record", V * N),
+        "unbalanced_ratio": ("record", np.asarray(records["unbalanced_ratio"], float)),
+        "surface0": ("x_bin", top0),
+        "surface": ("x_bin", top1),
+        "radius": ("particle", sim.rad.copy()),
+    }
+    if snaps:
+        for name in ("x", "y", "vx", "vy", "rotation"):
+            data[name] = (("snapshot", "particle"), np.stack([s[name].values for s in snaps]))
+        data["chain_i"] = ("chain", np.concatenate([s["chain_i"].values for s in snaps]))
+        data["chain_j"] = ("chain", np.concatenate([s["chain_j"].values for s in snaps]))
+        data["chain_fn"] = ("chain", np.concatenate([s["chain_fn"].values for s in snaps]))
+        data["chain_snapshot"] = (
+            "chain",
+            np.concatenate([np.full(s.sizes["chain"], q) for q, s in enumerate(snaps)]),
+        )
+        data["snapshot_w"] = ("snapshot", np.array([float(s["info"].values[1]) for s in snaps]))
+    coords = {"x_bin": ("x_bin", xs)}
+    if snaps:
+        coords["snapshot"] = ("snapshot", np.array([float(s["info"].values[0]) for s in snaps]))
+    ds = xr.Dataset(data, coords=coords)
+    for name, (ln, un) in _LONG.items():
+        if name in ds:
+            ds[name].attrs.update(long_name=ln, units=un)
+    porosity = sample.void_ratio() / (1.0 + sample.void_ratio())
+    inum = inertial_number(
+        config.loading.pipe_velocity,
+        config.geometry.height,
+        config.psd.d50,
+        config.material.density,
+        porosity,
+        N,
+    )
+    ds.attrs.update(
+        provenance(
+            "dem.penetration",
+            None,
+            config=config.to_json(),
+            preset=config.name,
+            n_particles=int(sim.n),
+            dt=float(sim.dt),
+            steps=int(sim.step_count),
+            rebuilds=int(sim.rebuilds),
+            inertial_number=float(inum),
+            quasi_static=int(inum <= 1e-3),
+            complete=int(complete),
+            gravity_factor=float(N),
+            pipe_diameter=float(D),
+            surface0_at_pipe=float(surf0),
+            initial_void_ratio=float(sample.void_ratio()),
+            seed=int(config.seed),
+            engine_prm_layout="see onbottom.dem._kernels P_* indices",
+        )
+    )
+    ds.attrs["n_prm"] = K.N_PRM
+    return ds

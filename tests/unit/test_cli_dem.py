@@ -1,0 +1,51 @@
+"""``onbottom dem`` command line (tiny configuration; seconds)."""
+
+from __future__ import annotations
+
+import json
+
+from click.testing import CliRunner
+
+from onbottom.cli.main import cli
+from onbottom.dem.config import SD_REDUCED, Geometry, Loading, Preparation
+
+TINY = SD_REDUCED.replace(
+    name="tiny",
+    geometry=Geometry(width=0.06, height=0.02, pipe_diameter=0.02),
+    preparation=Preparation(n_layers=2, max_settle_time=0.05),
+    loading=Loading(gravity_factor=25.0, pipe_velocity=0.1, final_embedment_ratio=0.05),
+)
+
+
+def test_dem_prepare_penetrate_resume_plot(tmp_path):
+    runner = CliRunner()
+    cfg = tmp_path / "tiny.json"
+    cfg.write_text(TINY.to_json())
+    sample = tmp_path / "s.nc"
+    out = tmp_path / "r.nc"
+    r = runner.invoke(cli, ["dem", "prepare", "--config", str(cfg), "--out", str(sample), "--json"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.output)["n_particles"] > 100
+    args = ["dem", "penetrate", "--config", str(cfg), "--sample", str(sample), "--out", str(out)]
+    r = runner.invoke(cli, [*args, "--json", "--max-steps", "2000"])
+    assert r.exit_code == 0, r.output
+    first = json.loads(r.output)
+    assert not first["complete"]
+    assert (tmp_path / "r.checkpoint.nc").exists()
+    r = runner.invoke(cli, [*args, "--json"])
+    assert r.exit_code == 0, r.output
+    done = json.loads(r.output)
+    assert done["complete"]
+    assert done["steps"] > first["steps"]
+    assert done["inertial_number"] > 0
+    assert not (tmp_path / "r.checkpoint.nc").exists()
+    r = runner.invoke(cli, ["dem", "plot", str(out), "--outdir", str(tmp_path / "f"), "--json"])
+    assert r.exit_code == 0, r.output
+    figs = json.loads(r.output)["figures"]
+    assert any("V_w" in f for f in figs)
+
+
+def test_dem_bad_preset_is_reported():
+    r = CliRunner().invoke(cli, ["dem", "prepare", "--preset", "XX", "--out", "x.nc"])
+    assert r.exit_code != 0
+    assert "XX" in r.output

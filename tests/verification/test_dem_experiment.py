@@ -1,0 +1,134 @@
+"""DEM experiment: bitwise resume from checkpoints; reduced SM/SD cases (slow)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from onbottom.dem.config import (
+    SD_REDUCED,
+    SM_REDUCED,
+    DEMConfig,
+    Geometry,
+    Loading,
+    Preparation,
+)
+from onbottom.dem.experiment import initial_state, penetrate
+from onbottom.dem.preparation import prepare_sample
+
+pytestmark = pytest.mark.verification
+
+TINY = SD_REDUCED.replace(
+    name="tiny",
+    geometry=Geometry(width=0.06, height=0.02, pipe_diameter=0.02),
+    preparation=Preparation(n_layers=2, max_settle_time=0.05),
+    loading=Loading(gravity_factor=25.0, pipe_velocity=0.1, final_embedment_ratio=0.05),
+)
+
+
+@pytest.fixture(scope="module")
+def tiny_sample():
+    return prepare_sample(TINY)
+
+
+def test_preparation_is_reproducible(tiny_sample):
+    again = prepare_sample(TINY)
+    np.testing.assert_array_equal(again.positions, tiny_sample.positions)
+    assert tiny_sample.attrs["equilibrium_Ng_converged"]
+
+
+class _Interrupt(Exception):
+    pass
+
+
+def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
+    ck = tmp_path / "prep.nc"
+
+    def stop_after_first_layer(stage, fraction):
+        if stage == "compaction" and ck.exists():
+            raise _Interrupt
+
+    with pytest.raises(_Interrupt):
+        prepare_sample(TINY, progress=stop_after_first_layer, checkpoint=ck)
+    resumed = prepare_sample(TINY, checkpoint=ck)
+    np.testing.assert_array_equal(resumed.positions, tiny_sample.positions)
+    np.testing.assert_array_equal(resumed.radii, tiny_sample.radii)
+    assert not ck.exists()
+
+
+def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample):
+    snaps = (0.02, 0.04)
+    full = penetrate(TINY, tiny_sample, snapshots=snaps)
+    ck = tmp_path / "ck.nc"
+    part = penetrate(TINY, tiny_sample, checkpoint=ck, max_steps=3000, snapshots=snaps)
+    assert not part.attrs["complete"]
+    assert ck.exists()
+    rest = penetrate(TINY, tiny_sample, checkpoint=ck, snapshots=snaps)
+    assert rest.attrs["complete"] and full.attrs["complete"]
+    np.testing.assert_array_equal(rest["V"].values, full["V"].values)
+    np.testing.assert_array_equal(rest["w"].values, full["w"].values)
+    np.testing.assert_array_equal(rest["x"].values, full["x"].values)
+    np.testing.assert_array_equal(rest["rotation"].values, full["rotation"].values)
+    assert full["V"].values.max() > 0.0  # the pipe did push on the soil
+
+
+def _run(cfg: DEMConfig):
+    short = cfg.replace(loading=dataclasses.replace(cfg.loading, final_embedment_ratio=0.25))
+    sample = prepare_sample(short)
+    return (
+        short,
+        sample,
+        initial_state(short, sample),
+        penetrate(short, sample, snapshots=(0.1, 0.2)),
+    )
+
+
+@pytest.fixture(scope="module")
+def reduced_runs():
+    return {"SM": _run(SM_REDUCED), "SD": _run(SD_REDUCED)}
+
+
+@pytest.mark.slow
+def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
+    """SD: stiffer initial response and larger heave than SM (paper §4.3.1, Figs. 5 and 8)."""
+    out = {}
+    for key, (cfg, _sample, _ini, ds) in reduced_runs.items():
+        D = cfg.geometry.pipe_diameter
+        w = ds["w"].values
+        V = ds["V"].values
+        assert ds.attrs["complete"]
+        assert ds.attrs["inertial_number"] > 0.0
+        # secant stiffness over the first 0.05D (mean V over 0.04–0.06D divided by 0.05D)
+        sel = (w > 0.04 * D) & (w < 0.06 * D)
+        k_ini = V[sel].mean() / (0.05 * D)
+        heave = float(np.nanmax(ds["surface"].values - ds["surface0"].values))
+        out[key] = (k_ini, heave)
+    assert out["SD"][0] > out["SM"][0]
+    assert out["SD"][1] > out["SM"][1]
+
+
+@pytest.mark.slow
+def test_reduced_cases_initial_state_is_physical(reduced_runs):
+    """Measuring circles at N g equilibrium.
+
+    * porosity uniform with depth (paper Fig. 7) and within 0.03 of the target: the UCM places
+      the same solid area in every layer;
+    * σ_v ≈ ρ_s(1−n)·N·g·z (weight of the disks above, no side friction: walls have μ = 0)
+      within 25 % (the top circle straddles the rough surface);
+    * 0.3 < K0 < 1.2: a frictional granular packing at rest (Jaky's 1 − sin φ ≈ 0.45 for
+      φ ≈ 33°; compaction-locked stresses raise it, and 2D disk packings are near isotropic).
+    """
+    g = 9.80665
+    for cfg, sample, ini, _ds in reduced_runs.values():
+        n_t = cfg.target.porosity
+        por = ini["porosity"].values
+        assert np.all(np.abs(por - n_t) < 0.03)
+        assert por.max() - por.min() < 0.03
+        z = ini["depth"].values
+        sv_expected = cfg.material.density * (1 - por) * cfg.loading.gravity_factor * g * z
+        np.testing.assert_allclose(ini["sigma_v"].values[1:], sv_expected[1:], rtol=0.25)
+        assert np.all(np.diff(ini["sigma_v"].values) > 0)
+        assert np.all((ini["K0"].values > 0.3) & (ini["K0"].values < 1.2))
+        assert sample.attrs["equilibrium_Ng_converged"]
