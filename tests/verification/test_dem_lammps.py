@@ -293,3 +293,101 @@ def test_engines_agree_on_a_regular_packing_under_the_pipe(tmp_path):
     for lo, hi in ((0.0, 100e-6), (100e-6, 200e-6), (200e-6, 300e-6)):
         sel = (w_e >= lo) & (w_e < hi)
         assert V_l[sel].mean() == pytest.approx(V_e[sel].mean(), rel=0.02)
+
+
+def _stacked_bed(diameters, width: float) -> tuple[np.ndarray, np.ndarray]:
+    """Rows of side-by-side disks, each dropped vertically onto the row below (no overlap)."""
+    pos, rad = [], []
+    below = np.zeros((0, 3))
+    i = 0
+    while i < len(diameters):
+        row, x = [], 0.0
+        while i < len(diameters) and x + diameters[i] <= width:
+            row.append((x + 0.5 * diameters[i], 0.5 * diameters[i]))
+            x += diameters[i]
+            i += 1
+        if not row:
+            break
+        shift = 0.5 * (width - x)
+        placed = []
+        for xc, r in row:
+            xc += shift
+            y = r
+            if len(below):
+                dx = np.abs(below[:, 0] - xc)
+                reach = below[:, 2] + r
+                hit = dx < reach
+                if np.any(hit):
+                    y = max(
+                        y, float(np.max(below[hit, 1] + np.sqrt(reach[hit] ** 2 - dx[hit] ** 2)))
+                    )
+            placed.append((xc, y, r))
+        below = np.array(placed)
+        pos += [(p[0], p[1]) for p in placed]
+        rad += [p[2] for p in placed]
+    return np.array(pos), np.array(rad)
+
+
+def _random_bed_case(width_d: float, height_d: float, d50_factor: float = 1.5, seed: int = 3):
+    """A config and a bed of polydisperse disks deposited by onbottom's engine under 25 g."""
+    from onbottom.dem import experiment
+    from onbottom.dem.config import (
+        SM_REDUCED,
+        Geometry,
+        Loading,
+        Numerics,
+        ParticleSizeDistribution,
+    )
+    from onbottom.dem.sample import Sample
+
+    D = 0.02
+    config = SM_REDUCED.replace(
+        name="lammps-crosscheck",
+        geometry=Geometry(width=width_d * D, height=height_d * D, pipe_diameter=D),
+        psd=ParticleSizeDistribution(d50=d50_factor * 0.68e-3, cu=1.67),
+        loading=Loading(
+            gravity_factor=25.0, pipe_velocity=0.1, final_embedment_ratio=0.1, gravity_ramp_time=0.0
+        ),
+        numerics=Numerics(record_every=100),
+    )
+    rng = np.random.default_rng(seed)
+    pos, rad = _stacked_bed(config.psd.sample_diameters(4000, rng), config.geometry.width)
+    keep = pos[:, 1] + rad < config.geometry.height
+    box = (0.0, config.geometry.width, 0.0, config.geometry.height)
+    sim = experiment.make_simulation(config, Sample(pos[keep], rad[keep], box))
+    sim.run(round(4e-3 / sim.dt))  # deposition under 25 g
+    # at rest and without contact history (a LAMMPS data file cannot carry the history)
+    return config, Sample(sim.pos.copy(), rad[keep], box)
+
+
+@pytest.mark.slow
+def test_engines_agree_on_a_random_bed_penetration(tmp_path):
+    """``penetrate`` (onbottom) and ``run_lammps_case`` on the same bed, to w = 0.1D.
+
+    About 970 disks of the paper's grading (d50 = 0.68 mm, Cu = 1.67) in a 2.5D × 0.5D box,
+    deposited by onbottom's engine under 25 g; both runs start from that bed at rest without
+    contact history and push the pipe from first contact at 0.1 m/s (Table 3 contacts,
+    damping 0.7, frictionless walls). DEM is chaotic: re-running either engine with the
+    positions perturbed by 1e-10 m spread the windowed means by 2–3 % (0–0.025D), 8–17 %
+    (0.025–0.05D) and 15–21 % (0.05–0.1D); over four such realisations the two engines
+    differed by at most 3 %, 12 % and 11 % per window, and their ensemble means by 1.6 %,
+    3 % and 1.7 %. Tolerances on one realisation: 10 %, 25 %, 25 %.
+    """
+    experiment = pytest.importorskip("onbottom.dem.experiment")
+    config, bed = _random_bed_case(2.5, 0.5, d50_factor=1.0)
+    D = config.geometry.pipe_diameter
+    ds_e = experiment.penetrate(config, bed, snapshots=())
+    case = lb.LammpsPenetrationCase.from_config(config, bed)
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    ds_l = res.curve
+    assert set(ds_e.data_vars) >= {"time", "w", "V", "H", "w_over_D"}
+    for name in ("time", "w", "V", "H", "w_over_D", "V_prototype"):
+        assert ds_l[name].attrs["units"] == ds_e[name].attrs["units"]
+    assert case.surface_y == pytest.approx(ds_e.attrs["surface0_at_pipe"], abs=1e-12)
+    for (lo, hi), tol in (((0.0, 0.025), 0.10), ((0.025, 0.05), 0.25), ((0.05, 0.1), 0.25)):
+        sel_e = (ds_e.w.values >= lo * D) & (ds_e.w.values < hi * D)
+        sel_l = (ds_l.w.values >= lo * D) & (ds_l.w.values < hi * D)
+        mean_e, mean_l = ds_e.V.values[sel_e].mean(), ds_l.V.values[sel_l].mean()
+        assert mean_e > 50.0  # N/m: the pipe is in the bed
+        assert mean_l == pytest.approx(mean_e, rel=tol), (lo, hi)

@@ -63,7 +63,7 @@ from onbottom import _validate as v
 from onbottom.constants import GRAVITY
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError, OnbottomError
-from onbottom.results import annotate, provenance
+from onbottom.results import provenance
 
 __all__ = [
     "LAMMPS_EXTRA_HINT",
@@ -75,6 +75,7 @@ __all__ = [
     "find_lammps",
     "lammps_available",
     "run_lammps_case",
+    "touch_surface",
     "write_lammps_case",
 ]
 
@@ -255,6 +256,20 @@ class LammpsContact:
         return cls(float(c.k_n), float(c.k_s), float(c.mu), float(getattr(c, "mu_r", 0.0)))
 
 
+def touch_surface(positions: np.ndarray, radii: np.ndarray, pipe_x: float, radius: float) -> float:
+    """Pipe-invert height at which a pipe of ``radius`` above ``pipe_x`` first touches a disk [m].
+
+    The same reference as :func:`onbottom.dem.experiment.penetrate` (w = 0 at first contact).
+    """
+    pos = np.asarray(positions, dtype=np.float64)
+    dx = pos[:, 0] - pipe_x
+    reach = radius + np.asarray(radii, dtype=np.float64)
+    sel = np.abs(dx) < reach
+    if not np.any(sel):
+        raise InputError(f"pipe_x = {pipe_x!r} is invalid: no disk lies under the pipe")
+    return float(np.max(pos[sel, 1] + np.sqrt(reach[sel] ** 2 - dx[sel] ** 2))) - radius
+
+
 @dataclass(frozen=True)
 class LammpsPenetrationCase:
     """The experiment as the LAMMPS deck sees it (model scale, SI, disks 1 m thick).
@@ -294,7 +309,8 @@ class LammpsPenetrationCase:
     gravity_factor
         Final gravity in multiples of ``gravity`` [-].
     gravity_ramp_time, settle_time
-        Durations of the ramp and settle stages [s].
+        Durations of the ramp and settle stages [s] (settling is extended by less than
+        ``record_every`` steps so that the pipe starts on an output step).
     dt
         Time step [s].
     skin
@@ -404,8 +420,15 @@ class LammpsPenetrationCase:
 
     @property
     def n_settle(self) -> int:
-        """Steps of the settling stage."""
-        return round(self.settle_time / self.dt)
+        """Steps of the settling stage.
+
+        ``settle_time/dt`` rounded up so that the pipe starts on a multiple of
+        ``record_every`` (LAMMPS prints on step numbers divisible by the interval, so the
+        curve then has a row at the start of the penetration and every interval after it).
+        """
+        n = round(self.settle_time / self.dt)
+        every = int(self.record_every)
+        return n + (-(self.n_ramp + n)) % every
 
     @property
     def n_penetration(self) -> int:
@@ -455,7 +478,8 @@ class LammpsPenetrationCase:
             The prepared specimen (``onbottom.dem.sample.Sample``: ``positions``, ``radii``,
             ``box``, ``velocities``, ``omega``, ``surface_height()``).
         surface_y
-            Reference surface [m]; default ``sample.surface_height()``.
+            Reference surface [m]; default :func:`touch_surface` under the pipe, so that
+            w = 0 at the first contact, as in :func:`onbottom.dem.experiment.penetrate`.
         pipe_x
             Pipe axis abscissa [m]; default the box centre.
         pipe_start_embedment
@@ -476,10 +500,10 @@ class LammpsPenetrationCase:
         radii = np.asarray(sample.radii, dtype=np.float64)
         box = tuple(float(b) for b in sample.box)
         D = float(geo.pipe_diameter)
-        if surface_y is None:
-            surface_y = float(sample.surface_height())
         if pipe_x is None:
             pipe_x = 0.5 * (box[0] + box[1])
+        if surface_y is None:
+            surface_y = touch_surface(sample.positions, radii, float(pipe_x), 0.5 * D)
         if final_embedment is None:
             final_embedment = float(load.final_embedment_ratio) * D
         soil = LammpsContact.of(config.contacts.soil)
@@ -487,7 +511,7 @@ class LammpsPenetrationCase:
         wall = LammpsContact.of(config.contacts.wall)
         if dt is None:
             m_min = float(mat.density) * math.pi * float(radii.min()) ** 2
-            k_max = max(soil.k_n, soil.k_s, pipe.k_n, pipe.k_s, wall.k_n, wall.k_s)
+            k_max = max(soil.k_n, soil.k_s, pipe.k_n, wall.k_n)  # as the engine
             dt = float(num.dt_safety) * math.sqrt(m_min / k_max)
         skin = float(getattr(num, "skin_ratio", 0.3)) * 2.0 * float(radii.min())
         kwargs: dict[str, Any] = dict(
@@ -717,8 +741,10 @@ class LammpsResult:
     message
         Human-readable outcome.
     curve
-        V–w curve: Dataset over ``time`` with ``w`` [m], ``V`` [N/m], ``H`` [N/m] and
-        ``n_contacts``; provenance attributes.
+        V–w curve on dimension ``record``, with the variable names and units of
+        :func:`onbottom.dem.experiment.penetrate`: ``time`` [s], ``w`` [m], ``w_over_D``,
+        ``V`` [N/m], ``H`` [N/m], ``w_prototype``, ``V_prototype``, plus ``n_contacts``;
+        provenance attributes. The first record is the start of the penetration.
     final_sample
         Final state as a :class:`~onbottom.dem.sample.Sample` (same particle order as the
         input; no contact history), or None if the run failed.
@@ -738,9 +764,16 @@ class LammpsResult:
     n_procs: int
 
 
-_EXTRA_VARIABLES = {
+_CURVE_VARIABLES = {
+    # the names, long names and units of onbottom.dem.experiment.penetrate's record
+    "time": ("time since the pipe started", "s"),
+    "w": ("embedment of the pipe invert below the initial surface (model)", "m"),
+    "w_over_D": ("normalised embedment w/D", "1"),
+    "V": ("vertical soil force on the pipe per unit length (model)", "N/m"),
+    "H": ("horizontal soil force on the pipe per unit length (model)", "N/m"),
+    "w_prototype": ("embedment at prototype scale (w·N)", "m"),
+    "V_prototype": ("vertical force per unit length at prototype scale (V·N)", "N/m"),
     "n_contacts": ("number of disks touching the pipe", "1"),
-    "H": ("horizontal force on the pipe per unit length", "N/m"),
 }
 
 
@@ -751,27 +784,33 @@ def _read_curve(case: LammpsPenetrationCase, deck: LammpsDeck, meta: dict[str, A
             rows = [[float(x) for x in ln.split()] for ln in fh if ln.strip() and ln[0] != "#"]
     arr = np.array(rows, dtype=np.float64).reshape(-1, 5)
     t0 = (case.n_ramp + case.n_settle) * case.dt
+    D, N = case.pipe_diameter, case.gravity_factor
+    w, V = arr[:, 1], arr[:, 2]
     ds = xr.Dataset(
         {
-            "w": ("time", arr[:, 1]),
-            "V": ("time", arr[:, 2]),
-            "H": ("time", arr[:, 3]),
-            "n_contacts": ("time", arr[:, 4].astype(np.int64)),
-        },
-        coords={"time": arr[:, 0] - t0},
+            "time": ("record", arr[:, 0] - t0),
+            "w": ("record", w),
+            "w_over_D": ("record", w / D),
+            "V": ("record", V),
+            "H": ("record", arr[:, 3]),
+            "w_prototype": ("record", w * N),
+            "V_prototype": ("record", V * N),
+            "n_contacts": ("record", arr[:, 4].astype(np.int64)),
+        }
     )
-    ds = annotate(ds)
-    for name, (long_name, units) in _EXTRA_VARIABLES.items():
+    for name, (long_name, units) in _CURVE_VARIABLES.items():
         ds[name].attrs.update(long_name=long_name, units=units)
-    ds["time"].attrs["long_name"] = "time since the pipe started moving"
-    ds["w"].attrs["long_name"] = "embedment of the pipe invert below the reference surface"
-    ds["V"].attrs["long_name"] = "vertical soil resistance on the pipe per unit length"
     ds.attrs.update(
         provenance(
             "dem.lammps_backend",
             case.parameters(),
             engine="LAMMPS",
-            pipe_diameter=case.pipe_diameter,
+            preset=case.name,
+            n_particles=case.n,
+            dt=case.dt,
+            gravity_factor=N,
+            pipe_diameter=D,
+            surface0_at_pipe=case.surface_y,
             **meta,
         )
     )
