@@ -2,25 +2,29 @@
 
 Usage::
 
-    python benchmarks/bench_dem_lammps.py                 # 60k disks (as the paper's SM)
-    python benchmarks/bench_dem_lammps.py --disks 15000   # a smaller bed
-    python benchmarks/bench_dem_lammps.py --sample bed.nc # a bed saved with Sample.save
+    python benchmarks/bench_dem_lammps.py                  # the bed of bench_dem.py (~60k)
+    python benchmarks/bench_dem_lammps.py --polydisperse   # the paper's grading, 60k disks
+    python benchmarks/bench_dem_lammps.py --sample bed.nc  # a bed saved with Sample.save
     python benchmarks/bench_dem_lammps.py --ranks 1 2 4 --steps 4000
 
-Without ``--sample`` the bed is the paper's box width (13D, D = 20 mm) filled with 60,000
-disks of the paper's grading (d50 = 0.68 mm, Cu = 1.67, uniform by number) on a hexagonal
-lattice of pitch d_max, let settle under 25 g for ``--settle`` steps, then timed. Such a bed
-is dense (3–5 contacts per disk) but still compacting slowly, so it rebuilds its neighbour
-lists more often than a fully settled specimen: the figure is conservative. For the exact
-settled specimen, pass ``--sample`` with a bed from ``onbottom.dem.preparation``. The figure
-is LAMMPS's own "Loop time" of the timed run (set-up and file I/O excluded), with the pipe
-present (parked one diameter above the bed).
+Default bed: the one of ``benchmarks/bench_dem.py`` (onbottom's engine), so the figures
+compare directly: ~60,000 equal disks (d = 0.74 mm) on a triangular lattice in the paper's
+13D × 5.5D box, each touching its six neighbours with a 1e-4·r overlap, under 25 g with the
+paper's contact parameters (Table 3), local damping 0.7, the pipe parked one diameter above.
+
+``--polydisperse``: 60,000 disks of the paper's grading (d50 = 0.68 mm, Cu = 1.67) on a
+hexagonal lattice of pitch d_max, let settle ``--settle`` steps under 25 g, then timed; that
+bed is still compacting, so it rebuilds neighbour lists more often (conservative figure).
+
+The figure is LAMMPS's own "Loop time" of the timed run (set-up and file I/O excluded). On a
+shared machine other processes lower it; the load average is printed next to it.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import os
 import re
 import tempfile
 from pathlib import Path
@@ -32,7 +36,21 @@ from onbottom.dem.config import SM
 from onbottom.dem.sample import Sample
 
 
-def lattice_bed(n_disks: int, seed: int = 0) -> Sample:
+def equal_bed(width: float = 0.26, height: float = 0.11, d: float = 0.74e-3) -> Sample:
+    """The bed of ``bench_dem.py``: equal disks on a triangular lattice, 1e-4·r overlaps."""
+    h = d * math.sqrt(3.0) / 2.0
+    rows = int((height - d) / h)
+    cols = int((width - d) / d)
+    pts = [
+        ((c + 0.5 + 0.5 * (r % 2)) * d, 0.5 * d + r * h)
+        for r in range(rows)
+        for c in range(cols - (r % 2))
+    ]
+    pos = np.array(pts)
+    return Sample(pos, np.full(len(pos), 0.5 * d * (1 + 1e-4)), (0.0, width, 0.0, height))
+
+
+def graded_bed(n_disks: int, seed: int = 0) -> Sample:
     """About ``n_disks`` disks of the SM grading on a hexagonal lattice of pitch d_max.
 
     The box has the paper's width (13D); the height follows from the number of disks (the
@@ -68,14 +86,22 @@ def loop_rate(log_path: Path) -> tuple[float, int, int, int]:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("--disks", type=int, default=60_000, help="number of disks of the bed")
+    ap.add_argument("--polydisperse", action="store_true", help="graded bed (see above)")
+    ap.add_argument("--disks", type=int, default=60_000, help="disks of the graded bed")
     ap.add_argument("--sample", type=Path, help="a settled bed saved with Sample.save")
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
-    ap.add_argument("--settle", type=int, default=3000, help="settling steps before timing")
+    ap.add_argument("--settle", type=int, default=None, help="settling steps before timing")
     ap.add_argument("--steps", type=int, default=2000, help="timed steps")
     args = ap.parse_args()
 
-    sample = Sample.load(args.sample) if args.sample else lattice_bed(args.disks)
+    if args.sample:
+        sample = Sample.load(args.sample)
+    elif args.polydisperse:
+        sample = graded_bed(args.disks)
+    else:
+        sample = equal_bed()
+    if args.settle is None:
+        args.settle = 3000 if args.polydisperse else 0
     park = -SM.geometry.pipe_diameter  # pipe one diameter above the surface, at rest
     base = lb.LammpsPenetrationCase.from_config(
         SM, sample, pipe_start_embedment=park, final_embedment=park
@@ -94,10 +120,12 @@ def main() -> None:
             final_embedment=park,
             surface_y=base.surface_y,
         )
-        settled = lb.run_lammps_case(pre, Path(tmp) / "settle", mode="subprocess")
-        if not settled.success:
-            raise SystemExit(settled.message)
-        bed = settled.final_sample
+        bed = sample
+        if args.settle > 0:
+            settled = lb.run_lammps_case(pre, Path(tmp) / "settle", mode="subprocess")
+            if not settled.success or settled.final_sample is None:
+                raise SystemExit(settled.message)
+            bed = settled.final_sample
         for ranks in args.ranks:
             case = lb.LammpsPenetrationCase.from_config(
                 SM,
@@ -114,9 +142,11 @@ def main() -> None:
                 continue
             sec, procs, steps, atoms = loop_rate(res.deck.directory / "log.lammps")
             rate = atoms * steps / sec
+            load = os.getloadavg()[0]
             print(
                 f"{procs} MPI rank(s): {steps} steps x {atoms} disks in {sec:.2f} s "
-                f"-> {rate:.3g} particle-steps/s ({rate / procs:.3g} per rank)"
+                f"-> {rate:.3g} particle-steps/s ({rate / procs:.3g} per rank); "
+                f"load average {load:.1f} on {os.cpu_count()} cores"
             )
 
 
