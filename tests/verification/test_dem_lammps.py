@@ -104,6 +104,18 @@ def test_damped_free_fall_accelerates_at_0_3_g(tmp_path):
     assert res.final_sample.velocities[0, 1] == pytest.approx(-a * t, rel=1e-9)
 
 
+def test_gravity_ramp_ends_at_n_g(tmp_path):
+    # a disk resting on the floor while gravity ramps 1 g → 25 g, then settles: the floor
+    # overlap is m·25g/k_wall (2 nm), which the position resolves to ~1e-6 relative
+    m = RHO * math.pi * R * R
+    case = _case([[0.01, R]], [R], (0.0, 0.02, 0.0, 0.01), gravity_ramp_time=0.01, settle_time=0.01)
+    assert "ramp(0,1)" in lb.write_lammps_case(case, tmp_path / "deck").input.read_text()
+    res = lb.run_lammps_case(case, tmp_path)
+    assert res.success, res.message
+    overlap = R - res.final_sample.positions[0, 1]
+    assert overlap == pytest.approx(m * 25.0 * GRAVITY / WALL.k_n, rel=0.01)
+
+
 def test_two_disk_collision_duration_and_restitution(tmp_path):
     v0, gap = 0.5, 0.2e-3
     x1, x2 = 0.01, 0.01 + 2 * R + gap
