@@ -13,7 +13,7 @@ import click
 
 from onbottom._version import __version__
 
-COMMAND_MODULES: tuple[str, ...] = ("dem",)
+COMMAND_MODULES: tuple[str, ...] = ("dem", "dem_lammps")
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 

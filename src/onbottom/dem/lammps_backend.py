@@ -432,9 +432,14 @@ class LammpsPenetrationCase:
 
     @property
     def n_penetration(self) -> int:
-        """Steps of the penetration stage."""
+        """Steps of the penetration stage: travel/(v·Δt) rounded up to whole output intervals.
+
+        The last record is then at (or just past) ``final_embedment``, as in
+        :func:`onbottom.dem.experiment.penetrate`.
+        """
         travel = self.final_embedment - self.pipe_start_embedment
-        return max(round(travel / (self.pipe_velocity * self.dt)), 0)
+        n = max(math.ceil(travel / (self.pipe_velocity * self.dt) - 1e-9), 0)
+        return n + (-n) % int(self.record_every)
 
     @property
     def n_steps(self) -> int:
