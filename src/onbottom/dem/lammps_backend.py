@@ -30,7 +30,7 @@ Mapping (see ``docs/theory/dem_lammps.md`` for the full table)
   moment R̄·k_roll·ξ_r, capped at μ_roll·F_n in force (μ_roll·R̄·F_n in moment). With
   k_roll = k_s this is M_r = k_s·R̄²·Δθ, the PFC ``rrlinear`` law.
 * Walls: ``fix wall/gran ... xplane`` / ``yplane`` with ``hooke k_n 0`` and the wall friction
-  (μ = 0 in the paper), no rolling.
+  (μ = 0 in the paper); a rolling term only if the wall's μ_r > 0 (R̄ = r).
 * Pipe: a ``region cylinder`` (``side out``, ``units box``) moved by an equal-style variable,
   used by ``fix wall/gran/region ... contacts``; the per-particle contact forces of that fix
   are summed (``compute reduce``) to get the force on the pipe, V = −ΣF_y (per metre).
@@ -86,8 +86,6 @@ LAMMPS_EXTRA_HINT = (
     "(= 'lammps[mpi]'; LAMMPS is GPL and is not bundled with onbottom)"
 )
 """Message naming the extra to install when LAMMPS is absent."""
-
-_DEFAULT_STEP_CHUNK = 1_000_000
 
 
 class LammpsError(OnbottomError, RuntimeError):
@@ -688,15 +686,14 @@ def write_lammps_case(case: LammpsPenetrationCase, directory: str | os.PathLike[
         "variable        ncontact equal c_pipeforce[3]",
         f"variable        w equal {_fmt(case.pipe_start_embedment)}-v_pdy",
         "variable        t equal time",
-        "compute         ke all ke",
-        "compute         erot all erotate/sphere",
+        "compute         ke all ke  # translational only (erotate/sphere assumes spheres)",
         "",
         "fix             integrate all nve/sphere disc",
         "fix             planar all enforce2d",
         "# local (Cundall) damping last: it scales the total unbalanced force and moment",
         f"fix             damp all damping/cundall {_fmt(case.damping)} {_fmt(case.damping)}",
         "",
-        "thermo_style    custom step time v_g v_w v_V c_ke c_erot",
+        "thermo_style    custom step time v_g v_w v_V c_ke",
         "thermo_modify   format float %.10g norm no lost error",
         f"thermo          {max(every * 50, 1000)}",
     ]
