@@ -19,6 +19,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "backbone",
     "penetration",
     "dem",
+    "dem_lammps",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
