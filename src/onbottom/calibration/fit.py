@@ -65,6 +65,7 @@ __all__ = [
     "calibrate",
     "grid_search",
     "misfit_slices",
+    "record_misfit",
 ]
 
 logger = logging.getLogger(__name__)
@@ -658,3 +659,23 @@ def misfit_slices(
             client=client,
         )
     return out
+
+
+def record_misfit(
+    *,
+    record: TestRecord,
+    simulator: Simulator | None = None,
+    weights: MisfitWeights | None = None,
+    **params: float,
+) -> dict[str, float]:
+    """Misfit of one simulation of ``record`` at parameter values ``params`` (for sweeps).
+
+    Returns ``misfit`` (Σr²) and ``term_<name>`` for each term; raises if the simulation
+    fails (the sweep records the failure).
+    """
+    sim_fn = simulator or _default_simulator()
+    res = sim_fn(record, {k: float(v) for k, v in params.items()})
+    if getattr(res, "success", True) is False:
+        raise RuntimeError(f"simulation failed: {getattr(res, 'message', '')}")
+    m = evaluate_misfit(record, res, weights)
+    return {"misfit": m.total, **{f"term_{k}": v for k, v in m.terms.items()}}

@@ -13,7 +13,7 @@ import click
 
 from onbottom._version import __version__
 
-COMMAND_MODULES: tuple[str, ...] = ()
+COMMAND_MODULES: tuple[str, ...] = ("calibrate", "sweep")
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 
