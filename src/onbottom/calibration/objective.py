@@ -45,6 +45,7 @@ from onbottom.errors import InputError
 
 __all__ = [
     "FAILED_RESIDUAL",
+    "HISTORY_ONLY",
     "TERMS",
     "Misfit",
     "MisfitWeights",
@@ -120,6 +121,15 @@ class Misfit:
     total: float
     measured: dict[str, float]
     simulated: dict[str, float]
+
+
+HISTORY_ONLY = MisfitWeights(
+    initial_penetration=0.0, max_penetration=0.0, max_displacement=0.0, time_to_limit=0.0
+)
+"""Weights that fit the u and w histories only. Use them for noisy records: the scalar
+features of a noisy signal are biased (the maximum of w picks the largest noise excursion, the
+first crossing of the limit comes early) while the history residuals average the noise out,
+and for standard errors (see :mod:`onbottom.calibration.fit`)."""
 
 
 def time_to_limit(t: np.ndarray, u: np.ndarray, limit: float, t0: float = 0.0) -> float:

@@ -107,8 +107,8 @@ def _weights(text: str | None):
     help="Simulate the record's centrifuge preset, or drive by its recorded H and V.",
 )
 @click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--maxiter", type=int, default=20, show_default=True, help="DE generations.")
-@click.option("--popsize", type=int, default=8, show_default=True, help="DE population factor.")
+@click.option("--maxiter", type=int, default=40, show_default=True, help="DE generations.")
+@click.option("--popsize", type=int, default=10, show_default=True, help="DE population factor.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write fitted TOML here.")
 @click.option("--plot-dir", type=click.Path(file_okay=False), help="Write fit figures here.")
 @click.option("--scheduler", help="Dask scheduler address (remote cluster).")
