@@ -37,6 +37,10 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "work": ("accumulated work in the current trough", "N"),
     "region": ("displacement region of the soil model", "1"),
     "Q_v": ("vertical penetration resistance per unit length", "N/m"),
+    "z_over_D": ("normalised penetration z/D", "1"),
+    "B": ("contact width of the pipe at the seabed", "m"),
+    "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
+    "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
 }
 
 

@@ -13,7 +13,14 @@ import click
 
 from onbottom._version import __version__
 
-COMMAND_MODULES: tuple[str, ...] = ("calibrate", "sweep")
+COMMAND_MODULES: tuple[str, ...] = (
+    "penetration",
+    "backbone",
+    "reproduce",
+    "simulate",
+    "calibrate",
+    "sweep",
+)
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 

@@ -1,1 +1,50 @@
-"""onbottom.dynamics."""
+"""onbottom.dynamics — load programmes, the pipe-section time-domain solver, centrifuge presets.
+
+See docs/theory/section_dynamics.md and docs/validation/youssef_cassidy_2014.md.
+"""
+
+from onbottom.dynamics.centrifuge import (
+    RECOMMENDED,
+    TESTS,
+    CentrifugeTest,
+    ParameterSet,
+    build_programme,
+    build_soil,
+    get_test,
+    run_centrifuge_test,
+)
+from onbottom.dynamics.programmes import (
+    LoadProgramme,
+    from_arrays,
+    from_toml,
+    inclined_cyclic,
+    irregular_wave_current_groups,
+    regular_wave_current_groups,
+)
+from onbottom.dynamics.section import (
+    SectionResult,
+    SolverSettings,
+    section_mass,
+    simulate_section,
+)
+
+__all__ = [
+    "RECOMMENDED",
+    "TESTS",
+    "CentrifugeTest",
+    "LoadProgramme",
+    "ParameterSet",
+    "SectionResult",
+    "SolverSettings",
+    "build_programme",
+    "build_soil",
+    "from_arrays",
+    "from_toml",
+    "get_test",
+    "inclined_cyclic",
+    "irregular_wave_current_groups",
+    "regular_wave_current_groups",
+    "run_centrifuge_test",
+    "section_mass",
+    "simulate_section",
+]

@@ -1,1 +1,47 @@
-"""onbottom.hydro."""
+"""onbottom.hydro — wave spectra, seabed kinematics, current and Morison loads (pure numpy).
+
+References: DNV-RP-F109 (2010, re-issued 2017) §3.3–3.4; DNV-RP-C205 (2010) §3.5.
+"""
+
+from onbottom.hydro.current import SEABED_ROUGHNESS, mean_current_over_pipe
+from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
+from onbottom.hydro.kinematics import (
+    near_bed_velocity_spectrum,
+    regular_wave_bed_velocity,
+    seabed_transfer,
+    significant_velocity,
+    wave_number,
+    zero_upcrossing_period,
+)
+from onbottom.hydro.spectra import (
+    jonswap,
+    jonswap_peak_enhancement,
+    pierson_moskowitz,
+    spectral_moment,
+)
+from onbottom.hydro.timeseries import (
+    near_bed_velocity_series,
+    random_phase_series,
+    regular_velocity_series,
+)
+
+__all__ = [
+    "SEABED_ROUGHNESS",
+    "MorisonCoefficients",
+    "horizontal_force",
+    "jonswap",
+    "jonswap_peak_enhancement",
+    "lift_force",
+    "mean_current_over_pipe",
+    "near_bed_velocity_series",
+    "near_bed_velocity_spectrum",
+    "pierson_moskowitz",
+    "random_phase_series",
+    "regular_velocity_series",
+    "regular_wave_bed_velocity",
+    "seabed_transfer",
+    "significant_velocity",
+    "spectral_moment",
+    "wave_number",
+    "zero_upcrossing_period",
+]

@@ -11,6 +11,8 @@ import numpy as np
 from numba import njit
 
 from onbottom.soil._coulomb_kernel import coulomb_kernel
+from onbottom.soil._verley_lund_kernel import verley_lund_kernel
+from onbottom.soil._verley_sotberg_kernel import verley_sotberg_kernel
 
 MODEL_COULOMB = 0
 MODEL_VERLEY_SOTBERG = 1
@@ -22,6 +24,10 @@ def lateral_step(model_id, params, state_old, u_new, v_load, state_new, out):
     """Call the kernel of model ``model_id`` (contract: :mod:`onbottom.soil.base`)."""
     if model_id == MODEL_COULOMB:
         coulomb_kernel(params, state_old, u_new, v_load, state_new, out)
+    elif model_id == MODEL_VERLEY_SOTBERG:
+        verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out)
+    elif model_id == MODEL_VERLEY_LUND:
+        verley_lund_kernel(params, state_old, u_new, v_load, state_new, out)
     else:
         # unknown id: signal with NaN resistance; the Python layer validates ids beforehand
         for i in range(out.shape[0]):

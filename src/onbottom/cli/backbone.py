@@ -1,0 +1,210 @@
+"""``onbottom backbone``: Verley & Sotberg backbone (region limits, F_r1/F_r2/F_r3, z_i, z3).
+
+Optionally drives the model along a cyclic displacement path to show penetration growth and
+writes the backbone (and path) plots.
+"""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import click
+import numpy as np
+
+from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.inputs import Pipe, Sand
+
+__all__ = ["command"]
+
+_KN = 1.0e3
+
+
+@click.command("backbone")
+@click.option(
+    "--model",
+    "variant",
+    type=click.Choice(["silica", "calcareous", "f109"]),
+    default="silica",
+    show_default=True,
+    help="silica: Verley & Sotberg (1994); calcareous: Youssef & Cassidy (2014); "
+    "f109: silica with the DNV-RP-F109 §3.4.6 passive law.",
+)
+@click.option("--diameter", type=float, default=1.0, show_default=True, help="D [m].")
+@click.option(
+    "--weight-kn",
+    type=float,
+    required=True,
+    help="Vertical contact load V = W_s − F_L [kN/m] (submerged weight when F_L = 0).",
+)
+@click.option(
+    "--load-kn",
+    type=float,
+    default=None,
+    help="Installation load W for z_i (Eq 7) [kN/m]; default --weight-kn.",
+)
+@click.option("--gamma-kn", type=float, required=True, help="Submerged unit weight γ' [kN/m³].")
+@click.option("--mu", type=float, default=0.6, show_default=True, help="Friction μ [-].")
+@click.option("--A", "a_factor", type=float, default=None, help="Factor A (default by model).")
+@click.option("--B", "b_factor", type=float, default=None, help="Factor B (default by model).")
+@click.option("--C", "c_factor", type=float, default=None, help="Factor C (default by model).")
+@click.option(
+    "--z2-over-d",
+    type=float,
+    default=None,
+    help="Penetration at breakout z2/D [-] for the backbone; default z_i/D.",
+)
+@click.option(
+    "--cycles",
+    type=float,
+    default=None,
+    help="Drive a sinusoidal displacement path of this many cycles (penetration path).",
+)
+@click.option(
+    "--amplitude",
+    type=float,
+    default=None,
+    help="Amplitude of the cyclic path [m]; default 0.1·D.",
+)
+@click.option(
+    "--plot",
+    "plot_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the backbone plot here (PNG/PDF/SVG); the path plot gets suffix _path.",
+)
+@json_option
+@handle_errors
+def command(
+    variant: str,
+    diameter: float,
+    weight_kn: float,
+    load_kn: float | None,
+    gamma_kn: float,
+    mu: float,
+    a_factor: float | None,
+    b_factor: float | None,
+    c_factor: float | None,
+    z2_over_d: float | None,
+    cycles: float | None,
+    amplitude: float | None,
+    plot_path: Path | None,
+    as_json: bool,
+) -> None:
+    """Backbone of the Verley & Sotberg model: region limits, forces, penetrations.
+
+    Example: onbottom backbone --model calcareous --diameter 1.0 --weight-kn 10.52
+    --load-kn 42.98 --gamma-kn 7.5 --mu 0.48 --cycles 5 --plot bb.png
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        payload = _run(
+            variant,
+            diameter,
+            weight_kn,
+            load_kn,
+            gamma_kn,
+            mu,
+            {"A": a_factor, "B": b_factor, "C": c_factor},
+            z2_over_d,
+            cycles,
+            amplitude,
+            plot_path,
+        )
+    messages = list(dict.fromkeys(str(w.message) for w in caught))
+    payload["warnings"] = messages
+    if as_json:
+        emit_json(payload)
+        return
+    _print_table(payload, diameter)
+    for msg in messages:
+        click.echo(f"warning: {msg}", err=True)
+
+
+def _run(
+    variant: str,
+    diameter: float,
+    weight_kn: float,
+    load_kn: float | None,
+    gamma_kn: float,
+    mu: float,
+    abc: dict[str, float | None],
+    z2_over_d: float | None,
+    cycles: float | None,
+    amplitude: float | None,
+    plot_path: Path | None,
+) -> dict:
+    from onbottom.soil.response import cyclic_path, path_response
+    from onbottom.soil.verley_sotberg import VerleySotberg
+
+    v = weight_kn * _KN
+    pipe = Pipe(outer_diameter=diameter, submerged_weight=v)
+    sand = Sand(submerged_unit_weight=gamma_kn * _KN, friction_coefficient=mu)
+    factors = {name: val for name, val in abc.items() if val is not None}
+    w = None if load_kn is None else load_kn * _KN
+    build = {"silica": VerleySotberg.silica, "f109": VerleySotberg.f109}.get(variant)
+    if build is None:
+        model = VerleySotberg.calcareous(pipe, sand, installation_load=w, **factors)
+    else:
+        model = build(pipe, sand, installation_load=w, **factors)
+    z2 = None if z2_over_d is None else z2_over_d * diameter
+    pts = model.backbone_points(v, z2)
+
+    payload: dict = {
+        "model": variant,
+        "parameters": dict(model.parameters()),
+        "vertical_load": v,
+        "backbone": pts,
+    }
+    ds = None
+    if cycles is not None:
+        amp = 0.1 * diameter if amplitude is None else amplitude
+        ds = path_response(model, cyclic_path(amp, cycles), v)
+        payload["path"] = {
+            "amplitude": amp,
+            "cycles": cycles,
+            "final_penetration": float(ds["z"].values[-1]),
+            "max_resistance": float(np.max(np.abs(ds["F_soil"].values))),
+            "final_work": float(ds["work"].values[-1]),
+        }
+    if plot_path is not None:
+        from onbottom.plotting.backbone import plot_backbone, plot_path_response
+
+        title = f"Verley & Sotberg ({variant}), V = {weight_kn:g} kN/m"
+        plot_backbone(pts, diameter=diameter, title=title).savefig(plot_path, dpi=150)
+        payload["plots"] = [str(plot_path)]
+        if ds is not None:
+            p2 = plot_path.with_name(plot_path.stem + "_path" + plot_path.suffix)
+            plot_path_response(ds, diameter=diameter).savefig(p2, dpi=150)
+            payload["plots"].append(str(p2))
+    return payload
+
+
+def _print_table(payload: dict, d: float) -> None:
+    pts = payload["backbone"]
+    variant = payload["model"]
+    click.echo(f"Verley & Sotberg backbone ({variant}); SI inputs converted from kN")
+    rows = [
+        ("K_s = γ'D²/V", f"{pts['K_s']:.6g}", "-"),
+        ("y1 (elastic)", f"{pts['y1']:.6g}", f"m  ({pts['y1'] / d:.4g} D)"),
+        ("y2 (accumulation)", f"{pts['y2']:.6g}", f"m  ({pts['y2'] / d:.4g} D)"),
+        ("y3 (breakout)", f"{pts['y3']:.6g}", f"m  ({pts['y3'] / d:.4g} D)"),
+        ("z_i (Eq 7)", f"{pts['z_i']:.6g}", f"m  ({pts['z_i'] / d:.5g} D)"),
+        ("z2", f"{pts['z2']:.6g}", f"m  ({pts['z2'] / d:.5g} D)"),
+        ("z3 (Eqs 9-10)", f"{pts['z3']:.6g}", f"m  ({pts['z3'] / d:.5g} D)"),
+        ("F_r1 = 0.3 F_r2", f"{pts['F_r1'] / _KN:.6g}", "kN/m"),
+        ("F_r2 (Eqs 3-4)", f"{pts['F_r2'] / _KN:.6g}", "kN/m"),
+        ("F_r3", f"{pts['F_r3'] / _KN:.6g}", "kN/m"),
+        ("F_f = μV", f"{pts['F_f'] / _KN:.6g}", "kN/m"),
+    ]
+    for name, val, unit in rows:
+        click.echo(f"  {name:<20} {val:>12}  {unit}")
+    if "path" in payload:
+        p = payload["path"]
+        click.echo(
+            f"  cyclic path: {p['cycles']:g} cycles of ±{p['amplitude']:.4g} m →"
+            f" z = {p['final_penetration']:.6g} m ({p['final_penetration'] / d:.5g} D),"
+            f" max |R| = {p['max_resistance'] / _KN:.4g} kN/m"
+        )
+    for path in payload.get("plots", []):
+        click.echo(f"  plot written: {path}")

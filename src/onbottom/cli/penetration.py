@@ -1,0 +1,282 @@
+"""``onbottom penetration`` — DNVGL-RP-F114 vertical penetration resistance and embedment."""
+
+from __future__ import annotations
+
+import warnings
+from typing import Any
+
+import click
+import numpy as np
+
+from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS, UndrainedModel1, UndrainedModel2
+from onbottom.soil.penetration_f114 import (
+    LayConditions,
+    penetration_curve,
+    solve_embedment,
+)
+from onbottom.soil.penetration_sand import (
+    DEPTH_FACTOR_COEFFICIENT,
+    N_GAMMA_METHODS,
+    DrainedBounds,
+    DrainedPenetration,
+)
+
+__all__ = ["command"]
+
+_KN = 1.0e3
+
+
+def _parse_levels(text: str) -> np.ndarray:
+    try:
+        levels = np.array([float(t) for t in text.split(",") if t.strip()], dtype=float)
+    except ValueError as exc:
+        raise InputError(
+            f"--at = {text!r} is invalid: expected comma-separated z/D values in (0, 1]"
+        ) from exc
+    if levels.size == 0 or np.any(levels < 0.0) or np.any(levels > 1.0):
+        raise InputError(f"--at = {text!r} is invalid: z/D values must lie in [0, 1]")
+    return levels
+
+
+def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
+    d = opts["diameter"]
+    gamma = opts["gamma_kn"] * _KN
+    if opts["soil"] == "sand":
+        if opts["phi_deg"] is None:
+            raise InputError("--phi-deg is required with --soil sand: best-estimate friction angle φ' [deg], allowed 15–50")
+        model = DrainedPenetration(
+            diameter=d,
+            unit_weight=gamma,
+            friction_angle_deg=opts["phi_deg"],
+            n_gamma=opts["n_gamma"],
+            depth_factor_coefficient=opts["depth_coefficient"],
+        )
+        lower = opts["phi_lower_deg"] if opts["phi_lower_deg"] is not None else opts["phi_deg"]
+        upper = opts["phi_upper_deg"] if opts["phi_upper_deg"] is not None else opts["phi_deg"]
+        bounds = DrainedBounds.from_friction_angles(
+            diameter=d,
+            unit_weight=gamma,
+            lower_friction_angle_deg=lower,
+            upper_friction_angle_deg=upper,
+            lower_n_gamma=opts["lower_n_gamma"],
+            upper_n_gamma=opts["upper_n_gamma"],
+            depth_factor_coefficient=opts["depth_coefficient"],
+        )
+        return model, bounds
+    if opts["su_kpa"] is None:
+        raise InputError("--su-kpa = None is invalid: required for --soil clay [kPa]")
+    common = {
+        "diameter": d,
+        "su_mudline": opts["su_kpa"] * _KN,
+        "su_gradient": opts["su_gradient_kpa"] * _KN,
+        "unit_weight": gamma,
+    }
+    if opts["model"] == "1":
+        return UndrainedModel1(roughness=opts["roughness"], **common), None
+    return UndrainedModel2(**common), None
+
+
+@click.command("penetration")
+@click.option(
+    "--soil",
+    type=click.Choice(["sand", "clay"]),
+    default="sand",
+    show_default=True,
+    help="Drained sand (F114 Eq 4.9) or undrained clay (Model 1 or 2).",
+)
+@click.option("--diameter", type=float, required=True, help="Pipe outer diameter D [m].")
+@click.option(
+    "--gamma-kn",
+    type=float,
+    required=True,
+    help="Effective (submerged; dry for dry centrifuge sand) unit weight γ' [kN/m³].",
+)
+@click.option("--phi-deg", type=float, default=None, help="Sand: friction angle φ' [deg].")
+@click.option(
+    "--phi-lower-deg",
+    type=float,
+    default=None,
+    help="Sand: φ' of the lower estimate [deg] (e.g. φ_cv); default --phi-deg.",
+)
+@click.option(
+    "--phi-upper-deg",
+    type=float,
+    default=None,
+    help="Sand: φ' of the upper estimate [deg] (e.g. peak); default --phi-deg.",
+)
+@click.option(
+    "--n-gamma",
+    "--nq-gamma",
+    "n_gamma",
+    type=click.Choice(N_GAMMA_METHODS),
+    default="davis_booker_rough",
+    show_default=True,
+    help="Sand: N_γ expression of the best estimate.",
+)
+@click.option(
+    "--lower-n-gamma",
+    type=click.Choice(N_GAMMA_METHODS),
+    default="davis_booker_smooth",
+    show_default=True,
+    help="Sand: N_γ of the lower estimate.",
+)
+@click.option(
+    "--upper-n-gamma",
+    type=click.Choice(N_GAMMA_METHODS),
+    default="davis_booker_rough",
+    show_default=True,
+    help="Sand: N_γ of the upper estimate.",
+)
+@click.option(
+    "--depth-coefficient",
+    type=float,
+    default=DEPTH_FACTOR_COEFFICIENT,
+    show_default=True,
+    help="Sand: coefficient of the depth factor d_q (F114 1.2; Brinch Hansen 2).",
+)
+@click.option("--su-kpa", type=float, default=None, help="Clay: s_u at the mudline [kPa].")
+@click.option(
+    "--su-gradient-kpa",
+    type=float,
+    default=0.0,
+    show_default=True,
+    help="Clay: s_u gradient ρ [kPa/m].",
+)
+@click.option(
+    "--model",
+    type=click.Choice(["1", "2"]),
+    default="1",
+    show_default=True,
+    help="Clay: F114 Model 1 (bearing capacity) or 2 (empirical soft clay).",
+)
+@click.option(
+    "--roughness",
+    type=float,
+    default=DEFAULT_ROUGHNESS,
+    show_default=True,
+    help="Clay Model 1: pipe roughness r in [0, 1].",
+)
+@click.option(
+    "--at",
+    "levels",
+    default="0.1,0.2,0.3,0.4,0.5",
+    show_default=True,
+    help="Comma-separated z/D values for the table.",
+)
+@click.option("--load-kn", type=float, default=None, help="Vertical load W [kN/m]: embedment.")
+@click.option("--ei", type=float, default=None, help="Lay factor: bending stiffness EI [N·m²].")
+@click.option("--tension-kn", type=float, default=None, help="Lay factor: bottom tension [kN].")
+@click.option(
+    "--plot", "plot_path", type=click.Path(dir_okay=False), default=None, help="Save a V–w plot."
+)
+@click.option(
+    "--save",
+    "save_path",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Save the Q_v(z) curve as NetCDF.",
+)
+@json_option
+@handle_errors
+def command(**opts: Any) -> None:
+    """DNVGL-RP-F114 vertical penetration resistance Q_v(z) and the embedment for a load.
+
+    Sand: Q_v from F114 Eq 4.9 with the chosen N_γ, plus lower/upper estimates (lower: φ_lower
+    with Davis & Booker smooth N_γ; upper: φ_upper with Davis & Booker rough N_γ — onbottom's
+    documented definition). Clay: Model 1 (Eqs 4.1–4.2) or Model 2 (Eq 4.8). With --load-kn,
+    solves Q_v(z) = k_lay·W on 0 < z <= D; give --ei and --tension-kn to apply the lay factor.
+    """
+    levels = _parse_levels(opts["levels"])
+    lay = None
+    if (opts["ei"] is None) != (opts["tension_kn"] is None):
+        raise InputError("--ei and --tension-kn are invalid: give both or neither")
+    if opts["ei"] is not None:
+        lay = LayConditions(bending_stiffness=opts["ei"], bottom_tension=opts["tension_kn"] * _KN)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        model, bounds = _build_models(opts)
+        d = model.diameter
+        table = penetration_curve(model, levels * d, bounds=bounds)
+        embedment = None
+        if opts["load_kn"] is not None:
+            embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
+        curve = None
+        if opts["plot_path"] or opts["save_path"]:
+            zmax = max(0.5, float(levels.max()))
+            if embedment is not None:
+                zmax = max(zmax, min(1.0, 1.1 * embedment.z_over_d))
+            curve = penetration_curve(
+                model, bounds=bounds, embedment=embedment, n=201, z_over_d_max=zmax
+            )
+    messages = list(dict.fromkeys(str(w.message) for w in caught))
+
+    if curve is not None and opts["save_path"]:
+        from onbottom.results import save_dataset
+
+        save_dataset(curve, opts["save_path"])
+    if curve is not None and opts["plot_path"]:
+        from onbottom.plotting.penetration import plot_penetration_curve
+
+        fig, _ = plot_penetration_curve(curve)
+        fig.savefig(opts["plot_path"], dpi=150)
+
+    rows = {
+        "z_over_D": table["z_over_D"].values,
+        "z": table["z"].values,
+        "B": table["B"].values,
+        "Q_v": table["Q_v"].values,
+    }
+    if "Q_v_lower" in table:
+        rows["Q_v_lower"] = table["Q_v_lower"].values
+        rows["Q_v_upper"] = table["Q_v_upper"].values
+
+    if opts["as_json"]:
+        payload: dict[str, Any] = {
+            "model": model.name,
+            "parameters": model.parameters(),
+            "units": {"z": "m", "B": "m", "Q_v": "N/m", "load": "N/m"},
+            "table": rows,
+            "embedment": embedment.as_dict() if embedment is not None else None,
+            "warnings": messages,
+        }
+        if bounds is not None:
+            payload["bounds"] = bounds.parameters()
+        emit_json(payload)
+        return
+
+    for msg in messages:
+        click.echo(f"warning: {msg}", err=True)
+    click.echo(f"DNVGL-RP-F114 vertical penetration — {model.name}, D = {d:g} m")
+    if bounds is not None:
+        click.echo(
+            f"  estimate: φ' = {model.friction_angle_deg:g}°, N_γ = {model.n_gamma}"
+            f" ({model.n_gamma_value:.1f})"
+        )
+        click.echo(
+            f"  lower:    φ' = {bounds.lower.friction_angle_deg:g}°, N_γ = "
+            f"{bounds.lower.n_gamma} ({bounds.lower.n_gamma_value:.1f})"
+        )
+        click.echo(
+            f"  upper:    φ' = {bounds.upper.friction_angle_deg:g}°, N_γ = "
+            f"{bounds.upper.n_gamma} ({bounds.upper.n_gamma_value:.1f})"
+        )
+    header = f"{'z/D':>6} {'z (m)':>9} {'B (m)':>8} {'Q_v (kN/m)':>11}"
+    if "Q_v_lower" in rows:
+        header += f" {'lower':>9} {'upper':>9}"
+    click.echo(header)
+    for i in range(levels.size):
+        line = (
+            f"{rows['z_over_D'][i]:6.3f} {rows['z'][i]:9.4f} {rows['B'][i]:8.4f} "
+            f"{rows['Q_v'][i] / _KN:11.2f}"
+        )
+        if "Q_v_lower" in rows:
+            line += f" {rows['Q_v_lower'][i] / _KN:9.2f} {rows['Q_v_upper'][i] / _KN:9.2f}"
+        click.echo(line)
+    if embedment is not None:
+        click.echo(
+            f"embedment: z = {embedment.z:.4f} m (z/D = {embedment.z_over_d:.4f}) for "
+            f"W = {embedment.load / _KN:g} kN/m, k_lay = {embedment.lay_factor:.3f}, "
+            f"Q_v = {embedment.resistance / _KN:.3f} kN/m; {embedment.message}"
+        )

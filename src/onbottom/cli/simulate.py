@@ -1,0 +1,83 @@
+"""``onbottom simulate``: one pipe-section simulation from a TOML case file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from onbottom.cli._common import emit_json, handle_errors, json_option
+
+
+@click.command("simulate")
+@click.argument("case", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="NetCDF file for the time series (default: CASE with suffix .nc).",
+)
+@click.option(
+    "--plot",
+    "plot",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the w–u / H–u / V–H figure to this file (png, pdf, svg).",
+)
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+@json_option
+@handle_errors
+def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_json: bool) -> None:
+    """Simulate a pipe section under a load programme (CASE: TOML file).
+
+    CASE holds either a [preset] table (one of the seven centrifuge tests) or [pipe], [soil],
+    [programme] and optional [solver] tables; see examples/section_case.toml. Loads in the
+    file are in kN/m.
+    """
+    from onbottom.dynamics.case import run_case
+
+    res = run_case(case, progress=not quiet and not as_json)
+    nc = output if output is not None else case.with_suffix(".nc")
+    res.save(nc)
+    if plot is not None:
+        import matplotlib.pyplot as plt
+
+        from onbottom.plotting.section import plot_section_result
+
+        cp = res.data.attrs.get("cycle_period")
+        lim = res.data.attrs.get("displacement_limit")
+        fig = plot_section_result(
+            res,
+            title=f"{case.stem}: {res.message}",
+            installation_load=float(res.data.attrs["installation_load"]),
+            cycle_period=cp if isinstance(cp, float) else None,
+            displacement_limit=lim if isinstance(lim, float) else None,
+        )
+        plot.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(plot, dpi=110)
+        plt.close(fig)
+    payload = {
+        "success": res.success,
+        "status": res.status,
+        "message": res.message,
+        "n_steps": res.n_steps,
+        "cycles_to_limit": res.cycles_to_limit,
+        "time_to_limit_s": res.time_to_limit,
+        **{f"{k}": v for k, v in res.summary.items()},
+        "netcdf": str(nc),
+        "plot": None if plot is None else str(plot),
+    }
+    if as_json:
+        emit_json(payload)
+        return
+    click.echo(f"{res.message} after {res.n_steps} steps")
+    if res.cycles_to_limit is not None:
+        click.echo(f"  load cycles to the displacement limit: {res.cycles_to_limit:.2f}")
+    s = res.summary
+    click.echo(f"  initial penetration  {s['initial_penetration']:.4f} m")
+    click.echo(f"  largest penetration  {s['max_penetration']:.4f} m")
+    click.echo(f"  final displacement   {s['final_displacement']:.3f} m")
+    click.echo(f"  written: {nc}" + (f", {plot}" if plot else ""))
+    if not res.success:
+        raise click.exceptions.Exit(3)

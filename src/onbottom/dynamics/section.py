@@ -1,0 +1,348 @@
+"""Load-controlled rigid pipe-section simulation: m·ü = H(t) − R(u, history).
+
+A rigid section of pipe (per unit length) is loaded by a :class:`LoadProgramme` (H(t), V(t))
+and resisted by a lateral soil model behind the kernel contract of :mod:`onbottom.soil.base`.
+One numba loop (:mod:`onbottom.dynamics._section_kernel`) integrates the whole programme with
+an implicit scheme (backward Euler by default, or Newmark average acceleration), safeguarded
+Newton iterations, adaptive sub-stepping, and a terminal event at a displacement limit. Theory,
+integrator and convergence evidence: docs/theory/section_dynamics.md.
+
+m is the structural mass plus the hydrodynamic added mass per unit length (the soil and the
+water move with the pipe's acceleration; see :func:`section_mass`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from onbottom._validate import in_range, one_of, positive
+from onbottom.dynamics import _section_kernel as K
+from onbottom.dynamics.programmes import LoadProgramme
+from onbottom.errors import InputError
+from onbottom.inputs.pipe import Pipe
+from onbottom.results import annotate, provenance, save_dataset
+from onbottom.soil.base import LateralResistanceModel
+
+__all__ = ["SectionResult", "SolverSettings", "section_mass", "simulate_section"]
+
+logger = logging.getLogger(__name__)
+
+_SCHEMES = {"backward_euler": K.SCHEME_BACKWARD_EULER, "newmark": K.SCHEME_NEWMARK}
+_AFTER = {
+    "stop": K.AFTER_STOP,
+    "runaway_end": K.AFTER_RUNAWAY_END,
+    "continue": K.AFTER_CONTINUE,
+}
+_STATUS_MESSAGES = {
+    K.STATUS_END: "reached the end of the load programme",
+    K.STATUS_LIMIT: "reached the displacement limit (terminal event)",
+    K.STATUS_RUNAWAY_END: "reached the displacement limit; ran on until the pipe stopped",
+    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
+    K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
+}
+
+
+def section_mass(pipe: Pipe, added_mass_coefficient: float = 2.29) -> float:
+    """Mass per unit length of the moving section m = m_pipe + C_a·ρ_w·π·D²/4 [kg/m].
+
+    Parameters
+    ----------
+    pipe : Pipe
+        The pipe (structural mass: :attr:`Pipe.structural_mass`).
+    added_mass_coefficient : float
+        C_a [-], >= 0; default 2.29 = π²/3 − 1, a cylinder on a plane wall (DNV-RP-F109
+        background; C_M = 1 + C_a = 3.29).
+    """
+    return pipe.structural_mass + pipe.added_mass(added_mass_coefficient)
+
+
+@dataclass(frozen=True, kw_only=True, slots=True)
+class SolverSettings:
+    """Settings of :func:`simulate_section`.
+
+    Parameters
+    ----------
+    integrator : {"backward_euler", "newmark"}
+        Implicit scheme. Backward Euler (default) is L-stable: it damps the spurious
+        high-frequency ringing of stick phases (stiff mobilisation springs) at steps far longer
+        than their period. "newmark" is the average-acceleration rule (second order, no
+        numerical damping).
+    dt_max : float or None
+        Largest time step [s], > 0; None → the programme's median sample interval.
+    dt_min : float or None
+        Smallest time step [s], > 0; None → dt_max·1e-7.
+    max_displacement_increment : float
+        Largest |Δu| per accepted step [m], > 0 (resolves the soil model's regions; default
+        2 mm, i.e. 0.2% of the 1 m centrifuge pipe diameter and 1/5 of its elastic region).
+    force_tolerance : float
+        Relative residual tolerance of the Newton iterations [-], in (0, 1e-3].
+    max_iterations : int
+        Newton/bisection iterations per step, >= 5.
+    chunks : int
+        Number of chunks of the programme duration run between progress updates, >= 1.
+    """
+
+    integrator: str = "backward_euler"
+    dt_max: float | None = None
+    dt_min: float | None = None
+    max_displacement_increment: float = 2.0e-3
+    force_tolerance: float = 1.0e-10
+    max_iterations: int = 80
+    chunks: int = 20
+
+    def __post_init__(self) -> None:
+        one_of("SolverSettings.integrator", self.integrator, _SCHEMES)
+        if self.dt_max is not None:
+            positive("SolverSettings.dt_max", self.dt_max)
+        if self.dt_min is not None:
+            positive("SolverSettings.dt_min", self.dt_min)
+        positive("SolverSettings.max_displacement_increment", self.max_displacement_increment)
+        in_range(
+            "SolverSettings.force_tolerance",
+            self.force_tolerance,
+            0.0,
+            1e-3,
+            low_inclusive=False,
+        )
+        if int(self.max_iterations) < 5 or int(self.chunks) < 1:
+            raise InputError(
+                f"SolverSettings.max_iterations = {self.max_iterations!r} / chunks ="
+                f" {self.chunks!r} are invalid: need max_iterations >= 5 and chunks >= 1"
+            )
+
+
+@dataclass(frozen=True, kw_only=True)
+class SectionResult:
+    """Result of :func:`simulate_section`.
+
+    Attributes
+    ----------
+    success : bool
+        True if the run ended normally (programme end or displacement-limit event).
+    status : int
+        1 end of programme, 2 displacement limit (stopped), 3 limit reached and ran on until
+        the pipe stopped, −1 step failure, −2 soil kernel NaN.
+    message : str
+        Human-readable status.
+    n_steps : int
+        Accepted time steps.
+    n_rejected : int
+        Rejected (halved) steps.
+    data : xarray.Dataset
+        Time series (dimension ``time``): H, V, u, u_dot, w, F_friction, F_passive, F_soil,
+        work, region; provenance attributes.
+    time_to_limit : float or None
+        Time at which |u| first reached the displacement limit [s] (linear interpolation in
+        the step), None if never.
+    cycles_to_limit : float or None
+        The same in load cycles (t/cycle_period) [-], None if never or non-cyclic.
+    summary : dict
+        initial_penetration, max_penetration [m], final_displacement [m] (u at the end of the
+        run), max_abs_displacement [m], final_time [s].
+    """
+
+    success: bool
+    status: int
+    message: str
+    n_steps: int
+    n_rejected: int
+    data: xr.Dataset
+    time_to_limit: float | None
+    cycles_to_limit: float | None
+    summary: dict[str, float] = field(default_factory=dict)
+
+    def save(self, path: Any) -> Any:
+        """Write :attr:`data` to NetCDF (atomically, :func:`onbottom.results.save_dataset`)."""
+        return save_dataset(self.data, path)
+
+
+def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset:
+    names = {
+        "H": K.REC_H,
+        "V": K.REC_V,
+        "u": K.REC_U,
+        "u_dot": K.REC_UDOT,
+        "w": K.REC_W,
+        "F_friction": K.REC_FF,
+        "F_passive": K.REC_FP,
+        "F_soil": K.REC_FS,
+        "work": K.REC_WORK,
+        "region": K.REC_REGION,
+    }
+    ds = xr.Dataset(
+        {k: ("time", np.ascontiguousarray(rec[:, i])) for k, i in names.items()},
+        coords={"time": np.ascontiguousarray(rec[:, K.REC_T])},
+        attrs=dict(attrs),
+    )
+    return annotate(ds)
+
+
+def simulate_section(
+    programme: LoadProgramme,
+    soil: LateralResistanceModel,
+    *,
+    mass: float,
+    displacement_limit: float | None = None,
+    after_limit: str = "stop",
+    settings: SolverSettings | None = None,
+    progress: bool = False,
+    attrs: Mapping[str, Any] | None = None,
+) -> SectionResult:
+    """Simulate a rigid pipe section under a load-controlled programme.
+
+    Parameters
+    ----------
+    programme : LoadProgramme
+        H(t), V(t) [N/m]; the run starts at ``programme.time[0]`` with u = 0, at rest.
+    soil : LateralResistanceModel
+        Lateral soil model; its :meth:`initial_state` is the state at the start (e.g. the
+        penetration after installation).
+    mass : float
+        Mass per unit length of the moving section m [kg/m], > 0 (see :func:`section_mass`).
+    displacement_limit : float or None
+        |u| at which the run stops (terminal event) [m], > 0; None = no limit.
+    after_limit : {"stop", "runaway_end", "continue"}
+        What happens at the limit: stop there; run on until the pipe's velocity first returns
+        to zero or reverses (the end of the runaway, to compare with a simulation that had no
+        box limit); or continue to the end of the programme.
+    settings : SolverSettings or None
+        Integrator settings (defaults if None).
+    progress : bool
+        Show a tqdm progress bar over chunks of the programme duration.
+    attrs : mapping or None
+        Extra provenance attributes for the dataset.
+
+    Returns
+    -------
+    SectionResult
+    """
+    if not isinstance(programme, LoadProgramme):
+        raise InputError(f"programme = {type(programme).__name__} is invalid: need LoadProgramme")
+    if not isinstance(soil, LateralResistanceModel):
+        raise InputError(f"soil = {type(soil).__name__} is invalid: need LateralResistanceModel")
+    m = positive("mass", mass)
+    u_lim = (
+        math.inf
+        if displacement_limit is None
+        else positive("displacement_limit", displacement_limit)
+    )
+    one_of("after_limit", after_limit, _AFTER)
+    s = settings if settings is not None else SolverSettings()
+    dt_max = s.dt_max if s.dt_max is not None else programme.sample_interval
+    dt_min = s.dt_min if s.dt_min is not None else dt_max * 1e-7
+    if dt_min > dt_max:
+        raise InputError(
+            f"SolverSettings.dt_min = {dt_min!r} is invalid: must be <= dt_max = {dt_max!r}"
+        )
+
+    st = np.zeros(K.N_SETTINGS)
+    st[K.ST_SCHEME] = _SCHEMES[s.integrator]
+    st[K.ST_DT_MAX] = dt_max
+    st[K.ST_DT_MIN] = dt_min
+    st[K.ST_DU_MAX] = s.max_displacement_increment
+    st[K.ST_RTOL] = s.force_tolerance
+    st[K.ST_MAX_ITER] = s.max_iterations
+    st[K.ST_U_LIMIT] = u_lim
+    st[K.ST_AFTER_LIMIT] = _AFTER[after_limit]
+    st[K.ST_GAMMA] = 0.5
+    st[K.ST_BETA] = 0.25
+    st[K.ST_MASS] = m
+
+    pt = np.ascontiguousarray(programme.time, dtype=float)
+    ph = np.ascontiguousarray(programme.horizontal_load, dtype=float)
+    pv = np.ascontiguousarray(programme.vertical_load, dtype=float)
+    params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
+    state = np.array(soil.initial_state(), dtype=float)
+    model_id = int(soil.model_id)
+
+    dyn = np.zeros(K.N_DYN)
+    dyn[K.D_T] = pt[0]
+    dyn[K.D_DT] = dt_max
+    cap = int(min(max(4 * pt.size, 4096), 5_000_000))
+    rec = np.empty((cap, K.N_REC))
+    K.initial_record(model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
+    n = 1
+
+    t_end = float(pt[-1])
+    chunk = (t_end - pt[0]) / int(s.chunks)
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=int(s.chunks), desc=programme.name, unit="chunk", leave=False)
+    k = 1
+    status = K.STATUS_CHUNK
+    while True:
+        t_stop = pt[0] + k * chunk if k < int(s.chunks) else t_end
+        n, status = K.integrate(model_id, params, state, dyn, pt, ph, pv, st, t_stop, rec, n)
+        if status == K.STATUS_BUFFER_FULL:
+            rec = np.concatenate([rec, np.empty_like(rec)])
+            continue
+        if status == K.STATUS_CHUNK:
+            k += 1
+            if bar is not None:
+                bar.update(1)
+            continue
+        break
+    if bar is not None:
+        bar.update(bar.total - bar.n)
+        bar.close()
+
+    rec = rec[:n]
+    success = status in (K.STATUS_END, K.STATUS_LIMIT, K.STATUS_RUNAWAY_END)
+    message = _STATUS_MESSAGES.get(status, f"status {status}")
+    if status == K.STATUS_STEP_FAILED:
+        message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
+        logger.warning("simulate_section: %s", message)
+    t_cross = float(dyn[K.D_T_CROSS]) if dyn[K.D_CROSSED] == 1.0 else None
+    cycles = None
+    if t_cross is not None and programme.cycle_period is not None:
+        cycles = (t_cross - float(pt[0])) / programme.cycle_period
+    u = rec[:, K.REC_U]
+    w = rec[:, K.REC_W]
+    summary = {
+        "initial_penetration": float(w[0]),
+        "max_penetration": float(np.max(w)),
+        "final_displacement": float(u[-1]),
+        "max_abs_displacement": float(np.max(np.abs(u))),
+        "final_time": float(rec[-1, K.REC_T]),
+    }
+    prov = provenance(
+        "simulate_section",
+        {"soil_model": soil.name, **dict(soil.parameters())},
+        programme=programme.name,
+        programme_builder=dict(programme.metadata),
+        installation_load=programme.peak_vertical_load,
+        cycle_period=programme.cycle_period if programme.cycle_period is not None else "none",
+        mass=m,
+        displacement_limit=u_lim if math.isfinite(u_lim) else "none",
+        after_limit=after_limit,
+        integrator=s.integrator,
+        dt_max=dt_max,
+        max_displacement_increment=s.max_displacement_increment,
+        status=int(status),
+        message=message,
+        soil_reference=soil.reference,
+        **(dict(attrs) if attrs else {}),
+    )
+    if cycles is not None:
+        prov["cycles_to_limit"] = cycles
+    data = _records_to_dataset(rec, prov)
+    return SectionResult(
+        success=bool(success),
+        status=int(status),
+        message=message,
+        n_steps=n - 1,
+        n_rejected=int(dyn[K.D_N_REJECT]),
+        data=data,
+        time_to_limit=t_cross,
+        cycles_to_limit=cycles,
+        summary=summary,
+    )

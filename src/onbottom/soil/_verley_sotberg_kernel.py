@@ -1,0 +1,253 @@
+"""Numba kernel of the Verley & Sotberg (1994) sand model and its variants (private).
+
+Contract: :mod:`onbottom.soil.base`. Physics and the choices made where the papers are silent:
+:mod:`onbottom.soil.verley_sotberg` and ``docs/theory/verley_sotberg.md``.
+
+The Python twin :func:`verley_sotberg_kernel_py` is the *same source* executed by the Python
+interpreter (:func:`onbottom.soil._twin.pure_python`).
+
+params (float64, :data:`N_PARAMS`): see the ``P_*`` indices below.
+state (float64, :data:`N_STATE`): common slots of :mod:`onbottom.soil.base` then the ``S_*``
+slots below.
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+from onbottom.soil._coulomb_kernel import friction_return_map
+from onbottom.soil._trough import (
+    PHASE_BREAKOUT,
+    PHASE_OUT,
+    PHASE_TROUGH,
+    envelope,
+    overlap,
+    region_of,
+    sign,
+)
+from onbottom.soil._twin import pure_python
+from onbottom.soil.base import (
+    N_COMMON_STATE,
+    OUT_FRICTION,
+    OUT_PASSIVE,
+    OUT_R,
+    OUT_REGION,
+    OUT_TANGENT,
+    OUT_WORK,
+    OUT_Z,
+    S_FRICTION,
+    S_REGION,
+    S_U,
+    S_WORK,
+    S_Z,
+)
+
+# ---- parameter slots -------------------------------------------------------------------------
+P_MU = 0  # Coulomb friction coefficient μ [-]
+P_DELTA = 1  # friction mobilisation displacement [m]
+P_D = 2  # pipe outer diameter D [m]
+P_GAMMA = 3  # submerged unit weight of the soil γ' [N/m³]
+P_A = 4  # passive-force factor A [-] (Youssef & Cassidy 2014 Eqs 11-12; 1 for silica)
+P_B = 5  # penetration-growth factor B [-] (Youssef & Cassidy 2014 Eqs 13-14; 1 for silica)
+P_Y1 = 6  # end of the elastic region y1 [m]
+P_Y2 = 7  # end of the accumulation region y2 [m]
+P_Y3 = 8  # end of the breakout region y3 [m]
+P_PASSIVE_LAW = 9  # PASSIVE_* code
+P_WORK_LAW = 10  # WORK_LAW_* code
+P_ZMAX_LAW = 11  # ZMAX_LAW_* code
+P_WORK_INTEGRAND = 12  # INTEGRAND_* code
+P_ZI = 13  # initial penetration of the first trough z_i [m] (Eq 7/15)
+N_PARAMS = 14
+
+# ---- own state slots -------------------------------------------------------------------------
+S_Y0 = N_COMMON_STATE  # origin (centre) of the current trough y0 [m]
+S_ZI = N_COMMON_STATE + 1  # initial penetration of the current trough z_i [m]
+S_SMAX = N_COMMON_STATE + 2  # largest |u - y0| reached in the current trough [m]
+S_Z2 = N_COMMON_STATE + 3  # penetration frozen on first passing y2 [m] (0 before)
+S_PHASE = N_COMMON_STATE + 4  # PHASE_* code
+S_DIR = N_COMMON_STATE + 5  # sign of the last non-zero displacement increment (+1, -1, 0)
+S_PASSIVE = N_COMMON_STATE + 6  # committed passive force [N/m] (for the work integral)
+N_STATE = N_COMMON_STATE + 7
+
+# ---- codes -----------------------------------------------------------------------------------
+# phases (onbottom.soil._trough): PHASE_TROUGH regions 1-2, y2 not yet passed;
+# PHASE_BREAKOUT y2 passed, y3 not; PHASE_OUT y3 passed, out of the trough until next reversal
+
+PASSIVE_VERLEY_SOTBERG = 0  # Eqs 3-4 (switch at K_s = 20)
+PASSIVE_DNV_F109 = 1  # DNV-RP-F109 §3.4.6 (switch at κ_s = 26.7)
+
+WORK_LAW_RECONSTRUCTION = 0  # Eq 6 as reconstructed (spec [R])
+WORK_LAW_NONE = 1  # no work-driven growth: z stays at z_i in region 2
+
+ZMAX_LAW_RECONSTRUCTION = 0  # Eq 8 with the factor 0.5 (spec [R])
+ZMAX_LAW_NO_HALF = 1  # alternative reading of Eq 8 without the factor 0.5
+
+INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
+INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
+
+KS_SWITCH_VS = 20.0
+KS_SWITCH_F109 = 26.7
+
+
+@njit(cache=True)
+def peak_passive(params, z, v_load):
+    """Peak passive force F_r [N/m] at penetration ``z`` under vertical load ``v_load``.
+
+    V&S Eqs 3-4 (Youssef & Cassidy Eqs 11-12 with the factor A) or DNV-RP-F109 §3.4.6.
+    Zero for V <= 0 (lift-off) or z <= 0.
+    """
+    if v_load <= 0.0 or z <= 0.0:
+        return 0.0
+    d = params[P_D]
+    g = params[P_GAMMA]
+    ks = g * d * d / v_load
+    base = params[P_A] * g * d * d * (z / d) ** 1.25
+    if params[P_PASSIVE_LAW] == PASSIVE_DNV_F109:
+        if ks <= KS_SWITCH_F109:
+            return base * (5.0 - 0.15 * ks)
+        return base
+    if ks <= KS_SWITCH_VS:
+        return base * (5.0 - 0.15 * ks)
+    return 2.0 * base
+
+
+@njit(cache=True)
+def residual_ratio(z2_over_d):
+    """z3/z2 (V&S Eqs 9-10)."""
+    if z2_over_d <= 0.1:
+        return 0.82 - 3.2 * z2_over_d
+    return 0.5
+
+
+@njit(cache=True)
+def grown_penetration(params, z_old, zi, work, smax, v_load):
+    """Penetration after work ``work`` and amplitude ``smax`` in region 2 (never below z_old).
+
+    z = max(z_old, min(Eq 6, Eq 8)) with the factor B (Youssef & Cassidy Eqs 13-14).
+    """
+    if v_load <= 0.0 or smax <= 0.0 or params[P_WORK_LAW] == WORK_LAW_NONE:
+        return z_old
+    d = params[P_D]
+    g = params[P_GAMMA]
+    b = params[P_B]
+    ks = g * d * d / v_load
+    z_work = zi
+    if work > 0.0:
+        z_work = zi + b * 0.23 * d * (work / (g * d**3)) ** 0.5 * (ks * smax / d) ** (-0.31)
+    half = 0.5
+    if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
+        half = 1.0
+    z_cap = zi + b * half * d * (smax / (ks * d)) ** 0.5
+    z_new = min(z_work, z_cap)
+    if z_new > z_old:
+        return z_new
+    return z_old
+
+
+@njit(cache=True)
+def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
+    """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`)."""
+    y1 = params[P_Y1]
+    y2 = params[P_Y2]
+    y3 = params[P_Y3]
+    d = params[P_D]
+    for i in range(state_old.shape[0]):
+        state_new[i] = state_old[i]
+
+    u_old = state_old[S_U]
+    du = u_new - u_old
+    direction = sign(du)
+    f_old = state_old[S_FRICTION]
+    f, k_f = friction_return_map(f_old, du, v_load, params[P_MU], params[P_DELTA])
+
+    phase = state_old[S_PHASE]
+    y0 = state_old[S_Y0]
+    zi = state_old[S_ZI]
+    smax = state_old[S_SMAX]
+    z2 = state_old[S_Z2]
+    z = state_old[S_Z]
+    work = state_old[S_WORK]
+
+    # out of the trough and reversing: a new trough starts at the turning point [I]
+    if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
+        y0 = u_old
+        zi = z
+        smax = 0.0
+        z2 = 0.0
+        work = 0.0
+        phase = PHASE_TROUGH
+
+    s_old = u_old - y0
+    s_new = u_new - y0
+    a_new = abs(s_new)
+
+    if phase == PHASE_TROUGH:
+        # work and penetration growth over the part of the increment inside region 2
+        du2 = overlap(s_old, s_new, y1, y2) + overlap(s_old, s_new, -y2, -y1)
+        smax_c = min(max(smax, a_new), y2)
+        if du2 > 0.0 and v_load > 0.0:
+            fr2 = peak_passive(params, z, v_load)
+            p_pred, _slope = envelope(min(a_new, y2), 0.3 * fr2, fr2, fr2, y1, y2, y3)
+            p_old = state_old[S_PASSIVE]
+            if params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE:
+                mean = 0.5 * (abs(p_old) + p_pred)
+            else:
+                mean = 0.5 * (abs(f_old + p_old) + abs(f + sign(s_new) * p_pred))
+            work = work + mean * du2
+            z = grown_penetration(params, z, zi, work, smax_c, v_load)
+        smax = max(smax, a_new)
+        if a_new > y2:
+            # first passage of y2: breakout starts, z2 frozen, work reset
+            phase = PHASE_BREAKOUT
+            z2 = z
+            work = 0.0
+    else:
+        smax = max(smax, a_new)
+
+    if phase == PHASE_BREAKOUT:
+        z3 = residual_ratio(z2 / d) * z2
+        reach = min(smax, y3)
+        z = z2 + (z3 - z2) * (reach - y2) / (y3 - y2)
+        if a_new > y3:
+            phase = PHASE_OUT
+            z = z3
+
+    # passive force: restoring about y0 along the envelope
+    if phase == PHASE_TROUGH:
+        fr2 = peak_passive(params, z, v_load)
+        fr3 = fr2
+    else:
+        fr2 = peak_passive(params, z2, v_load)
+        fr3 = peak_passive(params, residual_ratio(z2 / d) * z2, v_load)
+    mag, slope = envelope(a_new, 0.3 * fr2, fr2, fr3, y1, y2, y3)
+    passive = sign(s_new) * mag
+    if v_load <= 0.0:
+        passive = 0.0
+        slope = 0.0
+
+    region = region_of(a_new, y1, y2, y3)
+    state_new[S_U] = u_new
+    state_new[S_FRICTION] = f
+    state_new[S_Z] = z
+    state_new[S_WORK] = work
+    state_new[S_REGION] = region
+    state_new[S_Y0] = y0
+    state_new[S_ZI] = zi
+    state_new[S_SMAX] = smax
+    state_new[S_Z2] = z2
+    state_new[S_PHASE] = phase
+    if direction != 0.0:
+        state_new[S_DIR] = direction
+    state_new[S_PASSIVE] = passive
+
+    out[OUT_R] = f + passive
+    out[OUT_FRICTION] = f
+    out[OUT_PASSIVE] = passive
+    out[OUT_TANGENT] = k_f + slope
+    out[OUT_Z] = z
+    out[OUT_WORK] = work
+    out[OUT_REGION] = region
+
+
+verley_sotberg_kernel_py = pure_python(verley_sotberg_kernel)
+"""Plain-Python twin of :func:`verley_sotberg_kernel` (same source, interpreted)."""
