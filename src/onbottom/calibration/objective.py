@@ -10,7 +10,7 @@ and the misfit is ``Σ r²``, so the same vector serves least squares and scalar
 term                   definition                                                  scale
 =====================  ==========================================================  =========
 initial_penetration    w at ``t_cyclic_start`` (simulated − measured)               w_meas
-max_penetration        max w over the record                                       w_meas
+max_penetration        max w over the record's samples                             w_meas
 u_history              u_sim resampled (linear interpolation, held at the ends)   u_scale
                        onto the record's time base; one residual per sample,
                        each divided by sqrt(N) so that Σ r² = mean square
@@ -20,9 +20,11 @@ time_to_limit          first time |u| reaches the displacement limit, measured  
                        from ``t_cyclic_start`` (cycles = time / cycle period)
 =====================  ==========================================================  =========
 
-u_scale is the displacement limit (or max |u| measured); w_scale is max w measured; T_meas the
-measured time to the limit. Penetration scales are floored at 1 % of D so that a record with
-(almost) no penetration does not divide by zero.
+Penetrations and maximum displacement of the simulation are taken from its resampled series
+(a peak between two record samples is invisible in the record too); the time to the limit from
+the full-resolution simulation. u_scale is the displacement limit (or max |u| measured);
+w_scale is max w measured; T_meas the measured time to the limit. Penetration scales are
+floored at 1 % of D so that a record with (almost) no penetration does not divide by zero.
 
 Time to the limit is a non-smooth function of the parameters (it jumps by a cycle when the
 pipe just fails to reach the limit in one cycle). A run that never reaches the limit gets the
@@ -248,14 +250,24 @@ def _compute(
         displacement_limit=record.displacement_limit,
         cycle_period=record.cycle_period,
     )
+    # penetrations and displacement from the simulation resampled onto the record's time
+    # base (a short peak between two record samples is invisible in the record too); the time
+    # to the limit from the full-resolution simulation (it is interpolated within a step)
+    u_rs = np.interp(t, t_sim, u_sim)
+    w_rs = np.interp(t, t_sim, w_sim)
     sim = record_features(
-        t_sim,
-        u_sim,
-        w_sim,
+        t,
+        u_rs,
+        w_rs,
         t_cyclic_start=record.t_cyclic_start,
-        displacement_limit=record.displacement_limit,
-        cycle_period=record.cycle_period,
+        displacement_limit=None,
+        cycle_period=None,
     )
+    if record.displacement_limit is not None:
+        ttl = time_to_limit(t_sim, u_sim, record.displacement_limit, record.t_cyclic_start)
+        sim["time_to_limit"] = ttl
+        if record.cycle_period is not None:
+            sim["cycles_to_limit"] = ttl / record.cycle_period
     sc = _scales(record)
     wts = weights.as_dict()
     n = t.size
@@ -272,9 +284,9 @@ def _compute(
         elif name == "time_to_limit":
             r = np.array([(sim[name] - meas[name]) / max(meas[name], 1e-12)])
         elif name == "u_history":
-            r = (np.interp(t, t_sim, u_sim) - record.u) / (sc["u"] * math.sqrt(n))
+            r = (u_rs - record.u) / (sc["u"] * math.sqrt(n))
         else:  # w_history
-            r = (np.interp(t, t_sim, w_sim) - record.w) / (sc["w_max"] * math.sqrt(n))
+            r = (w_rs - record.w) / (sc["w_max"] * math.sqrt(n))
         terms[name] = float(np.sqrt(np.sum(r**2)))
         weighted = math.sqrt(wts[name]) * r
         contrib[name] = float(np.sum(weighted**2))

@@ -8,7 +8,7 @@ their outputs are NaN and the variables ``failed`` (bool) and ``error`` (the exc
 
 Reproducibility: with ``seed`` given, each grid point gets its own independent stream
 ``np.random.SeedSequence(seed).spawn(n_points)[i]`` (points in C order of the grid) passed as
-``rng=np.random.default_rng(...)`` when ``fn`` accepts an ``rng`` argument, so results do not
+``rng=np.random.default_rng(...)`` when ``fn`` has a parameter named ``rng``, so results do not
 depend on how the runs are split over workers.
 """
 
@@ -75,7 +75,7 @@ def _accepts_rng(fn: Callable[..., Any]) -> bool:
         params = inspect.signature(fn).parameters
     except (TypeError, ValueError):
         return False
-    return "rng" in params or any(p.kind is p.VAR_KEYWORD for p in params.values())
+    return "rng" in params
 
 
 def _axes(grid: Mapping[str, Sequence[Any]]) -> dict[str, np.ndarray]:
