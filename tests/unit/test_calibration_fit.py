@@ -125,6 +125,12 @@ def test_invalid_inputs():
     )
     with pytest.raises(InputError, match="nothing to calibrate"):
         calibrate(rec, fixed, simulator=toy)
+    with pytest.raises(InputError, match="unknown parameter"):
+
+        def strict(record, params):
+            raise InputError("unknown parameter 'q'")
+
+        calibrate(rec, _params(), simulator=strict)
     with pytest.raises(InputError, match="fd_step"):
         calibrate(rec, _params(), simulator=toy, fd_step=0.5)
 

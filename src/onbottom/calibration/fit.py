@@ -446,8 +446,18 @@ def calibrate(
     objective = Objective(
         recs, params, simulator or _default_simulator(), weights or MisfitWeights()
     )
-    serial = client is None and scheduler_address is None and n_workers == 0
     t0 = time.perf_counter()
+    # configuration errors (unknown parameter, record without programme) must not be mistaken
+    # for failed runs: simulate once at the start values and let InputError through
+    start_values = {p.name: p.value for p in params}
+    for rec in recs:
+        try:
+            objective.simulator(rec, start_values)
+        except InputError:
+            raise
+        except Exception as exc:  # a failing start point is allowed; the search moves on
+            logger.info("start values fail for %s: %s", rec.name, exc)
+    serial = client is None and scheduler_address is None and n_workers == 0
     if serial:
         return _calibrate(
             objective, SerialMap(), method, seed, popsize, maxiter, tol, max_nfev, fd_steps, t0
