@@ -160,12 +160,17 @@ def command(
         seed=seed,
         maxiter=maxiter,
         popsize=popsize,
-        scheduler_address=scheduler,
-        n_workers=None if scheduler else workers,
         progress=not as_json,
     )
     groups = [[r] for r in recs] if each else [recs]
-    results = [calibrate(g, params, **kwargs) for g in groups]
+    if scheduler or workers:
+        from onbottom.study.engine import dask_client
+
+        # one cluster (or connection) for all fits
+        with dask_client(scheduler_address=scheduler, n_workers=workers or None) as client:
+            results = [calibrate(g, params, client=client, **kwargs) for g in groups]
+    else:
+        results = [calibrate(g, params, **kwargs) for g in groups]
     if output:
         out = Path(output)
         out.parent.mkdir(parents=True, exist_ok=True)
