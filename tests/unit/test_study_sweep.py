@@ -81,6 +81,9 @@ def test_dask_cluster_two_workers_matches_serial():
         assert set(env.values()) == {"1"} and len(env) == 2
         assert all("127.0.0.1" in addr for addr in env)
         parallel = sweep(f, grid, seed=5, client=client, batch_size=4, progress=False)
+        # the same cluster reached by address, as a remote scheduler would be
+        remote = sweep(f, grid, seed=5, scheduler_address=client.scheduler.address, progress=False)
+    np.testing.assert_array_equal(remote["s"].values, serial["s"].values)
     np.testing.assert_array_equal(parallel["s"].values, serial["s"].values)
     np.testing.assert_array_equal(parallel["failed"].values, serial["failed"].values)
     assert parallel.attrs["n_failed"] == 6 and parallel.attrs["engine"] == "dask"
