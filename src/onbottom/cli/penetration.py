@@ -45,9 +45,7 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
     gamma = opts["gamma_kn"] * _KN
     if opts["soil"] == "sand":
         if opts["phi_deg"] is None:
-            raise InputError(
-                "--phi-deg is required with --soil sand: best-estimate friction angle φ' [deg], allowed 15–50"
-            )
+            raise InputError("--phi-deg is required with --soil sand: best-estimate friction angle φ' [deg], allowed 15–50")
         model = DrainedPenetration(
             diameter=d,
             unit_weight=gamma,
