@@ -46,3 +46,15 @@ def test_simulators_reject_unknown_parameters_and_missing_programme():
         CentrifugeSimulator()(bare, TRUTH)
     with pytest.raises(InputError, match="'H'"):
         RecordedLoadSimulator()(bare, TRUTH)
+
+
+def test_record_from_section_result_takes_metadata_from_attributes():
+    from onbottom.calibration.records import record_from_result
+    from onbottom.dynamics.centrifuge import run_centrifuge_test
+
+    res = run_centrifuge_test("Inclined 2")
+    rec = record_from_result(res, name="sim")
+    assert rec.diameter == 1.0 and rec.programme == "Inclined 2"
+    assert rec.V_peak == pytest.approx(23.30e3) and rec.V_i == pytest.approx(9.60e3)
+    assert rec.displacement_limit == 2.0 and rec.cycle_period == 40.0
+    assert "source_parameters" in rec.metadata

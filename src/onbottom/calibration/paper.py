@@ -15,7 +15,6 @@ Run ``python -m onbottom.calibration.paper`` to print the tables.
 from __future__ import annotations
 
 import argparse
-import json
 import logging
 import math
 import time
@@ -134,28 +133,17 @@ def virtual_record(
     u_scale = limit if limit is not None else float(np.max(np.abs(out["u"])))
     out["u"] = out["u"] + noise * u_scale * rng.standard_normal(t.size)
     out["w"] = out["w"] + noise * float(np.max(out["w"])) * rng.standard_normal(t.size)
+    out.attrs = dict(ds.attrs)
     return record_from_result(
         out,
         name=name,
-        diameter=_diameter(ds.attrs),
         programme=name,
-        V_peak=_attr_float(ds.attrs.get("installation_load")),
-        V_i=float(ds["V"].values[0]),
-        displacement_limit=limit,
-        cycle_period=_attr_float(ds.attrs.get("cycle_period")),
         metadata={
             "source": "virtual record: section solver + Gaussian noise",
             "truth": ", ".join(f"{k}={v:g}" for k, v in params.items()),
             "noise_fraction": float(noise),
         },
     )
-
-
-def _diameter(attrs: dict[str, Any]) -> float:
-    try:
-        return float(json.loads(attrs["parameters"])["outer_diameter"])
-    except (KeyError, TypeError, ValueError):
-        return 1.0
 
 
 def _attr_float(value: Any) -> float | None:

@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import math
 import os
 from collections.abc import Mapping
@@ -517,12 +518,20 @@ def save_record(record: TestRecord, path: str | os.PathLike) -> Path:
     )
 
 
+def _attr_number(value: Any) -> float | None:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) and x > 0.0 else None
+
+
 def record_from_result(
     result: Any,
     *,
     name: str,
-    diameter: float,
-    programme: str = "",
+    diameter: float | None = None,
+    programme: str | None = None,
     V_peak: float | None = None,
     V_i: float | None = None,
     displacement_limit: float | None = None,
@@ -539,7 +548,11 @@ def record_from_result(
         ``z``) [m], optionally ``H``, ``V`` [N/m]. Other variables are dropped.
     name, diameter, programme, V_peak, V_i, displacement_limit, t_cyclic_start, cycle_period,
     metadata
-        As in :class:`TestRecord` (SI units).
+        As in :class:`TestRecord` (SI units). Left as None, ``diameter``, ``programme``,
+        ``V_peak``, ``displacement_limit`` and ``cycle_period`` are taken from the result's
+        provenance attributes when present (``parameters["outer_diameter"]``, ``test`` or
+        ``programme``, ``installation_load``, ``displacement_limit``, ``cycle_period``) and
+        ``V_i`` from the first sample of V.
     """
     ds = result.data if hasattr(result, "data") and not isinstance(result, xr.Dataset) else result
     if not isinstance(ds, xr.Dataset):
@@ -549,6 +562,24 @@ def record_from_result(
     for src, dst in (("u", "u"), (w_name, "w"), ("H", "H"), ("V", "V")):
         if src in ds:
             keep[dst] = ("time", np.asarray(ds[src].values, dtype=float))
+    attrs = ds.attrs
+    if diameter is None:
+        try:
+            diameter = float(json.loads(attrs["parameters"])["outer_diameter"])
+        except (KeyError, TypeError, ValueError) as exc:
+            raise InputError(
+                "record_from_result: diameter is not given and not in the result's attributes"
+            ) from exc
+    if programme is None:
+        programme = str(attrs.get("test", attrs.get("programme", "")))
+    V_peak = V_peak if V_peak is not None else _attr_number(attrs.get("installation_load"))
+    if displacement_limit is None:
+        displacement_limit = _attr_number(attrs.get("displacement_limit"))
+    if cycle_period is None:
+        cycle_period = _attr_number(attrs.get("cycle_period"))
+    if V_i is None and "V" in keep:
+        v0 = float(keep["V"].values[0])
+        V_i = v0 if v0 > 0.0 else None
     meta = dict(metadata or {})
     if "model" in ds.attrs:
         meta.setdefault("source_model", str(ds.attrs["model"]))
