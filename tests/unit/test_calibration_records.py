@@ -117,6 +117,8 @@ def test_record_is_immutable_and_copies_data():
     rec = TestRecord(name="x", data=ds, diameter=1.0)
     ds["u"][0] = 5.0
     assert rec.u[0] == 0.0
+    with pytest.raises(ValueError):
+        rec.u[0] = 1.0
     with pytest.raises(AttributeError):
         rec.name = "y"  # type: ignore[misc]
     with pytest.raises(TypeError):

@@ -274,6 +274,7 @@ def _validated_data(data: xr.Dataset, name: str) -> xr.Dataset:
     for col in ds.variables:
         if col in _COLUMN_KIND:
             ds[col].attrs["units"] = _SI_UNIT[_COLUMN_KIND[str(col)]]
+        ds[col].values.setflags(write=False)  # a record is data: read-only
     return annotate(ds)
 
 
