@@ -11,6 +11,7 @@ from onbottom.calibration.fit import calibrate, grid_search, misfit_slices
 from onbottom.calibration.objective import MisfitWeights
 from onbottom.calibration.parameters import Parameter, parameters_from_mapping
 from onbottom.calibration.records import TestRecord
+from onbottom.calibration.summary import fit_each
 
 T = np.linspace(0.0, 10.0, 41)
 
@@ -150,7 +151,12 @@ def test_parallel_objective_evaluations_on_dask_equal_serial():
     rec = _record(TRUTH, noise=0.01)
     kw = dict(simulator=toy_local, method="global", seed=4, maxiter=5, popsize=5)
     serial = calibrate(rec, _params(), **kw)
+    other = _record({"a": 0.5, "b": 1.0, "c": 0.9}, noise=0.01, seed=2)
     with dask_client(n_workers=2) as client:
         parallel = calibrate(rec, _params(), client=client, **kw)
+        each = fit_each([rec, other], _params(), client=client, **kw)
     assert parallel.values == serial.values
     assert parallel.n_evaluations == serial.n_evaluations
+    # records fitted in parallel, one task each, in record order
+    assert each[0].values == serial.values
+    assert each[1].values == calibrate(other, _params(), **kw).values

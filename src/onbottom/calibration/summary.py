@@ -18,6 +18,7 @@ import io
 import math
 import os
 from collections.abc import Mapping, Sequence
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +28,7 @@ from onbottom._validate import one_of
 from onbottom.calibration.fit import CalibrationResult, calibrate
 from onbottom.calibration.parameters import Parameter
 from onbottom.calibration.records import TestRecord
+from onbottom.study.engine import ParallelMap, dask_client
 
 __all__ = [
     "PAPER_RULES",
@@ -48,14 +50,26 @@ PAPER_RULES: Mapping[str, str] = {"A": "min", "B": "mean", "C": "mean", "mu": "r
 def fit_each(
     records: Sequence[TestRecord],
     parameters: Sequence[Parameter],
+    *,
+    client: Any = None,
+    scheduler_address: str | None = None,
+    n_workers: int | None = 0,
+    progress: bool = False,
     **calibrate_kwargs: Any,
 ) -> list[CalibrationResult]:
     """Calibrate ``parameters`` to each record alone (one result per record, same order).
 
     ``calibrate_kwargs`` go to :func:`~onbottom.calibration.fit.calibrate` (simulator,
-    weights, method, seed, client, ...).
+    weights, method, seed, ...). With a Dask client, a scheduler address or ``n_workers`` >= 1
+    the *records* are fitted in parallel, one task each (each fit runs serially inside its
+    task): coarse tasks suit simulations of a few milliseconds better than spreading each
+    population over the cluster.
     """
-    return [calibrate(rec, parameters, **calibrate_kwargs) for rec in records]
+    fit_one = partial(calibrate, parameters=tuple(parameters), **calibrate_kwargs)
+    if client is None and scheduler_address is None and n_workers == 0:
+        return [fit_one(rec) for rec in records]
+    with dask_client(client, scheduler_address=scheduler_address, n_workers=n_workers) as c:
+        return ParallelMap(c, batch_size=1, progress=progress)(fit_one, list(records))
 
 
 def parameter_table(results: Sequence[CalibrationResult]) -> list[dict[str, Any]]:
