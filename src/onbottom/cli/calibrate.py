@@ -145,7 +145,7 @@ def command(
     from onbottom.calibration.fit import calibrate
     from onbottom.calibration.records import load_record
     from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
-    from onbottom.calibration.summary import parameter_table, recommend, to_markdown
+    from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
 
     recs = [load_record(p) for p in records]
     params = _parameters(vary, bounds, start, gamma)
@@ -162,15 +162,19 @@ def command(
         popsize=popsize,
         progress=not as_json,
     )
-    groups = [[r] for r in recs] if each else [recs]
+
+    def run(client=None):
+        if each:  # records in parallel, one task each
+            return fit_each(recs, params, client=client, **kwargs)
+        return [calibrate(recs, params, client=client, n_workers=0, **kwargs)]
+
     if scheduler or workers:
         from onbottom.study.engine import dask_client
 
-        # one cluster (or connection) for all fits
         with dask_client(scheduler_address=scheduler, n_workers=workers or None) as client:
-            results = [calibrate(g, params, client=client, **kwargs) for g in groups]
+            results = run(client)
     else:
-        results = [calibrate(g, params, **kwargs) for g in groups]
+        results = run()
     if output:
         out = Path(output)
         out.parent.mkdir(parents=True, exist_ok=True)
