@@ -96,6 +96,11 @@ def _weights(text: str | None):
 @click.option("--gamma", type=float, help="Submerged unit weight γ' [N/m³] (default: preset's).")
 @click.option("--weights", help="Misfit weights, e.g. 'u_history=2,time_to_limit=0'.")
 @click.option(
+    "--history-only",
+    is_flag=True,
+    help="Fit the u and w histories only (recommended for noisy records; overrides --weights).",
+)
+@click.option(
     "--method", type=click.Choice(["global", "local"]), default="global", show_default=True
 )
 @click.option("--each", is_flag=True, help="Fit each record alone; print Table 2 and Table 3.")
@@ -124,6 +129,7 @@ def command(
     start,
     gamma,
     weights,
+    history_only,
     method,
     each,
     loads,
@@ -143,6 +149,7 @@ def command(
     Cassidy 2014: A lowest, B and C mean, μ range only) are printed.
     """
     from onbottom.calibration.fit import calibrate
+    from onbottom.calibration.objective import HISTORY_ONLY
     from onbottom.calibration.records import load_record
     from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
     from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
@@ -155,7 +162,7 @@ def command(
         simulator = RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
     kwargs = dict(
         simulator=simulator,
-        weights=_weights(weights),
+        weights=HISTORY_ONLY if history_only else _weights(weights),
         method=method,
         seed=seed,
         maxiter=maxiter,
