@@ -459,14 +459,16 @@ def calibrate(
             logger.info("start values fail for %s: %s", rec.name, exc)
     serial = client is None and scheduler_address is None and n_workers == 0
     if serial:
-        return _calibrate(
+        result = _calibrate(
             objective, SerialMap(), method, seed, popsize, maxiter, tol, max_nfev, fd_steps, t0
         )
-    with dask_client(client, scheduler_address=scheduler_address, n_workers=n_workers) as c:
-        pmap = ParallelMap(c, progress=progress)
-        return _calibrate(
-            objective, pmap, method, seed, popsize, maxiter, tol, max_nfev, fd_steps, t0
-        )
+    else:
+        with dask_client(client, scheduler_address=scheduler_address, n_workers=n_workers) as c:
+            pmap = ParallelMap(c, progress=progress)
+            result = _calibrate(
+                objective, pmap, method, seed, popsize, maxiter, tol, max_nfev, fd_steps, t0
+            )
+    return replace(result, n_evaluations=result.n_evaluations + 1)  # + the check run above
 
 
 def _calibrate(
