@@ -162,8 +162,12 @@ class ParallelMap:
         )
         index = {f.key: i for i, f in enumerate(futures)}
         out: list[list[Any] | None] = [None] * len(batches)
-        with tqdm(total=len(items), disable=not self.progress, unit="run") as bar:
-            for fut in as_completed(futures):
-                out[index[fut.key]] = fut.result()
-                bar.update(len(batches[index[fut.key]]))
+        try:
+            with tqdm(total=len(items), disable=not self.progress, unit="run") as bar:
+                for fut in as_completed(futures):
+                    out[index[fut.key]] = fut.result()
+                    bar.update(len(batches[index[fut.key]]))
+        except BaseException:
+            self.client.cancel(futures)  # do not leave the rest running on the cluster
+            raise
         return [x for batch in out for x in (batch or [])]
