@@ -1,1 +1,35 @@
-"""onbottom.calibration."""
+"""onbottom.calibration — fit model parameters to test records (measured, simulated or DEM).
+
+Records (:mod:`.records`), misfit (:mod:`.objective`), parameters (:mod:`.parameters`),
+grid / global / local fitting with uncertainty (:mod:`.fit`), simulators (:mod:`.simulators`),
+multi-test summaries (:mod:`.summary`) and the Youssef & Cassidy (2014) workflow
+(:mod:`.paper`). Guide: docs/calibration.md.
+"""
+
+from onbottom.calibration.fit import CalibrationResult, calibrate, grid_search, misfit_slices
+from onbottom.calibration.objective import HISTORY_ONLY, Misfit, MisfitWeights, evaluate_misfit
+from onbottom.calibration.parameters import Parameter
+from onbottom.calibration.records import TestRecord, load_record, record_from_result, save_record
+from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
+from onbottom.calibration.summary import fit_each, parameter_table, recommend
+
+__all__ = [
+    "HISTORY_ONLY",
+    "CalibrationResult",
+    "CentrifugeSimulator",
+    "Misfit",
+    "MisfitWeights",
+    "Parameter",
+    "RecordedLoadSimulator",
+    "TestRecord",
+    "calibrate",
+    "evaluate_misfit",
+    "fit_each",
+    "grid_search",
+    "load_record",
+    "misfit_slices",
+    "parameter_table",
+    "recommend",
+    "record_from_result",
+    "save_record",
+]

@@ -16,6 +16,8 @@ from onbottom._version import __version__
 COMMAND_MODULES: tuple[str, ...] = (
     "reproduce",
     "simulate",
+    "calibrate",
+    "sweep",
     "backbone",
     "penetration",
     "dem",

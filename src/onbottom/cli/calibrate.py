@@ -1,0 +1,228 @@
+"""``onbottom calibrate``: fit A, B, C, μ (and γ') of the calcareous V&S model to test records."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+
+from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.errors import InputError
+
+DEFAULT_START = {"A": 0.25, "B": 0.35, "C": 0.98, "mu": 0.6}
+"""Start values: Youssef & Cassidy (2014) Table 3 (μ: middle of the tests' 0.48–0.85)."""
+DEFAULT_BOUNDS = {
+    "A": (0.05, 1.0),
+    "B": (0.05, 1.0),
+    "C": (0.5, 1.5),
+    "mu": (0.4, 1.2),
+    "gamma": (4.0e3, 10.0e3),
+}
+"""Search bounds: μ as searched by the paper (0.4–1.2); A, B, C around Table 2's spread."""
+
+
+def _pairs(text: str | None, option: str) -> dict[str, str]:
+    out: dict[str, str] = {}
+    if not text:
+        return out
+    for item in text.split(","):
+        if "=" not in item:
+            raise InputError(f"{option} entry {item!r} is invalid: expected NAME=VALUE")
+        k, v = item.split("=", 1)
+        out[k.strip()] = v.strip()
+    return out
+
+
+def _float(option: str, name: str, text: str) -> float:
+    try:
+        return float(text)
+    except ValueError as exc:
+        raise InputError(f"{option} {name}={text!r} is invalid: expected a number") from exc
+
+
+def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float | None):
+    from onbottom.calibration.parameters import Parameter
+
+    names = [n.strip() for n in vary.split(",") if n.strip()]
+    known = set(DEFAULT_BOUNDS)
+    bad = [n for n in names if n not in known]
+    if bad:
+        raise InputError(f"--vary names {bad} are invalid: must be among {sorted(known)}")
+    b = {k: v for k, v in DEFAULT_BOUNDS.items()}
+    for k, v in _pairs(bounds, "--bounds").items():
+        if ":" not in v:
+            raise InputError(f"--bounds {k}={v!r} is invalid: expected LOWER:UPPER")
+        lo, hi = v.split(":", 1)
+        b[k] = (_float("--bounds", k, lo), _float("--bounds", k, hi))
+    s = dict(DEFAULT_START)
+    if gamma is not None:
+        s["gamma"] = gamma
+    for k, v in _pairs(start, "--start").items():
+        s[k] = _float("--start", k, v)
+    if "gamma" in names and "gamma" not in s:
+        s["gamma"] = 0.5 * (b["gamma"][0] + b["gamma"][1])
+    params = []
+    for name, value in s.items():
+        lo, hi = b.get(name, (value - abs(value), value + abs(value)))
+        if name in names:
+            value = min(max(value, lo), hi)
+        params.append(
+            Parameter(
+                name=name,
+                value=value,
+                lower=min(lo, value),
+                upper=max(hi, value),
+                vary=name in names,
+                units="N/m3" if name == "gamma" else "1",
+            )
+        )
+    return tuple(params)
+
+
+def _weights(text: str | None):
+    from onbottom.calibration.objective import MisfitWeights
+
+    return MisfitWeights(
+        **{k: _float("--weights", k, v) for k, v in _pairs(text, "--weights").items()}
+    )
+
+
+@click.command("calibrate")
+@click.argument("records", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
+@click.option("--vary", default="A,B,C,mu", show_default=True, help="Parameters to fit.")
+@click.option("--bounds", help="Search bounds, e.g. 'A=0.1:0.6,mu=0.4:1.2'.")
+@click.option("--start", help="Start/fixed values, e.g. 'A=0.3,mu=0.5'.")
+@click.option("--gamma", type=float, help="Submerged unit weight γ' [N/m³] (default: preset's).")
+@click.option("--weights", help="Misfit weights, e.g. 'u_history=2,time_to_limit=0'.")
+@click.option(
+    "--history-only",
+    is_flag=True,
+    help="Fit the u and w histories only (recommended for noisy records; overrides --weights).",
+)
+@click.option(
+    "--method", type=click.Choice(["global", "local"]), default="global", show_default=True
+)
+@click.option("--each", is_flag=True, help="Fit each record alone; print Table 2 and Table 3.")
+@click.option(
+    "--loads",
+    type=click.Choice(["preset", "recorded"]),
+    default="preset",
+    show_default=True,
+    help="Simulate the record's centrifuge preset, or drive by its recorded H and V.",
+)
+@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--maxiter", type=int, default=40, show_default=True, help="DE generations.")
+@click.option("--popsize", type=int, default=10, show_default=True, help="DE population factor.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write fitted TOML here.")
+@click.option("--plot-dir", type=click.Path(file_okay=False), help="Write fit figures here.")
+@click.option("--scheduler", help="Dask scheduler address (remote cluster).")
+@click.option(
+    "--workers", type=int, default=0, show_default=True, help="Local Dask workers (0 = serial)."
+)
+@json_option
+@handle_errors
+def command(
+    records,
+    vary,
+    bounds,
+    start,
+    gamma,
+    weights,
+    history_only,
+    method,
+    each,
+    loads,
+    seed,
+    maxiter,
+    popsize,
+    output,
+    plot_dir,
+    scheduler,
+    workers,
+    as_json,
+):
+    """Fit the calcareous Verley & Sotberg parameters to test RECORDS (CSV or NetCDF).
+
+    Records fitted together share one parameter set; with --each, each record is fitted alone
+    and the per-test values (Table 2) and recommended values (Table 3, rules of Youssef &
+    Cassidy 2014: A lowest, B and C mean, μ range only) are printed.
+    """
+    from onbottom.calibration.fit import calibrate
+    from onbottom.calibration.objective import HISTORY_ONLY
+    from onbottom.calibration.records import load_record
+    from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
+    from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
+
+    recs = [load_record(p) for p in records]
+    params = _parameters(vary, bounds, start, gamma)
+    if loads == "preset":
+        simulator = CentrifugeSimulator(gamma=gamma)
+    else:
+        simulator = RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
+    kwargs = dict(
+        simulator=simulator,
+        weights=HISTORY_ONLY if history_only else _weights(weights),
+        method=method,
+        seed=seed,
+        maxiter=maxiter,
+        popsize=popsize,
+        progress=not as_json,
+    )
+
+    def run(client=None):
+        if each:  # records in parallel, one task each
+            return fit_each(recs, params, client=client, **kwargs)
+        return [calibrate(recs, params, client=client, n_workers=0, **kwargs)]
+
+    if scheduler or workers:
+        from onbottom.study.engine import dask_client
+
+        with dask_client(scheduler_address=scheduler, n_workers=workers or None) as client:
+            results = run(client)
+    else:
+        results = run()
+    if output:
+        out = Path(output)
+        out.parent.mkdir(parents=True, exist_ok=True)
+        if len(results) == 1:
+            out.write_text(results[0].to_toml(), encoding="utf-8")
+        else:
+            for res in results:
+                tag = "".join(ch if ch.isalnum() else "_" for ch in res.record_names[0])
+                out.with_name(f"{out.stem}_{tag}{out.suffix}").write_text(
+                    res.to_toml(), encoding="utf-8"
+                )
+    if plot_dir:
+        from onbottom.plotting.calibration import plot_fit
+
+        pdir = Path(plot_dir)
+        pdir.mkdir(parents=True, exist_ok=True)
+        for res in results:
+            for rec in (r for r in recs if r.name in res.record_names):
+                sim = simulator(rec, res.values)
+                fig = plot_fit(rec, sim, title=f"{rec.name}: fitted")
+                tag = "".join(ch if ch.isalnum() else "_" for ch in rec.name)
+                fig.savefig(pdir / f"fit_{tag}.png", dpi=120)
+    rows = parameter_table(results)
+    names = [p.name for p in params if p.vary]
+    rec_rows = recommend(rows, names=names) if each else []
+    if as_json:
+        emit_json({"fits": [r.to_dict() for r in results], "recommended": rec_rows})
+        return
+    for res in results:
+        click.echo(f"{', '.join(res.record_names)}: {res.message}")
+        for p in res.parameters:
+            se = res.std_errors.get(p.name, math.nan)
+            extra = f" ± {se:.3g} (1 s.e.)" if p.vary and math.isfinite(se) else " (fixed)"
+            click.echo(f"  {p.name:6s} = {p.value:.4g}{extra}")
+        click.echo(f"  misfit = {res.misfit:.4g} after {res.n_evaluations} evaluations")
+    if each:
+        click.echo("\nPer-test values (Table 2):\n")
+        click.echo(to_markdown(rows, columns=["case", *names, "misfit"]))
+        click.echo("Recommended values (Table 3):\n")
+        click.echo(
+            to_markdown(
+                rec_rows, columns=["parameter", "min", "mean", "max", "rule", "recommended"]
+            )
+        )
