@@ -1,0 +1,43 @@
+"""Every example script runs to completion and prints its key result (scikit-fem style)."""
+
+from __future__ import annotations
+
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import pytest
+
+EXAMPLES = pathlib.Path(__file__).resolve().parents[1] / "examples"
+
+# script → a regular expression its output must match (one key number each)
+EXPECTED = {
+    "ex01_soil_models.py": r"penetration: z_i = 0\.1168 m",
+    "ex02_f114_penetration.py": r"z/D = 0\.1: Q_v = +33\.0 kN/m",
+    "ex03_section_time_domain.py": r"cycles to the 3 m limit: 1[23]\.\d\d",
+    "ex06_calibrate_verley_sotberg.py": r"C += 0\.7[89]\d\d",
+    "ex07_dem_penetration.py": r"inertial number I = ",
+}
+
+
+def test_every_example_is_covered():
+    assert sorted(p.name for p in EXAMPLES.glob("ex*.py")) == sorted(EXPECTED)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("script", sorted(EXPECTED))
+def test_example_runs(script, tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    proc = subprocess.run(
+        [sys.executable, str(EXAMPLES / script)],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
+        check=False,
+    )
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert re.search(EXPECTED[script], proc.stdout), proc.stdout[-2000:]
