@@ -96,6 +96,58 @@ def contact_update(dnx, dny, overlap, vtan, dw, rbar, kn, ks, mu, mur, fs, mr, d
     return fn, fs_new, mr_new
 
 
+@njit(cache=True, parallel=True)
+def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag):
+    """Forces of all listed disk pairs (force on i in cfx/cfy; j gets the opposite)."""
+    n = rad.shape[0]
+    dt = prm[P_DT]
+    kn = prm[P_KN]
+    ks = prm[P_KS]
+    mu = prm[P_MU]
+    mur = prm[P_MUR]
+    diag = prm[P_DIAG] > 0.5
+    for i in prange(n):
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        ri = rad[i]
+        for k in range(start[i], start[i + 1]):
+            j = nbr[k]
+            dx = pos[j, 0] - xi
+            dy = pos[j, 1] - yi
+            rsum = ri + rad[j]
+            d2 = dx * dx + dy * dy
+            if d2 >= rsum * rsum:
+                fs[k] = 0.0
+                mr[k] = 0.0
+                cfx[k] = 0.0
+                cfy[k] = 0.0
+                cti[k] = 0.0
+                ctj[k] = 0.0
+                if diag:
+                    cmag[k] = 0.0
+                continue
+            d = np.sqrt(d2)
+            nx = dx / d
+            ny = dy / d
+            tx = -ny
+            ty = nx
+            rj = rad[j]
+            vt = (vel[j, 0] - vel[i, 0]) * tx + (vel[j, 1] - vel[i, 1]) * ty
+            vt -= om[j] * rj + om[i] * ri
+            rbar = ri * rj / rsum
+            fn, fsn, mrn = contact_update(
+                nx, ny, rsum - d, vt, om[j] - om[i], rbar, kn, ks, mu, mur, fs[k], mr[k], dt
+            )
+            fs[k] = fsn
+            mr[k] = mrn
+            cfx[k] = -fn * nx + fsn * tx
+            cfy[k] = -fn * ny + fsn * ty
+            cti[k] = ri * fsn + mrn
+            ctj[k] = rj * fsn - mrn
+            if diag:
+                cmag[k] = np.sqrt(fn * fn + fsn * fsn)
+
+
 @njit(cache=True)
 def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, kn, ks, mu, mur, dt):
     """Contact of disk i with wall/pipe w (normal n from disk to wall; wall velocity vb).
@@ -118,53 +170,38 @@ def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, k
     return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn
 
 
-BLOCK = 512  # disks per block of the parallel step loop (one displacement maximum each)
-
-
-@njit(cache=True, parallel=True, error_model="numpy", boundscheck=False)
-def step(
+@njit(cache=True, parallel=True)
+def gather_integrate(
     prm,
     pos,
     vel,
     om,
-    pos_n,
-    vel_n,
-    om_n,
     th,
     rad,
     mass,
     inert,
-    fixed,
-    ref,
     start,
-    nbr,
-    fs,
-    mr,
+    rstart,
+    ridx,
+    cfx,
+    cfy,
+    cti,
+    ctj,
+    cmag,
     fsw,
     mrw,
     pfx,
     pfy,
     unb,
     app,
-    dmax,
+    fixed,
 ):
-    """One time step, one parallel pass: forces on each disk, local damping, leapfrog.
-
-    Reads the state (``pos``, ``vel``, ``om``) and writes the next one into ``pos_n``,
-    ``vel_n``, ``om_n`` (double buffer, so every disk sees its neighbours' old state). Each
-    disk evaluates all its listed contacts itself (full list) and updates its own copy of the
-    pair history. ``dmax[b]`` gets the largest squared displacement since the last list build
-    of the disks of block ``b`` (new positions vs ``ref``).
-    """
+    """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update."""
     n = rad.shape[0]
     dt = prm[P_DT]
     gx = prm[P_GX]
     gy = prm[P_GY]
     alpha = prm[P_ALPHA]
-    kn = prm[P_KN]
-    ks = prm[P_KS]
-    mu = prm[P_MU]
-    mur = prm[P_MUR]
     knw = prm[P_KN_W]
     ksw = prm[P_KS_W]
     muw = prm[P_MU_W]
@@ -185,157 +222,125 @@ def step(
     pr = prm[P_PIPE_R]
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
-    nblock = (n + BLOCK - 1) // BLOCK
-    for b in prange(nblock):
-        bmax = 0.0
-        for i in range(b * BLOCK, min(n, (b + 1) * BLOCK)):
-            xi = pos[i, 0]
-            yi = pos[i, 1]
-            vxi = vel[i, 0]
-            vyi = vel[i, 1]
-            wi = om[i]
-            ri = rad[i]
-            fx = 0.0
-            fy = 0.0
-            tq = 0.0
-            a = 0.0
+    for i in prange(n):
+        fx = 0.0
+        fy = 0.0
+        tq = 0.0
+        a = 0.0
+        for k in range(start[i], start[i + 1]):
+            fx += cfx[k]
+            fy += cfy[k]
+            tq += cti[k]
+        for q in range(rstart[i], rstart[i + 1]):
+            k = ridx[q]
+            fx -= cfx[k]
+            fy -= cfy[k]
+            tq += ctj[k]
+        if diag:
             for k in range(start[i], start[i + 1]):
-                j = nbr[k]
-                dx = pos[j, 0] - xi
-                dy = pos[j, 1] - yi
-                rj = rad[j]
-                rsum = ri + rj
-                d2 = dx * dx + dy * dy
-                if d2 >= rsum * rsum:
-                    fs[k] = 0.0
-                    mr[k] = 0.0
-                    continue
-                d = np.sqrt(d2)
-                nx = dx / d
-                ny = dy / d
-                tx = -ny
-                ty = nx
-                wj = om[j]
-                vt = (vel[j, 0] - vxi) * tx + (vel[j, 1] - vyi) * ty
-                vt -= wj * rj + wi * ri
-                rbar = ri * rj / rsum
-                fn, fsn, mrn = contact_update(
-                    nx, ny, rsum - d, vt, wj - wi, rbar, kn, ks, mu, mur, fs[k], mr[k], dt
-                )
-                fs[k] = fsn
-                mr[k] = mrn
-                fx += -fn * nx + fsn * tx
-                fy += -fn * ny + fsn * ty
-                tq += ri * fsn + mrn
-                if diag:
-                    a += np.sqrt(fn * fn + fsn * fsn)
-            # walls: left, right, bottom, lid
+                a += cmag[k]
+            for q in range(rstart[i], rstart[i + 1]):
+                a += cmag[ridx[q]]
+        ri = rad[i]
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        # walls: left, right, bottom, lid
+        wx, wy, wt = wall_contact(
+            i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        if lid_on:
             wx, wy, wt = wall_contact(
-                i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw,
-                ksw, muw, murw, dt,
+                i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
+                knw, ksw, muw, murw, dt,
             )  # fmt: skip
             fx += wx
             fy += wy
             tq += wt
             if diag:
                 a += np.sqrt(wx * wx + wy * wy)
-            wx, wy, wt = wall_contact(
-                i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw,
-                ksw, muw, murw, dt,
-            )  # fmt: skip
-            fx += wx
-            fy += wy
-            tq += wt
-            if diag:
-                a += np.sqrt(wx * wx + wy * wy)
-            wx, wy, wt = wall_contact(
-                i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw,
-                ksw, muw, murw, dt,
-            )  # fmt: skip
-            fx += wx
-            fy += wy
-            tq += wt
-            if diag:
-                a += np.sqrt(wx * wx + wy * wy)
-            if lid_on:
+        pfx[i] = 0.0
+        pfy[i] = 0.0
+        if pipe_on:
+            dx = px - xi
+            dy = py - yi
+            d = np.sqrt(dx * dx + dy * dy)
+            if d > 0.0 and d < ri + pr:
                 wx, wy, wt = wall_contact(
-                    i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
-                    knw, ksw, muw, murw, dt,
+                    i, PIPE, dx / d, dy / d, ri + pr - d, 0.0, pv, pos, vel, om, rad, fsw,
+                    mrw, knp, ksp, mup, murp, dt,
                 )  # fmt: skip
                 fx += wx
                 fy += wy
                 tq += wt
                 if diag:
                     a += np.sqrt(wx * wx + wy * wy)
-            pfx[i] = 0.0
-            pfy[i] = 0.0
-            if pipe_on:
-                dx = px - xi
-                dy = py - yi
-                d = np.sqrt(dx * dx + dy * dy)
-                if d > 0.0 and d < ri + pr:
-                    wx, wy, wt = wall_contact(
-                        i, PIPE, dx / d, dy / d, ri + pr - d, 0.0, pv, pos, vel, om, rad, fsw,
-                        mrw, knp, ksp, mup, murp, dt,
-                    )  # fmt: skip
-                    fx += wx
-                    fy += wy
-                    tq += wt
-                    if diag:
-                        a += np.sqrt(wx * wx + wy * wy)
-                    pfx[i] = wx
-                    pfy[i] = wy
-                else:
-                    fsw[i, PIPE] = 0.0
-                    mrw[i, PIPE] = 0.0
-            m = mass[i]
-            fx += m * gx
-            fy += m * gy
-            if diag:
-                a += m * np.sqrt(gx * gx + gy * gy)
-                unb[i] = np.sqrt(fx * fx + fy * fy)
-                app[i] = a
-            if fixed[i]:
-                vel_n[i, 0] = 0.0
-                vel_n[i, 1] = 0.0
-                om_n[i] = 0.0
-                pos_n[i, 0] = xi
-                pos_n[i, 1] = yi
+                pfx[i] = wx
+                pfy[i] = wy
             else:
-                # local (non-viscous) damping, PFC: -alpha |F| sign(v) per component
-                vx = vxi
-                vy = vyi
-                w = wi
-                if alpha > 0.0:
-                    if vx > 0.0:
-                        fx -= alpha * abs(fx)
-                    elif vx < 0.0:
-                        fx += alpha * abs(fx)
-                    if vy > 0.0:
-                        fy -= alpha * abs(fy)
-                    elif vy < 0.0:
-                        fy += alpha * abs(fy)
-                    if w > 0.0:
-                        tq -= alpha * abs(tq)
-                    elif w < 0.0:
-                        tq += alpha * abs(tq)
-                vx += dt * fx / m
-                vy += dt * fy / m
-                w += dt * tq / inert[i]
-                vel_n[i, 0] = vx
-                vel_n[i, 1] = vy
-                om_n[i] = w
-                xi = xi + dt * vx
-                yi = yi + dt * vy
-                pos_n[i, 0] = xi
-                pos_n[i, 1] = yi
-                th[i] += dt * w
-            ex = xi - ref[i, 0]
-            ey = yi - ref[i, 1]
-            e2 = ex * ex + ey * ey
-            if e2 > bmax:
-                bmax = e2
-        dmax[b] = bmax
+                fsw[i, PIPE] = 0.0
+                mrw[i, PIPE] = 0.0
+        m = mass[i]
+        fx += m * gx
+        fy += m * gy
+        if diag:
+            a += m * np.sqrt(gx * gx + gy * gy)
+            unb[i] = np.sqrt(fx * fx + fy * fy)
+            app[i] = a
+        if fixed[i]:
+            vel[i, 0] = 0.0
+            vel[i, 1] = 0.0
+            om[i] = 0.0
+            continue
+        # local (non-viscous) damping, PFC: -alpha |F| sign(v) per component
+        vx = vel[i, 0]
+        vy = vel[i, 1]
+        w = om[i]
+        if alpha > 0.0:
+            if vx > 0.0:
+                fx -= alpha * abs(fx)
+            elif vx < 0.0:
+                fx += alpha * abs(fx)
+            if vy > 0.0:
+                fy -= alpha * abs(fy)
+            elif vy < 0.0:
+                fy += alpha * abs(fy)
+            if w > 0.0:
+                tq -= alpha * abs(tq)
+            elif w < 0.0:
+                tq += alpha * abs(tq)
+        vx += dt * fx / m
+        vy += dt * fy / m
+        w += dt * tq / inert[i]
+        vel[i, 0] = vx
+        vel[i, 1] = vy
+        om[i] = w
+        pos[i, 0] = xi + dt * vx
+        pos[i, 1] = yi + dt * vy
+        th[i] += dt * w
 
 
 @njit(cache=True)
@@ -365,11 +370,10 @@ def _insertion_sort(a, lo, hi):
 
 @njit(cache=True, parallel=True)
 def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
-    """Cell-list full neighbour list with cut-off ``r_i + r_j + skin``; history carried over.
+    """Cell-list half neighbour list with cut-off ``r_i + r_j + skin``; history carried over.
 
-    Returns (start, nbr, fs, mr): the candidates of disk i are ``nbr[start[i]:start[i+1]]``
-    (all j ≠ i, ascending, int32). The history of a pair present in both the old and the new
-    list is copied (sorted two-pointer merge per disk).
+    Returns (start, nbr, fs, mr, rstart, ridx). The history of a pair (i, j) present in both
+    the old and the new list is copied (sorted two-pointer merge per disk).
     """
     n = rad.shape[0]
     rmax = 0.0
@@ -420,7 +424,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
                 cc = oy * ncx + ox
                 for q in range(ccount[cc], ccount[cc + 1]):
                     j = cpart[q]
-                    if j == i:
+                    if j <= i:
                         continue
                     dx = pos[j, 0] - xi
                     dy = pos[j, 1] - yi
@@ -432,7 +436,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
         cnt[i + 1] += cnt[i]
     start = cnt
     m_tot = start[n]
-    nbr = np.empty(m_tot, np.int32)
+    nbr = np.empty(m_tot, np.int64)
     fs = np.zeros(m_tot)
     mr = np.zeros(m_tot)
     for i in prange(n):
@@ -448,7 +452,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
                 cc = oy * ncx + ox
                 for q in range(ccount[cc], ccount[cc + 1]):
                     j = cpart[q]
-                    if j == i:
+                    if j <= i:
                         continue
                     dx = pos[j, 0] - xi
                     dy = pos[j, 1] - yi
@@ -467,7 +471,18 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
             if a < a_end and old_nbr[a] == j:
                 fs[k] = old_fs[a]
                 mr[k] = old_mr[a]
-    return start, nbr, fs, mr
+    rstart = np.zeros(n + 1, np.int64)
+    for k in range(m_tot):
+        rstart[nbr[k] + 1] += 1
+    for i in range(n):
+        rstart[i + 1] += rstart[i]
+    rfill = rstart[:-1].copy()
+    ridx = np.empty(m_tot, np.int64)
+    for k in range(m_tot):
+        j = nbr[k]
+        ridx[rfill[j]] = k
+        rfill[j] += 1
+    return start, nbr, fs, mr, rstart, ridx
 
 
 @njit(cache=True)
@@ -487,6 +502,8 @@ def run_steps(
     nbr,
     fs,
     mr,
+    rstart,
+    ridx,
     fsw,
     mrw,
     pfx,
@@ -497,40 +514,36 @@ def run_steps(
     """Advance ``nsteps`` steps; rebuild the list when a disk moved more than skin/2.
 
     Moves the pipe and the lid (``prm`` is updated in place, as is the time ``prm[P_TIME]``).
-    ``pos``, ``vel``, ``om`` are updated in place (the step alternates between them and a
-    second buffer). Returns the (possibly new) list arrays and the number of rebuilds.
+    Returns the (possibly new) list arrays and the number of rebuilds.
     """
     skin = prm[P_SKIN]
     half2 = 0.25 * skin * skin
     nreb = 0
-    n = rad.shape[0]
-    dmax = np.zeros((n + BLOCK - 1) // BLOCK)
-    p0 = pos
-    v0 = vel
-    w0 = om
-    p1 = np.empty_like(pos)
-    v1 = np.empty_like(vel)
-    w1 = np.empty_like(om)
+    m = nbr.shape[0]
+    cfx = np.empty(m)
+    cfy = np.empty(m)
+    cti = np.empty(m)
+    ctj = np.empty(m)
+    cmag = np.empty(m)
     dt = prm[P_DT]
-    disp2 = max_displacement2(pos, ref)
     for s in range(nsteps):
         # diagnostics (unbalanced-force ratio) only on the last step of the call
         prm[P_DIAG] = 1.0 if s == nsteps - 1 else 0.0
-        if disp2 > half2:
-            start, nbr, fs, mr = build_list(p0, rad, skin, start, nbr, fs, mr)
-            ref[:, :] = p0
+        if max_displacement2(pos, ref) > half2:
+            start, nbr, fs, mr, rstart, ridx = build_list(pos, rad, skin, start, nbr, fs, mr)
+            ref[:, :] = pos
             nreb += 1
-        step(
-            prm, p0, v0, w0, p1, v1, w1, th, rad, mass, inert, fixed, ref, start, nbr, fs, mr,
-            fsw, mrw, pfx, pfy, unb, app, dmax,
+            m = nbr.shape[0]
+            cfx = np.empty(m)
+            cfy = np.empty(m)
+            cti = np.empty(m)
+            ctj = np.empty(m)
+            cmag = np.empty(m)
+        pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag)
+        gather_integrate(
+            prm, pos, vel, om, th, rad, mass, inert, start, rstart, ridx, cfx, cfy, cti, ctj,
+            cmag, fsw, mrw, pfx, pfy, unb, app, fixed,
         )  # fmt: skip
-        disp2 = 0.0
-        for b in range(dmax.shape[0]):
-            if dmax[b] > disp2:
-                disp2 = dmax[b]
-        p0, p1 = p1, p0
-        v0, v1 = v1, v0
-        w0, w1 = w1, w0
         prm[P_TIME] += dt
         if prm[P_PIPE_ON] > 0.5:
             prm[P_PIPE_Y] += prm[P_PIPE_V] * dt
@@ -540,11 +553,7 @@ def run_steps(
                 y = prm[P_LID_STOP]
                 prm[P_LID_V] = 0.0
             prm[P_LID_Y] = y
-    if nsteps % 2 == 1:
-        pos[:, :] = p0
-        vel[:, :] = v0
-        om[:] = w0
-    return start, nbr, fs, mr, nreb
+    return start, nbr, fs, mr, rstart, ridx, nreb
 
 
 @njit(cache=True)

@@ -135,9 +135,11 @@ class Simulation:
         self.threads = int(min(max(1, threads), numba.config.NUMBA_NUM_THREADS))
         # empty list, then the first build (history from the sample if present)
         self.start = np.zeros(n + 1, np.int64)
-        self.nbr = np.zeros(0, np.int32)
+        self.nbr = np.zeros(0, np.int64)
         self.fs = np.zeros(0)
         self.mr = np.zeros(0)
+        self.rstart = np.zeros(n + 1, np.int64)
+        self.ridx = np.zeros(0, np.int64)
         self.ref = self.pos.copy()
         self._load_history(sample.contacts)
         self.rebuild()
@@ -253,28 +255,22 @@ class Simulation:
             self.fsw[i[sel], code] = fs[sel]
             self.mrw[i[sel], code] = mr[sel]
         pairs = ~walls
-        # full list: each pair twice; the j side sees the same shear force (its tangent is
-        # reversed) and the opposite rolling moment
-        pi = np.concatenate([i[pairs], j[pairs]])
-        pj = np.concatenate([j[pairs], i[pairs]])
-        pfs = np.concatenate([fs[pairs], fs[pairs]])
-        pmr = np.concatenate([mr[pairs], -mr[pairs]])
-        order = np.lexsort((pj, pi))
-        self.start = np.searchsorted(pi[order], np.arange(self.n + 1)).astype(np.int64)
-        self.nbr = pj[order].astype(np.int32)
-        self.fs = pfs[order].copy()
-        self.mr = pmr[order].copy()
+        order = np.lexsort((j[pairs], i[pairs]))
+        pi, pj = i[pairs][order], j[pairs][order]
+        self.start = np.searchsorted(pi, np.arange(self.n + 1)).astype(np.int64)
+        self.nbr = pj.copy()
+        self.fs = fs[pairs][order].copy()
+        self.mr = mr[pairs][order].copy()
 
     def contact_history(self) -> dict[str, np.ndarray]:
         """Non-zero contact history: pairs (i<j) and wall/pipe contacts (j = −1 − wall code)."""
         counts = np.diff(self.start)
         i_pairs = np.repeat(np.arange(self.n, dtype=np.int64), counts)
-        # the full list holds each pair twice (mirror copies): export the i < j side
-        keep = ((self.fs != 0.0) | (self.mr != 0.0)) & (self.nbr > i_pairs)
+        keep = (self.fs != 0.0) | (self.mr != 0.0)
         wi, wc = np.nonzero((self.fsw != 0.0) | (self.mrw != 0.0))
         return {
             "i": np.concatenate([i_pairs[keep], wi.astype(np.int64)]),
-            "j": np.concatenate([self.nbr[keep].astype(np.int64), -(wc.astype(np.int64) + 1)]),
+            "j": np.concatenate([self.nbr[keep], -(wc.astype(np.int64) + 1)]),
             "fs": np.concatenate([self.fs[keep], self.fsw[wi, wc]]),
             "mr": np.concatenate([self.mr[keep], self.mrw[wi, wc]]),
         }
@@ -289,7 +285,7 @@ class Simulation:
             )
         finally:
             numba.set_num_threads(previous)
-        self.start, self.nbr, self.fs, self.mr = out
+        self.start, self.nbr, self.fs, self.mr, self.rstart, self.ridx = out
         self.ref[:, :] = self.pos
         self.rebuilds += 1
 
@@ -304,7 +300,7 @@ class Simulation:
             out = self._run(nsteps)
         finally:
             numba.set_num_threads(previous)
-        self.start, self.nbr, self.fs, self.mr, nreb = out
+        self.start, self.nbr, self.fs, self.mr, self.rstart, self.ridx, nreb = out
         self.rebuilds += int(nreb)
         self.step_count += int(nsteps)
 
@@ -312,7 +308,7 @@ class Simulation:
         return K.run_steps(
             int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
-            self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
+            self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
         )  # fmt: skip
 
     # -------------------------------------------------------------- diagnostics
@@ -343,9 +339,7 @@ class Simulation:
         """
         counts = np.diff(self.start)
         i = np.repeat(np.arange(self.n, dtype=np.int64), counts)
-        j = self.nbr.astype(np.int64)
-        half = j > i  # each pair once
-        i, j, fs = i[half], j[half], self.fs[half]
+        j = self.nbr
         d = np.hypot(*(self.pos[j] - self.pos[i]).T)
         ov = self.rad[i] + self.rad[j] - d
         touch = ov > 0.0
@@ -353,7 +347,7 @@ class Simulation:
             "i": i[touch],
             "j": j[touch],
             "fn": self.contacts.soil.k_n * ov[touch],
-            "fs": fs[touch],
+            "fs": self.fs[touch],
         }
 
     def to_sample(self, **attrs: object) -> Sample:
