@@ -96,9 +96,15 @@ def contact_update(dnx, dny, overlap, vtan, dw, rbar, kn, ks, mu, mur, fs, mr, d
     return fn, fs_new, mr_new
 
 
-@njit(cache=True, parallel=True)
-def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag):
-    """Forces of all listed disk pairs (force on i in cfx/cfy; j gets the opposite)."""
+@njit(cache=True, parallel=True, boundscheck=False)
+def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa):
+    """Forces of all listed disk pairs.
+
+    Disk i sums the forces of its own (half-list) contacts into ``sfx``/``sfy``/``stq``/``sa``
+    (contact order); the force on the other disk j of contact k is stored in ``cfx[k]``,
+    ``cfy[k]`` (``cmag[k]`` its magnitude, diagnostics only) and gathered later. The torque on
+    j is ``r_j·F_s − M_r`` from the updated history ``fs[k]``, ``mr[k]``.
+    """
     n = rad.shape[0]
     dt = prm[P_DT]
     kn = prm[P_KN]
@@ -109,43 +115,68 @@ def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, 
     for i in prange(n):
         xi = pos[i, 0]
         yi = pos[i, 1]
+        vxi = vel[i, 0]
+        vyi = vel[i, 1]
+        wi = om[i]
         ri = rad[i]
+        fx = 0.0
+        fy = 0.0
+        tq = 0.0
+        a = 0.0
         for k in range(start[i], start[i + 1]):
             j = nbr[k]
             dx = pos[j, 0] - xi
             dy = pos[j, 1] - yi
-            rsum = ri + rad[j]
+            rj = rad[j]
+            rsum = ri + rj
             d2 = dx * dx + dy * dy
             if d2 >= rsum * rsum:
                 fs[k] = 0.0
                 mr[k] = 0.0
                 cfx[k] = 0.0
                 cfy[k] = 0.0
-                cti[k] = 0.0
-                ctj[k] = 0.0
                 if diag:
                     cmag[k] = 0.0
+                # the open contact adds +0.0 to the sums of i (as the old gather did)
+                fx += 0.0
+                fy += 0.0
+                tq += 0.0
                 continue
             d = np.sqrt(d2)
             nx = dx / d
             ny = dy / d
             tx = -ny
             ty = nx
-            rj = rad[j]
-            vt = (vel[j, 0] - vel[i, 0]) * tx + (vel[j, 1] - vel[i, 1]) * ty
-            vt -= om[j] * rj + om[i] * ri
+            wj = om[j]
+            vt = (vel[j, 0] - vxi) * tx + (vel[j, 1] - vyi) * ty
+            vt -= wj * rj + wi * ri
             rbar = ri * rj / rsum
             fn, fsn, mrn = contact_update(
-                nx, ny, rsum - d, vt, om[j] - om[i], rbar, kn, ks, mu, mur, fs[k], mr[k], dt
+                nx, ny, rsum - d, vt, wj - wi, rbar, kn, ks, mu, mur, fs[k], mr[k], dt
             )
             fs[k] = fsn
             mr[k] = mrn
-            cfx[k] = -fn * nx + fsn * tx
-            cfy[k] = -fn * ny + fsn * ty
-            cti[k] = ri * fsn + mrn
-            ctj[k] = rj * fsn - mrn
+            cx = -fn * nx + fsn * tx
+            cy = -fn * ny + fsn * ty
+            fx += cx
+            fy += cy
+            tq += ri * fsn + mrn
+            cfx[k] = cx
+            cfy[k] = cy
             if diag:
-                cmag[k] = np.sqrt(fn * fn + fsn * fsn)
+                c = np.sqrt(fn * fn + fsn * fsn)
+                cmag[k] = c
+                a += c
+        sfx[i] = fx
+        sfy[i] = fy
+        stq[i] = tq
+        sa[i] = a
+
+
+@njit(cache=True, inline="always")
+def _sign(v):
+    """+1.0, −1.0 or 0.0 (v = ±0) without a branch."""
+    return (v > 0.0) * 1.0 - (v < 0.0) * 1.0
 
 
 @njit(cache=True)
@@ -170,7 +201,10 @@ def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, k
     return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn
 
 
-@njit(cache=True, parallel=True)
+BLOCK = 512  # disks per block of the integration loop (one displacement maximum each)
+
+
+@njit(cache=True, parallel=True, boundscheck=False)
 def gather_integrate(
     prm,
     pos,
@@ -180,14 +214,17 @@ def gather_integrate(
     rad,
     mass,
     inert,
-    start,
     rstart,
     ridx,
     cfx,
     cfy,
-    cti,
-    ctj,
     cmag,
+    fs,
+    mr,
+    sfx,
+    sfy,
+    stq,
+    sa,
     fsw,
     mrw,
     pfx,
@@ -195,6 +232,8 @@ def gather_integrate(
     unb,
     app,
     fixed,
+    ref,
+    dmax,
 ):
     """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update."""
     n = rad.shape[0]
@@ -222,26 +261,40 @@ def gather_integrate(
     pr = prm[P_PIPE_R]
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
-    for i in prange(n):
-        fx = 0.0
-        fy = 0.0
-        tq = 0.0
-        a = 0.0
-        for k in range(start[i], start[i + 1]):
-            fx += cfx[k]
-            fy += cfy[k]
-            tq += cti[k]
+    nblock = (n + BLOCK - 1) // BLOCK
+    for b in prange(nblock):
+        dmax[b] = _gather_integrate_block(
+            b * BLOCK, min(n, (b + 1) * BLOCK), dt, gx, gy, alpha, knw, ksw, muw, murw, knp,
+            ksp, mup, murp, x0, x1, y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag,
+            pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy,
+            stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
+        )  # fmt: skip
+
+
+@njit(cache=True, boundscheck=False)
+def _gather_integrate_block(
+    i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
+    lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart,
+    ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
+):  # fmt: skip
+    """Disks i0..i1−1 of :func:`gather_integrate`; returns their largest squared displacement
+    since the last list build (new positions vs ``ref``)."""
+    dmax = 0.0
+    for i in range(i0, i1):
+        ri = rad[i]
+        fx = sfx[i]
+        fy = sfy[i]
+        tq = stq[i]
         for q in range(rstart[i], rstart[i + 1]):
             k = ridx[q]
             fx -= cfx[k]
             fy -= cfy[k]
-            tq += ctj[k]
+            tq += ri * fs[k] - mr[k]
+        a = 0.0
         if diag:
-            for k in range(start[i], start[i + 1]):
-                a += cmag[k]
+            a = sa[i]
             for q in range(rstart[i], rstart[i + 1]):
                 a += cmag[ridx[q]]
-        ri = rad[i]
         xi = pos[i, 0]
         yi = pos[i, 1]
         # walls: left, right, bottom, lid
@@ -314,33 +367,35 @@ def gather_integrate(
             vel[i, 0] = 0.0
             vel[i, 1] = 0.0
             om[i] = 0.0
+            ex = xi - ref[i, 0]
+            ey = yi - ref[i, 1]
+            dmax = max(dmax, ex * ex + ey * ey)
             continue
         # local (non-viscous) damping, PFC: -alpha |F| sign(v) per component
         vx = vel[i, 0]
         vy = vel[i, 1]
         w = om[i]
         if alpha > 0.0:
-            if vx > 0.0:
-                fx -= alpha * abs(fx)
-            elif vx < 0.0:
-                fx += alpha * abs(fx)
-            if vy > 0.0:
-                fy -= alpha * abs(fy)
-            elif vy < 0.0:
-                fy += alpha * abs(fy)
-            if w > 0.0:
-                tq -= alpha * abs(tq)
-            elif w < 0.0:
-                tq += alpha * abs(tq)
+            # branch-free (the signs of the velocities of a settled bed are random, so
+            # branches mispredict); bitwise equal to "v > 0: F −= α|F|; v < 0: F += α|F|"
+            fx -= alpha * abs(fx) * _sign(vx)
+            fy -= alpha * abs(fy) * _sign(vy)
+            tq -= alpha * abs(tq) * _sign(w)
         vx += dt * fx / m
         vy += dt * fy / m
         w += dt * tq / inert[i]
         vel[i, 0] = vx
         vel[i, 1] = vy
         om[i] = w
-        pos[i, 0] = xi + dt * vx
-        pos[i, 1] = yi + dt * vy
+        xi = xi + dt * vx
+        yi = yi + dt * vy
+        pos[i, 0] = xi
+        pos[i, 1] = yi
         th[i] += dt * w
+        ex = xi - ref[i, 0]
+        ey = yi - ref[i, 1]
+        dmax = max(dmax, ex * ex + ey * ey)
+    return dmax
 
 
 @njit(cache=True)
@@ -436,7 +491,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
         cnt[i + 1] += cnt[i]
     start = cnt
     m_tot = start[n]
-    nbr = np.empty(m_tot, np.int64)
+    nbr = np.empty(m_tot, np.int32)
     fs = np.zeros(m_tot)
     mr = np.zeros(m_tot)
     for i in prange(n):
@@ -477,7 +532,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
     for i in range(n):
         rstart[i + 1] += rstart[i]
     rfill = rstart[:-1].copy()
-    ridx = np.empty(m_tot, np.int64)
+    ridx = np.empty(m_tot, np.int32)
     for k in range(m_tot):
         j = nbr[k]
         ridx[rfill[j]] = k
@@ -519,31 +574,38 @@ def run_steps(
     skin = prm[P_SKIN]
     half2 = 0.25 * skin * skin
     nreb = 0
+    n = rad.shape[0]
     m = nbr.shape[0]
     cfx = np.empty(m)
     cfy = np.empty(m)
-    cti = np.empty(m)
-    ctj = np.empty(m)
     cmag = np.empty(m)
+    sfx = np.empty(n)
+    sfy = np.empty(n)
+    stq = np.empty(n)
+    sa = np.empty(n)
+    dmax = np.empty((n + BLOCK - 1) // BLOCK)
     dt = prm[P_DT]
+    disp2 = max_displacement2(pos, ref)
     for s in range(nsteps):
         # diagnostics (unbalanced-force ratio) only on the last step of the call
         prm[P_DIAG] = 1.0 if s == nsteps - 1 else 0.0
-        if max_displacement2(pos, ref) > half2:
+        if disp2 > half2:
             start, nbr, fs, mr, rstart, ridx = build_list(pos, rad, skin, start, nbr, fs, mr)
             ref[:, :] = pos
             nreb += 1
             m = nbr.shape[0]
             cfx = np.empty(m)
             cfy = np.empty(m)
-            cti = np.empty(m)
-            ctj = np.empty(m)
             cmag = np.empty(m)
-        pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cti, ctj, cmag)
+        pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa)
         gather_integrate(
-            prm, pos, vel, om, th, rad, mass, inert, start, rstart, ridx, cfx, cfy, cti, ctj,
-            cmag, fsw, mrw, pfx, pfy, unb, app, fixed,
+            prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx,
+            sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax,
         )  # fmt: skip
+        disp2 = 0.0
+        for b in range(dmax.shape[0]):
+            if dmax[b] > disp2:
+                disp2 = dmax[b]
         prm[P_TIME] += dt
         if prm[P_PIPE_ON] > 0.5:
             prm[P_PIPE_Y] += prm[P_PIPE_V] * dt
