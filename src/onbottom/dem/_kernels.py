@@ -123,7 +123,8 @@ def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx,
         fy = 0.0
         tq = 0.0
         a = 0.0
-        for k in range(start[i], start[i + 1]):
+        for kk in range(start[i], start[i + 1]):
+            k = np.uint64(kk)  # unsigned indices: no negative-index wrap-around code
             j = nbr[k]
             dx = pos[j, 0] - xi
             dy = pos[j, 1] - yi
@@ -286,7 +287,7 @@ def _gather_integrate_block(
         fy = sfy[i]
         tq = stq[i]
         for q in range(rstart[i], rstart[i + 1]):
-            k = ridx[q]
+            k = ridx[np.uint64(q)]
             fx -= cfx[k]
             fy -= cfy[k]
             tq += ri * fs[k] - mr[k]
@@ -491,7 +492,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
         cnt[i + 1] += cnt[i]
     start = cnt
     m_tot = start[n]
-    nbr = np.empty(m_tot, np.int32)
+    nbr = np.empty(m_tot, np.uint32)
     fs = np.zeros(m_tot)
     mr = np.zeros(m_tot)
     for i in prange(n):
@@ -532,7 +533,7 @@ def build_list(pos, rad, skin, old_start, old_nbr, old_fs, old_mr):
     for i in range(n):
         rstart[i + 1] += rstart[i]
     rfill = rstart[:-1].copy()
-    ridx = np.empty(m_tot, np.int32)
+    ridx = np.empty(m_tot, np.uint32)
     for k in range(m_tot):
         j = nbr[k]
         ridx[rfill[j]] = k

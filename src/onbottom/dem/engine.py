@@ -135,11 +135,11 @@ class Simulation:
         self.threads = int(min(max(1, threads), numba.config.NUMBA_NUM_THREADS))
         # empty list, then the first build (history from the sample if present)
         self.start = np.zeros(n + 1, np.int64)
-        self.nbr = np.zeros(0, np.int32)
+        self.nbr = np.zeros(0, np.uint32)
         self.fs = np.zeros(0)
         self.mr = np.zeros(0)
         self.rstart = np.zeros(n + 1, np.int64)
-        self.ridx = np.zeros(0, np.int32)
+        self.ridx = np.zeros(0, np.uint32)
         self.ref = self.pos.copy()
         self._load_history(sample.contacts)
         self.rebuild()
@@ -258,7 +258,7 @@ class Simulation:
         order = np.lexsort((j[pairs], i[pairs]))
         pi, pj = i[pairs][order], j[pairs][order]
         self.start = np.searchsorted(pi, np.arange(self.n + 1)).astype(np.int64)
-        self.nbr = pj.astype(np.int32)
+        self.nbr = pj.astype(np.uint32)
         self.fs = fs[pairs][order].copy()
         self.mr = mr[pairs][order].copy()
 
