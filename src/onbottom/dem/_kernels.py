@@ -281,12 +281,13 @@ def _gather_integrate_block(
     """Disks i0..i1−1 of :func:`gather_integrate`; returns their largest squared displacement
     since the last list build (new positions vs ``ref``)."""
     dmax = 0.0
-    for i in range(i0, i1):
+    for ii in range(i0, i1):
+        i = np.uint64(ii)  # unsigned: no negative-index wrap-around code
         ri = rad[i]
         fx = sfx[i]
         fy = sfy[i]
         tq = stq[i]
-        for q in range(rstart[i], rstart[i + 1]):
+        for q in range(rstart[ii], rstart[ii + 1]):
             k = ridx[np.uint64(q)]
             fx -= cfx[k]
             fy -= cfy[k]
@@ -294,7 +295,7 @@ def _gather_integrate_block(
         a = 0.0
         if diag:
             a = sa[i]
-            for q in range(rstart[i], rstart[i + 1]):
+            for q in range(rstart[ii], rstart[ii + 1]):
                 a += cmag[ridx[q]]
         xi = pos[i, 0]
         yi = pos[i, 1]
