@@ -67,7 +67,7 @@ N_WALL = 5  # 4 walls + pipe in the per-particle history arrays
 PIPE = 4
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def contact_update(dnx, dny, overlap, vtan, dw, rbar, kn, ks, mu, mur, fs, mr, dt):
     """Contact law for one contact: returns (F_n, F_s, M_r) after one step.
 
@@ -174,7 +174,7 @@ def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx,
         sa[i] = a
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model="numpy")
 def _sign(v):
     """+1.0, −1.0 or 0.0 (v = ±0) without a branch."""
     return (v > 0.0) * 1.0 - (v < 0.0) * 1.0
@@ -205,7 +205,7 @@ def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, k
 BLOCK = 512  # disks per block of the integration loop (one displacement maximum each)
 
 
-@njit(cache=True, parallel=True, boundscheck=False)
+@njit(cache=True, parallel=True, boundscheck=False, error_model="numpy")
 def gather_integrate(
     prm,
     pos,
@@ -272,7 +272,7 @@ def gather_integrate(
         )  # fmt: skip
 
 
-@njit(cache=True, boundscheck=False)
+@njit(cache=True, boundscheck=False, error_model="numpy")
 def _gather_integrate_block(
     i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
     lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart,
