@@ -63,6 +63,7 @@ P_TIME = 29
 P_DIAG = 30
 N_PRM = 31
 
+BLOCK = 512  # disks per block of the parallel loops (one displacement maximum each)
 N_WALL = 5  # 4 walls + pipe in the per-particle history arrays
 PIPE = 4
 
@@ -96,14 +97,69 @@ def contact_update(dnx, dny, overlap, vtan, dw, rbar, kn, ks, mu, mur, fs, mr, d
     return fn, fs_new, mr_new
 
 
-@njit(cache=True, parallel=True, boundscheck=False)
-def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa):
-    """Forces of all listed disk pairs.
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def _pair_entries(k0, k1, owner, nbr, pos, vel, om, rad, fs, mr, cfx, cfy, cmag, diag, dt, kn,
+                  ks, mu, mur):  # fmt: skip
+    """List entries k0..k1−1: contact law, history update, force on the owner disk i.
 
-    Disk i sums the forces of its own (half-list) contacts into ``sfx``/``sfy``/``stq``/``sa``
-    (contact order); the force on the other disk j of contact k is stored in ``cfx[k]``,
-    ``cfy[k]`` (``cmag[k]`` its magnitude, diagnostics only) and gathered later. The torque on
-    j is ``r_j·F_s − M_r`` from the updated history ``fs[k]``, ``mr[k]``.
+    Flat loop over the entries, without branches on the contact state (selects instead):
+    about 20 % faster than a loop per disk with an early exit for open contacts, same bits
+    (the law of :func:`contact_update` written out; caps as compare-and-select).
+    """
+    for kk in range(k0, k1):
+        k = np.uint64(kk)  # unsigned indices: no negative-index wrap-around code
+        i = owner[k]
+        j = nbr[k]
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        dx = pos[j, 0] - xi
+        dy = pos[j, 1] - yi
+        ri = rad[i]
+        rj = rad[j]
+        rsum = ri + rj
+        d2 = dx * dx + dy * dy
+        touch = d2 < rsum * rsum
+        d = np.sqrt(d2)  # d = 0 only for coincident centres (NaN forces, as any DEM would)
+        nx = dx / d
+        ny = dy / d
+        tx = -ny
+        ty = nx
+        wi = om[i]
+        wj = om[j]
+        vt = (vel[j, 0] - vel[i, 0]) * tx + (vel[j, 1] - vel[i, 1]) * ty
+        vt -= wj * rj + wi * ri
+        rbar = ri * rj / rsum
+        fn = kn * (rsum - d)
+        f = fs[k] + ks * vt * dt
+        cap = mu * fn
+        f = cap if f > cap else f
+        f = -cap if f < -cap else f
+        kr = ks * rbar * rbar
+        m = mr[k] + kr * (wj - wi) * dt
+        mcap = mur * rbar * fn
+        m = mcap if m > mcap else m
+        m = -mcap if m < -mcap else m
+        m = m if mur > 0.0 else 0.0
+        cx = -fn * nx + f * tx
+        cy = -fn * ny + f * ty
+        fs[k] = f if touch else 0.0
+        mr[k] = m if touch else 0.0
+        cfx[k] = cx if touch else 0.0
+        cfy[k] = cy if touch else 0.0
+        cmag[k] = np.sqrt(fn * fn + f * f) if touch and diag else 0.0
+
+
+@njit(cache=True, parallel=True, boundscheck=False)
+def pair_forces(
+    prm, pos, vel, om, rad, start, owner, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa
+):  # fmt: skip
+    """Forces of all listed disk pairs (blocks of :data:`BLOCK` disks in parallel).
+
+    Contact k (disks i < j, i = ``owner[k]``) stores the force on i in ``cfx[k]``, ``cfy[k]``
+    (``cmag[k]`` its magnitude, diagnostics only) and its updated history in ``fs[k]``,
+    ``mr[k]``. Then each disk i sums its own contacts (list order) into ``sfx``/``sfy``/
+    ``stq`` (torque ``r_i·F_s + M_r``)/``sa``; the other disk j gets −F and ``r_j·F_s − M_r``
+    in :func:`gather_integrate`.
     """
     n = rad.shape[0]
     dt = prm[P_DT]
@@ -112,66 +168,41 @@ def pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx,
     mu = prm[P_MU]
     mur = prm[P_MUR]
     diag = prm[P_DIAG] > 0.5
-    for i in prange(n):
-        xi = pos[i, 0]
-        yi = pos[i, 1]
-        vxi = vel[i, 0]
-        vyi = vel[i, 1]
-        wi = om[i]
-        ri = rad[i]
-        fx = 0.0
-        fy = 0.0
-        tq = 0.0
-        a = 0.0
-        for kk in range(start[i], start[i + 1]):
-            k = np.uint64(kk)  # unsigned indices: no negative-index wrap-around code
-            j = nbr[k]
-            dx = pos[j, 0] - xi
-            dy = pos[j, 1] - yi
-            rj = rad[j]
-            rsum = ri + rj
-            d2 = dx * dx + dy * dy
-            if d2 >= rsum * rsum:
-                fs[k] = 0.0
-                mr[k] = 0.0
-                cfx[k] = 0.0
-                cfy[k] = 0.0
+    nblock = (n + BLOCK - 1) // BLOCK
+    for b in prange(nblock):
+        i0 = b * BLOCK
+        i1 = min(n, i0 + BLOCK)
+        _pair_entries(
+            start[i0], start[i1], owner, nbr, pos, vel, om, rad, fs, mr, cfx, cfy, cmag, diag,
+            dt, kn, ks, mu, mur,
+        )  # fmt: skip
+        for i in range(i0, i1):
+            ri = rad[i]
+            fx = 0.0
+            fy = 0.0
+            tq = 0.0
+            a = 0.0
+            for kk in range(start[i], start[i + 1]):
+                k = np.uint64(kk)
+                fx += cfx[k]
+                fy += cfy[k]
+                tq += ri * fs[k] + mr[k]
                 if diag:
-                    cmag[k] = 0.0
-                # the open contact adds +0.0 to the sums of i (as the old gather did)
-                fx += 0.0
-                fy += 0.0
-                tq += 0.0
-                continue
-            d = np.sqrt(d2)
-            nx = dx / d
-            ny = dy / d
-            tx = -ny
-            ty = nx
-            wj = om[j]
-            vt = (vel[j, 0] - vxi) * tx + (vel[j, 1] - vyi) * ty
-            vt -= wj * rj + wi * ri
-            rbar = ri * rj / rsum
-            fn, fsn, mrn = contact_update(
-                nx, ny, rsum - d, vt, wj - wi, rbar, kn, ks, mu, mur, fs[k], mr[k], dt
-            )
-            fs[k] = fsn
-            mr[k] = mrn
-            cx = -fn * nx + fsn * tx
-            cy = -fn * ny + fsn * ty
-            fx += cx
-            fy += cy
-            tq += ri * fsn + mrn
-            cfx[k] = cx
-            cfy[k] = cy
-            if diag:
-                c = np.sqrt(fn * fn + fsn * fsn)
-                cmag[k] = c
-                a += c
-        sfx[i] = fx
-        sfy[i] = fy
-        stq[i] = tq
-        sa[i] = a
+                    a += cmag[k]
+            sfx[i] = fx
+            sfy[i] = fy
+            stq[i] = tq
+            sa[i] = a
+
+
+@njit(cache=True)
+def list_owner(start, m):
+    """Owner disk i of each list entry (uint32), from the CSR offsets ``start``."""
+    owner = np.empty(m, np.uint32)
+    for i in range(start.shape[0] - 1):
+        for k in range(start[i], start[i + 1]):
+            owner[k] = i
+    return owner
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -200,9 +231,6 @@ def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, k
     fsw[i, w] = fsn
     mrw[i, w] = mrn
     return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn
-
-
-BLOCK = 512  # disks per block of the integration loop (one displacement maximum each)
 
 
 @njit(cache=True, parallel=True, boundscheck=False, error_model="numpy")
@@ -587,6 +615,7 @@ def run_steps(
     sa = np.empty(n)
     dmax = np.empty((n + BLOCK - 1) // BLOCK)
     dt = prm[P_DT]
+    owner = list_owner(start, m)
     disp2 = max_displacement2(pos, ref)
     for s in range(nsteps):
         # diagnostics (unbalanced-force ratio) only on the last step of the call
@@ -596,10 +625,13 @@ def run_steps(
             ref[:, :] = pos
             nreb += 1
             m = nbr.shape[0]
+            owner = list_owner(start, m)
             cfx = np.empty(m)
             cfy = np.empty(m)
             cmag = np.empty(m)
-        pair_forces(prm, pos, vel, om, rad, start, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa)
+        pair_forces(
+            prm, pos, vel, om, rad, start, owner, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa
+        )  # fmt: skip
         gather_integrate(
             prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx,
             sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax,
