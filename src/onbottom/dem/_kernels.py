@@ -13,11 +13,14 @@ Physics (PFC2D ``linear`` + ``rrlinear``, see ``docs/theory/dem.md``):
 Data layout
 -----------
 Particle pairs are a half neighbour list in CSR form: the candidates of disk ``i`` are
-``nbr[start[i]:start[i+1]]`` (all ``j > i``, ascending), with per-pair shear force ``fs`` and
-rolling moment ``mr`` (history, force on/moment on ``i``). ``rstart``/``ridx`` is the transposed
-index (contacts in which a disk is the ``j`` side, ascending contact index). Pair forces are
-computed in one parallel pass into per-contact arrays, then each disk gathers its contacts in a
-fixed order, so the result does not depend on the number of threads (bitwise).
+``nbr[start[i]:start[i+1]]`` (all ``j > i``, ascending, uint32), with per-pair shear force ``fs``
+and rolling moment ``mr`` (history, force on/moment on ``i``); ``owner[k]`` is the ``i`` of entry
+``k``. ``rstart``/``ridx`` is the transposed index (entries in which a disk is the ``j`` side,
+ascending). A step is two parallel passes over blocks of :data:`BLOCK` disks: the pair pass
+evaluates each entry once (force on ``i`` into ``cfx``/``cfy``) and sums each disk's own
+entries; the integration pass adds the ``j``-side entries, walls, pipe and gravity in a fixed
+order and moves the disk. The result does not depend on the number of threads (bitwise).
+Indices are unsigned so that numba emits no negative-index wrap-around code in the hot loops.
 
 Walls: 0 left (x = x0), 1 right (x = x1), 2 bottom (y = y0), 3 lid (y = lid, moving, only
 when active). The pipe is a rigid disk moving at a prescribed velocity. Wall/pipe shear and
