@@ -272,3 +272,53 @@ def test_result_independent_of_thread_count():
         sim.run(60)
         runs.append(sim.pos.copy())
     np.testing.assert_array_equal(runs[0], runs[1])
+
+
+def test_branch_free_pair_law_equals_contact_update_bitwise():
+    """The flat pair loop (selects instead of branches) gives the bits of ``contact_update``.
+
+    Random pairs around contact (open and closed), random velocities and histories, many of
+    them beyond the shear and rolling caps.
+    """
+    rng = np.random.default_rng(4)
+    m = 4000
+    r = 1e-3 * (0.8 + 0.4 * rng.random(2 * m))
+    pos = np.zeros((2 * m, 2))
+    gap = (r[:m] + r[m:]) * (1.0 + 0.02 * rng.standard_normal(m))
+    ang = 2 * np.pi * rng.random(m)
+    pos[m:, 0] = gap * np.cos(ang)
+    pos[m:, 1] = gap * np.sin(ang)
+    vel = 0.1 * rng.standard_normal((2 * m, 2))
+    om = 100.0 * rng.standard_normal(2 * m)
+    owner = np.arange(m, dtype=np.uint32)
+    nbr = np.arange(m, 2 * m, dtype=np.uint32)
+    fs0 = 2.0 * rng.standard_normal(m)
+    mr0 = 2e-3 * rng.standard_normal(m)
+    dt, kn, ks, mu, mur = 1e-6, 7.5e7, 5e7, 0.4, 0.8
+    fs, mr = fs0.copy(), mr0.copy()
+    cfx, cfy, cmag = np.empty(m), np.empty(m), np.empty(m)
+    K._pair_entries(0, m, owner, nbr, pos, vel, om, r, fs, mr, cfx, cfy, cmag, True, dt, kn, ks,
+                    mu, mur)  # fmt: skip
+    closed = capped = 0
+    for k in range(m):
+        i, j = k, m + k
+        dx, dy = pos[j] - pos[i]
+        rsum = r[i] + r[j]
+        if dx * dx + dy * dy >= rsum * rsum:
+            assert (fs[k], mr[k], cfx[k], cfy[k], cmag[k]) == (0.0, 0.0, 0.0, 0.0, 0.0)
+            continue
+        d = np.sqrt(dx * dx + dy * dy)
+        nx, ny = dx / d, dy / d
+        tx, ty = -ny, nx
+        vt = (vel[j, 0] - vel[i, 0]) * tx + (vel[j, 1] - vel[i, 1]) * ty
+        vt -= om[j] * r[j] + om[i] * r[i]
+        rbar = r[i] * r[j] / rsum
+        fn, f, mm = K.contact_update(
+            nx, ny, rsum - d, vt, om[j] - om[i], rbar, kn, ks, mu, mur, fs0[k], mr0[k], dt
+        )
+        assert fs[k] == f and mr[k] == mm
+        assert cfx[k] == -fn * nx + f * tx and cfy[k] == -fn * ny + f * ty
+        assert cmag[k] == np.sqrt(fn * fn + f * f)
+        closed += 1
+        capped += abs(f) == mu * fn
+    assert closed > m // 3 and capped > 0

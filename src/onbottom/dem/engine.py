@@ -135,11 +135,11 @@ class Simulation:
         self.threads = int(min(max(1, threads), numba.config.NUMBA_NUM_THREADS))
         # empty list, then the first build (history from the sample if present)
         self.start = np.zeros(n + 1, np.int64)
-        self.nbr = np.zeros(0, np.int64)
+        self.nbr = np.zeros(0, np.uint32)
         self.fs = np.zeros(0)
         self.mr = np.zeros(0)
         self.rstart = np.zeros(n + 1, np.int64)
-        self.ridx = np.zeros(0, np.int64)
+        self.ridx = np.zeros(0, np.uint32)
         self.ref = self.pos.copy()
         self._load_history(sample.contacts)
         self.rebuild()
@@ -258,7 +258,7 @@ class Simulation:
         order = np.lexsort((j[pairs], i[pairs]))
         pi, pj = i[pairs][order], j[pairs][order]
         self.start = np.searchsorted(pi, np.arange(self.n + 1)).astype(np.int64)
-        self.nbr = pj.copy()
+        self.nbr = pj.astype(np.uint32)
         self.fs = fs[pairs][order].copy()
         self.mr = mr[pairs][order].copy()
 
@@ -270,7 +270,7 @@ class Simulation:
         wi, wc = np.nonzero((self.fsw != 0.0) | (self.mrw != 0.0))
         return {
             "i": np.concatenate([i_pairs[keep], wi.astype(np.int64)]),
-            "j": np.concatenate([self.nbr[keep], -(wc.astype(np.int64) + 1)]),
+            "j": np.concatenate([self.nbr[keep].astype(np.int64), -(wc.astype(np.int64) + 1)]),
             "fs": np.concatenate([self.fs[keep], self.fsw[wi, wc]]),
             "mr": np.concatenate([self.mr[keep], self.mrw[wi, wc]]),
         }
@@ -339,7 +339,7 @@ class Simulation:
         """
         counts = np.diff(self.start)
         i = np.repeat(np.arange(self.n, dtype=np.int64), counts)
-        j = self.nbr
+        j = self.nbr.astype(np.int64)
         d = np.hypot(*(self.pos[j] - self.pos[i]).T)
         ov = self.rad[i] + self.rad[j] - d
         touch = ov > 0.0
