@@ -26,6 +26,7 @@ def test_dem_prepare_penetrate_resume_plot(tmp_path):
     r = runner.invoke(cli, ["dem", "prepare", "--config", str(cfg), "--out", str(sample), "--json"])
     assert r.exit_code == 0, r.output
     assert json.loads(r.output)["n_particles"] > 100
+    assert not (tmp_path / "s.nc.prep-checkpoint.nc").exists()  # removed once saved
     args = ["dem", "penetrate", "--config", str(cfg), "--sample", str(sample), "--out", str(out)]
     r = runner.invoke(cli, [*args, "--json", "--max-steps", "2000"])
     assert r.exit_code == 0, r.output

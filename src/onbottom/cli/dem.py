@@ -92,8 +92,14 @@ def command() -> None:
 
 
 def _prepare(cfg: DEMConfig, out: Path, progress: bool):
+    """Prepare and save the specimen; resumable per compacted layer.
+
+    The layer checkpoint ``<out>.prep-checkpoint.nc`` is written after every layer, read when a
+    previous run was interrupted, and removed once the specimen is saved.
+    """
     from onbottom.dem.preparation import prepare_sample
 
+    checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
     bar = _Bar(progress, f"prepare {cfg.name}")
     t0 = time.perf_counter()
     try:
@@ -102,10 +108,12 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool):
             progress=lambda stage, f: bar(
                 0.8 * f if stage == "compaction" else (0.9 if stage == "1g" else 1.0)
             ),
+            checkpoint=checkpoint,
         )
     finally:
         bar.close()
     sample.save(out)
+    checkpoint.unlink(missing_ok=True)
     return sample, time.perf_counter() - t0
 
 
@@ -125,7 +133,11 @@ def prepare_cmd(
     progress: bool,
     as_json: bool,
 ) -> None:
-    """Prepare a specimen (multi-layer under-compaction, 1 g then N g equilibrium)."""
+    """Prepare a specimen (multi-layer under-compaction, 1 g then N g equilibrium).
+
+    Resumable: rerunning the same command after an interruption continues from the last
+    compacted layer (checkpoint OUT.prep-checkpoint.nc).
+    """
     cfg = _config(preset, seed, config_file)
     sample, wall = _prepare(cfg, out, progress and not as_json)
     summary = {
