@@ -366,30 +366,21 @@ def regular_wave_current_groups(
         fv = lift_force(uw, m, 1.0, coefficients) * window
         return fh, fv
 
-    m = _current_for_ratio(shape, h_trough / hp)
-    fh1, fv1 = _scaled_group(*shape(m), hp, v_peak)
-    t, h, v = _groups(fh1, fv1, tau, vi, tg, int(n_groups), increment)
-    return LoadProgramme(
-        time=t,
-        horizontal_load=h,
-        vertical_load=v,
+    return _wave_current_programme(
+        shape,
+        tau,
+        vertical_load=vi,
+        group_period=tg,
+        n_groups=int(n_groups),
+        h_peak=hp,
+        h_trough=float(h_trough),
+        v_peak=float(v_peak),
+        increment=float(increment),
+        coefficients=coefficients,
+        taper_fraction=float(taper_fraction),
         installation_load=installation_load,
-        cycle_period=tg,
-        n_cycles=int(n_groups),
         name=name,
-        metadata={
-            "builder": "regular_wave_current_groups",
-            "vertical_load": vi,
-            "group_period": tg,
-            "sub_cycles": int(sub_cycles),
-            "h_peak": hp,
-            "h_trough": float(h_trough),
-            "v_peak": float(v_peak),
-            "increment": float(increment),
-            "current_ratio": m,
-            "coefficients": [coefficients.drag, coefficients.inertia, coefficients.lift],
-            "taper_fraction": float(taper_fraction),
-        },
+        metadata={"builder": "regular_wave_current_groups", "sub_cycles": int(sub_cycles)},
     )
 
 
@@ -480,33 +471,76 @@ def irregular_wave_current_groups(
         fv = lift_force(u, m * us, 1.0, coefficients) * window
         return fh, fv
 
-    m = _current_for_ratio(shape, h_trough / hp)
-    fh1, fv1 = _scaled_group(*shape(m), hp, v_peak)
-    t, h, v = _groups(fh1, fv1, tau, vi, tg, int(n_groups), increment)
-    return LoadProgramme(
-        time=t,
-        horizontal_load=h,
-        vertical_load=v,
+    return _wave_current_programme(
+        shape,
+        tau,
+        vertical_load=vi,
+        group_period=tg,
+        n_groups=int(n_groups),
+        h_peak=hp,
+        h_trough=float(h_trough),
+        v_peak=float(v_peak),
+        increment=float(increment),
+        coefficients=coefficients,
+        taper_fraction=float(taper_fraction),
         installation_load=installation_load,
-        cycle_period=tg,
-        n_cycles=int(n_groups),
         name=name,
         metadata={
             "builder": "irregular_wave_current_groups",
-            "vertical_load": vi,
-            "group_period": tg,
             "hs": float(hs),
             "tp": float(tp),
             "depth": float(depth),
             "waves_per_group": float(waves_per_group),
             "seed": int(seed),
-            "h_peak": hp,
-            "h_trough": float(h_trough),
-            "v_peak": float(v_peak),
-            "increment": float(increment),
+        },
+    )
+
+
+def _wave_current_programme(
+    shape: Any,
+    tau: np.ndarray,
+    *,
+    vertical_load: float,
+    group_period: float,
+    n_groups: int,
+    h_peak: float,
+    h_trough: float,
+    v_peak: float,
+    increment: float,
+    coefficients: MorisonCoefficients,
+    taper_fraction: float,
+    installation_load: float | None,
+    name: str,
+    metadata: dict[str, Any],
+) -> LoadProgramme:
+    """Shared tail of the wave-plus-current builders: current ratio, scaling, groups.
+
+    ``shape(m)`` returns the first group's (F_H, F_V) for current ratio m; m is solved so that
+    min F_H / max F_H = h_trough/h_peak, the loads are scaled to the peaks and repeated in
+    growing groups.
+    """
+    m = _current_for_ratio(shape, h_trough / h_peak)
+    fh1, fv1 = _scaled_group(*shape(m), h_peak, v_peak)
+    t, h, v = _groups(fh1, fv1, tau, vertical_load, group_period, n_groups, increment)
+    return LoadProgramme(
+        time=t,
+        horizontal_load=h,
+        vertical_load=v,
+        installation_load=installation_load,
+        cycle_period=group_period,
+        n_cycles=n_groups,
+        name=name,
+        metadata={
+            **metadata,
+            "vertical_load": vertical_load,
+            "group_period": group_period,
+            "h_peak": h_peak,
+            "h_trough": h_trough,
+            "v_peak": v_peak,
+            "increment": increment,
             "current_ratio": m,
             "coefficients": [coefficients.drag, coefficients.inertia, coefficients.lift],
-            "taper_fraction": float(taper_fraction),
+            "taper_fraction": taper_fraction,
         },
     )
 
