@@ -132,3 +132,36 @@ def test_reduced_cases_initial_state_is_physical(reduced_runs):
         assert np.all(np.diff(ini["sigma_v"].values) > 0)
         assert np.all((ini["K0"].values > 0.3) & (ini["K0"].values < 1.2))
         assert sample.attrs["equilibrium_Ng_converged"]
+
+
+def _resting_disk():
+    from onbottom.dem.config import ContactParameters, ContactSet
+    from onbottom.dem.engine import Simulation
+    from onbottom.dem.sample import Sample
+
+    r = 1e-3
+    soil = ContactParameters(k_n=7.5e7, k_s=5e7, mu=0.4, mu_r=0.8)
+    contacts = ContactSet(soil=soil, pipe=soil, wall=ContactParameters(1e9, 1e9, 0.0))
+    sample = Sample(np.array([[0.005, r]]), np.array([r]), (0.0, 0.01, 0.0, 0.01))
+    return Simulation(sample, contacts, density=2650.0, damping=0.7, dt=1e-7, gravity=(0, -9.81))
+
+
+def test_settle_force_floor_ends_a_stress_free_stage():
+    """The ratio test alone runs to the cap when it cannot be met; the force floor ends it."""
+    from onbottom.dem.preparation import settle
+
+    sim = _resting_disk()
+    weight = sim.mass[0] * 9.81
+    ok, _ = settle(sim, 0.0, 2e-4, check_every=100)  # ratio < 0 never holds
+    assert not ok and sim.time == pytest.approx(2e-4, rel=0.01)
+    sim = _resting_disk()
+    ok, _ = settle(sim, 0.0, 2e-4, check_every=100, min_time=5e-5, force_floor=10 * weight)
+    assert ok and sim.time == pytest.approx(5e-5, rel=0.01)
+    sim = _resting_disk()  # a loaded assembly (mean applied force ≈ 2·weight) is not stress-free
+    ok, _ = settle(sim, 0.0, 2e-4, check_every=100, force_floor=0.1 * weight)
+    assert not ok
+
+
+def test_compacted_layers_settle_before_their_time_cap(tiny_sample):
+    a = tiny_sample.attrs
+    assert all(a[f"layer{i}_settled"] for i in (1, 2))

@@ -325,6 +325,11 @@ class Simulation:
         su, sa = K.ratio_sums(self.unb, self.app)
         return float(su / sa) if sa > 0 else 0.0
 
+    def mean_applied_force(self) -> float:
+        """Mean magnitude of the applied force (contacts + body forces) per disk [N]."""
+        _su, sa = K.ratio_sums(self.unb, self.app)
+        return float(sa) / max(self.n, 1)
+
     def kinetic_energy(self) -> float:
         """Translational + rotational kinetic energy [J per m] (half-step velocities)."""
         return float(
