@@ -51,6 +51,21 @@ def test_dem_prepare_penetrate_resume_plot(tmp_path):
     )
     assert r.exit_code == 0, r.output
     assert any(f.endswith("dem_V_w_f114.png") for f in json.loads(r.output)["figures"])
+    assert done["w_over_D_reached"] >= 0.05 - 1e-3
+    assert done["V_prototype_kN_per_m (bin mean)"]["0.05D"] is not None
+    assert done["V_prototype_kN_per_m (bin mean)"]["0.5D"] is None  # not reached
+    summ = tmp_path / "summ"
+    r = runner.invoke(cli, ["dem", "summarize", str(out), "--outdir", str(summ), "--json"])
+    assert r.exit_code == 0, r.output
+    (rep,) = json.loads(r.output)
+    assert rep["preset"] == "tiny" and rep["complete"]
+    for name in ("tiny_summary.nc", "tiny_V_w.csv", "tiny_surface.csv"):
+        assert (summ / name).stat().st_size > 0
+    header = (summ / "tiny_V_w.csv").read_text().splitlines()[0]
+    assert header == (
+        "w_over_D,V_prototype_mean_kN_per_m,V_prototype_min_kN_per_m,V_prototype_max_kN_per_m"
+    )
+    assert (summ / "tiny_summary.nc").stat().st_size < out.stat().st_size
 
 
 def test_dem_bad_preset_is_reported():

@@ -7,6 +7,7 @@ Examples::
     onbottom dem penetrate --preset SM --sample sm.nc --out sm_run.nc \\
         --checkpoint sm_ck.nc --checkpoint-every 200000      # full size, resumable
     onbottom dem plot sd_run.nc --sample sd.nc --outdir figs
+    onbottom dem summarize sm_run.nc sd_run.nc --outdir summaries   # small files to keep
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import time
 from pathlib import Path
 
 import click
+import numpy as np
 
 from onbottom.cli._common import emit_json, handle_errors, json_option
 from onbottom.dem.config import PRESETS, DEMConfig, get_preset
@@ -242,8 +244,9 @@ def penetrate_cmd(
     save_dataset(ds, out)
     if bool(ds.attrs["complete"]) and ck.exists():
         ck.unlink()
-    w = ds["w_over_D"].values
-    V = ds["V_prototype"].values
+    from onbottom.dem.summary import summarize_run
+
+    small = summarize_run(ds)
     summary = {
         "preset": cfg.name,
         "file": str(out),
@@ -253,19 +256,33 @@ def penetrate_cmd(
         "n_particles": int(ds.attrs["n_particles"]),
         "inertial_number": float(ds.attrs["inertial_number"]),
         "quasi_static": bool(ds.attrs["quasi_static"]),
-        "V_prototype_kN_per_m": {
-            f"{r:.1f}D": (float(V[abs(w - r).argmin()]) / 1e3 if w.size and w.max() >= r else None)
-            for r in (0.1, 0.2, 0.3, 0.4, 0.5)
-        },
-        "max_heave_over_D": float(
-            (ds["surface"] - ds["surface0"]).max() / float(ds.attrs["pipe_diameter"])
-        ),
+        **_key_figures(small),
         "wall_time_s": wall,
     }
     if as_json:
         emit_json(summary)
     else:
         click.echo(json.dumps(summary, indent=2))
+
+
+def _key_figures(small) -> dict[str, object]:
+    """Headline numbers of a run summary (bin-mean V in kN/m prototype, heave / D)."""
+    a = small.attrs
+    out: dict[str, object] = {
+        "V_prototype_kN_per_m (bin mean)": {
+            f"{r:g}D": (
+                None
+                if not np.isfinite(a.get(f"V_prototype_at_{r:g}D", np.nan))
+                else round(float(a[f"V_prototype_at_{r:g}D"]) / 1e3, 2)
+            )
+            for r in (0.05, 0.1, 0.2, 0.3, 0.4, 0.5)
+        },
+        "w_over_D_reached": round(float(a["w_over_D_reached"]), 4),
+        "heave_peak_over_D": round(float(a["heave_peak_over_D"]), 4),
+        "heave_extent_over_D": round(float(a["heave_extent_over_D"]), 3),
+        "softening": a["softening"] or "none",
+    }
+    return out
 
 
 def _f114_unit_weight(ds, gamma_kn: float | None) -> float | None:
@@ -399,3 +416,71 @@ def plot_cmd(
     else:
         for w in written:
             click.echo(w)
+
+
+@command.command("summarize")
+@click.argument(
+    "results", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, path_type=Path)
+)
+@click.option(
+    "--outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("."),
+    show_default=True,
+)
+@click.option(
+    "--step",
+    type=float,
+    default=0.005,
+    show_default=True,
+    help="Bin width of the V–w curve in w/D [-].",
+)
+@click.option(
+    "--drop-fraction",
+    type=float,
+    default=0.05,
+    show_default=True,
+    help="Smallest drop below the running peak counted as softening [-].",
+)
+@json_option
+@handle_errors
+def summarize_cmd(
+    results: tuple[Path, ...], outdir: Path, step: float, drop_fraction: float, as_json: bool
+) -> None:
+    """Write small summaries of penetration runs: binned V–w, surfaces, heave, softening.
+
+    For each RESULT: OUTDIR/<preset>_summary.nc (NetCDF, all of it), <preset>_V_w.csv
+    (w/D, prototype V mean/min/max in kN/m) and <preset>_surface.csv (x/D, surfaces and
+    smoothed heave in mm, model scale) — kilobytes, fit to commit, where a run file holds
+    every disk.
+    """
+    from onbottom.dem.summary import summarize_run
+    from onbottom.results import load_dataset, save_dataset
+
+    outdir.mkdir(parents=True, exist_ok=True)
+    report = []
+    for path in results:
+        ds = load_dataset(path)
+        small = summarize_run(ds, step=step, drop_fraction=drop_fraction)
+        name = str(ds.attrs.get("preset", path.stem))
+        save_dataset(small, outdir / f"{name}_summary.nc")
+        curve = small[["V_prototype_mean", "V_prototype_min", "V_prototype_max"]] / 1e3
+        curve.to_dataframe().rename(columns=lambda c: c + "_kN_per_m").to_csv(
+            outdir / f"{name}_V_w.csv", float_format="%.4f"
+        )
+        surf = small[["surface0", "surface", "heave"]] * 1e3
+        surf.to_dataframe().rename(columns=lambda c: c + "_mm").to_csv(
+            outdir / f"{name}_surface.csv", float_format="%.4f"
+        )
+        report.append(
+            {
+                "preset": name,
+                "file": str(path),
+                "complete": bool(ds.attrs.get("complete", 0)),
+                **_key_figures(small),
+            }
+        )
+    if as_json:
+        emit_json(report)
+    else:
+        click.echo(json.dumps(report, indent=2))
