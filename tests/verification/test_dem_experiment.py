@@ -58,6 +58,29 @@ def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
     assert not ck.exists()
 
 
+@pytest.mark.parametrize("stage", ["1g", "Ng"])
+def test_preparation_resumes_inside_an_equilibrium_stage(tmp_path, tiny_sample, stage):
+    ck = tmp_path / "prep.nc"
+    calls = []
+
+    def stop_inside(name, fraction):
+        if name == stage and fraction < 1.0:
+            calls.append(fraction)
+            if len(calls) == 3:  # checkpoints every 500 steps: one was written in this stage
+                raise _Interrupt
+
+    with pytest.raises(_Interrupt):
+        prepare_sample(TINY, progress=stop_inside, checkpoint=ck, checkpoint_every=500)
+    from onbottom.dem.sample import Sample
+
+    assert Sample.load(ck).attrs["_checkpoint"]["stage"] == stage
+    resumed = prepare_sample(TINY, checkpoint=ck, checkpoint_every=500)
+    np.testing.assert_array_equal(resumed.positions, tiny_sample.positions)
+    for key in ("void_ratio_1g", "equilibrium_1g_ratio", "equilibrium_Ng_ratio", "time_prepared"):
+        assert resumed.attrs[key] == tiny_sample.attrs[key]
+    assert not ck.exists()
+
+
 def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample):
     snaps = (0.02, 0.04)
     full = penetrate(TINY, tiny_sample, snapshots=snaps)

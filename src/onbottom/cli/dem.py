@@ -108,7 +108,7 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool):
         sample = prepare_sample(
             cfg,
             progress=lambda stage, f: bar(
-                0.8 * f if stage == "compaction" else (0.9 if stage == "1g" else 1.0)
+                0.8 * f if stage == "compaction" else (0.8 if stage == "1g" else 0.9) + 0.1 * f
             ),
             checkpoint=checkpoint,
         )
@@ -138,7 +138,8 @@ def prepare_cmd(
     """Prepare a specimen (multi-layer under-compaction, 1 g then N g equilibrium).
 
     Resumable: rerunning the same command after an interruption continues from the last
-    compacted layer (checkpoint OUT.prep-checkpoint.nc).
+    compacted layer or the last checkpoint of the 1 g / N g equilibria
+    (OUT.prep-checkpoint.nc, every 100,000 steps).
     """
     cfg = _config(preset, seed, config_file)
     sample, wall = _prepare(cfg, out, progress and not as_json)

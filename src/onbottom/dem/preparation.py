@@ -110,23 +110,31 @@ def settle(
     check_every: int = 500,
     min_time: float = 0.0,
     force_floor: float = 0.0,
+    start_time: float | None = None,
+    on_check: Callable[[float], None] | None = None,
 ) -> tuple[bool, float]:
     """Cycle until the unbalanced-force ratio < ``ratio`` (after ``min_time``) or ``max_time``.
 
     ``force_floor`` [N]: the assembly also counts as settled when the mean applied force per
     disk falls below it (a stress-free assembly has nothing to balance: its ratio stays near 1
     while a few disks drift, which is noise, not imbalance). 0 disables the test.
+    ``start_time`` [s]: simulated time at which the stage began (default: now), so that a stage
+    resumed from a checkpoint keeps its original time window. ``on_check(fraction)`` is called
+    after every check that does not end the stage (fraction of ``max_time`` used).
 
     Returns (converged, final ratio).
     """
-    t_end = sim.time + max_time
-    t_min = sim.time + min_time
+    t0 = sim.time if start_time is None else start_time
+    t_end = t0 + max_time
+    t_min = t0 + min_time
     r = math.inf
     while sim.time < t_end:
         sim.run(check_every)
         r = sim.unbalanced_ratio()
         if sim.time >= t_min and (r < ratio or sim.mean_applied_force() < force_floor):
             return True, r
+        if on_check is not None:
+            on_check((sim.time - t0) / max_time)
     return False, r
 
 
@@ -134,6 +142,7 @@ def prepare_sample(
     config: DEMConfig,
     progress: Progress | None = None,
     checkpoint: str | Path | None = None,
+    checkpoint_every: int = 100_000,
 ) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
@@ -144,9 +153,13 @@ def prepare_sample(
     progress
         Optional callback ``progress(stage, fraction_done)``.
     checkpoint
-        Optional file written (atomically) after each compacted layer and read back when it
-        exists, so an interrupted preparation resumes at the last finished layer with the same
-        result (the random-generator state is stored with it). Deleted when done.
+        Optional file written (atomically) after each compacted layer, at the start of the N g
+        stage and every ``checkpoint_every`` steps of the 1 g and N g equilibria, and read back
+        when it exists, so an interrupted preparation resumes where it stopped with the same
+        result (the random-generator state and the stage's start time are stored with it).
+        Deleted when done.
+    checkpoint_every
+        Steps between checkpoints inside the 1 g and N g equilibria [-].
 
     Returns
     -------
@@ -197,11 +210,15 @@ def prepare_sample(
         return s
 
     first_layer = 0
+    stage = "compaction"
+    stage_values: dict[str, float] = {}
     ck = Path(checkpoint) if checkpoint is not None else None
     if ck is not None and ck.exists():
         saved = Sample.load(ck)
         meta = saved.attrs.pop("_checkpoint")
         first_layer = int(meta["layers_done"])
+        stage = str(meta.get("stage", "compaction"))
+        stage_values = dict(meta.get("stage_values", {}))
         rng.bit_generator.state = meta["rng_state"]
         attrs = saved.attrs
         pos, rad, vel, om, history = (
@@ -213,8 +230,9 @@ def prepare_sample(
         )
         sim = new_sim(saved)
         sim.time = float(meta["time"])
-        sim.set_lid(float(meta["lid"]), 0.0)
-        log.info("resumed preparation from %s after layer %d", ck, first_layer)
+        if meta["lid"] is not None:
+            sim.set_lid(float(meta["lid"]), 0.0)
+        log.info("resumed preparation from %s (layer %d, stage %s)", ck, first_layer, stage)
     p_cap = (
         prep.lid_pressure_limit
         if prep.lid_pressure_limit is not None
@@ -288,28 +306,79 @@ def prepare_sample(
         if progress is not None:
             progress("compaction", (li + 1) / n_l)
     assert sim is not None
+    rng_state = rng.bit_generator.state
+    last_saved = [sim.step_count]
+
+    def save_stage(name: str) -> None:
+        assert sim is not None and ck is not None
+        snap = sim.to_sample()
+        snap.attrs = dict(attrs)
+        snap.attrs["_checkpoint"] = {
+            "layers_done": n_l,
+            "rng_state": rng_state,
+            "time": sim.time,
+            "lid": None,
+            "stage": name,
+            "stage_values": stage_values,
+        }
+        snap.save(ck)
+        last_saved[0] = sim.step_count
+
+    def on_check(name: str) -> Callable[[float], None]:
+        def check(fraction: float) -> None:
+            if ck is not None and sim.step_count - last_saved[0] >= checkpoint_every:
+                save_stage(name)
+            if progress is not None:
+                progress(name, min(fraction, 1.0))
+
+        return check
+
     # lid off, design contact, 1 g
-    e_compacted = sim.to_sample().void_ratio(top=sim.lid)
+    if stage == "compaction":
+        stage_values["e_compacted"] = sim.to_sample().void_ratio(top=sim.lid)
+        stage_values["t0_1g"] = sim.time
+        stage = "1g"
     sim.set_lid(None)
     sim.set_soil_contact(soil)
-    sim.set_gravity(0.0, -GRAVITY)
-    ok1, r1 = settle(sim, prep.equilibrium_ratio, prep.max_settle_time, min_time=5e-3)
-    if progress is not None:
-        progress("1g", 1.0)
-    e_1g = sim.to_sample().void_ratio()
-    # ramp to N g, then equilibrium
-    ramp = config.loading.gravity_ramp_time
-    if ramp > 0:
-        n_chunks = max(1, int(ramp / (200 * sim.dt)))
-        steps = max(1, round(ramp / sim.dt / n_chunks))
-        for c in range(n_chunks):
-            f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
-            sim.set_gravity(0.0, -f * GRAVITY)
-            sim.run(steps)
+    if stage == "1g":
+        sim.set_gravity(0.0, -GRAVITY)
+        ok1, r1 = settle(
+            sim,
+            prep.equilibrium_ratio,
+            prep.max_settle_time,
+            min_time=5e-3,
+            start_time=stage_values["t0_1g"],
+            on_check=on_check("1g"),
+        )
+        if progress is not None:
+            progress("1g", 1.0)
+        stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
+        # ramp to N g, then equilibrium
+        ramp = config.loading.gravity_ramp_time
+        if ramp > 0:
+            n_chunks = max(1, int(ramp / (200 * sim.dt)))
+            steps = max(1, round(ramp / sim.dt / n_chunks))
+            for c in range(n_chunks):
+                f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
+                sim.set_gravity(0.0, -f * GRAVITY)
+                sim.run(steps)
+        stage_values["t0_Ng"] = sim.time
+        stage = "Ng"
+        if ck is not None:
+            save_stage(stage)
     sim.set_gravity(0.0, -n_g * GRAVITY)
-    ok2, r2 = settle(sim, prep.equilibrium_ratio, prep.max_settle_time, min_time=5e-3)
+    ok2, r2 = settle(
+        sim,
+        prep.equilibrium_ratio,
+        prep.max_settle_time,
+        min_time=5e-3,
+        start_time=stage_values["t0_Ng"],
+        on_check=on_check("Ng"),
+    )
     if progress is not None:
         progress("Ng", 1.0)
+    e_compacted = stage_values["e_compacted"]
+    ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
     out = sim.to_sample()
     out.velocities[:] = 0.0
     out.omega[:] = 0.0
