@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 from click.testing import CliRunner
 
@@ -66,6 +67,12 @@ def test_dem_prepare_penetrate_resume_plot(tmp_path):
         "w_over_D,V_prototype_mean_kN_per_m,V_prototype_min_kN_per_m,V_prototype_max_kN_per_m"
     )
     assert (summ / "tiny_summary.nc").stat().st_size < out.stat().st_size
+    r = runner.invoke(
+        cli, ["dem", "plot", str(summ / "tiny_summary.nc"), "--outdir", str(summ), "--json"]
+    )
+    assert r.exit_code == 0, r.output
+    names = {Path(f).name for f in json.loads(r.output)["figures"]}
+    assert {"dem_V_w_prototype.png", "dem_heave.png", "dem_initial_state.png"} <= names
 
 
 def test_dem_bad_preset_is_reported():

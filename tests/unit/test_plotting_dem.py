@@ -52,3 +52,35 @@ def test_field_plots():
     assert fig.axes[0].texts[0].get_text().startswith("6 ")
     assert plot_rotation_field(ds, 0.5, threshold_deg=20.0).axes
     assert plot_velocity_field(ds, 0.5).axes
+
+
+def _summary(preset="SM"):
+    from onbottom.dem.summary import summarize_run
+
+    x = np.linspace(0.001, 0.259, 130)
+    run = xr.Dataset(
+        {
+            "w_over_D": ("record", np.linspace(0, 0.5, 400)),
+            "V": ("record", np.linspace(0, 5e3, 400)),
+            "surface0": ("x_bin", np.full(130, 0.1)),
+            "surface": ("x_bin", 0.1 + 0.003 * np.exp(-(((x - 0.13) / 0.04) ** 2))),
+        },
+        coords={"x_bin": x},
+        attrs={"preset": preset, "pipe_diameter": 0.02, "gravity_factor": 25.0},
+    )
+    return summarize_run(run)
+
+
+def test_summary_resistance_plot_draws_band_and_published_points():
+    from onbottom.dem.published import PUBLISHED
+    from onbottom.plotting.dem import plot_resistance, plot_surface
+
+    paper = {k: c.resistance for k, c in PUBLISHED.items()}
+    ax = plot_resistance([_summary("SM"), _summary("SM-reduced")], reference=paper).axes[0]
+    # SM: mean line + 3 paper markers; SM-reduced: mean line only (not the paper's case)
+    assert len(ax.lines) == 3
+    marks = ax.lines[1]
+    np.testing.assert_allclose(marks.get_xdata(), [50.0, 120.0, 125.0])
+    assert len(ax.collections) == 2  # the min–max bands
+    heave = plot_surface(_summary()).axes[0]
+    assert len(heave.lines) == 3  # smoothed, raw, zero line

@@ -356,7 +356,11 @@ def plot_cmd(
     phi_upper_deg: float,
     as_json: bool,
 ) -> None:
-    """Plot V–w, initial profiles, heave, velocity, rotation and force-chain fields."""
+    """Plot V–w, initial profiles, heave, velocity, rotation and force-chain fields.
+
+    RESULTS are run files or summaries (``dem summarize``; V–w, heave and initial profiles
+    only). The full-size SM and SD presets carry the paper's centrifuge points as markers.
+    """
     import matplotlib.pyplot as plt
     import xarray as xr
 
@@ -373,14 +377,21 @@ def plot_cmd(
         plt.close(fig)
         written.append(str(path))
 
-    save(P.plot_resistance(runs, prototype=True), "dem_V_w_prototype.png")
+    from onbottom.dem.published import PUBLISHED
+
+    paper = {name: case.resistance for name, case in PUBLISHED.items()}
+    save(P.plot_resistance(runs, prototype=True, reference=paper), "dem_V_w_prototype.png")
     save(P.plot_resistance(runs, prototype=False), "dem_V_w_model.png")
     gamma = _f114_unit_weight(runs[0], gamma_kn)
     if gamma is not None:
         from onbottom.plotting.dem_f114 import plot_dem_against_f114
 
         fig = plot_dem_against_f114(
-            runs, unit_weight=gamma, phi_lower_deg=phi_lower_deg, phi_upper_deg=phi_upper_deg
+            runs,
+            unit_weight=gamma,
+            phi_lower_deg=phi_lower_deg,
+            phi_upper_deg=phi_upper_deg,
+            reference=paper,
         )
         save(fig, "dem_V_w_f114.png")
     save(P.plot_surface(runs), "dem_heave.png")

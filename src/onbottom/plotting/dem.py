@@ -35,17 +35,53 @@ def _label(ds: xr.Dataset) -> str:
 
 
 def plot_resistance(
-    results: xr.Dataset | list[xr.Dataset], *, prototype: bool = True, ax=None
+    results: xr.Dataset | list[xr.Dataset],
+    *,
+    prototype: bool = True,
+    ax=None,
+    reference: dict[str, dict[float, float]] | None = None,
+    reference_label: str = "paper (centrifuge)",
 ) -> Figure:
-    """V–w/D curve(s); prototype scale (kN/m) by default, else model scale (N/m)."""
+    """V–w/D curve(s); prototype scale (kN/m) by default, else model scale (N/m).
+
+    ``results`` may be raw runs (every record) or run summaries
+    (:func:`onbottom.dem.summary.summarize_run`: bin means drawn as a line, the bin min–max as a
+    band). ``reference`` maps a preset name to published points {w/D: V [N/m, prototype]}
+    drawn as markers of the same colour (prototype scale only).
+    """
     runs = results if isinstance(results, list) else [results]
     if ax is None:
         fig, ax = plt.subplots(figsize=(5, 4))
     else:
         fig = ax.figure
+    scale = 1e3 if prototype else 1.0
     for ds in runs:
-        V = ds["V_prototype"] if prototype else ds["V"]
-        ax.plot(V.values / (1e3 if prototype else 1.0), ds["w_over_D"].values, label=_label(ds))
+        if "V_mean" in ds:  # a summary
+            key = "V_prototype_" if prototype else "V_"
+            w = ds["w_over_D"].values
+            (line,) = ax.plot(ds[key + "mean"].values / scale, w, label=_label(ds) + " (bin mean)")
+            ax.fill_betweenx(
+                w,
+                ds[key + "min"].values / scale,
+                ds[key + "max"].values / scale,
+                color=line.get_color(),
+                alpha=0.2,
+                lw=0,
+            )
+        else:
+            V = ds["V_prototype"] if prototype else ds["V"]
+            (line,) = ax.plot(V.values / scale, ds["w_over_D"].values, label=_label(ds))
+        points = (reference or {}).get(_label(ds)) if prototype else None
+        if points:
+            ws = sorted(points)
+            ax.plot(
+                [points[k] / scale for k in ws],
+                ws,
+                "o",
+                mfc="none",
+                color=line.get_color(),
+                label=f"{_label(ds)}: {reference_label}",
+            )
     ax.set_xlabel("V [kN/m] (prototype)" if prototype else "V [N/m] (model)")
     ax.set_ylabel("w/D [-]")
     ax.invert_yaxis()
@@ -63,6 +99,7 @@ def plot_resistance_with_bounds(
     upper: np.ndarray,
     *,
     bound_label: str = "DNVGL-RP-F114",
+    reference: dict[str, dict[float, float]] | None = None,
 ) -> Figure:
     """DEM V–w/D (prototype, kN/m) against lower/upper bound curves.
 
@@ -72,8 +109,10 @@ def plot_resistance_with_bounds(
         Embedment ratios of the bound curves [-].
     lower, upper
         Bound resistances at prototype scale [N/m].
+    reference
+        Published points by preset, see :func:`plot_resistance`.
     """
-    fig = plot_resistance(results, prototype=True)
+    fig = plot_resistance(results, prototype=True, reference=reference)
     ax = fig.axes[0]
     w = np.asarray(w_over_D, float)
     ax.plot(np.asarray(lower) / 1e3, w, "k--", label=f"{bound_label} lower bound")
@@ -104,11 +143,20 @@ def plot_initial_state(initial: xr.Dataset | list[xr.Dataset], pipe_diameter: fl
 
 
 def plot_surface(results: xr.Dataset | list[xr.Dataset]) -> Figure:
-    """Soil surface heave (final − initial) against x/D (paper Fig. 8)."""
+    """Soil surface heave (final − initial) against x/D (paper Fig. 8).
+
+    Raw runs: the change of the highest disk top per bin. Summaries: the smoothed heave (thick)
+    over the raw change (thin).
+    """
     runs = results if isinstance(results, list) else [results]
     fig, ax = plt.subplots(figsize=(7, 3))
     for ds in runs:
         D = float(ds.attrs["pipe_diameter"])
+        if "heave" in ds:  # a summary: smoothed heave (pipe footprint blank) over the raw change
+            (line,) = ax.plot(ds["x_over_D"].values, ds["heave"].values / D, label=_label(ds))
+            raw = (ds["surface"] - ds["surface0"]).values / D
+            ax.plot(ds["x_over_D"].values, raw, lw=0.5, alpha=0.4, color=line.get_color())
+            continue
         xc = 0.5 * (float(ds["x_bin"].min()) + float(ds["x_bin"].max()))
         heave = (ds["surface"] - ds["surface0"]).values / D
         ax.plot((ds["x_bin"].values - xc) / D, heave, label=_label(ds))

@@ -69,8 +69,13 @@ def plot_dem_against_f114(
     unit_weight: float,
     phi_lower_deg: float = 33.0,
     phi_upper_deg: float = 40.0,
+    reference: dict[str, dict[float, float]] | None = None,
 ) -> Figure:
-    """DEM V–w/D curves (prototype kN/m) with the F114 lower/upper drained bounds shaded."""
+    """DEM V–w/D curves (prototype kN/m) with the F114 lower/upper drained bounds shaded.
+
+    ``reference``: published points by preset {w/D: V [N/m]} (see
+    :data:`onbottom.dem.published.PUBLISHED`), drawn as markers.
+    """
     runs = results if isinstance(results, list) else [results]
     w, lower, upper = f114_bounds_for_dem(
         runs[0], unit_weight=unit_weight, phi_lower_deg=phi_lower_deg, phi_upper_deg=phi_upper_deg
@@ -81,4 +86,5 @@ def plot_dem_against_f114(
         lower,
         upper,
         bound_label=f"DNVGL-RP-F114 (φ' {phi_lower_deg:g}°/{phi_upper_deg:g}°)",
+        reference=reference,
     )
