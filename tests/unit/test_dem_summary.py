@@ -88,7 +88,23 @@ def test_summarize_run_reports_prototype_values_and_provenance():
     # V(w = 0.4D = 0.008 m) = 2000 + 3200 = 5200 N/m model, ×25 prototype
     assert s.attrs["V_prototype_at_0.4D"] == pytest.approx(5200 * 25, rel=1e-3)
     assert s.attrs["softening_episodes"] == 0
+    assert s.sizes["episode"] == 0
     assert s.attrs["heave_peak_over_D"] == pytest.approx(0.05)
     assert s.attrs["model"] == "dem.penetration.summary"
     assert s["V_prototype_mean"].attrs["units"] == "N/m"
     assert s.sizes["w_over_D"] == 100
+
+
+def test_summarize_run_stores_softening_episodes_at_prototype_scale():
+    ds = _fake_run()
+    w = ds["w_over_D"].values
+    V = ds["V"].values.copy()
+    V[(w > 0.3) & (w < 0.35)] *= 0.8  # a 20 % drop from about 0.3D
+    s = summarize_run(ds.assign(V=("record", V)))
+    assert s.sizes["episode"] == 1
+    assert s["softening_w_peak"].values[0] == pytest.approx(0.3, abs=0.006)
+    drop = 1 - s["softening_V_prototype_trough"] / s["softening_V_prototype_peak"]
+    assert float(drop[0]) == pytest.approx(0.2, abs=0.02)
+    assert float(s["softening_V_prototype_peak"][0]) == pytest.approx(
+        25 * (2000 + 4e5 * 0.006), rel=0.01
+    )

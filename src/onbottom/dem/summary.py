@@ -245,7 +245,8 @@ def summarize_run(
     -------
     xarray.Dataset
         ``V_mean/V_min/V_max`` (model, N/m) and ``V_prototype_mean`` etc. on ``w_over_D``;
-        surfaces and smoothed heave on ``x_over_D``; ``initial_*`` circle profiles when present;
+        surfaces and smoothed heave on ``x_over_D``; ``softening_*`` (w/D and prototype V of
+        each episode's peak and trough) on ``episode``; ``initial_*`` circle profiles when present;
         attributes: the run's provenance, ``V_prototype_at_<r>D`` [N/m], heave metrics,
         softening episodes (JSON-like strings) and the stated averaging rules.
     """
@@ -292,6 +293,18 @@ def summarize_run(
             "x_over_D": ("x_over_D", (x - x_pipe) / D, {"long_name": "x from pipe axis / D"}),
         },
     )
+    for key, attr, unit in (
+        ("w_peak", "w_peak", "1"),
+        ("w_trough", "w_trough", "1"),
+        ("V_prototype_peak", "v_peak", "N/m"),
+        ("V_prototype_trough", "v_trough", "N/m"),
+    ):
+        scale = N if unit == "N/m" else 1.0
+        out[f"softening_{key}"] = (
+            "episode",
+            np.array([getattr(e, attr) * scale for e in eps], float),
+            {"long_name": f"softening episode {key.replace('_', ' ')}", "units": unit},
+        )
     for name in ds.data_vars:
         if str(name).startswith("initial_"):
             out[name] = ds[name]
