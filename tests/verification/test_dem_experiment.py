@@ -115,7 +115,16 @@ def reduced_runs():
 
 @pytest.mark.slow
 def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
-    """SD: stiffer initial response and larger heave than SM (paper §4.3.1, Figs. 5 and 8)."""
+    """SD: stiffer initial response and larger heave than SM (paper §4.3.1, Figs. 5 and 8).
+
+    Heave is the mean rise of the surface between the pipe footprint (0.75D) and 2.5D from the
+    axis (``heave_metrics(...)["mean_over_D"]``, unsmoothed): at the reduced scale a surface
+    bin is 0.3D wide and a grain 0.1D, so the largest single-bin rise is a one-grain statistic
+    (SM 0.149D vs SD 0.147D in one preparation), while the mean over the ~12 bins beside the
+    pipe measures the heaved volume the paper compares.
+    """
+    from onbottom.dem.summary import heave_metrics
+
     out = {}
     for key, (cfg, _sample, _ini, ds) in reduced_runs.items():
         D = cfg.geometry.pipe_diameter
@@ -126,10 +135,12 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
         # secant stiffness over the first 0.05D (mean V over 0.04–0.06D divided by 0.05D)
         sel = (w > 0.04 * D) & (w < 0.06 * D)
         k_ini = V[sel].mean() / (0.05 * D)
-        heave = float(np.nanmax(ds["surface"].values - ds["surface0"].values))
-        out[key] = (k_ini, heave)
+        xs = ds["x_bin"].values
+        x_pipe = 0.5 * (xs.min() + xs.max())
+        h = heave_metrics(xs, ds["surface0"].values, ds["surface"].values, x_pipe, D, smooth_bins=1)
+        out[key] = (k_ini, h["mean_over_D"])
     assert out["SD"][0] > out["SM"][0]
-    assert out["SD"][1] > out["SM"][1]
+    assert out["SD"][1] > out["SM"][1], out
 
 
 @pytest.mark.slow
