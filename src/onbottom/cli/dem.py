@@ -88,6 +88,17 @@ progress_option = click.option(
 )
 
 
+results_argument = click.argument(
+    "results", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, path_type=Path)
+)
+outdir_option = click.option(
+    "--outdir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=Path("."),
+    show_default=True,
+)
+
+
 @click.group("dem")
 def command() -> None:
     """2D DEM of a pipe pushed into sand (model scale SI; prototype = ×N)."""
@@ -300,15 +311,8 @@ def _f114_unit_weight(ds, gamma_kn: float | None) -> float | None:
 
 
 @command.command("plot")
-@click.argument(
-    "results", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, path_type=Path)
-)
-@click.option(
-    "--outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("."),
-    show_default=True,
-)
+@results_argument
+@outdir_option
 @click.option(
     "--chain-threshold",
     type=float,
@@ -431,15 +435,8 @@ def plot_cmd(
 
 
 @command.command("summarize")
-@click.argument(
-    "results", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, path_type=Path)
-)
-@click.option(
-    "--outdir",
-    type=click.Path(file_okay=False, path_type=Path),
-    default=Path("."),
-    show_default=True,
-)
+@results_argument
+@outdir_option
 @click.option(
     "--step",
     type=float,

@@ -333,6 +333,21 @@ def prepare_sample(
 
         return check
 
+    def equilibrium(name: str) -> tuple[bool, float]:
+        """Cycle stage ``name`` to equilibrium within its time window (resumable)."""
+        assert sim is not None
+        result = settle(
+            sim,
+            prep.equilibrium_ratio,
+            prep.max_settle_time,
+            min_time=5e-3,
+            start_time=stage_values[f"t0_{name}"],
+            on_check=on_check(name),
+        )
+        if progress is not None:
+            progress(name, 1.0)
+        return result
+
     # lid off, design contact, 1 g
     if stage == "compaction":
         stage_values["e_compacted"] = sim.to_sample().void_ratio(top=sim.lid)
@@ -342,16 +357,7 @@ def prepare_sample(
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
-        ok1, r1 = settle(
-            sim,
-            prep.equilibrium_ratio,
-            prep.max_settle_time,
-            min_time=5e-3,
-            start_time=stage_values["t0_1g"],
-            on_check=on_check("1g"),
-        )
-        if progress is not None:
-            progress("1g", 1.0)
+        ok1, r1 = equilibrium("1g")
         stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
         # ramp to N g, then equilibrium
         ramp = config.loading.gravity_ramp_time
@@ -367,16 +373,7 @@ def prepare_sample(
         if ck is not None:
             save_stage(stage)
     sim.set_gravity(0.0, -n_g * GRAVITY)
-    ok2, r2 = settle(
-        sim,
-        prep.equilibrium_ratio,
-        prep.max_settle_time,
-        min_time=5e-3,
-        start_time=stage_values["t0_Ng"],
-        on_check=on_check("Ng"),
-    )
-    if progress is not None:
-        progress("Ng", 1.0)
+    ok2, r2 = equilibrium("Ng")
     e_compacted = stage_values["e_compacted"]
     ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
     out = sim.to_sample()
