@@ -97,6 +97,21 @@ def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample):
     assert full["V"].values.max() > 0.0  # the pipe did push on the soil
 
 
+def test_resume_after_a_snapshot_keeps_it(tmp_path, tiny_sample):
+    """A checkpoint written after a field snapshot carries it through the resume."""
+    snaps = (0.01, 0.04)
+    full = penetrate(TINY, tiny_sample, snapshots=snaps)
+    ck = tmp_path / "ck.nc"
+    part = penetrate(TINY, tiny_sample, checkpoint=ck, max_steps=9000, snapshots=snaps)
+    assert not part.attrs["complete"]
+    assert part.sizes["snapshot"] == 1  # stopped between the two snapshots
+    rest = penetrate(TINY, tiny_sample, checkpoint=ck, snapshots=snaps)
+    assert rest.attrs["complete"]
+    for name in ("V", "snapshot_w", "x", "rotation", "chain_fn", "chain_snapshot"):
+        np.testing.assert_array_equal(rest[name].values, full[name].values, err_msg=name)
+    np.testing.assert_array_equal(rest["snapshot"].values, full["snapshot"].values)
+
+
 def _run(cfg: DEMConfig):
     short = cfg.replace(loading=dataclasses.replace(cfg.loading, final_embedment_ratio=0.25))
     sample = prepare_sample(short)
@@ -199,3 +214,16 @@ def test_settle_force_floor_ends_a_stress_free_stage():
 def test_compacted_layers_settle_before_their_time_cap(tiny_sample):
     a = tiny_sample.attrs
     assert all(a[f"layer{i}_settled"] for i in (1, 2))
+
+
+def test_snapshot_info_of_an_old_checkpoint_is_rebuilt():
+    """Checkpoints of onbottom 0.1.0 lost the snapshot's (w/D, w, pipe y); they are rebuilt."""
+    import xarray as xr
+
+    from onbottom.dem.experiment import _restore_snapshot_info
+
+    kept = xr.Dataset({"x": ("particle", [0.0]), "info": ("info", [0.1, 0.0021, 0.5])})
+    lost = xr.Dataset({"x": ("particle", [0.0])})
+    _restore_snapshot_info([kept, lost], (0.1, 0.2), surf0=0.1, D=0.02)
+    np.testing.assert_array_equal(kept["info"].values, [0.1, 0.0021, 0.5])  # untouched
+    np.testing.assert_allclose(lost["info"].values, [0.2, 0.004, 0.1 + 0.01 - 0.004])

@@ -130,8 +130,9 @@ def _save_checkpoint(
         {**meta, "step_count": sim.step_count, "n_snapshots": len(snaps)}
     )
     for q, snap in enumerate(snaps):
-        for name, da in snap.data_vars.items():
-            ds[f"snap{q}_{name}"] = da.rename({d: f"snap{q}_{d}" for d in da.dims})
+        # snap.variables, not snap.data_vars: "info" lies on its own dimension (a coordinate)
+        for name, var in snap.variables.items():
+            ds[f"snap{q}_{name}"] = ([f"snap{q}_{d}" for d in var.dims], var.values)
     save_dataset(ds, path)
 
 
@@ -146,13 +147,31 @@ def _load_checkpoint(path: Path, config: DEMConfig, threads: int | None):
     snaps = []
     for q in range(int(meta["n_snapshots"])):
         pre = f"snap{q}_"
+        # ds.variables, not ds.data_vars: "snap<q>_info" lies on its own dimension, so xarray
+        # reads it back as a coordinate
         vars_ = {
-            str(k)[len(pre) :]: ds[k].rename({d: str(d)[len(pre) :] for d in ds[k].dims})
-            for k in ds.data_vars
+            str(k)[len(pre) :]: ([str(d)[len(pre) :] for d in var.dims], var.values)
+            for k, var in ds.variables.items()
             if str(k).startswith(pre)
         }
         snaps.append(xr.Dataset(vars_))
     return sim, records, snaps, meta, ds["theta0"].values
+
+
+def _restore_snapshot_info(
+    snaps: list[xr.Dataset], targets: tuple[float, ...], surf0: float, D: float
+) -> None:
+    """Rebuild the ``info`` of snapshots read from an onbottom 0.1.0 checkpoint, which lost it.
+
+    The snapshot at target w/D = r was taken at the first record with w ≥ r·D − v·Δt/2, so
+    w = r·D to within one record interval (``record_every``·v·Δt: 5.5e-7 m, 3e-5 D at full
+    size); the pipe centre is then at surf0 + D/2 − w.
+    """
+    for q, snap in enumerate(snaps):
+        if "info" not in snap.variables:
+            w = targets[q] * D
+            log.warning("checkpoint from onbottom 0.1.0: snapshot w = %gD taken", targets[q])
+            snap["info"] = ("info", np.array([targets[q], w, surf0 + 0.5 * D - w]))
 
 
 def _snapshot(sim: Simulation, theta0: np.ndarray, ratio: float, w: float) -> xr.Dataset:
@@ -224,6 +243,7 @@ def penetrate(
     if ck is not None and resume and ck.exists():
         sim, records, snaps, meta, theta0 = _load_checkpoint(ck, config, threads)
         log.info("resumed from %s at step %d", ck, sim.step_count)
+        _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
     else:
         sim = make_simulation(config, sample, threads)
         xc = 0.5 * (sample.box[0] + sample.box[1])
