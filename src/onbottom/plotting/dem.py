@@ -118,7 +118,8 @@ def plot_resistance_with_bounds(
     ax.plot(np.asarray(lower) / 1e3, w, "k--", label=f"{bound_label} lower bound")
     ax.plot(np.asarray(upper) / 1e3, w, "k-.", label=f"{bound_label} upper bound")
     ax.fill_betweenx(w, np.asarray(lower) / 1e3, np.asarray(upper) / 1e3, color="0.85", zorder=0)
-    ax.legend(loc="upper right", fontsize="small")  # the empty corner (V large, w small)
+    # below the axes: with a dense and a medium-dense run no corner of the plot is empty
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.04), ncol=2, fontsize="small")
     return fig
 
 

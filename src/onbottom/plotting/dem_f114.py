@@ -85,6 +85,9 @@ def plot_dem_against_f114(
         w,
         lower,
         upper,
-        bound_label=f"DNVGL-RP-F114 (φ' {phi_lower_deg:g}°/{phi_upper_deg:g}°)",
+        bound_label=(
+            f"DNVGL-RP-F114 (φ' {phi_lower_deg:g}°/{phi_upper_deg:g}°, "
+            f"γ_d {unit_weight / 1e3:.3g} kN/m³)"
+        ),
         reference=reference,
     )
