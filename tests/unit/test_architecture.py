@@ -12,13 +12,14 @@ import pathlib
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
-BASE = {"_version", "errors", "constants", "_validate", "results"}
+BASE = {"_version", "errors", "constants", "_validate", "_casefile", "results"}
 
 ALLOWED: dict[str, set[str]] = {
     "_version": set(),
     "errors": set(),
     "constants": set(),
     "_validate": {"errors"},
+    "_casefile": {"errors"},
     "results": {"_version"},
     "inputs": BASE,
     "hydro": BASE | {"inputs"},
