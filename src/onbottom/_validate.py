@@ -5,15 +5,17 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Iterable
-from numbers import Real
+from numbers import Integral, Real
 
 from onbottom.errors import InputError, OutOfRangeWarning
 
 __all__ = [
     "finite",
     "in_range",
+    "integer",
     "non_negative",
     "one_of",
+    "plausible",
     "positive",
     "warn_outside",
 ]
@@ -69,6 +71,64 @@ def in_range(
         lb = "[" if low_inclusive else "("
         hb = "]" if high_inclusive else ")"
         raise InputError(f"{field} = {x!r} is invalid: must lie in {lb}{low:g}, {high:g}{hb}")
+    return x
+
+
+def integer(field: str, value: object, low: int | None = None, high: int | None = None) -> int:
+    """Return ``value`` as int; raise unless it is a whole number in ``[low, high]``.
+
+    ``16.0`` is accepted, ``16.7`` is an error (never truncated), as are booleans and NaN.
+    """
+    if isinstance(value, bool):
+        raise InputError(f"{field} = {value!r} is invalid: expected a whole number")
+    if isinstance(value, Integral):
+        n = int(value)
+    else:
+        x = finite(field, value)
+        if x != math.floor(x):
+            raise InputError(
+                f"{field} = {x!r} is invalid: expected a whole number (it is never truncated)"
+            )
+        n = int(x)
+    if (low is not None and n < low) or (high is not None and n > high):
+        lo = "-inf" if low is None else str(low)
+        hi = "inf" if high is None else str(high)
+        raise InputError(f"{field} = {n} is invalid: must lie in [{lo}, {hi}]")
+    return n
+
+
+def plausible(
+    field: str,
+    value: object,
+    *,
+    error: tuple[float, float],
+    usual: tuple[float, float],
+    unit: str,
+    what: str,
+    stacklevel: int = 3,
+) -> float:
+    """Engineering plausibility of an input: an error outside ``error``, a warning outside
+    ``usual``.
+
+    ``error`` bounds are inclusive; a value outside them is no engineering input (a pipe of
+    500 m, a unit weight of 0.0075 kN/m³ typed in the wrong unit): :class:`InputError` naming
+    the field, the value, the allowed range and the unit. A value inside ``error`` but outside
+    ``usual`` gives :class:`OutOfRangeWarning` (``what`` says what the usual range is).
+    """
+    x = finite(field, value)
+    lo, hi = error
+    if not (lo <= x <= hi):
+        raise InputError(
+            f"{field} = {x!r} {unit} is invalid: outside the plausible range [{lo:g}, {hi:g}]"
+            f" {unit} (check the unit)"
+        )
+    ulo, uhi = usual
+    if not (ulo <= x <= uhi):
+        warnings.warn(
+            f"{field} = {x:.4g} {unit} is unusual: {what} lies in [{ulo:g}, {uhi:g}] {unit}",
+            OutOfRangeWarning,
+            stacklevel=stacklevel,
+        )
     return x
 
 
