@@ -10,6 +10,9 @@ from numbers import Integral, Real
 from onbottom.errors import InputError, OutOfRangeWarning
 
 __all__ = [
+    "FRICTION_COEFFICIENT",
+    "PIPE_DIAMETER_M",
+    "SOIL_UNIT_WEIGHT_N_M3",
     "finite",
     "in_range",
     "integer",
@@ -119,8 +122,8 @@ def plausible(
     lo, hi = error
     if not (lo <= x <= hi):
         raise InputError(
-            f"{field} = {x!r} {unit} is invalid: outside the plausible range [{lo:g}, {hi:g}]"
-            f" {unit} (check the unit)"
+            f"{field} = {x!r} {unit} is invalid: must lie in the plausible range"
+            f" [{lo:g}, {hi:g}] {unit} (check the unit)"
         )
     ulo, uhi = usual
     if not (ulo <= x <= uhi):
@@ -130,6 +133,17 @@ def plausible(
             stacklevel=stacklevel,
         )
     return x
+
+
+# Engineering plausibility ranges (error range, usual range) shared by the inputs.
+PIPE_DIAMETER_M = ((0.005, 5.0), (0.05, 2.0))
+"""Outer diameter D [m]: errors outside 5 mm–5 m (mm typed as m); usual 0.05–2 m (pipelines
+and their coatings; a model pipe of a laboratory test can be smaller)."""
+SOIL_UNIT_WEIGHT_N_M3 = ((1.0e3, 2.5e4), (3.0e3, 1.8e4))
+"""Submerged (effective) unit weight γ' [N/m³]: errors below 1 or above 25 kN/m³ (kN typed
+as N); usual 3–18 kN/m³ (submerged soils ~4–12; dry centrifuge sand up to ~17)."""
+FRICTION_COEFFICIENT = ((0.0, 2.0), (0.1, 1.2))
+"""Pipe–soil friction μ [-]: usual 0.1–1.2 (DNV-RP-F109: clay 0.2, sand 0.6)."""
 
 
 def one_of(field: str, value: object, allowed: Iterable[str]) -> str:
