@@ -83,6 +83,7 @@ def emit_json(payload: Mapping[str, Any] | Sequence[Any]) -> None:
 # errors
 # ---------------------------------------------------------------------------------------------
 _NP_SCALAR = re.compile(r"np\.(?:float|int|uint|bool_?|str_)\d*\(([^()]*)\)")
+_OPTION = re.compile(r"^(--[a-z0-9][a-z0-9-]*)\b")
 _FIELD = re.compile(r"^(?:[^:\n]*?: )?(--[a-z0-9][a-z0-9-]*|[A-Za-z_][\w.\[\]'\"-]*) (?:=|is )")
 
 
@@ -95,11 +96,18 @@ def _field_of(exc: BaseException) -> str | None:
     field = getattr(exc, "field", None)
     if isinstance(field, str) and field:
         return field
+    option = getattr(exc, "option_name", None)  # click.NoSuchOption
+    if isinstance(option, str) and option:
+        return option
     param = getattr(exc, "param", None)
     if param is not None:
         opts = [o for o in getattr(param, "opts", []) if o.startswith("--")]
         return opts[0] if opts else getattr(param, "name", None)
-    m = _FIELD.match(str(exc))
+    text = str(exc)
+    m = _OPTION.match(text)
+    if m:
+        return m.group(1)
+    m = _FIELD.match(text)
     return m.group(1) if m else None
 
 

@@ -16,7 +16,7 @@ from onbottom.cli._common import (
     handle_errors,
     json_option,
 )
-from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS, UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import (
     LayConditions,
@@ -223,7 +223,11 @@ def command(**opts: Any) -> None:
         if opts["load_kn"] is not None:
             with warnings.catch_warnings(record=True) as at_solution:
                 warnings.simplefilter("always", OutOfRangeWarning)
-                embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
+                try:
+                    embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
+                except SolutionError as exc:
+                    exc.field = "--load-kn"  # type: ignore[attr-defined]
+                    raise
             validity = list(dict.fromkeys(str(w.message) for w in at_solution))
             for w in at_solution:
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
