@@ -134,6 +134,7 @@ SIMULATE_CASES = [
     ("required-key-missing", "vertical_load_kn = 10.52\n", "", "programme.vertical_load_kn"),
     ("unknown-kind", 'kind = "inclined_cyclic"', 'kind = "inclined"', "programme.kind"),
     ("kind-missing", 'kind = "inclined_cyclic"\n', "", "programme.kind"),
+    ("kind-list", 'kind = "inclined_cyclic"', "kind = []", "programme.kind"),  # found by fuzzing
     ("key-of-other-kind", "n_cycles = 2", "n_cycles = 2\nn_groups = 3", "programme.n_groups"),
     ("bad-shape", "n_cycles = 2", 'n_cycles = 2\nshape = "square"', "programme.shape"),
     ("bad-integrator", "displacement_limit = 3.0", 'integrator = "rk4"', "solver.integrator"),
