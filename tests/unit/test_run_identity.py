@@ -220,6 +220,12 @@ def test_cli_prepare_refuses_a_foreign_or_corrupt_checkpoint_and_restart_starts_
     assert json.loads(r.output)["run_fingerprint"] == fingerprint(
         run_identity(MINI.replace(seed=7), "preparation")
     )
+    # the specimen of that run is not overwritten by another run without --restart
+    cfg2 = tmp_path / "mini.json"
+    cfg2.write_text(MINI.to_json())
+    r = runner.invoke(cli, ["dem", "prepare", "--config", str(cfg2), "--out", str(out), "--json"])
+    err = json.loads(r.output)["error"]
+    assert r.exit_code == 1 and err["field"] == "--out" and "config.seed: 7" in err["message"]
     mode = stat.S_IMODE(out.stat().st_mode)
     umask = os.umask(0)
     os.umask(umask)
