@@ -31,10 +31,10 @@ from numba import njit
 
 from onbottom.soil._dispatch import lateral_step
 from onbottom.soil.base import (
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
-    OUT_DISSIPATED,
     OUT_REGION,
     OUT_SIZE,
     OUT_STORED,

@@ -56,10 +56,10 @@ import numpy as np
 
 __all__ = [
     "N_COMMON_STATE",
+    "OUT_DISSIPATED",
     "OUT_FRICTION",
     "OUT_PASSIVE",
     "OUT_R",
-    "OUT_DISSIPATED",
     "OUT_REGION",
     "OUT_SIZE",
     "OUT_STORED",

@@ -42,8 +42,8 @@ from onbottom.soil.base import S_REGION, S_Z, LateralResistanceModel
 __all__ = [
     "B_PLACEMENTS",
     "KS_CALIBRATION_RANGE",
-    "PASSIVE_RULES",
     "PASSIVE_LAWS",
+    "PASSIVE_RULES",
     "PENETRATION_LAWS",
     "WORK_INTEGRANDS",
     "WORK_LAWS",
