@@ -79,8 +79,7 @@ CHOICES: dict[str, dict[str, Any]] = {
     "work_integrand": {
         "values": ("total", "passive"),
         "default": "total",
-        "why": "V&S Eq 6 integrates the total resistance F_h; passive F_r only is the"
-        " alternative",
+        "why": "V&S Eq 6 integrates the total resistance F_h; passive F_r only is the alternative",
         "applies": "all",
     },
     "alpha_deg": {
@@ -254,11 +253,7 @@ def summarise(rows: Sequence[BandRow]) -> list[BandSummary]:
             inside = lo is not None and lo <= t.cycles_used
         oat = {}
         for k in _ORDER:
-            sub = [
-                r
-                for r in rs
-                if all(getattr(r, j) == default[j] for j in _ORDER if j != k)
-            ]
+            sub = [r for r in rs if all(getattr(r, j) == default[j] for j in _ORDER if j != k)]
             oat[k] = _range(r.cycles_model for r in sub)
         out.append(
             BandSummary(
