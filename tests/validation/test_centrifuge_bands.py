@@ -109,3 +109,43 @@ def test_table1_cycles_lie_inside_the_band(committed, name):
 def test_default_run_lies_inside_its_band(committed):
     for s in summarise(committed):
         assert s.cycles_min <= s.cycles_default <= s.cycles_max
+
+
+def test_cli_bands_serial_json_matches_committed(tmp_path, capsys, committed):
+    import json
+
+    from onbottom.cli.main import main
+
+    code = main(
+        [
+            "reproduce",
+            "--bands",
+            "--workers",
+            "0",
+            "--band-test",
+            "Regular",
+            "--out",
+            str(tmp_path),
+            "--json",
+        ]
+    )
+    assert code == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["n_runs"] == len(band_cases("Regular"))
+    (band,) = payload["bands"]
+    (ref,) = [s for s in summarise(committed) if s.test == "Regular"]
+    assert band["cycles_min"] == pytest.approx(ref.cycles_min, abs=TOL_CYCLES)
+    assert band["cycles_max"] == pytest.approx(ref.cycles_max, abs=TOL_CYCLES)
+    assert (tmp_path / "centrifuge_bands.csv").exists()
+    assert (tmp_path / "centrifuge_bands.md").exists()
+
+
+@pytest.mark.slow
+@pytest.mark.dask
+def test_bands_on_dask_equal_the_serial_ones():
+    from onbottom.study.engine import ParallelMap, dask_client
+
+    serial = compute_bands(["Irregular"], reduced=True)
+    with dask_client(n_workers=2) as client:
+        parallel = compute_bands(["Irregular"], reduced=True, mapper=ParallelMap(client))
+    assert parallel == serial
