@@ -84,7 +84,7 @@ CHOICES: dict[str, dict[str, Any]] = {
     },
     "alpha_deg": {
         "values": None,  # per test: ALPHA_CHOICES
-        "default": None,
+        "default": "30° (tests 1–4), 65° (test 5)",
         "why": "tests 1–3: 30° (stated); 4: the 20°–45° hydrodynamic envelope the paper"
         " discusses, default 30° (limit-equilibrium inference, the angle of tests 1–3);"
         " 5: 60°–70° around the inferred 65° (no 20°–45° path reaches 29 cycles)",
@@ -366,6 +366,10 @@ def write_markdown(summaries: Sequence[BandSummary], path: str | Path) -> Path:
     for k in _ORDER:
         c = CHOICES[k]
         vals = c["values"] if c["values"] is not None else ALPHA_CHOICES
+        if isinstance(vals, dict):
+            vals = "; ".join(f"{t}: {', '.join(f'{a:g}°' for a in v)}" for t, v in vals.items())
+        else:
+            vals = ", ".join(str(v) for v in vals)
         lines.append(f"- **{_LABELS[k]}** (`{k}`): {vals}; default {c['default']}: {c['why']}.")
     lines += [
         f"- γ' default {SUBMERGED_UNIT_WEIGHT / 1e3:.1f} kN/m³ is"
