@@ -221,7 +221,7 @@ def solve_step(model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a
     eps = 4.0e-16 * (abs(y0) + abs(dy_hat) + 1e-12)
     for it in range(max_iter):
         yd1 = yd_base + cv * (dy - dy_hat)
-        fy, dfdyd, fz, v, ry, rz = _eval(
+        fy, dfdyd, _fz, _v, _ry, _rz = _eval(
             model_id, params, state, settings, coef, j, u1, a1dot, y0, dy, yd1, z, trial, out
         )
         big_r = out[OUT_R]
@@ -302,7 +302,7 @@ def initial(model_id, params, state, settings, coef, kin_u, kin_a, dyn, rec):
     out = np.empty(OUT_SIZE)
     dts = settings[ST_DTS]
     u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
-    fy, dfdyd, fz, v, ry, rz = _eval(
+    fy, _dfdyd, fz, v, ry, rz = _eval(
         model_id,
         params,
         state,
@@ -394,7 +394,7 @@ def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop
         dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
         a1 = (dy - dy_hat) / (beta * dt * dt)
         yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
-        fy, dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, state[S_Z])
+        fy, _dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, state[S_Z])
         v = settings[ST_WS] - fz
         r1 = out[OUT_R]
         dyn[D_W_HYDRO] += 0.5 * (dyn[D_F_PREV] + fy) * dy

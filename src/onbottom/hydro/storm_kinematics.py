@@ -244,7 +244,7 @@ def storm_kinematics(
     tp_min = min(s.tp for s in storm.stages)
     dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
     total = storm.duration_s
-    n = int(math.ceil(total / dts)) + 1
+    n = math.ceil(total / dts) + 1
     nfft = n + (n % 2)  # even length ≥ n: T_rep = nfft·Δt_s ≥ duration
     dw = 2.0 * math.pi / (nfft * dts)
     wmax = omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages)
