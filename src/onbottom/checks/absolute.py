@@ -29,6 +29,8 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from onbottom._validate import in_range, non_negative, one_of
+from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
+from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
 from onbottom.hydro.design_sea_state import DEFAULT_DURATION, DesignOscillation, design_oscillation
 from onbottom.hydro.reductions import (
@@ -38,8 +40,6 @@ from onbottom.hydro.reductions import (
 )
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
-from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
-from onbottom.errors import InputError
 from onbottom.soil.verley_lund import clay_initial_penetration, clay_passive_resistance
 from onbottom.soil.verley_sotberg import initial_penetration, peak_passive_resistance
 
@@ -284,4 +284,3 @@ def absolute_lateral_stability(
         diameter=d,
         oscillation=osc,
     )
-

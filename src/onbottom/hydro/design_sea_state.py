@@ -221,7 +221,7 @@ class DesignOscillation:
     k: NDArray
     m: NDArray
     n: NDArray
-    l: NDArray  # noqa: E741  (F109's symbol)
+    l: NDArray
     k_star: NDArray
     m_star: NDArray
 

@@ -27,7 +27,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from onbottom._validate import in_range
 
-__all__ = ["spreading_function", "spreading_factor"]
+__all__ = ["spreading_factor", "spreading_function"]
 
 
 def spreading_function(theta: ArrayLike, s: float) -> NDArray:

@@ -141,7 +141,9 @@ class PipeBuildUp:
         object.__setattr__(self, "layers", tuple(self.layers))
         for i, layer in enumerate(self.layers):
             if not isinstance(layer, Layer):
-                raise InputError(f"PipeBuildUp.layers[{i}] = {layer!r} is invalid: expected a Layer")
+                raise InputError(
+                    f"PipeBuildUp.layers[{i}] = {layer!r} is invalid: expected a Layer"
+                )
         if self.marine_growth is not None and not isinstance(self.marine_growth, Layer):
             raise InputError(
                 f"PipeBuildUp.marine_growth = {self.marine_growth!r} is invalid: expected a Layer"
