@@ -25,9 +25,7 @@ __all__ = ["command"]
     metavar="SECTION",
     help="Run only this section (repeatable); --list shows the names.",
 )
-@click.option(
-    "--fast", is_flag=True, help="Leave out the slow sections (calibration recovery, …)."
-)
+@click.option("--fast", is_flag=True, help="Leave out the slow sections (calibration recovery, …).")
 @click.option("--list", "list_", is_flag=True, help="List the sections and exit.")
 @json_option
 @handle_errors

@@ -104,7 +104,9 @@ def build(ctx: SectionContext) -> SectionContent:
     x = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(7.0, 3.8))
     paper = [r.cycles_paper for r, _ in runs if r.parameter_set == "table2"]
-    for k, (ps, lab) in enumerate((("table2", "model, Table 2"), ("recommended", "model, Table 3"))):
+    for k, (ps, lab) in enumerate(
+        (("table2", "model, Table 2"), ("recommended", "model, Table 3"))
+    ):
         vals = [
             np.nan if r.cycles_model is None else r.cycles_model
             for r, _ in runs

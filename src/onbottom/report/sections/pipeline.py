@@ -1,30 +1,24 @@
 """Report section: Pipeline finite-element model.
 
-Shows the pipeline finite-element example (beam on the pipe–soil springs) against its analytic limit cases. Needs :mod:`onbottom.dynamics.pipeline`; until that module is part of the build the report lists
-this section as "not available in this build".
+Shows the pipeline finite-element example against its limit cases.
+Needs :mod:`onbottom.dynamics.pipeline`; without it: "not available in this build".
 """
 
 from __future__ import annotations
 
-from onbottom.report.content import Check, SectionContent, SectionContext
+from onbottom.report.content import SectionContent, SectionContext
 from onbottom.report.registry import section
+from onbottom.report.sections._pending import pending
 
 REQUIRES = ("onbottom.dynamics.pipeline",)
 
 
-@section("pipeline", "Pipeline finite-element model", order=70, requires=REQUIRES)
+@section(
+    "pipeline",
+    "Pipeline finite-element model",
+    order=70,
+    requires=REQUIRES,
+)
 def build(ctx: SectionContext) -> SectionContent:
-    """The module is present but this section has not been written for its interface yet."""
-    return SectionContent(
-        summary="onbottom.dynamics.pipeline is present in this build, but the report section for it has not been"
-        " written yet (onbottom/report/sections/pipeline.py).",
-        checks=[
-            Check(
-                name="section written",
-                value="no",
-                reference="yes",
-                tolerance="—",
-                status="info",
-            )
-        ],
-    )
+    """Stub until the section is written against the module's interface."""
+    return pending(REQUIRES[0], "pipeline")
