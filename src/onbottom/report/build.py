@@ -189,11 +189,6 @@ def _select(
 
 def _run(sec: Section, ctx: SectionContext) -> RenderedSection:
     rs = RenderedSection(name=sec.name, title=sec.title, order=sec.order, state="ok")
-    missing = missing_requirements(sec)
-    if missing:
-        rs.state = "unavailable"
-        rs.reason = f"module {', '.join(missing)} is not in this build"
-        return rs
     t0 = time.perf_counter()
     try:
         with warnings.catch_warnings():
@@ -323,6 +318,18 @@ def build_report(
                     order=sec.order,
                     state="unavailable",
                     reason=sec.reason,
+                )
+            )
+            continue
+        missing = missing_requirements(sec)
+        if missing:
+            rendered.append(
+                RenderedSection(
+                    name=sec.name,
+                    title=sec.title,
+                    order=sec.order,
+                    state="unavailable",
+                    reason=f"module {', '.join(missing)} is not in this build",
                 )
             )
             continue
