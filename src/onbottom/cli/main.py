@@ -22,6 +22,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "report",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
