@@ -49,6 +49,13 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "B": ("contact width of the pipe at the seabed", "m"),
     "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
+    "peak_time": ("time of the peak horizontal load of a wave cycle", "s"),
+    "H_peak": ("peak horizontal hydrodynamic load |F_Y| of a wave cycle", "N/m"),
+    "F_Z_peak": ("lift at the peak horizontal load of a wave cycle", "N/m"),
+    "V_peak": ("vertical contact load w_s - F_Z at the peak of a wave cycle", "N/m"),
+    "load_angle": ("load angle atan(H/V) from the V axis at the peak of a wave cycle", "degree"),
+    "fraction_20_45": ("fraction of wave cycles with load angle in [20, 45] degrees", "1"),
+    "w_s": ("submerged weight of the pipe per unit length", "N/m"),
 }
 
 

@@ -112,6 +112,13 @@ def evaluate_loads(
     help="Write the V–H figure to this file (png, pdf, svg).",
 )
 @click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the cycle peaks (NetCDF, dims combination × cycle) to this file.",
+)
+@click.option(
     "--seed",
     type=click.IntRange(min=0),
     default=None,
@@ -127,7 +134,12 @@ def evaluate_loads(
 @json_option
 @handle_errors
 def command(
-    case: Path, plot: Path | None, seed: int | None, duration_hours: float, as_json: bool
+    case: Path,
+    plot: Path | None,
+    output: Path | None,
+    seed: int | None,
+    duration_hours: float,
+    as_json: bool,
 ) -> None:
     """Peak hydrodynamic loads of every wave cycle of each load combination of CASE (TOML),
     in V–H space (H = |F_Y|, V = w_s − F_Z), and the fraction of cycles whose load angle from
@@ -156,6 +168,17 @@ def command(
         plot.parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(plot, dpi=110)
         payload["plot"] = str(plot)
+    if output is not None:
+        from onbottom.cli._common import check_output_path
+        from onbottom.hydro.load_envelope import envelopes_dataset
+        from onbottom.results import save_dataset
+
+        check_output_path(output, field="--output")
+        ds = envelopes_dataset(
+            envs, [c["combination"] for c in payload["combinations"]], case=str(case)
+        )
+        save_dataset(ds, output)
+        payload["output"] = str(output)
     if as_json:
         emit_json(payload)
         return
@@ -171,3 +194,5 @@ def command(
         )
     if plot is not None:
         click.echo(f"figure: {plot}")
+    if output is not None:
+        click.echo(f"cycle peaks: {output}")

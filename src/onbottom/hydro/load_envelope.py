@@ -22,6 +22,7 @@ module makes that plot's data for any sea state:
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 
@@ -86,7 +87,7 @@ def cycle_peak_loads(
     if up.size < 2:
         return np.empty(0), np.empty(0), np.empty(0)
     a = np.abs(np.asarray(f_y, dtype=float))
-    idx = np.array([s + int(np.argmax(a[s:e])) for s, e in zip(up[:-1], up[1:], strict=True)])
+    idx = np.array([s + int(np.argmax(a[s:e])) for s, e in itertools.pairwise(up)])
     return np.asarray(time)[idx], a[idx], np.asarray(f_z, dtype=float)[idx]
 
 
@@ -116,7 +117,7 @@ def _bed_velocity_record(
     period = 2.0 * math.pi / dw
     n_fft = max(2 * n_components, math.ceil(period / (tp / samples_per_peak_period)))
     dt = period / n_fft
-    n_t = min(n_fft, int(math.floor(duration / dt)) + 1)
+    n_t = min(n_fft, math.floor(duration / dt) + 1)
     c = np.zeros(n_fft, dtype=complex)
     c[:n_components] = amp * np.exp(1j * phase)
     cw = np.zeros(n_fft, dtype=complex)
@@ -228,3 +229,44 @@ def load_envelope(
     v = ws - fz
     ang = np.degrees(np.arctan2(h, v))
     return LoadEnvelope(tc, h, fz, v, ang, ws, dur, seed, float(hs), tp)
+
+
+def envelopes_dataset(envelopes: list[LoadEnvelope], names: list[str], **attrs: object):
+    """xarray Dataset of cycle peaks: dims (combination, cycle), NaN-padded; units from
+    :data:`onbottom.results.VARIABLES`, provenance attributes (seed, duration, ``attrs``)."""
+    import xarray as xr
+
+    from onbottom.results import annotate, provenance
+
+    if len(envelopes) != len(names) or not envelopes:
+        raise InputError("envelopes and names must be non-empty and of equal length")
+    n = max(e.n_cycles for e in envelopes)
+
+    def pad(get) -> NDArray:
+        out = np.full((len(envelopes), n), np.nan)
+        for i, e in enumerate(envelopes):
+            out[i, : e.n_cycles] = get(e)
+        return out
+
+    dims = ("combination", "cycle")
+    ds = xr.Dataset(
+        {
+            "peak_time": (dims, pad(lambda e: e.time)),
+            "H_peak": (dims, pad(lambda e: e.horizontal)),
+            "F_Z_peak": (dims, pad(lambda e: e.lift)),
+            "V_peak": (dims, pad(lambda e: e.vertical)),
+            "load_angle": (dims, pad(lambda e: e.angle_deg)),
+            "fraction_20_45": (("combination",), [e.fraction_between() for e in envelopes]),
+            "w_s": (("combination",), [e.submerged_weight for e in envelopes]),
+        },
+        coords={"combination": list(names), "cycle": np.arange(n)},
+    )
+    ds.attrs.update(
+        provenance(
+            "F109 V-H load envelope (Morison + lift, peak |F_Y| per wave cycle)",
+            seed=envelopes[0].seed if envelopes[0].seed is not None else "none",
+            duration=envelopes[0].duration,
+            **attrs,
+        )
+    )
+    return annotate(ds)
