@@ -1,4 +1,4 @@
-"""Validation: the public DNV-RP-F109 design-sheet case (issue 11; docs/validation/f109_design_sheet.md).
+"""Validation: the public DNV-RP-F109 design-sheet case (docs/validation/f109_design_sheet.md).
 
 219.1 × 12.7 mm steel (7850 kg/m³), 5.5 mm corrosion coat (1335 kg/m³), 82.55 mm concrete
 (3043.5 kg/m³), contents and sea water 1025 kg/m³; depth 13 m; H_s 4.68 m, T_p 10.8 s.
