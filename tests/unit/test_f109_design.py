@@ -96,5 +96,5 @@ def test_floating_condition_fails_without_crashing():
         condition="installation",
     )
     rows = run_checks(light, SAND, ENV, [combo])
-    lat = [r for r in rows if r.name == "absolute_lateral"][0]
+    lat = next(r for r in rows if r.name == "absolute_lateral")
     assert lat.passes is False and lat.details["message"] == "the pipe floats"
