@@ -49,6 +49,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "B": ("contact width of the pipe at the seabed", "m"),
     "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
+    "soil_energy_stored": ("elastic energy stored in the soil springs", "J/m"),
+    "soil_energy_dissipated": ("energy dissipated by the soil since the start", "J/m"),
     "peak_time": ("time of the peak horizontal load of a wave cycle", "s"),
     "H_peak": ("peak horizontal hydrodynamic load |F_Y| of a wave cycle", "N/m"),
     "F_Z_peak": ("lift at the peak horizontal load of a wave cycle", "N/m"),
