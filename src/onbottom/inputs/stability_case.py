@@ -176,6 +176,12 @@ class WavesTable(StrictModel):
     direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
     spreading_s: float = Field(0.0, ge=0.0, le=100.0, description="cos^s exponent [-]")
 
+    @model_validator(mode="after")
+    def _gamma_only_for_jonswap(self) -> WavesTable:
+        if self.gamma is not None and self.spectrum != "jonswap":
+            raise ValueError("gamma applies to the JONSWAP spectrum only; remove it")
+        return self
+
 
 class CurrentTable(StrictModel):
     velocity: float = Field(0.0, ge=0.0, le=10.0, description="V(z_r) [m/s]")
@@ -246,6 +252,8 @@ class StabilityCase(StrictModel):
 
     @model_validator(mode="after")
     def _checks(self) -> StabilityCase:
+        if self.waves.spectrum != "jonswap" and any(c.gamma is not None for c in self.combinations):
+            raise ValueError("combinations[].gamma applies to the JONSWAP spectrum only")
         names = [c.name for c in self.combinations]
         dup = {n for n in names if names.count(n) > 1}
         if dup:
@@ -281,7 +289,7 @@ class StabilityCase(StrictModel):
         return SeaState(
             hs=hs,
             tp=tp,
-            gamma=None if w.spectrum != "jonswap" else gamma,
+            gamma=gamma,
             spectrum=w.spectrum,
             direction_deg=w.direction_deg,
             spreading_s=w.spreading_s,
