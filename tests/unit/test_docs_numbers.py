@@ -171,3 +171,51 @@ def test_f114_comparison_table_of_the_dem_page(f114_ratios):
             (i,) = np.flatnonzero(np.isclose(w, float(where)))
             value = ratio[i]
         assert _close(float(value), printed), (sp, where, value, printed)
+
+
+THEORY = DOCS / "theory" / "verley_sotberg.md"
+
+
+def test_b_placement_effect_stated_on_the_theory_page():
+    text = " ".join(THEORY.read_text(encoding="utf-8").split())
+    m = re.search(
+        r"z_max ([\d.]+) → ([\d.]+) m, cycles to the limit ([\d.]+) → ([\d.]+) \(with the former"
+        r" elastic passive rule ([\d.]+) → ([\d.]+) m, ([\d.]+) → ([\d.]+)\)",
+        text,
+    )
+    assert m is not None
+    printed = m.groups()
+    values = []
+    for rule in ("elastoplastic", "legacy_elastic"):
+        runs = [
+            run_centrifuge_test(
+                "Inclined 1", soil_options={"passive_rule": rule, "b_placement": bp}
+            )
+            for bp in ("outside", "inside")
+        ]
+        z = [r.summary["max_penetration"] for r in runs]
+        c = [r.cycles_to_limit for r in runs]
+        values += [z[0], z[1], c[0], c[1]] if rule == "elastoplastic" else [*z, *c]
+    for value, p in zip(values, printed, strict=True):
+        assert _close(value, p), (value, p)
+
+
+def test_closed_cycle_energies_stated_on_the_theory_page():
+    text = " ".join(THEORY.read_text(encoding="utf-8").split())
+    old = re.search(r"did −([\d.]+), −([\d.]+) and −([\d.]+) J/m of net work", text)
+    new = re.search(r"dissipates ([\d.]+), ([\d.]+) and ([\d.]+) J/m on the same cycles", text)
+    assert old is not None and new is not None
+    from onbottom.dynamics.centrifuge import build_soil
+
+    test = get_test("Inclined 1")
+    for rule, m, sign in (("legacy_elastic", old, -1.0), ("elastoplastic", new, 1.0)):
+        soil = build_soil(test, parameters="table2", passive_rule=rule)
+        for amp, printed in zip((0.05, 0.1, 0.2), m.groups(), strict=True):
+            u = amp * np.sin(np.linspace(0.0, 2.0 * np.pi, 4001)[1:])
+            v = np.full(u.size, test.vertical_load)
+            h = np.zeros((u.size, OUT_SIZE))
+            drive_path(soil.model_id, soil.packed_parameters(), soil.initial_state(), u, v, h)
+            uu = np.concatenate([[0.0], u])
+            pp = np.concatenate([[0.0], h[:, OUT_PASSIVE]])
+            work = float(np.sum(0.5 * (pp[1:] + pp[:-1]) * np.diff(uu)))
+            assert _close(sign * work, printed), (rule, amp, work, printed)
