@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 
 
 @click.command("reproduce")
@@ -22,7 +22,7 @@ from onbottom.cli._common import emit_json, handle_errors, json_option
 )
 @click.option(
     "--gamma-kn",
-    type=float,
+    type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
     default=None,
     help="Submerged unit weight of the sand [kN/m³] (default 7.5, see the docs).",
 )

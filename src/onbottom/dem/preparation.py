@@ -44,8 +44,22 @@ from onbottom.dem.config import ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
+from onbottom.errors import InputError
 
-__all__ = ["STRESS_FREE_FRACTION", "draw_diameters", "layer_targets", "prepare_sample", "settle"]
+__all__ = [
+    "MAX_PARTICLES",
+    "STRESS_FREE_FRACTION",
+    "draw_diameters",
+    "layer_targets",
+    "prepare_sample",
+    "settle",
+]
+
+MAX_PARTICLES = 2_000_000
+"""Largest specimen :func:`prepare_sample` accepts (estimated up front; the full SM and SD
+presets hold about 60,000 disks)."""
+BYTES_PER_PARTICLE = 2048
+"""Order of the memory one disk takes in the engine (state, neighbour list, contact history)."""
 
 STRESS_FREE_FRACTION = 1e-3
 """A compacted layer whose mean applied force per disk is below this fraction of the mean
@@ -231,6 +245,13 @@ def prepare_sample(
         raise CheckpointError(
             f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
             field="checkpoint_every",
+        )
+    n_est = config.estimated_particle_count()
+    if n_est > MAX_PARTICLES:
+        raise InputError(
+            f"geometry is invalid: the specimen would hold about {n_est:.3g} disks (about"
+            f" {n_est * BYTES_PER_PARTICLE / 1024**3:.3g} GiB of memory), more than the"
+            f" {MAX_PARTICLES:.0e} allowed; reduce the box or enlarge the disks"
         )
     identity = run_identity(config, "preparation")
     ck = Path(checkpoint) if checkpoint is not None else None
