@@ -23,6 +23,8 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "storm",
+    "curves",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
