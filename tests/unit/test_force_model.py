@@ -52,7 +52,7 @@ def _twin(u, dudt, vc, ydot, z, d, rho, cd, cm, cl, ryc, rzc):
     w = u + vc - ydot
     fy = ry * (0.5 * rho * d * cd * w * abs(w) + rho * math.pi * d * d / 4 * cm * dudt)
     fz = rz * 0.5 * rho * d * cl * (u + vc) ** 2
-    return fy, -ry * rho * d * cd * abs(w), fz
+    return fy, -ry * rho * d * cd * abs(w), fz, ry, rz
 
 
 @pytest.mark.parametrize("z", [0.0, 0.02, 0.08, 0.3])
@@ -65,10 +65,11 @@ def test_kernel_force_law_matches_twin(z, u, dudt, ydot):
     st[K.ST_RY_CONST], st[K.ST_RZ_CONST], st[K.ST_USE_PEN] = 0.9, 0.7, 1.0
     coef = np.array([[0.7], [3.29], [0.9]])
     fy, dfdyd, fz, ry, rz = K.hydro_forces(st, coef, 0, u, dudt, ydot, z)
-    ty, tdy, tz = _twin(u, dudt, 0.3, ydot, z, 0.4, 1025.0, 0.7, 3.29, 0.9, 0.9, 0.7)
+    ty, tdy, tz, try_, trz = _twin(u, dudt, 0.3, ydot, z, 0.4, 1025.0, 0.7, 3.29, 0.9, 0.9, 0.7)
     assert fy == pytest.approx(ty, rel=1e-13, abs=1e-12)
     assert dfdyd == pytest.approx(tdy, rel=1e-13, abs=1e-12)
     assert fz == pytest.approx(tz, rel=1e-13, abs=1e-12)
+    assert (ry, rz) == pytest.approx((try_, trz), rel=1e-15)
     # the tangent is the derivative of F_Y in ẏ
     h = 1e-6
     fp = K.hydro_forces(st, coef, 0, u, dudt, ydot + h, z)[0]
