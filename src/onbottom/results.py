@@ -49,6 +49,16 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "B": ("contact width of the pipe at the seabed", "m"),
     "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
+    # storm section (issue 12)
+    "y": ("lateral displacement of the pipe section", "m"),
+    "y_dot": ("lateral velocity of the pipe section", "m/s"),
+    "F_hydro": ("horizontal hydrodynamic load on the pipe F_Y", "N/m"),
+    "F_Z": ("hydrodynamic lift on the pipe", "N/m"),
+    "U": ("wave-induced near-bed velocity normal to the pipe", "m/s"),
+    "work_hydro": ("work of the hydrodynamic load on the pipe", "J/m"),
+    "work_soil": ("work done by the pipe on the soil", "J/m"),
+    "r_y": ("total horizontal load reduction r_tot,y", "1"),
+    "r_z": ("total vertical load reduction r_tot,z", "1"),
 }
 
 
