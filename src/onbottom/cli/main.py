@@ -23,6 +23,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "report",
     "storm",
     "curves",
 )
