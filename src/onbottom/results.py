@@ -51,6 +51,13 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
     "soil_energy_stored": ("elastic energy stored in the soil springs", "J/m"),
     "soil_energy_dissipated": ("energy dissipated by the soil since the start", "J/m"),
+    "peak_time": ("time of the peak horizontal load of a wave cycle", "s"),
+    "H_peak": ("peak horizontal hydrodynamic load |F_Y| of a wave cycle", "N/m"),
+    "F_Z_peak": ("lift at the peak horizontal load of a wave cycle", "N/m"),
+    "V_peak": ("vertical contact load w_s - F_Z at the peak of a wave cycle", "N/m"),
+    "load_angle": ("load angle atan(H/V) from the V axis at the peak of a wave cycle", "degree"),
+    "fraction_20_45": ("fraction of wave cycles with load angle in [20, 45] degrees", "1"),
+    "w_s": ("submerged weight of the pipe per unit length", "N/m"),
     # storm section (issue 12)
     "y": ("lateral displacement of the pipe section", "m"),
     "y_dot": ("lateral velocity of the pipe section", "m/s"),

@@ -24,6 +24,8 @@ COMMAND_MODULES: tuple[str, ...] = (
     "dem",
     "dem_lammps",
     "report",
+    "stability",
+    "loads",
     "storm",
     "curves",
 )
