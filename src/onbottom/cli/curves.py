@@ -76,6 +76,9 @@ class CurvesCase(StrictModel):
     storm: dict[str, Any] | None = None
     solver: dict[str, Any] | None = None
     run: dict[str, Any] | None = None
+    pipeline: dict[str, Any] | None = None
+    combinations: list[Any] | None = None
+    design: dict[str, Any] | None = None
 
 
 @click.command("curves")
