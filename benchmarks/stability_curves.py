@@ -50,6 +50,7 @@ def main() -> None:
         settings=CurveSettings(seeds=1, peak_hours=0.02, build_up_hours=0.0),
     )
     times = {}
+    cpus = {}
     for w in args.workers:
         load0 = os.getloadavg()[0]
         t0 = time.perf_counter()
@@ -58,11 +59,14 @@ def main() -> None:
         storms = int(ds.attrs["total_storms"])
         compute = float(ds.attrs["wall_time_s"])
         times[w] = wall
+        cpu = float(ds.attrs["cpu_time_s"])
+        cpus[w] = cpu / storms
         print(
             f"{w} worker(s): {storms} storms in {wall:.1f} s ({compute:.1f} s in the map),"
             f" {storms / wall * 3600:,.0f} storms/h, {wall / storms:.3f} s/storm;"
             f" load {load0:.2f} -> {os.getloadavg()[0]:.2f}"
         )
+        print(f"  CPU time of the workers: {cpu:.1f} s = {cpu / storms:.3f} s/storm")
         if w == max(args.workers):
             t_1e4 = 1e4 * wall / storms
             print(f"  extrapolated: 10^4 storms in {t_1e4 / 60:.1f} min on {w} worker(s)")
@@ -76,6 +80,11 @@ def main() -> None:
     if 1 in times and 2 in times:
         eff = times[1] / (2.0 * times[2])
         print(f"parallel efficiency of 2 workers over 1: {eff:.0%} (goal >= 85 %)")
+        ceff = cpus[1] / cpus[2]
+        print(
+            f"CPU-time efficiency (CPU s/storm on 1 worker / on 2 workers): {ceff:.0%}"
+            " (the overhead of distribution alone, independent of other processes' load)"
+        )
     la = os.getloadavg()
     cores = os.cpu_count()
     print(f"load average (1, 5, 15 min): {la[0]:.2f} {la[1]:.2f} {la[2]:.2f} on {cores} cores")

@@ -246,6 +246,7 @@ def find_weight_parameter(
         raise InputError(f"criterion = {criterion!r} is invalid: must be one of {tuple(CRITERIA)}")
     target = CRITERIA[criterion]
     t0 = time.perf_counter()
+    c0 = time.process_time()
     kins = point_kinematics(k, m, n, s)
     us = math.sqrt(k * n * GRAVITY * s.diameter)
     evals = 0
@@ -311,6 +312,7 @@ def find_weight_parameter(
         "evaluations": evals,
         "storms": storms,
         "runtime_s": time.perf_counter() - t0,
+        "cpu_s": time.process_time() - c0,
         "success": bool(ok),
         "error": False,
         "message": message,
@@ -338,6 +340,7 @@ class _PointJob:
                 "evaluations": 0,
                 "storms": 0,
                 "runtime_s": 0.0,
+                "cpu_s": 0.0,
                 "success": False,
                 "error": True,
                 "message": f"{type(exc).__name__}: {exc}",
@@ -444,6 +447,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     ]
     total_storms = int(sum(r["storms"] for r in rows))
     busy = float(sum(r["runtime_s"] for r in rows))
+    cpu = float(sum(r["cpu_s"] for r in rows))
     ds = xr.Dataset(
         data,
         coords={"soil": soils, "N": ns, "M": ms, "K": ks},
@@ -456,6 +460,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
             total_storms=total_storms,
             wall_time_s=wall,
             busy_time_s=busy,
+            cpu_time_s=cpu,
             workers=workers,
             storms_per_hour=total_storms / wall * 3600.0 if wall > 0 else math.nan,
             failures=failures,
