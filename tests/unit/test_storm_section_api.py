@@ -216,3 +216,51 @@ def test_example_storm_case_parses():
     setup = load_storm_case(EXAMPLES / "storm_case.toml")
     assert setup.storm.duration_s == 12600.0 and setup.storm.build_up_s == 1800.0
     assert setup.soil.name == "verley_sotberg" and setup.settings.dt_max == 0.1
+
+
+_STAGES = """
+[pipe]
+outer_diameter = 0.4
+submerged_weight = 1200.0
+[seabed]
+model = "clay"
+undrained_shear_strength = 5.0e3
+submerged_unit_weight = 8.0e3
+unit_weight = 18.0e3
+[environment]
+water_depth = 20.0
+[current]
+velocity = 0.3
+[storm]
+build_up_hours = 0.01
+decay_hours = 0.01
+[[storm.stages]]
+hs = 3.0
+tp = 9.0
+duration_hours = 0.03
+[[storm.stages]]
+hs = 5.0
+tp = 11.0
+duration_hours = 0.05
+spreading_s = 4.0
+"""
+
+
+def test_staged_clay_case_and_text_output(tmp_path, capsys):
+    from onbottom.dynamics.storm_case import load_storm_case
+
+    case = tmp_path / "s.toml"
+    case.write_text(_STAGES, encoding="utf-8")
+    setup = load_storm_case(case)
+    assert [s.hs for s in setup.storm.stages] == [3.0, 5.0]
+    assert setup.storm.duration_s == pytest.approx(36.0 + 108.0 + 180.0 + 36.0)
+    assert setup.soil.name == "verley_lund"
+    assert setup.reductions.constant_factors() == (1.0, 1.0)  # clay: r_perm,z = 1
+    assert setup.z0 == 5e-6  # F109 Table 3-1, silt and clay
+    assert main(["storm", str(case), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "reached the end of the storm" in out and "F109  10D criterion  PASS" in out
+    bad = tmp_path / "b.toml"
+    bad.write_text(_STAGES.replace("decay_hours = 0.01", "peak_hours = 1.0"), encoding="utf-8")
+    assert main(["storm", str(bad), "--json"]) == 1
+    assert "not both" in json.loads(capsys.readouterr().out)["error"]["message"]
