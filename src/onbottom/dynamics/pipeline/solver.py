@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from onbottom._validate import in_range, positive
+from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
@@ -345,18 +345,33 @@ def _save_checkpoint(path: Path, run_id: str, rows: int, state: Mapping[str, np.
             os.unlink(tmp)
 
 
-def _load_checkpoint(path: Path, run_id: str) -> tuple[int, dict[str, np.ndarray]] | None:
-    if not path.exists():
+def _load_checkpoint(
+    path: Path, run_id: str, resume: str
+) -> tuple[int, dict[str, np.ndarray]] | None:
+    if resume == "never" or not path.exists():
+        if resume == "require":
+            raise InputError(f"checkpoint = {str(path)!r} is invalid: no such file to resume")
         return None
-    with np.load(path) as z:
-        found = str(z["run_id"])
-        if found != run_id:
-            raise InputError(
-                f"checkpoint = {str(path)!r} is invalid for this run: its run identity"
-                f" {found[:12]}… differs from {run_id[:12]}… (other inputs); delete it or"
-                " choose another output"
-            )
-        return int(z["rows"]), {k: z[k].copy() for k in z.files if k not in ("run_id", "rows")}
+    try:
+        with np.load(path) as z:
+            found = str(z["run_id"])
+            state = {k: z[k].copy() for k in z.files if k not in ("run_id", "rows")}
+            rows = int(z["rows"])
+    except (OSError, ValueError, KeyError) as exc:
+        if resume == "require":
+            raise InputError(f"checkpoint = {str(path)!r} is invalid: unreadable ({exc})") from None
+        logger.warning("ignoring unreadable checkpoint %s (%s): starting anew", path, exc)
+        return None
+    if found != run_id:
+        msg = (
+            f"checkpoint = {str(path)!r} belongs to another run: its run identity"
+            f" {found[:12]}… differs from {run_id[:12]}… (other inputs)"
+        )
+        if resume == "require":
+            raise InputError(msg)
+        logger.warning("%s; starting anew and overwriting the output", msg)
+        return None
+    return rows, state
 
 
 def simulate_pipeline(
@@ -370,6 +385,7 @@ def simulate_pipeline(
     progress: bool = False,
     attrs: Mapping[str, Any] | None = None,
     identity_extra: Any = None,
+    resume: str = "auto",
 ) -> PipelineResult:
     """Simulate the pipeline through the storm whose node kinematics are given.
 
@@ -393,6 +409,10 @@ def simulate_pipeline(
         Extra provenance attributes.
     identity_extra : any
         Extra JSON-able data folded into the run identity (e.g. the case file's text).
+    resume : {"auto", "never", "require"}
+        "auto": resume a checkpoint with this run's identity, start anew (overwriting the
+        output) when there is none or it belongs to other inputs; "never": always start
+        anew; "require": resume or raise :class:`~onbottom.errors.InputError`.
 
     Returns
     -------
@@ -410,6 +430,7 @@ def simulate_pipeline(
             f"kinematics = {type(kinematics).__name__} is invalid: expected NodeKinematics"
         )
     s = settings if settings is not None else PipelineSettings()
+    one_of("resume", resume, ("auto", "never", "require"))
     x = model.x
     n = x.size
     if kinematics.velocity.shape[1] != n:
@@ -454,7 +475,7 @@ def simulate_pipeline(
     state = None
     rows = 0
     if ckpt is not None:
-        loaded = _load_checkpoint(ckpt, run_id)
+        loaded = _load_checkpoint(ckpt, run_id, resume)
         if loaded is not None:
             rows, state = loaded
     if state is None:
