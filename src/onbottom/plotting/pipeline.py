@@ -96,8 +96,8 @@ def animate_pipeline(
     path: str | os.PathLike,
     *,
     fps: int = 10,
-    max_frames: int = 200,
-    dpi: int = 80,
+    max_frames: int = 60,
+    dpi: int = 60,
 ) -> Path:
     """GIF of the deflected line through the storm (PillowWriter), with the |y| envelope."""
     import matplotlib

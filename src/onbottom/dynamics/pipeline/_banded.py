@@ -13,6 +13,7 @@ Reference: Golub & Van Loan, *Matrix Computations*, 4th ed., §4.3 (band LDLᵀ)
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from onbottom.soil._twin import pure_python
@@ -22,27 +23,32 @@ from onbottom.soil._twin import pure_python
 def ldl_factor(ab):
     """Factor the symmetric band matrix held in ``ab`` (n × (w+1)) in place.
 
-    Returns the number of negative pivots, or −1 if a pivot is zero or not finite.
+    Row by row: with t_k = L_ik·D_k (kept in a work vector), L_ij·D_j = A_ij − Σ_k t_k L_jk and
+    D_i = A_ii − Σ_k t_k L_ik. Returns the number of negative pivots, or −1 if a pivot is
+    zero or not finite.
     """
     n = ab.shape[0]
     w = ab.shape[1] - 1
+    t = np.empty(w + 1)
     n_neg = 0
     for i in range(n):
         j0 = i - w
         if j0 < 0:
             j0 = 0
-        for j in range(j0, i + 1):
+        for j in range(j0, i):
             s = ab[i, i - j]
             for k in range(j0, j):
-                s -= ab[i, i - k] * ab[k, 0] * ab[j, j - k]
-            if j < i:
-                ab[i, i - j] = s / ab[j, 0]
-            else:
-                if s == 0.0 or not (abs(s) < 1e300):
-                    return -1
-                if s < 0.0:
-                    n_neg += 1
-                ab[i, 0] = s
+                s -= t[k - j0] * ab[j, j - k]
+            t[j - j0] = s
+            ab[i, i - j] = s / ab[j, 0]
+        s = ab[i, 0]
+        for k in range(j0, i):
+            s -= t[k - j0] * ab[i, i - k]
+        if s == 0.0 or not (abs(s) < 1e300):
+            return -1
+        if s < 0.0:
+            n_neg += 1
+        ab[i, 0] = s
     return n_neg
 
 

@@ -195,11 +195,12 @@ def node_loads(settings, nodes, sstate, uk, vcont, ry):
 def evaluate(
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
     d1, v1, uk, ak, vcont, ry, c_v, want_k,
-    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out,
+    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
 ):  # fmt: skip
     """Net force P(d₁, v₁) = f_hyd − f_int − f_spring − f_soil and (``want_k``) its negative
     Jacobian K_T = ∂(−P)/∂d + c_v·∂(−f_hyd)/∂ḋ into the band ``ab`` (not yet with mass).
 
+    The nodal bending moment and axial force at d₁ are written to ``mom``, ``nax``.
     Returns False if a soil kernel gave NaN.
     """
     ndof = d1.shape[0]
@@ -212,7 +213,7 @@ def evaluate(
             for k in range(ab.shape[1]):
                 ab[j, k] = 0.0
     # internal forces (assembled as +f_int into p, then negated)
-    assemble_internal(d1, props, p, ab, want_k, fe, ke)
+    assemble_internal(d1, props, p, ab, want_k, fe, ke, mom, nax)
     for j in range(ndof):
         p[j] = -p[j] - spring[j] * d1[j]
         if want_k:
@@ -280,6 +281,7 @@ def initial_acceleration(
         settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
         vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, node_r, node_f, node_fa, fe, ke, out,
+        np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
     for i in range(n_nodes):
         for c in range(3):
@@ -319,7 +321,6 @@ def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, 
 
 @njit(cache=True)
 def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
-    node_section_forces(vec[V_D], props, mom, nax)
     c = settings[ST_FIBRE]
     ea = settings[ST_EA]
     ei = settings[ST_EI]
@@ -457,10 +458,12 @@ def integrate(
             for j in range(ndof):
                 a1[j] = c_a * (d1[j] - d0[j] - dt * v0[j]) - (0.5 / beta - 1.0) * a0[j]
                 v1[j] = v0[j] + dt * ((1.0 - gam) * a0[j] + gam * a1[j])
+            # the tangent is assembled on the first iteration, later only when needed
+            want_k = it == 0
             ok = evaluate(
                 settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-                d1, v1, uk, ak, vcont, ry, c_v, True,
-                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out,
+                d1, v1, uk, ak, vcont, ry, c_v, want_k,
+                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
@@ -478,6 +481,12 @@ def integrate(
             if rmax <= 1e-3 * tol:
                 conv = True
                 break
+            if not want_k:
+                evaluate(
+                    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
+                    d1, v1, uk, ak, vcont, ry, c_v, True,
+                    p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
+                )  # fmt: skip
             # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
             for j in range(ndof):
                 for k in range(HALF_BAND + 1):
@@ -574,6 +583,8 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
     res = np.empty(ndof)
     fe = np.empty(6)
     ke = np.empty((6, 6))
+    mom = np.empty(ndof // NDOF_NODE)
+    nax = np.empty(ndof // NDOF_NODE)
     its = 0
     for ls in range(1, n_load_steps + 1):
         lam = ls / n_load_steps
@@ -584,7 +595,7 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
                 for k in range(HALF_BAND + 1):
                     ab[j, k] = 0.0
                 ab[j, 0] = spring[j]
-            assemble_internal(d, props, f, ab, True, fe, ke)
+            assemble_internal(d, props, f, ab, True, fe, ke, mom, nax)
             rmax = 0.0
             for j in range(ndof):
                 if fixed[j] != 0.0:
@@ -621,7 +632,9 @@ def tangent_band(props, fixed, spring, d):
     f = np.zeros(ndof)
     fe = np.empty(6)
     ke = np.empty((6, 6))
-    assemble_internal(d, props, f, ab, True, fe, ke)
+    assemble_internal(
+        d, props, f, ab, True, fe, ke, np.empty(ndof // NDOF_NODE), np.empty(ndof // NDOF_NODE)
+    )
     for j in range(ndof):
         ab[j, 0] += spring[j]
     return ab
