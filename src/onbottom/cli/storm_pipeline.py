@@ -70,9 +70,9 @@ class PipelineTable(StrictModel):
     axial_mobilisation: float = Field(5.0e-3, gt=0.0, le=1.0, description="δ_ax [m]")
     strain_limit: float | None = Field(None, gt=0.0, le=1.0, description="user limit [-]")
     strain_fibre_distance: float | None = Field(None, gt=0.0, description="c [m]")
-    hht_alpha: float = Field(-0.05, ge=-1.0 / 3.0, le=0.0, description="HHT-α [-]")
+    hht_alpha: float = Field(-0.1, ge=-1.0 / 3.0, le=0.0, description="HHT-α [-]")
     force_tolerance: float = Field(1.0e-6, gt=0.0, le=1.0e-2, description="relative [-]")
-    max_iterations: int = Field(12, ge=3, le=200, description="Newton iterations [-]")
+    max_iterations: int = Field(8, ge=3, le=200, description="Newton iterations [-]")
     record_interval: float | None = Field(
         1.0, gt=0.0, description="time between records [s]; absent/None → envelopes only"
     )

@@ -73,7 +73,8 @@ ST_DT_KIN = 20  # kinematics sample interval [s]
 ST_PEN_RED = 21  # 1: penetration reductions r_pen,y/z
 ST_EA = 22  # reference EA for strain [N]
 ST_EI = 23  # reference EI for strain [N·m²]
-N_SETTINGS = 24
+ST_PREDICTOR = 24  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
+N_SETTINGS = 25
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -378,6 +379,7 @@ def integrate(
     growth = settings[ST_GROWTH]
     t0k = settings[ST_T_KIN0]
     dtk = settings[ST_DT_KIN]
+    pred = settings[ST_PREDICTOR]
     mass = np.empty(ndof)
     for i in range(n_nodes):
         mass[NDOF_NODE * i] = nodes[i, ND_MASS_U]
@@ -449,7 +451,7 @@ def integrate(
             if fixed[j] != 0.0:
                 d1[j] = d0[j]
             else:
-                d1[j] = d0[j] + dt * v0[j]
+                d1[j] = d0[j] + dt * v0[j] + pred * dt * dt * a0[j]
         conv = False
         iters = 0
         neg = 0
