@@ -93,14 +93,16 @@ def main() -> None:
     print(f"load average: {os.getloadavg()}")
     print(
         f"{'elem':>5} {'nodes':>5} {'sim[s]':>7} {'kin[s]':>6} {'kinMB':>6} {'run[s]':>7}"
-        f" {'wall[s]':>7} {'steps':>6} {'rej':>4} {'it':>4} {'us/nd-st':>8} {'x real':>7} {'3.5h[s]':>8}"
+        f" {'wall[s]':>7} {'steps':>6} {'rej':>4} {'it':>4} {'us/nd-st':>8} {'x real':>7}"
+        f" {'3.5h[s]':>8}"
         f" {'ymax/D':>7}"
     )
     for n in a.elements:
         r = run(n, a.build_up_hours, a.peak_hours, a.dt)
         print(
             f"{r['elements']:5d} {r['nodes']:5d} {r['sim_s']:7.0f} {r['kin_s']:6.2f}"
-            f" {r['kin_MB']:6.1f} {r['run_s']:7.2f} {r['wall_s']:7.2f} {r['steps']:6.0f} {r['rejected']:4.0f}"
+            f" {r['kin_MB']:6.1f} {r['run_s']:7.2f} {r['wall_s']:7.2f} {r['steps']:6.0f}"
+            f" {r['rejected']:4.0f}"
             f" {r['iters']:4.2f} {r['us_node_step']:8.3f} {r['speed']:7.1f}"
             f" {r['full_storm_s']:8.1f} {r['max_y_over_D']:7.3f}  {r['status']}"
         )

@@ -3,7 +3,8 @@
 The pipeline Jacobian is symmetric with half-bandwidth ``w`` (5 for 3 DOFs per node and
 2-node elements); its lower band is stored as ``ab[i, k] = A[i, i − k]`` for k = 0..w
 (entries with i − k < 0 unused). :func:`ldl_factor` overwrites ``ab`` with the unit lower
-factor L (off-diagonals) and 1/D (``ab[i, 0]``, so that no division is left in the solve) — O(n·w²) work, no pivoting (the effective
+factor L (off-diagonals) and 1/D (``ab[i, 0]``: no division left in the solve) — O(n·w²)
+work, no pivoting (the effective
 dynamic matrix M/(βΔt²) + K_T is dominated by its diagonal for the steps the solver accepts;
 a zero pivot is reported, a negative one is allowed and counted). :func:`ldl_solve` solves
 A x = b in place in O(n·w).
@@ -23,7 +24,8 @@ from onbottom.soil._twin import pure_python
 def ldl_factor(ab):
     """Factor the symmetric band matrix held in ``ab`` (n × (w+1)) in place.
 
-    Row by row (``ab[j, 0]`` already holds 1/D_j for j < i): with t_k = L_ik·D_k (kept in a work vector), L_ij·D_j = A_ij − Σ_k t_k L_jk and
+    Row by row (``ab[j, 0]`` already holds 1/D_j for j < i): with t_k = L_ik·D_k (kept in a
+    work vector), L_ij·D_j = A_ij − Σ_k t_k L_jk and
     D_i = A_ii − Σ_k t_k L_ik. Returns the number of negative pivots, or −1 if a pivot is
     zero or not finite.
     """

@@ -46,7 +46,8 @@ CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
 criteria")."""
 
 _PREDICTOR = 0.0
-"""Weight of Δt²·a_n in the Newton starting point (0: d_n + Δt v_n; 0.5, constant acceleration, needed more iterations in the benchmark storm)."""
+"""Weight of Δt²·a_n in the Newton starting point (0: d_n + Δt v_n; 0.5, constant
+acceleration, needed more iterations in the benchmark storm)."""
 
 _STATUS_MESSAGES = {
     K.STATUS_END: "reached the end of the storm",
