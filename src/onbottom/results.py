@@ -49,6 +49,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "B": ("contact width of the pipe at the seabed", "m"),
     "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
+    # pipeline FE (time × node; onbottom.dynamics.pipeline)
+    "u_axial": ("axial displacement of the pipe", "m"),
+    "moment": ("bending moment in the horizontal plane", "N m"),
+    "axial_force": ("effective axial force (tension positive)", "N"),
+    "strain": ("largest longitudinal fibre strain |N|/EA + |M|c/EI", "1"),
 }
 
 

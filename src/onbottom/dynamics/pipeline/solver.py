@@ -65,8 +65,8 @@ FIELDS: dict[str, tuple[int, str, str]] = {
     "F_soil": (K.F_SOIL, "lateral soil resistance per unit length", "N/m"),
     "F_hydro": (K.F_HYD, "lateral hydrodynamic load per unit length", "N/m"),
     "V": (K.F_VCONT, "vertical contact load per unit length", "N/m"),
-    "M": (K.F_MOM, "bending moment in the horizontal plane", "N m"),
-    "N": (K.F_NAX, "effective axial force (tension positive)", "N"),
+    "moment": (K.F_MOM, "bending moment in the horizontal plane", "N m"),
+    "axial_force": (K.F_NAX, "effective axial force (tension positive)", "N"),
     "strain": (K.F_STRAIN, "largest longitudinal fibre strain |N|/EA + |M|c/EI", "1"),
 }
 """Recorded variables (time × node): kernel field, long name, units."""
@@ -76,9 +76,9 @@ ENVELOPES: dict[str, tuple[int, str, str]] = {
     "max_y": (K.E_MAX_V, "largest lateral displacement", "m"),
     "min_y": (K.E_MIN_V, "smallest lateral displacement", "m"),
     "max_strain": (K.E_STRAIN, "largest fibre strain", "1"),
-    "max_abs_M": (K.E_ABS_M, "largest |bending moment|", "N m"),
-    "max_N": (K.E_MAX_N, "largest effective axial force", "N"),
-    "min_N": (K.E_MIN_N, "smallest effective axial force", "N"),
+    "max_abs_moment": (K.E_ABS_M, "largest |bending moment|", "N m"),
+    "max_axial_force": (K.E_MAX_N, "largest effective axial force", "N"),
+    "min_axial_force": (K.E_MIN_N, "smallest effective axial force", "N"),
     "min_V": (K.E_MIN_VCONT, "smallest vertical contact load", "N/m"),
     "max_z": (K.E_MAX_Z, "largest penetration", "m"),
 }
