@@ -157,3 +157,35 @@ def test_mirrored_load_gives_mirrored_response():
     assert scale > 0.01
     np.testing.assert_allclose(y1[:, ::-1], y0, atol=1e-7 * scale)
     np.testing.assert_allclose(y2, -y0, atol=1e-7 * scale)
+
+
+def test_pipe_passing_the_f109_absolute_check_moves_less_than_half_a_diameter():
+    """DNV-RP-F109 §3.6 absolute stability (utilisation < 1) → the FE line moves < 0.5D in
+    the same sea state (10 min at the peak, long-crested waves normal to the line)."""
+    from onbottom.checks.absolute import absolute_lateral_stability, seabed_roughness
+    from onbottom.hydro.short_crested import pipeline_kinematics
+    from onbottom.hydro.storm_kinematics import current_normal_to_pipe
+    from onbottom.inputs.storm import Current, SeaState, Storm
+
+    pipe = Pipe(
+        outer_diameter=0.4, submerged_weight=4000.0, bending_stiffness=5e7, axial_stiffness=5e9
+    )
+    check = absolute_lateral_stability(
+        pipe, SAND, hs=3.0, tp=10.0, depth=15.0, current_velocity=0.2
+    )
+    assert check.passes and check.utilisation > 0.7
+    current = Current(velocity=0.2, reference_height=1.0, z0=seabed_roughness(SAND))
+    m = _model(
+        length=100.0,
+        le=5.0,
+        soil=VerleySotberg.silica(pipe, SAND),
+        pipe=pipe,
+        current=current_normal_to_pipe(current, 0.4),
+    )
+    storm = Storm.standard(
+        SeaState(hs=3.0, tp=10.0), build_up_hours=1.0 / 60.0, peak_hours=10.0 / 60.0, seed=4
+    )
+    kin = pipeline_kinematics(storm, 15.0, m.x)
+    r = simulate_pipeline(m, kin, settings=PipelineSettings(record_interval=None))
+    assert r.success and r.criteria["0.5D"]
+    assert r.max_displacement < 0.5 * pipe.outer_diameter
