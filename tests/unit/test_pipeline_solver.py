@@ -171,12 +171,11 @@ def test_run_pipeline_case_example(tmp_path):
     shutil.copy(EXAMPLE, case)
     text = case.read_text().replace("peak_hours = 0.0667             # 4 min", "peak_hours = 0.01")
     case.write_text(text)
-    payload = run_pipeline_case(case, plot=tmp_path / "p.png", animation=tmp_path / "a.gif")
+    payload = run_pipeline_case(case, plot=tmp_path / "p.png")
     for key in ("max_displacement_m", "max_strain", "worst_node_x_m", "criteria", "netcdf"):
         assert key in payload
     assert payload["success"] and payload["n_nodes"] == 51
     assert (tmp_path / "p.png").stat().st_size > 1000
-    assert (tmp_path / "a.gif").read_bytes()[:3] == b"GIF"
     with xr.open_dataset(payload["netcdf"], engine="h5netcdf") as ds:
         assert "strain" in ds and "max_strain" in ds
 
@@ -188,3 +187,40 @@ def test_pipeline_table_errors(tmp_path):
     case.write_text(EXAMPLE.read_text().replace("element_length = 4.0", "element_lenght = 4.0"))
     with pytest.raises(CaseFileError, match="did you mean 'element_length'"):
         run_pipeline_case(case)
+
+
+def test_onbottom_storm_dispatches_a_pipeline_case(tmp_path, capsys):
+    """`onbottom storm CASE --json` with a [pipeline] table runs the pipeline FE."""
+    from onbottom.cli.main import main
+
+    case = tmp_path / "pipeline_case.toml"
+    text = EXAMPLE.read_text().replace(
+        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.005"
+    )
+    case.write_text(text)
+    code = main(["storm", str(case), "--json", "-o", str(tmp_path / "out.nc")])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert out["model"] == "pipeline_fe" and out["strain_check"] in (True, False)
+    for key in ("max_displacement_m", "max_strain", "worst_node_x_m"):
+        assert isinstance(out[key], float)
+    assert set(out["criteria"]) == {"0.5D", "10D"}
+    code = main(["storm", str(case), "-o", str(tmp_path / "out.nc")])
+    text_out = capsys.readouterr().out
+    assert code == 0 and "F109 0.5D criterion" in text_out
+
+
+def test_animation_is_a_gif(tmp_path):
+    from onbottom.plotting.pipeline import animate_pipeline
+
+    m, kin = _setup()
+    r = simulate_pipeline(m, kin, duration=10.0, settings=PipelineSettings(record_interval=2.0))
+    out = animate_pipeline(r, tmp_path / "a.gif", max_frames=4, dpi=40)
+    assert out.read_bytes()[:3] == b"GIF"
+    with pytest.raises(InputError, match="record_interval"):
+        animate_pipeline(
+            simulate_pipeline(
+                m, kin, duration=2.0, settings=PipelineSettings(record_interval=None)
+            ),
+            tmp_path / "b.gif",
+        )

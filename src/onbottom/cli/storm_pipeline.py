@@ -240,8 +240,9 @@ def run_pipeline_case(
     -------
     dict
         ``max_displacement_m`` (worst seed), ``max_strain``, ``worst_node_x_m``,
-        ``criteria`` (F109 0.5D/10D, strain), ``status``, ``success``, ``message``,
-        ``diameter_m``, ``netcdf``, ``plot``, ``animation``, ``seeds``, ``per_seed``.
+        ``criteria`` (F109 0.5D/10D), ``strain_check`` (None without ``strain_limit``),
+        ``status``, ``success``, ``message``, ``diameter_m``, ``netcdf``, ``plot``,
+        ``animation``, ``seeds``, ``per_seed``.
     """
     from onbottom.dynamics.pipeline import simulate_pipeline
     from onbottom.hydro.short_crested import pipeline_kinematics
@@ -297,13 +298,9 @@ def run_pipeline_case(
         animate_pipeline(worst, ap)
         anim_file = str(ap)
     d = model.pipe.outer_diameter
-    criteria: dict[str, Any] = {
-        key: all(r.criteria[key] for r in results) for key in ("0.5D", "10D")
-    }
-    criteria["strain"] = (
-        None
-        if results[0].criteria.get("strain") is None
-        else all(bool(r.criteria["strain"]) for r in results)
+    criteria = {key: all(bool(r.criteria[key]) for r in results) for key in ("0.5D", "10D")}
+    strain_check = (
+        None if table.strain_limit is None else all(bool(r.criteria["strain"]) for r in results)
     )
     maxes = np.array([r.max_displacement for r in results])
     success = all(r.success for r in results)
@@ -322,6 +319,8 @@ def run_pipeline_case(
         "max_strain": float(max(r.max_strain for r in results)),
         "worst_node_x_m": worst.worst_node_x,
         "criteria": criteria,
+        "strain_limit": table.strain_limit,
+        "strain_check": strain_check,
         "status": worst.status if success else min(r.status for r in results),
         "success": success,
         "message": message,
