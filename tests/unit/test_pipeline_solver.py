@@ -224,3 +224,24 @@ def test_animation_is_a_gif(tmp_path):
             ),
             tmp_path / "b.gif",
         )
+
+
+@pytest.mark.dask
+def test_several_seeds_on_dask_and_in_process(tmp_path):
+    case = tmp_path / "pipeline_case.toml"
+    text = EXAMPLE.read_text().replace(
+        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.003"
+    )
+    text = text.replace("build_up_hours = 0.0167         # 1 min", "build_up_hours = 0.003")
+    case.write_text(text)
+    serial = run_pipeline_case(case, seeds=2, workers=0, output=tmp_path / "s.nc")
+    dask = run_pipeline_case(case, seeds=2, workers=2, output=tmp_path / "d.nc")
+    assert serial["seeds"] == 2 and len(serial["netcdf"]) == 2
+    assert [r["seed"] for r in dask["per_seed"]] == [1, 2]
+    for a, b in zip(serial["per_seed"], dask["per_seed"], strict=True):
+        assert a["max_displacement_m"] == b["max_displacement_m"]
+    assert (
+        serial["per_seed"][0]["max_displacement_m"] != serial["per_seed"][1]["max_displacement_m"]
+    )
+    with pytest.raises(InputError, match="one seed"):
+        run_pipeline_case(case, seeds=2, workers=0, plot=tmp_path / "p.png")

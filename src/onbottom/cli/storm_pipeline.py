@@ -17,6 +17,7 @@ time_step`` (largest step) and ``sample_interval``, ``[solver] max_displacement_
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any, Literal
@@ -202,6 +203,57 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     }
 
 
+STATUS_ERROR = -9
+"""Status recorded for a seed whose run raised an exception."""
+
+
+class _SeedJob:
+    """One seed of a pipeline case (picklable: workers re-read the case file)."""
+
+    def __init__(self, path: str, base: str, n: int, progress: bool) -> None:
+        self.path, self.base, self.n, self.progress = path, base, n, progress
+
+    def output(self, seed: int) -> Path:
+        b = Path(self.base)
+        return b if self.n == 1 else b.with_name(f"{b.stem}.seed{seed}{b.suffix}")
+
+    def run(self, seed: int):
+        from onbottom.dynamics.pipeline import simulate_pipeline
+        from onbottom.hydro.short_crested import pipeline_kinematics
+
+        run = build_pipeline_run(self.path)
+        setup, model, table = run["setup"], run["model"], run["table"]
+        storm = setup.storm.with_seed(int(seed))
+        kin = pipeline_kinematics(
+            storm, setup.depth, model.x, sample_interval=setup.sample_interval
+        )
+        return simulate_pipeline(
+            model,
+            kin,
+            duration=table.duration,
+            settings=run["settings"],
+            output=self.output(seed),
+            progress=self.progress,
+            attrs={"case_file": str(self.path), "seed": int(seed)},
+            identity_extra={"case": run["text"], "seed": int(seed)},
+        )
+
+    def __call__(self, seed: int) -> dict[str, Any]:
+        import traceback
+
+        try:
+            r = self.run(seed)
+        except Exception as exc:  # recorded, not raised: one bad seed must not sink N
+            return {
+                "seed": int(seed),
+                "status": STATUS_ERROR,
+                "success": False,
+                "message": f"{type(exc).__name__}: {exc}",
+                "traceback": traceback.format_exc(limit=3),
+            }
+        return {"seed": int(seed), **r.to_dict()}
+
+
 def run_pipeline_case(
     path: str | os.PathLike,
     *,
@@ -223,8 +275,9 @@ def run_pipeline_case(
         TOML case with a ``[pipeline]`` table.
     seeds : int or None
         Number of storms (seeds storm.seed, storm.seed + 1, ...); default ``[run] seeds``.
-        Seeds run one after the other in this process (``scheduler``/``workers`` are accepted
-        for the command's interface and not used yet).
+        Several seeds run on Dask (:func:`onbottom.study.engine.dask_client`: ``scheduler``
+        address or a local cluster of ``workers`` processes; ``workers=0`` → in this
+        process); a seed that raises is recorded (status −9), never dropped.
     output : path or None
         NetCDF file (default: CASE with suffix .nc; with several seeds ``stem.seedN.nc``),
         appended during the run; its checkpoint ``<output>.ckpt.npz`` resumes an interrupted
@@ -244,8 +297,6 @@ def run_pipeline_case(
         ``status``, ``success``, ``message``, ``diameter_m``, ``netcdf``, ``plot``,
         ``animation``, ``seeds``, ``per_seed``.
     """
-    from onbottom.dynamics.pipeline import simulate_pipeline
-    from onbottom.hydro.short_crested import pipeline_kinematics
 
     run = build_pipeline_run(path)
     p: Path = run["path"]
@@ -254,87 +305,96 @@ def run_pipeline_case(
     table: PipelineTable = run["table"]
     n = setup.seeds if seeds is None else int(seeds)
     base = Path(output) if output is not None else p.with_suffix(".nc")
-    results = []
-    files = []
-    for k in range(n):
-        storm = setup.storm if k == 0 else setup.storm.with_seed(setup.storm.seed + k)
-        kin = pipeline_kinematics(
-            storm, setup.depth, model.x, sample_interval=setup.sample_interval
-        )
-        nc = base if n == 1 else base.with_name(f"{base.stem}.seed{storm.seed}{base.suffix}")
-        res = simulate_pipeline(
-            model,
-            kin,
-            duration=table.duration,
-            settings=run["settings"],
-            output=nc,
-            progress=progress,
-            attrs={"case_file": str(p), "seed": int(storm.seed)},
-            identity_extra={"case": run["text"], "seed": int(storm.seed)},
-        )
-        del kin
-        results.append(res)
-        files.append(str(nc))
-    worst = max(results, key=lambda r: r.max_displacement)
-    plot_file = None
-    if plot is not None:
-        import matplotlib.pyplot as plt
+    if n > 1 and (plot is not None or animation is not None):
+        raise InputError("--plot/animation are for one seed: run the seed of interest alone")
+    job = _SeedJob(str(p), str(base), n, progress and n == 1)
+    first = setup.storm.seed
+    if n == 1:
+        res = job.run(first)
+        rows = [{"seed": int(first), **res.to_dict()}]
+    elif workers == 0:
+        rows = [job(first + k) for k in range(n)]
+    else:
+        from onbottom.study.engine import ParallelMap, dask_client
 
-        from onbottom.plotting.pipeline import plot_pipeline_result
-
-        fig = plot_pipeline_result(worst, title=f"{p.stem}: {worst.message}")
-        Path(plot).parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(plot, dpi=110)
-        plt.close(fig)
-        plot_file = str(plot)
-    anim = animation if animation is not None else table.animation
-    anim_file = None
-    if anim is not None:
-        from onbottom.plotting.pipeline import animate_pipeline
-
-        ap = Path(anim)
-        if not ap.is_absolute() and animation is None:
-            ap = p.parent / ap
-        animate_pipeline(worst, ap)
-        anim_file = str(ap)
+        with dask_client(scheduler_address=scheduler, n_workers=workers) as client:
+            rows = ParallelMap(client, batch_size=1, progress=progress)(
+                job, [first + k for k in range(n)]
+            )
+    ok = [r for r in rows if r["success"]]
+    failures = [
+        {"seed": r["seed"], "status": r["status"], "message": r["message"]}
+        for r in rows
+        if not r["success"]
+    ]
     d = model.pipe.outer_diameter
-    criteria = {key: all(bool(r.criteria[key]) for r in results) for key in ("0.5D", "10D")}
+    plot_file = None
+    anim_file = None
+    if n == 1:
+        if plot is not None:
+            import matplotlib.pyplot as plt
+
+            from onbottom.plotting.pipeline import plot_pipeline_result
+
+            fig = plot_pipeline_result(res, title=f"{p.stem}: {res.message}")
+            Path(plot).parent.mkdir(parents=True, exist_ok=True)
+            fig.savefig(plot, dpi=110)
+            plt.close(fig)
+            plot_file = str(plot)
+        anim = animation if animation is not None else table.animation
+        if anim is not None:
+            from onbottom.plotting.pipeline import animate_pipeline
+
+            ap = Path(anim)
+            if not ap.is_absolute() and animation is None:
+                ap = p.parent / ap
+            animate_pipeline(res, ap)
+            anim_file = str(ap)
+    if not ok:
+        worst: dict[str, Any] = rows[0]
+        maxes = np.array([math.nan])
+    else:
+        worst = max(ok, key=lambda r: r["max_displacement_m"])
+        maxes = np.array([r["max_displacement_m"] for r in ok])
+    criteria = {
+        key: bool(ok) and all(bool(r["criteria"][key]) for r in ok) for key in ("0.5D", "10D")
+    }
     strain_check = (
-        None if table.strain_limit is None else all(bool(r.criteria["strain"]) for r in results)
+        None
+        if table.strain_limit is None or not ok
+        else all(bool(r["criteria"]["strain"]) for r in ok)
     )
-    maxes = np.array([r.max_displacement for r in results])
-    success = all(r.success for r in results)
+    success = not failures and all(r["success"] for r in rows)
     message = (
-        worst.message
+        worst["message"]
         if n == 1
         else (
-            f"{n} seeds: seed-averaged maximum displacement {maxes.mean() / d:.3g}D"
-            f" (max {maxes.max() / d:.3g}D)"
+            f"{n} seeds: seed-averaged maximum displacement {np.mean(maxes) / d:.3g}D"
+            f" (max {np.max(maxes) / d:.3g}D)"
+            + (f"; {len(failures)} seed(s) failed" if failures else "")
         )
     )
     payload = {
-        "max_displacement_m": float(worst.max_displacement),
-        "max_displacement_over_D": float(worst.max_displacement / d),
-        "mean_max_displacement_m": float(maxes.mean()),
-        "max_strain": float(max(r.max_strain for r in results)),
-        "worst_node_x_m": worst.worst_node_x,
+        "max_displacement_m": worst.get("max_displacement_m"),
+        "max_displacement_over_D": worst.get("max_displacement_over_D"),
+        "mean_max_displacement_m": float(np.mean(maxes)),
+        "max_strain": max((r["max_strain"] for r in ok), default=None),
+        "worst_node_x_m": worst.get("worst_node_x_m"),
         "criteria": criteria,
         "strain_limit": table.strain_limit,
         "strain_check": strain_check,
-        "status": worst.status if success else min(r.status for r in results),
+        "status": worst["status"] if success else min(r["status"] for r in rows),
         "success": success,
         "message": message,
         "diameter_m": d,
         "n_nodes": int(model.x.size),
         "seeds": n,
-        "netcdf": files[0] if n == 1 else files,
+        "netcdf": str(job.output(first)) if n == 1 else [str(job.output(r["seed"])) for r in rows],
         "plot": plot_file,
         "animation": anim_file,
-        "per_seed": [
-            {"seed": int(setup.storm.seed + k), **{kk: v for kk, v in r.to_dict().items()}}
-            for k, r in enumerate(results)
-        ],
+        "failures": failures,
+        "per_seed": rows,
         "model": "pipeline_fe",
     }
-    del as_json, scheduler, workers  # interface of `onbottom storm`; not used here yet
+    del as_json  # the command formats the payload
     return payload
