@@ -227,6 +227,7 @@ def test_animation_is_a_gif(tmp_path):
 
 
 @pytest.mark.dask
+@pytest.mark.slow
 def test_several_seeds_on_dask_and_in_process(tmp_path):
     case = tmp_path / "pipeline_case.toml"
     text = EXAMPLE.read_text().replace(
@@ -245,3 +246,23 @@ def test_several_seeds_on_dask_and_in_process(tmp_path):
     )
     with pytest.raises(InputError, match="one seed"):
         run_pipeline_case(case, seeds=2, workers=0, plot=tmp_path / "p.png")
+
+
+def test_rerun_of_a_finished_or_stopped_run_returns_it(tmp_path):
+    light = Pipe(
+        outer_diameter=0.4, submerged_weight=150.0, bending_stiffness=5e7, axial_stiffness=5e9
+    )
+    m = PipelineModel(
+        pipe=light,
+        length=40.0,
+        element_length=4.0,
+        soil=CoulombFriction(friction_coefficient=0.3),
+        end_conditions="free",
+    )
+    kin = regular_node_kinematics(m.x.size, 60.0, 0.05, 2.5, 10.0, ramp=10.0)
+    st = PipelineSettings(stop_displacement_over_d=2.0, record_interval=1.0)
+    a = simulate_pipeline(m, kin, settings=st, output=tmp_path / "r.nc")
+    b = simulate_pipeline(m, kin, settings=st, output=tmp_path / "r.nc", resume="require")
+    assert a.status == b.status == 2
+    assert b.summary["final_time"] == a.summary["final_time"] < 60.0
+    assert b.open_dataset().sizes["time"] == a.open_dataset().sizes["time"]

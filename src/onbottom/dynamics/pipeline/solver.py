@@ -480,6 +480,7 @@ def simulate_pipeline(
     # ---- state (fresh or resumed)
     state = None
     rows = 0
+    done = K.STATUS_CHUNK
     if ckpt is not None:
         loaded = _load_checkpoint(ckpt, run_id, resume)
         if loaded is not None:
@@ -508,6 +509,7 @@ def simulate_pipeline(
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
         rows = 0
     else:
+        done = int(state.pop("status", np.array(K.STATUS_CHUNK)))
         vec, scal, sstate, axst, nodal, env = (
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
             state["env"],
@@ -525,9 +527,9 @@ def simulate_pipeline(
         from tqdm import tqdm
 
         bar = tqdm(total=round(t_end), unit="s", desc="pipeline storm", leave=False)
-    status = K.STATUS_CHUNK
+    status = done
     try:
-        while True:
+        while status == K.STATUS_CHUNK:
             t0 = float(scal[K.SC_T])
             t_stop = min(t0 + s.chunk_duration, t_end)
             while True:
@@ -552,7 +554,7 @@ def simulate_pipeline(
                     run_id,
                     writer.rows,
                     {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
-                     "env": env},
+                     "env": env, "status": np.array(status)},
                 )  # fmt: skip
             if status != K.STATUS_CHUNK:
                 break
