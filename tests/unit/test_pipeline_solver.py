@@ -266,3 +266,35 @@ def test_rerun_of_a_finished_or_stopped_run_returns_it(tmp_path):
     assert a.status == b.status == 2
     assert b.summary["final_time"] == a.summary["final_time"] < 60.0
     assert b.open_dataset().sizes["time"] == a.open_dataset().sizes["time"]
+
+
+def test_case_file_route_sections(tmp_path):
+    from onbottom.cli.storm_pipeline import build_pipeline_run
+
+    case = tmp_path / "route.toml"
+    case.write_text(
+        EXAMPLE.read_text()
+        + """
+[[pipeline.sections]]
+start = 0.0
+end = 120.0
+
+[[pipeline.sections]]
+start = 120.0
+end = 200.0
+model = "clay"
+undrained_shear_strength = 5000.0
+submerged_unit_weight = 6000.0
+unit_weight = 16000.0
+friction_coefficient = 0.2
+axial_friction_coefficient = 0.3
+"""
+    )
+    run = build_pipeline_run(case)
+    m = run["model"]
+    ids = m.arrays()["model_ids"]
+    x = m.x
+    assert set(ids[x < 120.0]) == {1} and set(ids[x >= 120.0]) == {2}
+    assert m.sections[1].mu_axial == 0.3 and m.sections[0].mu_axial == 0.6
+    assert run["settings"].strain_limit == 0.002
+    assert m.fibre_distance == pytest.approx(0.2191 / 2)
