@@ -619,10 +619,8 @@ def simulate_pipeline(
     }
     data = None
     if writer is not None:
+        # the checkpoint is kept: a second call with the same inputs returns at once
         writer.finish(env_ds, final_attrs)
-        if ckpt is not None and ckpt.exists() and success:
-            # keep the checkpoint: a second call with the same inputs returns at once
-            pass
     elif mem_t:
         tt = np.concatenate(mem_t)
         rr = np.concatenate(mem_r)
