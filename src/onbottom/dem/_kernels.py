@@ -270,11 +270,13 @@ def _subcycle_disk(
 ):  # fmt: skip
     """Disk i near a wall or the pipe: ``nsub`` sub-steps of Δt/nsub for its stiff contacts.
 
-    Multiple time stepping: the soil force and torque (``fsx``, ``fsy``, ``tsoil``, from the
-    positions at the start of the step) and gravity are held for the step; the wall, lid and
-    pipe contacts (with their history) are evaluated at every sub-step at the disk's current
-    position and the current wall/pipe position, local damping acts on the sub-step's total
-    force. The pipe force stored is the mean over the sub-steps (its impulse / Δt); the
+    Multiple time stepping (r-RESPA, Tuckerman, Berne & Martyna 1992, J. Chem. Phys.
+    97:1990, in leapfrog form): the soil force and torque (``fsx``, ``fsy``, ``tsoil``, from
+    the positions at the start of the step) act as one impulse Δt·F at the first sub-step;
+    gravity and the wall, lid and pipe contacts (with their history, evaluated at the disk's
+    current position and the current wall/pipe position) act at every sub-step; local damping
+    acts at every sub-step on the unbalanced force soil + gravity + stiff contacts (so it
+    vanishes at equilibrium as in the plain step). The pipe force stored is the mean over the sub-steps (its impulse / Δt); the
     diagnostics (unbalanced and applied force) are those of the first sub-step, at the start
     of the step as for the other disks. With FIRE (``fire_mix``) the velocity is mixed once,
     with the first sub-step's force, and no local damping acts.
@@ -393,9 +395,16 @@ def _subcycle_disk(
             fx -= alpha * abs(fx) * _sign(vx)
             fy -= alpha * abs(fy) * _sign(vy)
             tq -= alpha * abs(tq) * _sign(w)
-        vx += h * fx * inv_m
-        vy += h * fy * inv_m
-        w += h * tq * inv_i
+        # the soil force is an impulse Δt·F at the first sub-step (r-RESPA: symplectic, and
+        # the soil part then moves the disk exactly as the plain leapfrog step); gravity, the
+        # stiff contacts and the damping act at every sub-step
+        if q == 0:
+            vx += dt * fsx * inv_m
+            vy += dt * fsy * inv_m
+            w += dt * tsoil * inv_i
+        vx += h * (fx - fsx) * inv_m
+        vy += h * (fy - fsy) * inv_m
+        w += h * (tq - tsoil) * inv_i
         xi += h * vx
         yi += h * vy
         thi += h * w
