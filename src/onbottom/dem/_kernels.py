@@ -276,8 +276,8 @@ def _subcycle_disk(
     gravity and the wall, lid and pipe contacts (with their history, evaluated at the disk's
     current position and the current wall/pipe position) act at every sub-step; local damping
     acts at every sub-step on the unbalanced force soil + gravity + stiff contacts (so it
-    vanishes at equilibrium as in the plain step). The pipe force stored is the mean over the sub-steps (its impulse / Δt); the
-    diagnostics (unbalanced and applied force) are those of the first sub-step, at the start
+    vanishes at equilibrium as in the plain step). The pipe force stored is the mean over
+    the sub-steps (its impulse / Δt); the diagnostics (unbalanced and applied force) are those of the first sub-step, at the start
     of the step as for the other disks. With FIRE (``fire_mix``) the velocity is mixed once,
     with the first sub-step's force, and no local damping acts.
 
