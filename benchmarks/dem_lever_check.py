@@ -109,9 +109,8 @@ def main() -> None:
             f"{scatter[k]:8.1f} {diff[k]:10.1f} {abs(diff[k]) / scatter[k]:10.2f}"
         )
     ratio = np.abs(diff) / scatter
-    print(
-        f"max |diff|/scatter = {np.nanmax(ratio):.2f} -> {'PASS' if np.nanmax(ratio) < 1 else 'FAIL'}"
-    )
+    verdict = "PASS" if np.nanmax(ratio) < 1 else "FAIL"
+    print(f"max |diff|/scatter = {np.nanmax(ratio):.2f} -> {verdict}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)

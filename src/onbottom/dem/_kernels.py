@@ -277,9 +277,10 @@ def _subcycle_disk(
     current position and the current wall/pipe position) act at every sub-step; local damping
     acts at every sub-step on the unbalanced force soil + gravity + stiff contacts (so it
     vanishes at equilibrium as in the plain step). The pipe force stored is the mean over
-    the sub-steps (its impulse / Δt); the diagnostics (unbalanced and applied force) are those of the first sub-step, at the start
-    of the step as for the other disks. With FIRE (``fire_mix``) the velocity is mixed once,
-    with the first sub-step's force, and no local damping acts.
+    the sub-steps (its impulse / Δt); the diagnostics (unbalanced and applied force) are
+    those of the first sub-step, at the start of the step as for the other disks. With FIRE
+    (``fire_mix``) the velocity is mixed once, with the first sub-step's force, and no local
+    damping acts.
 
     Returns (squared displacement since the last list build, F·v, |v|², |F|², ω², T²), the
     last five with the first sub-step's force and the velocity before mixing (FIRE sums).
