@@ -65,9 +65,7 @@ def main() -> None:
         "--lever", default="subcycle", choices=("subcycle", "subcycle-prep", "sort", "fire")
     )
     ap.add_argument("--json", default=None)
-    ap.add_argument(
-        "--dt-safety", type=float, default=None, help="dt_safety of the lever run (default: as plain)"
-    )
+    ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
     ap.add_argument(
         "--cache", default=None, help="folder keeping the specimens and plain curves between calls"
     )
