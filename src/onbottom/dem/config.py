@@ -477,8 +477,8 @@ SM_DR48 = SM.replace(
 )
 """SM at the paper's density *in the interior*: whole-box target e = 0.236 so that the
 interior (the band the void ratio is measured in) comes out near the paper's e = 0.227,
-D_r = 48 % (the SM preset's interior was 0.218, D_r ≈ 57 %). Same contacts, box, grading and
-loading as :data:`SM`; seed 3 (not run to completion yet: ``docs/validation/dem_penetration.md``)."""
+D_r = 48 % (the SM preset's interior was 0.218, D_r ≈ 57 %). Same contacts, box, grading
+and loading as :data:`SM`; seed 3. Not run yet (``docs/validation/dem_penetration.md``)."""
 
 _REDUCED_GEOMETRY = Geometry(width=7 * _D, height=3 * _D, pipe_diameter=_D)
 _REDUCED_PSD = ParticleSizeDistribution(d50=3 * 0.68e-3, cu=1.67)
@@ -502,9 +502,7 @@ SD_REDUCED = SD.replace(
 )
 """Reduced SD: 3× larger disks, 7D × 3D box, pipe at 0.05 m/s (about 2,000 disks)."""
 
-PRESETS: dict[str, DEMConfig] = {
-    c.name: c for c in (SM, SD, SM_REDUCED, SD_REDUCED, SM_DR48)
-}
+PRESETS: dict[str, DEMConfig] = {c.name: c for c in (SM, SD, SM_REDUCED, SD_REDUCED, SM_DR48)}
 """Presets by name: ``SM``, ``SD``, ``SM-reduced``, ``SD-reduced``, ``SM-Dr48``."""
 
 
