@@ -41,6 +41,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "B": ("contact width of the pipe at the seabed", "m"),
     "Q_v_lower": ("lower estimate of the vertical penetration resistance", "N/m"),
     "Q_v_upper": ("upper estimate of the vertical penetration resistance", "N/m"),
+    "soil_energy_stored": ("elastic energy stored in the soil springs", "J/m"),
+    "soil_energy_dissipated": ("energy dissipated by the soil since the start", "J/m"),
 }
 
 

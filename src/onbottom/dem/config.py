@@ -267,6 +267,11 @@ class Preparation:
     lid_pressure_limit
         The lid stops early when its mean pressure exceeds this [Pa] after a pause;
         ``None`` → ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H.
+    relaxation
+        How the 1 g and N g equilibrium stages are cycled: ``"damped"`` (the paper's local
+        damping α, the default) or ``"fire"`` (FIRE, Bitzek et al. 2006, Phys. Rev. Lett.
+        97:170201, with the same contact law and the same unbalanced-force criterion; see
+        ``docs/theory/dem.md``, "Speed levers").
     """
 
     n_layers: int = 5
@@ -276,6 +281,7 @@ class Preparation:
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
     lid_pressure_limit: float | None = None
+    relaxation: str = "damped"
 
     def __post_init__(self) -> None:
         if not isinstance(self.n_layers, int) or self.n_layers < 1:
@@ -287,6 +293,7 @@ class Preparation:
         v.positive("max_settle_time", self.max_settle_time)
         if self.lid_pressure_limit is not None:
             v.positive("lid_pressure_limit", self.lid_pressure_limit)
+        v.one_of("relaxation", self.relaxation, ("damped", "fire"))
 
 
 @dataclass(frozen=True)
@@ -331,11 +338,22 @@ class Numerics:
         Verlet skin as a fraction of d_min [-]; lists rebuilt when a disk moved > skin/2.
     record_every
         Record the pipe force every this many steps [-].
+    subcycle
+        Sub-cycle the stiff contacts: the time step follows the soil–soil stiffness
+        (``dt_safety``·√(m_min/k_soil)) and the disks within reach of a wall or the pipe take
+        ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil forces held for
+        the step (multiple time stepping; ``docs/theory/dem.md``, "Speed levers"). ``False``
+        (default): one time step for all, set by the stiffest contact.
+    sort_disks
+        Renumber the prepared specimen in cell order (rows of cells 2·d_max high, then x)
+        for memory locality [-]; the physics is unchanged (round-off only).
     """
 
     dt_safety: float = 0.5
     skin_ratio: float = 0.3
     record_every: int = 200
+    subcycle: bool = False
+    sort_disks: bool = False
 
     def __post_init__(self) -> None:
         v.in_range("dt_safety", self.dt_safety, 0.0, 1.0, low_inclusive=False)

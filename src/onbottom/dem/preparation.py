@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import logging
 import math
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -39,7 +40,7 @@ import numpy as np
 
 from onbottom.constants import GRAVITY
 from onbottom.dem.config import ContactParameters, DEMConfig
-from onbottom.dem.engine import Simulation
+from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.sample import Sample
 
 __all__ = ["STRESS_FREE_FRACTION", "draw_diameters", "layer_targets", "prepare_sample", "settle"]
@@ -138,11 +139,36 @@ def settle(
     return False, r
 
 
+class _StageClock:
+    """Accumulates wall-clock time and steps per preparation stage into ``timings``."""
+
+    def __init__(self, timings: dict[str, float] | None) -> None:
+        self.timings = timings
+        self.reset()
+
+    def reset(self, steps: int = 0) -> None:
+        self.t = time.perf_counter()
+        self.steps = steps
+
+    def lap(self, stage: str, steps: int, disks: int) -> None:
+        now = time.perf_counter()
+        if self.timings is not None:
+            d = self.timings
+            d[f"{stage}_wall"] = d.get(f"{stage}_wall", 0.0) + now - self.t
+            d[f"{stage}_steps"] = d.get(f"{stage}_steps", 0) + steps - self.steps
+            key = f"{stage}_disk_steps"
+            d[key] = d.get(key, 0) + disks * (steps - self.steps)
+            d[f"{stage}_disks"] = disks
+        self.t = now
+        self.steps = steps
+
+
 def prepare_sample(
     config: DEMConfig,
     progress: Progress | None = None,
     checkpoint: str | Path | None = None,
     checkpoint_every: int = 100_000,
+    timings: dict[str, float] | None = None,
 ) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
@@ -160,6 +186,12 @@ def prepare_sample(
         Deleted when done.
     checkpoint_every
         Steps between checkpoints inside the 1 g and N g equilibria [-].
+    timings
+        Optional dict filled with the wall-clock time [s] and the number of steps of each
+        stage of this call (``<stage>_wall``, ``<stage>_steps``, ``<stage>_disk_steps``,
+        ``<stage>_disks`` (at the end of the stage) for
+        ``generation``, ``compaction``, ``1g``, ``ramp``, ``Ng``; a resumed stage counts
+        only the work of this call). Diagnostics only: the sample does not depend on it.
 
     Returns
     -------
@@ -167,6 +199,7 @@ def prepare_sample(
         With attributes: void ratio after each stage, convergence of each equilibrium stage,
         the unbalanced-force ratios, the number of disks, the gravity factor.
     """
+    clock = _StageClock(timings)
     rng = np.random.default_rng(config.seed)
     g = config.geometry
     prep = config.preparation
@@ -191,9 +224,8 @@ def prepare_sample(
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
     w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    c = config.contacts
-    dt = config.numerics.dt_safety * math.sqrt(
-        m_min / max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+    dt, nsub = step_sizes(
+        config.contacts, m_min, config.numerics.dt_safety, config.numerics.subcycle
     )
 
     def new_sim(sample: Sample) -> Simulation:
@@ -205,6 +237,7 @@ def prepare_sample(
             dt=dt,
             skin=config.numerics.skin_ratio * float(diam.min()),
             gravity=(0.0, 0.0),
+            nsub=nsub,
         )
         s.set_soil_contact(prep_soil)
         return s
@@ -256,6 +289,7 @@ def prepare_sample(
         t_prev = sim.time if sim is not None else 0.0
         sim = new_sim(sample)
         sim.time = t_prev
+        clock.lap("generation", 0, sim.n)
         lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
         stop = float(tops[li])
         sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
@@ -282,6 +316,7 @@ def prepare_sample(
             force_floor=STRESS_FREE_FRACTION * w_mean,
         )
         log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
+        clock.lap("compaction", sim.step_count, sim.n)
         attrs[f"layer{li + 1}_settled"] = bool(ok_l)
         attrs[f"layer{li + 1}_lid"] = float(sim.lid or 0.0)
         attrs[f"layer{li + 1}_lid_target"] = stop
@@ -305,6 +340,7 @@ def prepare_sample(
             snap.save(ck)
         if progress is not None:
             progress("compaction", (li + 1) / n_l)
+        clock.reset()
     assert sim is not None
     rng_state = rng.bit_generator.state
     last_saved = [sim.step_count]
@@ -357,7 +393,9 @@ def prepare_sample(
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
+        clock.reset(sim.step_count)
         ok1, r1 = equilibrium("1g")
+        clock.lap("1g", sim.step_count, sim.n)
         stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
         # ramp to N g, then equilibrium
         ramp = config.loading.gravity_ramp_time
@@ -368,12 +406,15 @@ def prepare_sample(
                 f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
                 sim.set_gravity(0.0, -f * GRAVITY)
                 sim.run(steps)
+        clock.lap("ramp", sim.step_count, sim.n)
         stage_values["t0_Ng"] = sim.time
         stage = "Ng"
         if ck is not None:
             save_stage(stage)
     sim.set_gravity(0.0, -n_g * GRAVITY)
+    clock.reset(sim.step_count)
     ok2, r2 = equilibrium("Ng")
+    clock.lap("Ng", sim.step_count, sim.n)
     e_compacted = stage_values["e_compacted"]
     ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
     out = sim.to_sample()
