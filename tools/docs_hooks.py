@@ -151,6 +151,18 @@ def _gallery(files: Files, config, scratch: Path) -> None:
         "",
     ]
     mode = os.environ.get("ONBOTTOM_DOCS_GALLERY", "run")
+    runs = {}
+    if mode != "skip":
+        # the examples are independent processes: run them two at a time (CI has 2 cores)
+        from concurrent.futures import ThreadPoolExecutor
+
+        for script in scripts:
+            (scratch / "gallery" / script.stem).mkdir(parents=True, exist_ok=True)
+        with ThreadPoolExecutor(max_workers=max(1, min(2, os.cpu_count() or 1))) as pool:
+            futures = {
+                s: pool.submit(_run_example, s, scratch / "gallery" / s.stem) for s in scripts
+            }
+            runs = {s: f.result() for s, f in futures.items()}
     for script in scripts:
         stem = script.stem
         title = _docstring(script).splitlines()[0] if _docstring(script) else stem
@@ -160,8 +172,7 @@ def _gallery(files: Files, config, scratch: Path) -> None:
             page += ["!!! note", "    Not run in this build (ONBOTTOM_DOCS_GALLERY=skip).", ""]
         else:
             work = scratch / "gallery" / stem
-            work.mkdir(parents=True, exist_ok=True)
-            stdout, dt = _run_example(script, work)
+            stdout, dt = runs[script]
             timings[f"example {stem}"] = dt
             log.info("gallery: %s ran in %.1f s", script.name, dt)
             for png in sorted(work.rglob("*.png")):
