@@ -20,6 +20,7 @@ from __future__ import annotations
 import ast
 import logging
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -96,8 +97,29 @@ def _expand(items, docs_dir: Path):
     return out
 
 
+# Docstrings state units in brackets after a bracketed expression ("in [a, b] [-]", "x [m]"):
+# Markdown reads "[a, b] [-]" as a reference link to "-" and autorefs warns that the target is
+# missing. Those are units, not references: such warnings (only they) are dropped; a missing
+# target that is not a unit still fails the strict build.
+_UNITS = {"-", "–", "m", "s", "N", "J", "W", "Pa", "kPa", "kN", "kg", "rad", "deg", "°", "%", "Hz"}
+_UNRESOLVED = re.compile(r"Could not find cross-reference target '([^']*)'")
+
+
+def _is_unit(target: str) -> bool:
+    return target in _UNITS or any(c in target for c in "/²³·⁻")
+
+
+class _UnitBrackets(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        m = _UNRESOLVED.search(record.getMessage())
+        return not (m and _is_unit(m.group(1)))
+
+
 def on_config(config):
-    """Expand folder entries of the nav."""
+    """Expand folder entries of the nav; stop autorefs reading units as references."""
+    for name in list(logging.root.manager.loggerDict):
+        if name.startswith("mkdocs.plugins.mkdocs_autorefs"):
+            logging.getLogger(name).addFilter(_UnitBrackets())
     if config.nav:
         config.nav = _expand(config.nav, Path(config.docs_dir))
     return config
