@@ -1,8 +1,9 @@
 """Validation against Youssef & Cassidy (2014): Table 1 cycle counts and Fig. 9 behaviour.
 
-Tolerance: the cycles to reach the displacement limit within ±1 load cycle of Table 1, with the
-paper's calibrated Table 2 parameters and our documented assumptions (γ' = 7.5 kN/m³, sine
-cycles, paper time axis, docs/validation/youssef_cassidy_2014.md). Nothing is tuned here.
+The cycle counts of Table 1 are checked against sensitivity bands in
+``test_centrifuge_bands.py``; this file checks the qualitative Fig. 9 behaviour of Inclined 1
+with the default choices (γ' = 7.5 kN/m³, sine cycles, paper time axis, Table 2 parameters;
+docs/validation/youssef_cassidy_2014.md). Nothing is tuned here.
 """
 
 from __future__ import annotations
@@ -14,29 +15,10 @@ from onbottom.dynamics.centrifuge import TESTS, run_centrifuge_test
 
 pytestmark = pytest.mark.validation
 
-_INCLINED_2_REASON = (
-    "model reaches the limit in cycle 13 (12.30 cycles) instead of 13.75: on the 30° path the "
-    "friction-only sliding load μV_i/(1 + μ/tan α) = 2.82 kN/m is below the 3.0 kN/m amplitude "
-    "of cycle 12, and the passive resistance the calcareous model builds once the pipe slides "
-    "(A = 0.25, z ≈ 0.15 m: about 0.8 kN/m) cannot hold 3.25 kN/m in cycle 13 (a friction-only "
-    "run gives the same 12.30). The test pipe probably held because it had embedded and built "
-    "passive resistance during the earlier small cycles, which V&S's rigid–plastic friction "
-    "(no motion below μV) does not produce; see docs/validation/youssef_cassidy_2014.md"
-)
-
-
-@pytest.mark.parametrize(
-    "name",
-    [
-        "Inclined 1",
-        pytest.param("Inclined 2", marks=pytest.mark.xfail(strict=True, reason=_INCLINED_2_REASON)),
-        "Inclined 3",
-    ],
-)
-def test_cycles_to_displacement_limit_within_one_cycle(name):
-    res = run_centrifuge_test(name, parameters="table2")
-    assert res.success and res.cycles_to_limit is not None
-    assert abs(res.cycles_to_limit - TESTS[name].cycles_used) <= 1.0, res.cycles_to_limit
+# The Table 1 cycle counts are validated against *bands* over every choice the paper leaves
+# open (tests/validation/test_centrifuge_bands.py): a ±1-cycle check of the default run alone
+# held for Inclined 1 and 3 only with sine cycles on the paper's time axis (triangle cycles
+# put Inclined 1 at +1.05, prototype time put Inclined 3 at -2.02), so it is not asserted.
 
 
 @pytest.fixture(scope="module")

@@ -163,6 +163,8 @@ class _StageClock:
             d[f"{stage}_disks"] = disks
         self.t = now
         self.steps = steps
+
+
 def _read_checkpoint(ck: Path, identity: dict) -> Sample:
     """The checkpoint in ``ck`` if it is readable and belongs to the run ``identity``."""
     from onbottom.dem.identity import RESTART_ADVICE
