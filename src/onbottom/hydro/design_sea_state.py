@@ -296,6 +296,12 @@ def design_oscillation(
         Storm duration T [s] in τ = T/T_u (F109: 10 800 s).
     """
     in_range("duration", duration, 60.0, 1.0e6)
+    zr = float(current_reference_height)
+    if not zr > float(roughness):
+        raise InputError(
+            f"current_reference_height = {zr!r} m is invalid: must lie above the seabed"
+            f" roughness z_0 = {float(roughness):g} m (F109 Eq 3.3 log profile)"
+        )
     gam = (
         np.ones_like(np.asarray(hs, dtype=float))
         if spectrum == "pierson-moskowitz"
@@ -313,6 +319,11 @@ def design_oscillation(
     )(vel, dia)
     d = np.asarray(depth, dtype=float)
     tn = np.sqrt(d / GRAVITY)
+    if not (np.all(np.isfinite(us_lc)) and np.all(np.isfinite(tu))):
+        raise InputError(
+            f"tp = {tp!r} s is invalid with hs = {hs!r} m, depth = {depth!r} m: the spectral"
+            " bed velocity is not finite (T_p far too small for H_s; check the units)"
+        )
     tau = duration / tu
     k_u = peak_velocity_factor(tau)
     k_t = peak_period_factor(tn / tu, gam)
