@@ -23,6 +23,11 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "report",
+    "stability",
+    "loads",
+    "storm",
+    "curves",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 

@@ -9,6 +9,8 @@ most likely Itasca PFC2D); decoded in ``shared/spec/dem-penetration.md``.
 
 * :data:`SM` — medium-dense, D_r = 48 %, e = 0.227 (paper: 58,710 disks).
 * :data:`SD` — dense, D_r = 78 %, e = 0.197 (paper: 60,150 disks).
+* :data:`SM_DR48` — SM with the whole-box target raised so that the *interior* void ratio is
+  the paper's 0.227 (D_r = 48 %).
 * :data:`SM_REDUCED`, :data:`SD_REDUCED` — same contact law, stiffnesses, damping, void
   ratios, pipe diameter and g-level, but particles 3× larger (D/d50 ≈ 9.8), a 7D × 3D box and a
   pipe 5× faster, so that a case runs in about a minute. They keep the *contrast* between the
@@ -34,6 +36,8 @@ __all__ = [
     "SD",
     "SD_REDUCED",
     "SM",
+    "SM_DR48",
+    "SM_INTERIOR_OFFSET",
     "SM_REDUCED",
     "ContactParameters",
     "ContactSet",
@@ -269,6 +273,11 @@ class Preparation:
     lid_pressure_limit
         The lid stops early when its mean pressure exceeds this [Pa] after a pause;
         ``None`` → ten times the N g overburden at the specimen base, 10·ρ_s(1 − n)·N·g·H.
+    relaxation
+        How the 1 g and N g equilibrium stages are cycled: ``"damped"`` (the paper's local
+        damping α, the default) or ``"fire"`` (FIRE, Bitzek et al. 2006, Phys. Rev. Lett.
+        97:170201, with the same contact law and the same unbalanced-force criterion; see
+        ``docs/theory/dem.md``, "Speed levers").
     """
 
     n_layers: int = 5
@@ -278,6 +287,7 @@ class Preparation:
     equilibrium_ratio: float = 1e-3
     max_settle_time: float = 0.5
     lid_pressure_limit: float | None = None
+    relaxation: str = "damped"
 
     def __post_init__(self) -> None:
         if not isinstance(self.n_layers, int) or self.n_layers < 1:
@@ -289,6 +299,7 @@ class Preparation:
         v.positive("max_settle_time", self.max_settle_time)
         if self.lid_pressure_limit is not None:
             v.positive("lid_pressure_limit", self.lid_pressure_limit)
+        v.one_of("relaxation", self.relaxation, ("damped", "fire"))
 
 
 @dataclass(frozen=True)
@@ -333,11 +344,22 @@ class Numerics:
         Verlet skin as a fraction of d_min [-]; lists rebuilt when a disk moved > skin/2.
     record_every
         Record the pipe force every this many steps [-].
+    subcycle
+        Sub-cycle the stiff contacts: the time step follows the soil–soil stiffness
+        (``dt_safety``·√(m_min/k_soil)) and the disks within reach of a wall or the pipe take
+        ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil forces held for
+        the step (multiple time stepping; ``docs/theory/dem.md``, "Speed levers"). ``False``
+        (default): one time step for all, set by the stiffest contact.
+    sort_disks
+        Renumber the prepared specimen in cell order (rows of cells 2·d_max high, then x)
+        for memory locality [-]; the physics is unchanged (round-off only).
     """
 
     dt_safety: float = 0.5
     skin_ratio: float = 0.3
     record_every: int = 200
+    subcycle: bool = False
+    sort_disks: bool = False
 
     def __post_init__(self) -> None:
         v.in_range("dt_safety", self.dt_safety, 0.0, 1.0, low_inclusive=False)
@@ -494,6 +516,23 @@ SD = DEMConfig(
 )
 """Dense specimen of the paper (D_r = 78 %, e = 0.197)."""
 
+SM_INTERIOR_OFFSET = 0.009
+"""Whole-box target minus interior void ratio of a layer-compacted specimen at N g [-].
+
+Measured on the full-size SM run (seed 1): target 0.227, interior e at 25 g 0.2183
+(``docs/validation/dem_penetration.md``); the looser layers next to the walls and the
+surface hold the difference. Used to aim :data:`SM_DR48` at the paper's interior density."""
+
+SM_DR48 = SM.replace(
+    name="SM-Dr48",
+    target=Target(void_ratio=round(0.227 + SM_INTERIOR_OFFSET, 3)),
+    seed=3,
+)
+"""SM at the paper's density *in the interior*: whole-box target e = 0.236 so that the
+interior (the band the void ratio is measured in) comes out near the paper's e = 0.227,
+D_r = 48 % (the SM preset's interior was 0.218, D_r ≈ 57 %). Same contacts, box, grading
+and loading as :data:`SM`; seed 3. Not run yet (``docs/validation/dem_penetration.md``)."""
+
 _REDUCED_GEOMETRY = Geometry(width=7 * _D, height=3 * _D, pipe_diameter=_D)
 _REDUCED_PSD = ParticleSizeDistribution(d50=3 * 0.68e-3, cu=1.67)
 _REDUCED_LOADING = Loading(gravity_factor=25.0, pipe_velocity=0.05, final_embedment_ratio=0.5)
@@ -516,8 +555,8 @@ SD_REDUCED = SD.replace(
 )
 """Reduced SD: 3× larger disks, 7D × 3D box, pipe at 0.05 m/s (about 2,000 disks)."""
 
-PRESETS: dict[str, DEMConfig] = {c.name: c for c in (SM, SD, SM_REDUCED, SD_REDUCED)}
-"""Presets by name: ``SM``, ``SD``, ``SM-reduced``, ``SD-reduced``."""
+PRESETS: dict[str, DEMConfig] = {c.name: c for c in (SM, SD, SM_REDUCED, SD_REDUCED, SM_DR48)}
+"""Presets by name: ``SM``, ``SD``, ``SM-reduced``, ``SD-reduced``, ``SM-Dr48``."""
 
 
 def get_preset(name: str) -> DEMConfig:

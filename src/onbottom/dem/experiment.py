@@ -28,7 +28,7 @@ from onbottom.constants import GRAVITY
 from onbottom.dem import _kernels as K
 from onbottom.dem.analysis import inertial_number, measuring_circles, surface_profile
 from onbottom.dem.config import DEMConfig
-from onbottom.dem.engine import PipeState, Simulation
+from onbottom.dem.engine import PipeState, Simulation, step_sizes
 from onbottom.dem.identity import (
     RESTART_ADVICE,
     CheckpointError,
@@ -73,8 +73,7 @@ def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = Non
     """A :class:`Simulation` of ``sample`` with the design contacts at N g (no pipe yet)."""
     c = config.contacts
     m_min = config.material.density * math.pi * float(sample.radii.min()) ** 2
-    k_max = max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
-    dt = config.numerics.dt_safety * math.sqrt(m_min / k_max)
+    dt, nsub = step_sizes(c, m_min, config.numerics.dt_safety, config.numerics.subcycle)
     return Simulation(
         sample,
         c,
@@ -84,6 +83,7 @@ def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = Non
         skin=config.numerics.skin_ratio * 2.0 * float(sample.radii.min()),
         gravity=(0.0, -config.loading.gravity_factor * GRAVITY),
         threads=threads,
+        nsub=nsub,
     )
 
 

@@ -33,6 +33,7 @@ from __future__ import annotations
 import json
 import logging
 import math
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -40,7 +41,7 @@ import numpy as np
 
 from onbottom.constants import GRAVITY
 from onbottom.dem.config import ContactParameters, DEMConfig
-from onbottom.dem.engine import Simulation
+from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
@@ -128,6 +129,7 @@ def settle(
     force_floor: float = 0.0,
     start_time: float | None = None,
     on_check: Callable[[float], None] | None = None,
+    relaxation: str = "damped",
 ) -> tuple[bool, float]:
     """Cycle until the unbalanced-force ratio < ``ratio`` (after ``min_time``) or ``max_time``.
 
@@ -137,6 +139,10 @@ def settle(
     ``start_time`` [s]: simulated time at which the stage began (default: now), so that a stage
     resumed from a checkpoint keeps its original time window. ``on_check(fraction)`` is called
     after every check that does not end the stage (fraction of ``max_time`` used).
+    ``relaxation``: ``"damped"`` (local damping) or ``"fire"``; FIRE can meet the ratio while
+    the assembly still moves, so when it does the velocities are zeroed and the cycling goes
+    on with local damping until the criterion holds again (the end state meets the same
+    criterion under the same law as a damped stage). The simulation is left damped.
 
     Returns (converged, final ratio).
     """
@@ -144,14 +150,49 @@ def settle(
     t_end = t0 + max_time
     t_min = t0 + min_time
     r = math.inf
-    while sim.time < t_end:
-        sim.run(check_every)
-        r = sim.unbalanced_ratio()
-        if sim.time >= t_min and (r < ratio or sim.mean_applied_force() < force_floor):
-            return True, r
-        if on_check is not None:
-            on_check((sim.time - t0) / max_time)
+    sim.set_relaxation(relaxation)
+    polishing = relaxation == "damped"
+    try:
+        while sim.time < t_end:
+            sim.run(check_every)
+            r = sim.unbalanced_ratio()
+            if sim.time >= t_min and (r < ratio or sim.mean_applied_force() < force_floor):
+                if polishing:
+                    return True, r
+                sim.vel[:] = 0.0
+                sim.om[:] = 0.0
+                sim.set_relaxation("damped")
+                polishing = True
+                continue
+            if on_check is not None:
+                on_check((sim.time - t0) / max_time)
+    finally:
+        sim.set_relaxation("damped")
     return False, r
+
+
+class _StageClock:
+    """Accumulates wall-clock time and steps per preparation stage into ``timings``."""
+
+    def __init__(self, timings: dict[str, float] | None) -> None:
+        self.timings = timings
+        self.reset()
+
+    def reset(self, steps: int = 0) -> None:
+        self.t = time.perf_counter()
+        self.steps = steps
+
+    def lap(self, stage: str, steps: int, disks: int) -> None:
+        now = time.perf_counter()
+        if self.timings is not None:
+            d = self.timings
+            d[f"{stage}_wall"] = d.get(f"{stage}_wall", 0.0) + now - self.t
+            d[f"{stage}_steps"] = d.get(f"{stage}_steps", 0) + steps - self.steps
+            key = f"{stage}_disk_steps"
+            d[key] = d.get(key, 0) + disks * (steps - self.steps)
+            d[f"{stage}_disks"] = disks
+        self.t = now
+        self.steps = steps
 
 
 def _read_checkpoint(ck: Path, identity: dict) -> Sample:
@@ -177,6 +218,7 @@ def prepare_sample(
     progress: Progress | None = None,
     checkpoint: str | Path | None = None,
     checkpoint_every: int = 100_000,
+    timings: dict[str, float] | None = None,
     *,
     restart: bool = False,
 ) -> Sample:
@@ -199,6 +241,12 @@ def prepare_sample(
         :class:`~onbottom.dem.identity.CheckpointError`.
     checkpoint_every
         Steps between checkpoints inside the 1 g and N g equilibria [-].
+    timings
+        Optional dict filled with the wall-clock time [s] and the number of steps of each
+        stage of this call (``<stage>_wall``, ``<stage>_steps``, ``<stage>_disk_steps``,
+        ``<stage>_disks`` (at the end of the stage) for
+        ``generation``, ``compaction``, ``1g``, ``ramp``, ``Ng``; a resumed stage counts
+        only the work of this call). Diagnostics only: the sample does not depend on it.
     restart
         Discard an existing checkpoint and start afresh.
 
@@ -208,6 +256,7 @@ def prepare_sample(
         With attributes: void ratio after each stage, convergence of each equilibrium stage,
         the unbalanced-force ratios, the number of disks, the gravity factor.
     """
+    clock = _StageClock(timings)
     if int(checkpoint_every) < 1:
         raise CheckpointError(
             f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
@@ -257,9 +306,8 @@ def prepare_sample(
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
     w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    c = config.contacts
-    dt = config.numerics.dt_safety * math.sqrt(
-        m_min / max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+    dt, nsub = step_sizes(
+        config.contacts, m_min, config.numerics.dt_safety, config.numerics.subcycle
     )
 
     def new_sim(sample: Sample) -> Simulation:
@@ -271,6 +319,7 @@ def prepare_sample(
             dt=dt,
             skin=config.numerics.skin_ratio * float(diam.min()),
             gravity=(0.0, 0.0),
+            nsub=nsub,
         )
         s.set_soil_contact(prep_soil)
         return s
@@ -320,6 +369,7 @@ def prepare_sample(
         t_prev = sim.time if sim is not None else 0.0
         sim = new_sim(sample)
         sim.time = t_prev
+        clock.lap("generation", 0, sim.n)
         lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
         stop = float(tops[li])
         sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
@@ -344,8 +394,10 @@ def prepare_sample(
             prep.max_settle_time / 5.0,
             min_time=2e-3,
             force_floor=STRESS_FREE_FRACTION * w_mean,
+            relaxation=prep.relaxation,
         )
         log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
+        clock.lap("compaction", sim.step_count, sim.n)
         attrs[f"layer{li + 1}_settled"] = bool(ok_l)
         attrs[f"layer{li + 1}_lid"] = float(sim.lid or 0.0)
         attrs[f"layer{li + 1}_lid_target"] = stop
@@ -370,6 +422,7 @@ def prepare_sample(
             snap.save(ck)
         if progress is not None:
             progress("compaction", (li + 1) / n_l)
+        clock.reset()
     assert sim is not None
     rng_state = rng.bit_generator.state
     last_saved = [sim.step_count]
@@ -409,6 +462,7 @@ def prepare_sample(
             min_time=5e-3,
             start_time=stage_values[f"t0_{name}"],
             on_check=on_check(name),
+            relaxation=prep.relaxation,
         )
         if progress is not None:
             progress(name, 1.0)
@@ -420,10 +474,20 @@ def prepare_sample(
         stage_values["t0_1g"] = sim.time
         stage = "1g"
     sim.set_lid(None)
+    if config.numerics.sort_disks:
+        # renumber in cell order for memory locality (round-off only; idempotent on resume)
+        snap = sim.to_sample()
+        order = snap.cell_order()
+        if not np.array_equal(order, np.arange(snap.n)):
+            t_now = sim.time
+            sim = new_sim(snap.permuted(order))
+            sim.time = t_now
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
+        clock.reset(sim.step_count)
         ok1, r1 = equilibrium("1g")
+        clock.lap("1g", sim.step_count, sim.n)
         stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
         # ramp to N g, then equilibrium
         ramp = config.loading.gravity_ramp_time
@@ -434,12 +498,15 @@ def prepare_sample(
                 f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
                 sim.set_gravity(0.0, -f * GRAVITY)
                 sim.run(steps)
+        clock.lap("ramp", sim.step_count, sim.n)
         stage_values["t0_Ng"] = sim.time
         stage = "Ng"
         if ck is not None:
             save_stage(stage)
     sim.set_gravity(0.0, -n_g * GRAVITY)
+    clock.reset(sim.step_count)
     ok2, r2 = equilibrium("Ng")
+    clock.lap("Ng", sim.step_count, sim.n)
     e_compacted = stage_values["e_compacted"]
     ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
     out = sim.to_sample()

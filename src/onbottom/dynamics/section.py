@@ -139,7 +139,8 @@ class SectionResult:
         Rejected (halved) steps.
     data : xarray.Dataset
         Time series (dimension ``time``): H, V, u, u_dot, w, F_friction, F_passive, F_soil,
-        work, region; provenance attributes.
+        work, region, soil_energy_stored, soil_energy_dissipated (their sum is the work done
+        on the soil, ∫F_soil du); provenance attributes.
     time_to_limit : float or None
         Time at which |u| first reached the displacement limit [s] (linear interpolation in
         the step), None if never.
@@ -181,6 +182,8 @@ def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset
         "F_soil": K.REC_FS,
         "work": K.REC_WORK,
         "region": K.REC_REGION,
+        "soil_energy_stored": K.REC_E_STORED,
+        "soil_energy_dissipated": K.REC_E_DISSIPATED,
     }
     ds = xr.Dataset(
         {k: ("time", np.ascontiguousarray(rec[:, i])) for k, i in names.items()},
