@@ -537,6 +537,41 @@ def test_output_paths_that_are_folders_are_named(tmp_path):
 
 
 # --------------------------------------------------------------------------------------------
+# the on-bottom stability case files (stability, loads, storm, curves share one layout)
+# --------------------------------------------------------------------------------------------
+STABILITY_FILES = [
+    (
+        "misspelled-table",
+        "[pipe]\nouter_diameter = 0.4\nsubmerged_weight = 1500.0\n[seabd]\n",
+        "seabd",
+    ),
+    (
+        "diameter-in-mm",
+        "[pipe]\nouter_diameter = 400.0\nsubmerged_weight = 1500.0\n",
+        "pipe.outer_diameter",
+    ),
+    (
+        "string-number",
+        '[pipe]\nouter_diameter = "0.4"\nsubmerged_weight = 1500.0\n',
+        "pipe.outer_diameter",
+    ),
+    ("malformed", "garbage = = 1\n", None),
+]
+
+
+@pytest.mark.parametrize("command", ["stability", "loads", "storm", "curves"])
+@pytest.mark.parametrize(
+    ("text", "field"), [c[1:] for c in STABILITY_FILES], ids=[c[0] for c in STABILITY_FILES]
+)
+def test_stability_case_files(tmp_path, command, text, field):
+    case = tmp_path / "case.toml"
+    case.write_text(text, encoding="utf-8")
+    if command == "curves" and field and field.startswith("pipe."):
+        field = "curves"  # `curves` names its missing [curves] table first
+    _check([command, str(case)], field)
+
+
+# --------------------------------------------------------------------------------------------
 # plausibility of the Python inputs
 # --------------------------------------------------------------------------------------------
 def _pipe(d=1.0, w=1.0e4):
@@ -635,5 +670,6 @@ def test_number_of_cases_is_reported():
         + 2
         + len(PLAUSIBILITY_ERRORS)
         + len(PLAUSIBILITY_WARNINGS)
+        + 4 * len(STABILITY_FILES)
     )
     assert n >= 200
