@@ -673,3 +673,36 @@ def test_number_of_cases_is_reported():
         + 4 * len(STABILITY_FILES)
     )
     assert n >= 200
+
+
+# --------------------------------------------------------------------------------------------
+# results outside their model's validity say so (status, message, JSON) and exit 3
+# --------------------------------------------------------------------------------------------
+def _result(args: list[str]) -> dict:
+    r = CliRunner().invoke(cli, [*args, "--json"])
+    assert r.exit_code == 3, (r.exit_code, r.output)
+    return json.loads(r.stdout)
+
+
+def test_backbone_penetration_beyond_half_diameter():
+    out = _result(["backbone", "--weight-kn", "50", "--gamma-kn", "1.0", "--cycles", "2"])
+    assert out["success"] is False and "exceeds D/2" in out["message"]
+
+
+def test_f114_embedment_outside_the_model_range():
+    out = _result([*CLAY[:-1], "5", "--model", "2", "--su-kpa", "1", "--load-kn", "4"])
+    emb = out["embedment"]
+    assert emb["z_over_D"] > 0.5 and emb["success"] is False
+    assert emb["status"] == "outside_validity" and "converged" not in emb["message"]
+
+
+def test_section_lift_off(tmp_path):
+    head = CASE.split("[soil]")[0]
+    case = tmp_path / "lift.toml"
+    case.write_text(
+        head + '[soil]\nmodel = "coulomb"\nfriction_coefficient = 0.5\n'
+        '[programme]\nkind = "arrays"\ntime = [0.0, 10.0, 20.0]\n'
+        "horizontal_load_kn = [0.0, 1.0, 0.0]\nvertical_load_kn = [10.0, -1.0, 10.0]\n"
+    )
+    out = _result(["simulate", str(case), "--quiet"])
+    assert out["success"] is False and out["status"] == -3 and "lift-off" in out["message"]

@@ -296,8 +296,9 @@ def test_fuzz_backbone_options(d, w, gamma, mu, cycles):
     args = ["backbone", "--diameter", d, "--weight-kn", w, "--gamma-kn", gamma, "--mu", mu]
     args += ["--cycles", cycles, "--amplitude", "0.01"]
     r = _run(args)
-    if r.exit_code == 0:
+    if r.exit_code in (0, 3):  # 3: a result outside the model's validity (z > D/2)
         out = json.loads(r.stdout)
+        assert out["success"] is (r.exit_code == 0)
         _assert_no_nan(out["backbone"])
         _assert_no_nan(out.get("path", {}))
     else:

@@ -13,6 +13,7 @@ import click
 import numpy as np
 
 from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
     Number,
     check_output_path,
     emit_json,
@@ -168,12 +169,36 @@ def command(
         )
     messages = list(dict.fromkeys(str(w.message) for w in caught))
     payload["warnings"] = messages
+    validity = _validity(payload, diameter)
+    payload["success"] = not validity
+    payload["message"] = (
+        "outside the model's validity: " + "; ".join(validity) if validity else "ok"
+    )
     if as_json:
         emit_json(payload)
-        return
-    _print_table(payload, diameter)
-    for msg in messages:
-        click.echo(f"warning: {msg}", err=True)
+    else:
+        _print_table(payload, diameter)
+        for msg in messages:
+            click.echo(f"warning: {msg}", err=True)
+        if validity:
+            click.echo(f"Error: {payload['message']}", err=True)
+    if validity:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _validity(payload: dict, d: float) -> list[str]:
+    """Where the result leaves the Verley & Sotberg model's validity (penetration > D/2)."""
+    out = []
+    pts = payload["backbone"]
+    for key in ("z_i", "z2", "z3"):
+        z = float(pts[key])
+        if z > 0.5 * d:
+            out.append(f"{key} = {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
+    path = payload.get("path")
+    if path is not None and float(path["final_penetration"]) > 0.5 * d:
+        z = float(path["final_penetration"])
+        out.append(f"the path's penetration {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
+    return out
 
 
 def _run(
