@@ -27,7 +27,6 @@ from onbottom.dem.lammps_backend import (
     run_lammps_case,
     write_lammps_case,
 )
-from onbottom.dem.sample import Sample
 from onbottom.results import save_dataset
 
 __all__ = ["command"]
@@ -103,12 +102,10 @@ def command(
     as_json: bool,
 ) -> None:
     """Run the pipe-penetration experiment with LAMMPS (cross-check of 'onbottom dem')."""
-    config = (
-        DEMConfig.from_json(config_file.read_text())
-        if config_file is not None
-        else get_preset(preset)
-    )
-    sample = Sample.load(sample_file)
+    config = DEMConfig.from_file(config_file) if config_file is not None else get_preset(preset)
+    from onbottom.cli.dem import _load_sample
+
+    sample = _load_sample(sample_file)
     case = LammpsPenetrationCase.from_config(
         config, sample, settle_time=settle_time, ramp_gravity=ramp_gravity
     )
