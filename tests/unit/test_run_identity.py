@@ -272,3 +272,23 @@ def test_cli_penetrate_mismatch_json_error_and_restart(sample, tmp_path):
         r = runner.invoke(cli, [*base, "--config", str(cfg), *bad, "--json"])
         assert r.exit_code == 1, bad
         assert json.loads(r.output)["error"]["field"] == bad[0]
+
+
+def test_summaries_of_two_runs_of_one_preset_do_not_overwrite_each_other(sample, tmp_path):
+    from onbottom.results import save_dataset
+
+    runner = CliRunner()
+    ds = penetrate(TINY, sample, max_steps=STEPS)
+    for name in ("a.nc", "b.nc"):
+        save_dataset(ds, tmp_path / name)
+    outdir = tmp_path / "summ"
+    args = ["dem", "summarize", "--outdir", str(outdir), "--json"]
+    r = runner.invoke(cli, [*args, str(tmp_path / "a.nc"), str(tmp_path / "b.nc")])
+    assert r.exit_code == 0, r.output
+    names = sorted(p.name for p in outdir.glob("*_summary.nc"))
+    assert names == ["tiny_a_summary.nc", "tiny_b_summary.nc"]
+    r = runner.invoke(cli, [*args, str(tmp_path / "a.nc")])  # one run: the preset name
+    assert json.loads(r.output)[0]["summary"].endswith("tiny_summary.nc")
+    r = runner.invoke(cli, [*args, str(tmp_path / "b.nc")])  # another run, same preset
+    assert json.loads(r.output)[0]["summary"].endswith("tiny_b_summary.nc")
+    assert (outdir / "tiny_summary.nc").exists()
