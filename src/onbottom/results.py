@@ -68,6 +68,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "work_soil": ("work done by the pipe on the soil", "J/m"),
     "r_y": ("total horizontal load reduction r_tot,y", "1"),
     "r_z": ("total vertical load reduction r_tot,z", "1"),
+    # pipeline FE (time × node; onbottom.dynamics.pipeline)
+    "u_axial": ("axial displacement of the pipe", "m"),
+    "moment": ("bending moment in the horizontal plane", "N m"),
+    "axial_force": ("effective axial force (tension positive)", "N"),
+    "strain": ("largest longitudinal fibre strain |N|/EA + |M|c/EI", "1"),
 }
 
 

@@ -68,7 +68,8 @@ def test_sheet_pipe_fails_absolute_check_table(tmp_path, capsys):
 
 def test_no_feasible_design_is_reported_not_crashed(tmp_path, capsys):
     text = SHEET + '[design]\nsolve_for = "concrete_thickness"\nthickness_max = 0.1\n'
-    assert main(["stability", _case(tmp_path, text), "--json"]) == 0
+    # no valid result: exit 3 (issue 10), with the report still printed
+    assert main(["stability", _case(tmp_path, text), "--json"]) == 3
     d = json.loads(capsys.readouterr().out)["design"]
     assert d["success"] is False and d["value"] is None
     assert "no value in the range passes" in d["message"] and d["best_utilisation"] > 1.0

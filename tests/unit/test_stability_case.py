@@ -88,6 +88,11 @@ def test_clay_and_rock(tmp_path):
         (SIMPLE + BASE + "[design]\nthickness_min = 0.2\nthickness_max = 0.1\n", "thickness_max"),
         (SIMPLE + BASE + "[stom]\nseed = 1\n", "did you mean 'storm'"),
         (SIMPLE + BASE.replace("spreading_s = 4.0", "spreading_s = -1.0"), "waves.spreading_s"),
+        (
+            SIMPLE
+            + BASE.replace("tp = 9.0", 'tp = 9.0\ngamma = 2.0\nspectrum = "pierson-moskowitz"'),
+            "JONSWAP",
+        ),
     ],
 )
 def test_errors(tmp_path, text, needle):

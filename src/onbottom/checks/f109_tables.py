@@ -3,7 +3,8 @@
 * Peak load coefficients C*_Y and C*_Z against K* and M* (DNVGL-RP-F109 (2017) Tables 3-9
   and 3-10; 2010 edition Tables 3-9/3-10): two independent public transcriptions agree value
   for value (``shared/spec/dnv-reference.md`` §2.5). Bilinear interpolation in K* and M*.
-  K* < 2.5: C*_Y = C*_Y(2.5)·2.5/K*, C*_Z = C*_Z(2.5). K* > 140 or M* > 10: the edge value
+  K* < 2.5: C*_Y = C*_Y(2.5)·2.5/K* (for M* <= 10 only: beyond, steady current, C*_Y = 1),
+  C*_Z = C*_Z(2.5). K* > 140 or M* > 10: the edge value
   (both tables tend to their steady-flow values there) with an OutOfRangeWarning.
 * Safety factors γ_SC by region, soil and safety class (2017 Tables 3-5 to 3-8).
 
@@ -133,5 +134,10 @@ def peak_load_coefficients(k_star: ArrayLike, m_star: ArrayLike) -> tuple[NDArra
     mc = np.clip(np.where(np.isfinite(m), m, M_GRID[-1]), M_GRID[0], M_GRID[-1])
     cy = _interp2(CY_TABLE, kc, mc)
     cz = _interp2(CZ_TABLE, kc, mc)
-    cy = np.where(k < K_GRID[0], cy * K_GRID[0] / k, cy)
+    # K* < 2.5 rule (C*_Y ∝ 1/K*, wave inertia) only inside the table's M* range: beyond
+    # M* = 10 the flow is steady current, the M* >= 10 row is K*-independent (C*_Y = 1), and
+    # the rule would send the load to infinity as U* → 0 (a deep-water pipe in a current
+    # gave utilisations of 1e17). Choice where F109 is silent; see docs/theory.
+    scale = (k < K_GRID[0]) & ~(m > M_GRID[-1])
+    cy = np.where(scale, cy * K_GRID[0] / np.where(scale, k, 1.0), cy)
     return cy, cz

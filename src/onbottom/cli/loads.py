@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 
 __all__ = ["command", "evaluate_loads"]
 
@@ -23,11 +23,19 @@ def evaluate_loads(
     from onbottom.hydro.load_envelope import load_envelope
     from onbottom.inputs.stability_case import load_stability_case
 
-    case = load_stability_case(case_path)
+    caught: list[warnings.WarningMessage] = []
+    with warnings.catch_warnings(record=True) as loading:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        case = load_stability_case(case_path)
+    caught.extend(loading)
     if seed is None:
         storm_seed = (case.storm or {}).get("seed", 0)
         if isinstance(storm_seed, bool) or not isinstance(storm_seed, int) or storm_seed < 0:
-            raise InputError(f"storm.seed = {storm_seed!r} is invalid: expected an integer >= 0")
+            err = InputError(
+                f"storm.seed = {storm_seed!r} is invalid: expected a whole number >= 0"
+            )
+            err.field = "storm.seed"  # type: ignore[attr-defined]
+            raise err
         seed = storm_seed
     section = case.section()
     seabed = case.seabed.seabed()
@@ -44,37 +52,45 @@ def evaluate_loads(
     )
     out: list[dict[str, Any]] = []
     envs = []
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", OutOfRangeWarning)
+    with warnings.catch_warnings(record=True) as checking:
+        warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
+    caught.extend(checking)
     by_combo = {r.combination: r.details for r in rows if r.name == "absolute_lateral"}
     for combo in combos:
         det = by_combo[combo.name]
         if "diameter" not in det:
-            raise InputError(
-                f"pipe.condition = {combo.condition!r} is invalid for {combo.name!r}: the pipe"
-                " floats (submerged weight <= 0)"
+            err = InputError(
+                f"pipe = (condition {combo.condition!r}) is invalid for combination"
+                f" {combo.name!r}: the pipe floats (submerged weight"
+                f" {det.get('submerged_weight', float('nan')):.4g} N/m <= 0); check the densities"
+                " and the contents of that condition"
             )
+            err.field = "pipe"  # type: ignore[attr-defined]
+            raise err
         r_y, r_z = (det["r_y"], det["r_z"]) if h.reductions else (1.0, 1.0)
         ss = combo.sea_state
-        e = load_envelope(
-            hs=ss.hs,
-            tp=ss.tp,
-            depth=env.water_depth,
-            diameter=det["diameter"],
-            submerged_weight=det["submerged_weight"],
-            current=det["v_star"],
-            gamma=ss.gamma,
-            spectrum=ss.spectrum,
-            wave_direction_deg=ss.direction_deg,
-            spreading_s=ss.spreading_s or None,
-            coefficients=coef,
-            r_y=r_y,
-            r_z=r_z,
-            density=env.water_density,
-            duration=duration_hours * 3600.0,
-            seed=seed,
-        )
+        with warnings.catch_warnings(record=True) as enveloping:
+            warnings.simplefilter("always", OutOfRangeWarning)
+            e = load_envelope(
+                hs=ss.hs,
+                tp=ss.tp,
+                depth=env.water_depth,
+                diameter=det["diameter"],
+                submerged_weight=det["submerged_weight"],
+                current=det["v_star"],
+                gamma=ss.gamma,
+                spectrum=ss.spectrum,
+                wave_direction_deg=ss.direction_deg,
+                spreading_s=ss.spreading_s or None,
+                coefficients=coef,
+                r_y=r_y,
+                r_z=r_z,
+                density=env.water_density,
+                duration=duration_hours * 3600.0,
+                seed=seed,
+            )
+        caught.extend(enveloping)
         envs.append(e)
         out.append(
             {
@@ -98,8 +114,38 @@ def evaluate_loads(
         "duration": duration_hours * 3600.0,
         "coefficients": {"cd": h.cd, "cm": h.cm, "cl": h.cl},
         "combinations": out,
+        "warnings": sorted(
+            {str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)}
+        ),
     }
     return payload, envs
+
+
+def _check_outputs(case: Path, plot: Path | None, output: Path | None) -> None:
+    """Refuse output names that would overwrite the case file or each other, or a wrong kind."""
+    from onbottom.errors import InputError
+
+    def fail(field: str, message: str) -> None:
+        err = InputError(message)
+        err.field = field  # type: ignore[attr-defined]
+        raise err
+
+    if plot is not None and plot.suffix.lower() not in (".png", ".pdf", ".svg"):
+        fail(
+            "--plot",
+            f"--plot = {str(plot)!r} is invalid: the file name must end in .png, .pdf or .svg",
+        )
+    if output is not None and output.suffix.lower() != ".nc":
+        fail("--output", f"--output = {str(output)!r} is invalid: the file name must end in .nc")
+    same = [
+        (name, p)
+        for name, p in (("--plot", plot), ("--output", output))
+        if p is not None and p.resolve() == case.resolve()
+    ]
+    for name, p in same:
+        fail(name, f"{name} = {str(p)!r} is invalid: it would overwrite the case file")
+    if plot is not None and output is not None and plot.resolve() == output.resolve():
+        fail("--output", f"--output = {str(output)!r} is invalid: the same file as --plot")
 
 
 @click.command("loads")
@@ -120,13 +166,13 @@ def evaluate_loads(
 )
 @click.option(
     "--seed",
-    type=click.IntRange(min=0),
+    type=Number(int, min=0, max=2**32 - 1),
     default=None,
     help="Random-phase seed (default: [storm] seed, else 0).",
 )
 @click.option(
     "--duration-hours",
-    type=click.FloatRange(min=0.1, max=100.0),
+    type=Number(float, min=0.1, max=100.0, unit="h"),
     default=3.0,
     show_default=True,
     help="Length of the simulated record [h] (F109 design sea state: 3 h).",
@@ -148,17 +194,12 @@ def command(
     Loads: Morison drag + inertia and lift with [hydro] cd, cm, cl on the pipe at rest, with
     the F109 load reductions of the absolute check when [hydro] reductions = true.
     """
+    _check_outputs(case, plot, output)
     payload, envs = evaluate_loads(case, seed=seed, duration_hours=duration_hours)
     if plot is not None:
         from onbottom.cli._common import check_output_path
         from onbottom.plotting.load_envelope import plot_load_envelope
 
-        if plot.suffix.lower() not in (".png", ".pdf", ".svg"):
-            from onbottom.errors import InputError
-
-            raise InputError(
-                f"--plot = {str(plot)!r} is invalid: the file name must end in .png, .pdf or .svg"
-            )
         check_output_path(plot, field="--plot")
         fig = plot_load_envelope(
             envs,
@@ -182,6 +223,8 @@ def command(
     if as_json:
         emit_json(payload)
         return
+    for w in payload["warnings"]:
+        click.echo(f"warning: {w}", err=True)
     click.echo(
         f"{'combination':<40} {'cycles':>6} {'20–45°':>7} {'max H (kN/m)':>13} {'min V (kN/m)':>13}"
     )

@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import EXIT_INVALID_RESULT, emit_json, handle_errors, json_option
 
 __all__ = ["command"]
 
@@ -39,7 +39,11 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
     from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.stability_case import load_stability_case
 
-    case = load_stability_case(case_path)
+    caught: list[warnings.WarningMessage] = []
+    with warnings.catch_warnings(record=True) as loading:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        case = load_stability_case(case_path)
+    caught.extend(loading)
     section = case.section()
     seabed = case.seabed.seabed()
     env = case.environment_object()
@@ -55,7 +59,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         trench_angle_deg=case.seabed.trench_angle_deg,
         permeable=d.permeable,
     )
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as checking:
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
         design: dict[str, Any] = {"solve_for": d.solve_for}
@@ -96,6 +100,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
                         "best_utilisation": exc.best_utilisation,
                     }
                 )
+    caught.extend(checking)
     notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
     return {
         "case": str(case_path),
@@ -104,6 +109,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
             {k: v for k, v in r.as_dict().items() if k != "details"} | {"details": r.details}
             for r in rows
         ],
+        "success": design.get("success", True),
         "all_pass": all(r.passes for r in rows),
         "design": design,
         "warnings": notes,
@@ -121,9 +127,10 @@ def _table(payload: dict[str, Any]) -> str:
     lines.append(f"{'check':<20} {'combination':<32} {'condition':<13} {'util.':>8}  verdict")
     for r in payload["checks"]:
         verdict = "pass" if r["pass"] else "FAIL"
+        u = r["utilisation"]
+        shown = f"{u:>8.3f}" if isinstance(u, (int, float)) else f"{'n/a':>8}"
         lines.append(
-            f"{r['name']:<20} {r['combination'][:32]:<32} {r['condition']:<13}"
-            f" {r['utilisation']:>8.3f}  {verdict}"
+            f"{r['name']:<20} {r['combination'][:32]:<32} {r['condition']:<13} {shown}  {verdict}"
         )
     lines.append("")
     lines.append("All checks pass." if payload["all_pass"] else "At least one check FAILS.")
@@ -154,11 +161,14 @@ def command(case: Path, as_json: bool) -> None:
     submerged weight ([design] solve_for).
 
     --json prints {"checks": [{name, combination, condition, utilisation, pass, details}],
-    "design": {...}, "section": {...}, "all_pass", "warnings"}. Failing checks are a result,
-    not an error: the exit status is 0; input errors exit 1.
+    "design": {...}, "section": {...}, "all_pass", "success", "warnings"}. Failing checks are
+    a result, not an error: the exit status is 0. A design solve with no solution in its
+    range ("design": {"success": false}) exits 3 (no valid result); input errors exit 1.
     """
     payload = evaluate_case(case)
     if as_json:
         emit_json(payload)
     else:
         click.echo(_table(payload))
+    if not payload["success"]:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -57,6 +57,7 @@ SPECTRA: tuple[str, ...] = ("jonswap", "pierson-moskowitz")
 """Wave spectra: JONSWAP (γ from the DNV rule or given) or Pierson–Moskowitz (γ = 1)."""
 
 _X_MIN, _X_MAX = 0.25, 12.0
+_BLOCK = 128
 _KT_GAMMA = np.array([1.0, 3.3, 5.0])
 _KT_VALUE = np.array([1.25, 1.21, 1.17])
 
@@ -162,20 +163,25 @@ def significant_bed_velocity(
     shape = h.shape
     h, t, d, g = (a.reshape(-1, 1) for a in (h, t, d, g))
     x = np.linspace(_X_MIN, _X_MAX, n_omega)[None, :]
-    wp = 2.0 * math.pi / t
-    w = x * wp
-    # JONSWAP (DNV-RP-C205 §3.5.5), written in x = ω/ω_p: S = α g² ω⁻⁵ e^(−1.25 x⁻⁴) γ^r
+    # JONSWAP (DNV-RP-C205 §3.5.5) in x = ω/ω_p: S = α g² ω_p⁻⁵ · x⁻⁵ e^(−1.25 x⁻⁴) · γ^r(x)
     sigma = np.where(x <= 1.0, 0.07, 0.09)
     r = np.exp(-((x - 1.0) ** 2) / (2.0 * sigma**2))
-    alpha = 5.0 / 16.0 * h**2 * wp**4 / GRAVITY**2 * (1.0 - 0.287 * np.log(g))
-    s_eta = alpha * GRAVITY**2 * w**-5.0 * np.exp(-1.25 * x**-4.0) * g**r
-    k = _wave_number(w, d)
-    e = np.exp(-np.minimum(k * d, 700.0))
-    s_uu = (2.0 * w * e / (1.0 - e * e)) ** 2 * s_eta  # G = ω/sinh(kd) = 2ω e^−kd/(1 − e^−2kd)
-    m0 = np.trapezoid(s_uu, w, axis=1)
-    m2 = np.trapezoid(w**2 * s_uu, w, axis=1)
-    us = 2.0 * np.sqrt(m0)
-    tu = 2.0 * math.pi * np.sqrt(m0 / m2)
+    shape_x = x**-5.0 * np.exp(-1.25 * x**-4.0)
+    us = np.empty(h.shape[0])
+    tu = np.empty(h.shape[0])
+    for i in range(0, h.shape[0], _BLOCK):  # blocks of sea states: bounded memory
+        b = slice(i, i + _BLOCK)
+        wp = 2.0 * math.pi / t[b]
+        w = x * wp
+        alpha = 5.0 / 16.0 * h[b] ** 2 * wp**4 / GRAVITY**2 * (1.0 - 0.287 * np.log(g[b]))
+        s_eta = alpha * GRAVITY**2 * wp**-5.0 * shape_x * g[b] ** r
+        k = _wave_number(w, d[b])
+        e = np.exp(-np.minimum(k * d[b], 700.0))
+        s_uu = (2.0 * w * e / (1.0 - e * e)) ** 2 * s_eta  # G = ω/sinh(kd) = 2ω e^−kd/(1 − e^−2kd)
+        m0 = np.trapezoid(s_uu, w, axis=1)
+        m2 = np.trapezoid(w**2 * s_uu, w, axis=1)
+        us[b] = 2.0 * np.sqrt(m0)
+        tu[b] = 2.0 * math.pi * np.sqrt(m0 / m2)
     return us.reshape(shape), tu.reshape(shape)
 
 
@@ -290,6 +296,12 @@ def design_oscillation(
         Storm duration T [s] in τ = T/T_u (F109: 10 800 s).
     """
     in_range("duration", duration, 60.0, 1.0e6)
+    zr = float(current_reference_height)
+    if not zr > float(roughness):
+        raise InputError(
+            f"current_reference_height = {zr!r} m is invalid: must lie above the seabed"
+            f" roughness z_0 = {float(roughness):g} m (F109 Eq 3.3 log profile)"
+        )
     gam = (
         np.ones_like(np.asarray(hs, dtype=float))
         if spectrum == "pierson-moskowitz"
@@ -307,6 +319,11 @@ def design_oscillation(
     )(vel, dia)
     d = np.asarray(depth, dtype=float)
     tn = np.sqrt(d / GRAVITY)
+    if not (np.all(np.isfinite(us_lc)) and np.all(np.isfinite(tu))):
+        raise InputError(
+            f"tp = {tp!r} s is invalid with hs = {hs!r} m, depth = {depth!r} m: the spectral"
+            " bed velocity is not finite (T_p far too small for H_s; check the units)"
+        )
     tau = duration / tu
     k_u = peak_velocity_factor(tau)
     k_t = peak_period_factor(tn / tu, gam)

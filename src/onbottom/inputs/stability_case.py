@@ -17,12 +17,16 @@ accepted here and validated by the commands that read them.
 
 from __future__ import annotations
 
+import math
 import os
-from typing import Any, Literal
+import warnings
+from pathlib import Path
+from typing import Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import StrictModel, load_case_file
+from onbottom._casefile import CaseFileError, StrictModel, _find_line, load_case_file
+from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Layer, Pipe
 from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
@@ -37,14 +41,14 @@ Condition = Literal["installation", "flooded", "hydrotest", "operation"]
 class LayerTable(StrictModel):
     name: str = Field("coating", description="label, e.g. corrosion, concrete [-]")
     thickness: float = Field(ge=0.0, le=1.0, description="radial thickness [m]")
-    density: float = Field(gt=0.0, le=2.0e4, description="density [kg/m³]")
+    density: float = Field(ge=100.0, le=2.0e4, description="density [kg/m³]")
 
 
 class ContentsTable(StrictModel):
-    installation: float = Field(0.0, ge=0.0, le=2.0e4, description="empty as laid [kg/m³]")
-    flooded: float = Field(1025.0, ge=0.0, le=2.0e4, description="water-flooded [kg/m³]")
-    hydrotest: float = Field(1025.0, ge=0.0, le=2.0e4, description="hydrotest water [kg/m³]")
-    operation: float = Field(0.0, ge=0.0, le=2.0e4, description="product [kg/m³]")
+    installation: float = Field(0.0, ge=0.0, le=3.0e3, description="empty as laid [kg/m³]")
+    flooded: float = Field(1025.0, ge=0.0, le=3.0e3, description="water-flooded [kg/m³]")
+    hydrotest: float = Field(1025.0, ge=0.0, le=3.0e3, description="hydrotest water [kg/m³]")
+    operation: float = Field(0.0, ge=0.0, le=3.0e3, description="product [kg/m³]")
 
 
 class PipeTable(StrictModel):
@@ -52,10 +56,10 @@ class PipeTable(StrictModel):
     submerged_weight: float | None = Field(None, gt=0.0, description="w_s (simple) [N/m]")
     steel_outer_diameter: float | None = Field(None, gt=0.0, le=5.0, description="D_s [m]")
     wall_thickness: float | None = Field(None, gt=0.0, description="steel wall t [m]")
-    steel_density: float = Field(7850.0, gt=0.0, le=2.0e4, description="[kg/m³]")
+    steel_density: float = Field(7850.0, ge=2.0e3, le=2.0e4, description="[kg/m³]")
     youngs_modulus: float = Field(207.0e9, gt=0.0, description="steel E [Pa]")
     contents_density: float | None = Field(
-        None, ge=0.0, le=2.0e4, description="contents in every condition [kg/m³]"
+        None, ge=0.0, le=3.0e3, description="contents in every condition [kg/m³]"
     )
     contents: ContentsTable | None = None
     condition: Condition = "operation"
@@ -165,7 +169,7 @@ class SeabedTable(StrictModel):
 class EnvironmentTable(StrictModel):
     water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
     water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
-    kinematic_viscosity: float = Field(1.19e-6, gt=0.0, description="ν [m²/s]")
+    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
 
 
 class WavesTable(StrictModel):
@@ -175,6 +179,12 @@ class WavesTable(StrictModel):
     spectrum: Literal["jonswap", "pierson-moskowitz"] = "jonswap"
     direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
     spreading_s: float = Field(0.0, ge=0.0, le=100.0, description="cos^s exponent [-]")
+
+    @model_validator(mode="after")
+    def _gamma_only_for_jonswap(self) -> WavesTable:
+        if self.gamma is not None and self.spectrum != "jonswap":
+            raise ValueError("gamma applies to the JONSWAP spectrum only; remove it")
+        return self
 
 
 class CurrentTable(StrictModel):
@@ -244,23 +254,6 @@ class StabilityCase(StrictModel):
     run: dict[str, Any] | None = None
     pipeline: dict[str, Any] | None = None
 
-    @model_validator(mode="after")
-    def _checks(self) -> StabilityCase:
-        names = [c.name for c in self.combinations]
-        dup = {n for n in names if names.count(n) > 1}
-        if dup:
-            raise ValueError(f"combination names must be unique (repeated: {sorted(dup)})")
-        if self.design.solve_for == "concrete_thickness":
-            if not self.pipe.is_buildup:
-                raise ValueError("solve_for = 'concrete_thickness' needs the build-up [pipe] form")
-            if self.design.layer not in [layer.name for layer in self.pipe.layers]:
-                raise ValueError(
-                    f"design.layer = {self.design.layer!r} is not one of the [[pipe.layers]] names"
-                )
-        if self.design.solve_for == "submerged_weight" and self.pipe.is_buildup:
-            raise ValueError("solve_for = 'submerged_weight' needs the simple [pipe] form")
-        return self
-
     # ---- builders -----------------------------------------------------------------------
     def environment_object(self) -> Environment:
         e = self.environment
@@ -281,7 +274,7 @@ class StabilityCase(StrictModel):
         return SeaState(
             hs=hs,
             tp=tp,
-            gamma=None if w.spectrum != "jonswap" else gamma,
+            gamma=gamma,
             spectrum=w.spectrum,
             direction_deg=w.direction_deg,
             spreading_s=w.spreading_s,
@@ -319,6 +312,275 @@ class StabilityCase(StrictModel):
         )
 
 
+# ---- checks across tables and plausibility (after the schema) -------------------------------
+MAX_WAVE_STEEPNESS = 1.0 / 7.0
+"""Limiting steepness H/L of a single wave (Miche/Stokes, deep water): a sea state with a
+larger S_p = 2π H_s/(g T_p²) cannot exist — an error (T_p in the wrong unit, H_max for H_s)."""
+
+MAX_HS_OVER_DEPTH = 0.78
+"""Depth-limited breaking H/d ≈ 0.78 (McCowan): a significant wave height above it is an error."""
+
+USUAL_HS_OVER_DEPTH = 0.5
+"""Above H_s/d = 0.5 the sea is in the surf zone: linear wave kinematics (F109 §3.2) are outside
+their usual range — a warning."""
+
+_OBJECT_TABLES = {
+    "PipeBuildUp": "pipe",
+    "Pipe": "pipe",
+    "Layer": "pipe.layers",
+    "Contents": "pipe.contents",
+    "Sand": "seabed",
+    "Clay": "seabed",
+    "Rock": "seabed",
+    "Environment": "environment",
+    "SeaState": "waves",
+    "Current": "current",
+    "LoadCombination": "combinations",
+}
+
+
+def _steepness_limit(tp: float) -> float:
+    """DNV-RP-C205 (2010) §3.5.5.4 limiting average steepness S_p of a design sea state:
+    1/15 for T_p <= 8 s, 1/25 for T_p >= 15 s, linear in between."""
+    if tp <= 8.0:
+        return 1.0 / 15.0
+    if tp >= 15.0:
+        return 1.0 / 25.0
+    return 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
+
+
+class _Checker:
+    """Raise :class:`CaseFileError` naming field, value, range, file and line; collect warnings."""
+
+    def __init__(self, file: str | os.PathLike, text: str | None) -> None:
+        self.file, self.text = str(file), text
+
+    def _line(self, field: str) -> int | None:
+        if self.text is None:
+            return None
+        loc: list[Any] = []
+        for part in field.split("."):
+            name, _, idx = part.partition("[")
+            loc.append(name)
+            if idx:
+                loc.append(int(idx.rstrip("]")))
+        return _find_line(self.text, loc)
+
+    def fail(self, field: str, message: str) -> NoReturn:
+        line = self._line(field)
+        where = f"{self.file}{f', line {line}' if line else ''}: "
+        raise CaseFileError(where + _plain(message), field=field or None, file=self.file, line=line)
+
+    def warn(self, field: str, message: str) -> None:
+        line = self._line(field)
+        where = f"{self.file}{f', line {line}' if line else ''}: "
+        warnings.warn(where + _plain(message), OutOfRangeWarning, stacklevel=3)
+
+    def rename(self, exc: InputError) -> NoReturn:
+        """Re-raise an error of an input object under the case-file key it came from."""
+        text = _plain(str(exc))
+        field = getattr(exc, "field", None)
+        head = text.split(" ", 1)[0]
+        obj, _, attr = head.partition(".")
+        if field is None and obj in _OBJECT_TABLES and attr:
+            field = f"{_OBJECT_TABLES[obj]}.{attr}"
+            text = f"{field}{text[len(head) :]}"
+        self.fail(field or "", text)
+
+
+def _plain(text: str) -> str:
+    """Messages with plain numbers (``np.float64(7.0)`` → ``7.0``)."""
+    import re
+
+    return re.sub(r"np\.(?:float|int|uint|bool_?|str_)\d*\(([^()]*)\)", r"\1", text)
+
+
+def _check_case(case: StabilityCase, chk: _Checker) -> None:
+    """Cross-table rules and engineering plausibility of a parsed case."""
+    from onbottom.constants import GRAVITY
+
+    # -- combinations and design against the pipe form ------------------------------------
+    if case.waves.spectrum != "jonswap":
+        for i, c in enumerate(case.combinations):
+            if c.gamma is not None:
+                chk.fail(
+                    f"combinations[{i}].gamma",
+                    f"combinations[{i}].gamma = {c.gamma!r} is invalid: γ applies to the JONSWAP"
+                    f" spectrum only (waves.spectrum = {case.waves.spectrum!r}); remove it",
+                )
+    seen: set[str] = set()
+    for i, c in enumerate(case.combinations):
+        if c.name in seen:
+            chk.fail(
+                f"combinations[{i}].name",
+                f"combinations[{i}].name = {c.name!r} is invalid: combination names must be unique",
+            )
+        seen.add(c.name)
+    d = case.design
+    names = [layer.name for layer in case.pipe.layers]
+    if d.solve_for == "concrete_thickness":
+        if not case.pipe.is_buildup:
+            chk.fail(
+                "design.solve_for",
+                "design.solve_for = 'concrete_thickness' is invalid: it needs the build-up"
+                " [pipe] form (steel_outer_diameter, wall_thickness, [[pipe.layers]])",
+            )
+        if d.layer not in names:
+            chk.fail(
+                "design.layer",
+                f"design.layer = {d.layer!r} is invalid: not one of the [[pipe.layers]] names"
+                f" ({', '.join(map(repr, names)) or 'no layers given'})",
+            )
+        i = names.index(d.layer)
+        rho = case.pipe.layers[i].density
+        if rho <= case.environment.water_density:
+            chk.fail(
+                f"pipe.layers[{i}].density",
+                f"pipe.layers[{i}].density = {rho!r} kg/m³ is invalid for the design solve: the"
+                f" layer {d.layer!r} is not heavier than the water"
+                f" ({case.environment.water_density:g} kg/m³), so more of it makes the pipe"
+                " lighter (check the unit: kg/m³)",
+            )
+    if d.solve_for == "submerged_weight" and case.pipe.is_buildup:
+        chk.fail(
+            "design.solve_for",
+            "design.solve_for = 'submerged_weight' is invalid: it needs the simple [pipe] form"
+            " (outer_diameter, submerged_weight)",
+        )
+    for i, layer in enumerate(case.pipe.layers):
+        if "concrete" in layer.name.lower() and not 1800.0 <= layer.density <= 3600.0:
+            chk.warn(
+                f"pipe.layers[{i}].density",
+                f"pipe.layers[{i}].density = {layer.density:g} kg/m³ is unusual: weight-coating"
+                " concrete lies in [1800, 3600] kg/m³",
+            )
+    if case.pipe.is_buildup and not 7000.0 <= case.pipe.steel_density <= 8100.0:
+        chk.warn(
+            "pipe.steel_density",
+            f"pipe.steel_density = {case.pipe.steel_density:g} kg/m³ is unusual: line-pipe"
+            " steels lie in [7000, 8100] kg/m³",
+        )
+
+    # -- sea states -------------------------------------------------------------------------
+    depth = case.environment.water_depth
+    states = [("waves", case.waves.hs, case.waves.tp, "waves", "waves")]
+    for i, c in enumerate(case.combinations):
+        key = f"combinations[{i}]"
+        states.append(
+            (
+                c.name,
+                case.waves.hs if c.hs is None else c.hs,
+                case.waves.tp if c.tp is None else c.tp,
+                key if c.hs is not None else "waves",
+                key if c.tp is not None else "waves",
+            )
+        )
+    for label, hs, tp, hs_at, tp_at in states:
+        what = "" if label == "waves" else f" (combination {label!r})"
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2)
+        if steep > MAX_WAVE_STEEPNESS:
+            chk.fail(
+                f"{tp_at}.tp",
+                f"{tp_at}.tp = {tp!r} s is invalid with H_s = {hs:g} m{what}: the steepness"
+                f" 2πH_s/(gT_p²) = {steep:.3g} exceeds the breaking limit 1/7; T_p must be >="
+                f" {math.sqrt(2.0 * math.pi * hs / (GRAVITY * MAX_WAVE_STEEPNESS)):.3g} s"
+                " (check the units: m and s)",
+            )
+        if steep > _steepness_limit(tp):
+            chk.warn(
+                f"{tp_at}.tp",
+                f"{tp_at}.tp = {tp:g} s is unusual with H_s = {hs:g} m{what}: the steepness"
+                f" {steep:.3g} exceeds the DNV-RP-C205 §3.5.5.4 limit"
+                f" {_steepness_limit(tp):.3g} of a design sea state",
+            )
+        if hs > MAX_HS_OVER_DEPTH * depth:
+            chk.fail(
+                f"{hs_at}.hs",
+                f"{hs_at}.hs = {hs!r} m is invalid in water_depth = {depth:g} m{what}: waves"
+                f" break above H/d = {MAX_HS_OVER_DEPTH:g} (H_s must be <="
+                f" {MAX_HS_OVER_DEPTH * depth:.3g} m; check environment.water_depth)",
+            )
+        if hs > USUAL_HS_OVER_DEPTH * depth:
+            chk.warn(
+                f"{hs_at}.hs",
+                f"{hs_at}.hs = {hs:g} m is unusual in water_depth = {depth:g} m{what}: above"
+                f" H_s/d = {USUAL_HS_OVER_DEPTH:g} the sea is depth-limited (surf zone) and"
+                " linear wave kinematics lose accuracy",
+            )
+
+    # -- current ----------------------------------------------------------------------------
+    cur = case.current
+    if cur.reference_height > depth:
+        chk.fail(
+            "current.reference_height",
+            f"current.reference_height = {cur.reference_height!r} m is invalid: above the"
+            f" water depth {depth:g} m (must lie in (z_0, water_depth])",
+        )
+    z0 = cur.z0  # (z_0 from d50 is checked where F109 Table 3-1 is applied: hydro layer)
+    if z0 is not None and cur.reference_height <= z0:
+        chk.fail(
+            "current.reference_height",
+            f"current.reference_height = {cur.reference_height!r} m is invalid: not above the"
+            f" seabed roughness z_0 = {z0:g} m, where the logarithmic profile (F109 Eq 3.3)"
+            " is undefined",
+        )
+
+    # -- seabed (μ: the soil objects warn) ---------------------------------------------------
+    sb = case.seabed
+    if sb.model in ("sand", "calcareous") and sb.d50 is not None:
+        if not 6.0e-5 <= sb.d50 <= 2.0e-3:
+            chk.warn(
+                "seabed.d50",
+                f"seabed.d50 = {sb.d50:g} m is unusual for model = {sb.model!r}: sand grains"
+                " lie in [6e-05, 0.002] m (check the unit: m, not mm)",
+            )
+
+
+def _check_section(case: StabilityCase, chk: _Checker) -> None:
+    """Build every input object once: errors under their case-file keys; embedment vs D."""
+    try:
+        section = case.section()
+        case.seabed.seabed()
+        case.environment_object()
+        case.load_combinations()
+    except CaseFileError:
+        raise
+    except InputError as exc:
+        chk.rename(exc)
+    diameter = (
+        section.properties(case.pipe.condition).outer_diameter
+        if isinstance(section, PipeBuildUp)
+        else section.outer_diameter
+    )
+    sb = case.seabed
+    for key in ("initial_penetration", "trench_depth"):
+        z = getattr(sb, key)
+        if z is not None and z > diameter:
+            chk.fail(
+                f"seabed.{key}",
+                f"seabed.{key} = {z!r} m is invalid: deeper than the pipe's outer diameter"
+                f" {diameter:.4g} m (must lie in [0, D]; F109 §3.6 covers an on-bottom pipe)",
+            )
+
+
 def load_stability_case(path: str | os.PathLike) -> StabilityCase:
-    """Read and validate a TOML/JSON case file (:class:`onbottom._casefile.CaseFileError`)."""
-    return load_case_file(path, StabilityCase)
+    """Read and validate a TOML/JSON case file.
+
+    Raises :class:`onbottom._casefile.CaseFileError` (an :class:`~onbottom.errors.InputError`)
+    naming the key, its value and allowed range, the file and the line: schema errors
+    (unknown/missing keys, wrong types, ranges), rules across tables (design layer, unique
+    combination names), and implausible inputs (a sea state steeper than the breaking limit
+    or higher than 0.78 × the depth, a current reference height outside (z_0, depth], an
+    embedment or trench deeper than D, a design layer lighter than water). Unusual inputs give
+    :class:`~onbottom.errors.OutOfRangeWarning`.
+    """
+    p = Path(path)
+    case = load_case_file(p, StabilityCase)
+    try:
+        text: str | None = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
+        text = None
+    chk = _Checker(p, text)
+    _check_case(case, chk)
+    _check_section(case, chk)
+    return case
