@@ -29,6 +29,10 @@ _LAZY: dict[str, str] = {
     "inclined_cyclic": "onbottom.dynamics",
     "run_centrifuge_test": "onbottom.dynamics",
     "simulate_section": "onbottom.dynamics",
+    "PipeBuildUp": "onbottom.inputs.pipe_buildup",
+    "absolute_lateral_stability": "onbottom.checks",
+    "design_concrete_thickness": "onbottom.checks.design",
+    "significant_bed_velocity": "onbottom.hydro.design_sea_state",
 }
 
 __all__ = [

@@ -131,3 +131,20 @@ def test_bad_inputs():
             depth=10.0,
             region="arctic",
         )
+
+
+def test_sea_state_wrapper_matches_keywords():
+    from onbottom.checks import absolute_stability_of_sea_state
+    from onbottom.inputs.storm import Current, SeaState
+
+    pipe = Pipe(outer_diameter=0.4, submerged_weight=2500.0)
+    ss = SeaState(hs=2.0, tp=8.0, direction_deg=270.0, spreading_s=6.0)
+    cur = Current(velocity=0.4, reference_height=2.0, direction_deg=270.0)
+    a = absolute_stability_of_sea_state(pipe, SAND, ss, cur, 15.0, safety_class="high")
+    b = absolute_lateral_stability(
+        pipe, SAND, hs=2.0, tp=8.0, depth=15.0, current_velocity=0.4,
+        current_reference_height=2.0, wave_direction_deg=270.0, current_direction_deg=90.0,
+        spreading_s=6.0, safety_class="high",
+    )  # fmt: skip
+    assert a.utilisation == pytest.approx(b.utilisation)
+    assert absolute_stability_of_sea_state(pipe, SAND, ss, None, 15.0).oscillation.v_star == 0.0

@@ -5,7 +5,11 @@
 * :mod:`onbottom.checks.f109_tables` — C*_Y, C*_Z, γ_SC.
 """
 
-from onbottom.checks.absolute import AbsoluteStabilityResult, absolute_lateral_stability
+from onbottom.checks.absolute import (
+    AbsoluteStabilityResult,
+    absolute_lateral_stability,
+    absolute_stability_of_sea_state,
+)
 from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
 from onbottom.checks.vertical import VerticalStabilityResult, vertical_stability
 
@@ -13,6 +17,7 @@ __all__ = [
     "AbsoluteStabilityResult",
     "VerticalStabilityResult",
     "absolute_lateral_stability",
+    "absolute_stability_of_sea_state",
     "peak_load_coefficients",
     "safety_factor",
     "vertical_stability",

@@ -40,12 +40,14 @@ from onbottom.hydro.reductions import (
 )
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.inputs.storm import Current, SeaState
 from onbottom.soil.verley_lund import clay_initial_penetration, clay_passive_resistance
 from onbottom.soil.verley_sotberg import initial_penetration, peak_passive_resistance
 
 __all__ = [
     "AbsoluteStabilityResult",
     "absolute_lateral_stability",
+    "absolute_stability_of_sea_state",
     "initial_penetration_f109",
     "passive_resistance_f109",
     "seabed_kind",
@@ -283,4 +285,48 @@ def absolute_lateral_stability(
         submerged_weight=ws,
         diameter=d,
         oscillation=osc,
+    )
+
+
+def absolute_stability_of_sea_state(
+    pipe: Pipe,
+    seabed: Sand | Clay | Rock,
+    sea_state: SeaState,
+    current: Current | None,
+    depth: float,
+    **options: object,
+) -> AbsoluteStabilityResult:
+    """:func:`absolute_lateral_stability` for a :class:`SeaState` and a :class:`Current`.
+
+    H_s, T_p, γ, spectrum, direction, spreading and duration come from ``sea_state``; V(z_r),
+    z_r, direction and z_0 from ``current`` (None → no current); ``depth`` [m]; ``options``
+    are the remaining keywords of :func:`absolute_lateral_stability` (safety_class, region,
+    penetration, trench_depth, trench_angle_deg, permeable).
+    """
+    if not isinstance(sea_state, SeaState):
+        raise InputError(f"sea_state = {sea_state!r} is invalid: expected SeaState")
+    if current is not None and not isinstance(current, Current):
+        raise InputError(f"current = {current!r} is invalid: expected Current or None")
+    cur = {}
+    if current is not None:
+        a = current.direction_deg % 360.0
+        cur = {
+            "current_velocity": current.velocity,
+            "current_reference_height": current.reference_height,
+            "current_direction_deg": a if a <= 180.0 else 360.0 - a,
+            "roughness": current.z0,
+        }
+    return absolute_lateral_stability(
+        pipe,
+        seabed,
+        hs=sea_state.hs,
+        tp=sea_state.tp,
+        depth=depth,
+        gamma=sea_state.gamma,
+        spectrum=sea_state.spectrum,
+        wave_direction_deg=sea_state.direction_deg,
+        spreading_s=sea_state.spreading_s or None,
+        duration=sea_state.duration_s,
+        **cur,
+        **options,
     )

@@ -23,6 +23,7 @@ value to the resolution of the scan. If no scanned value passes, :class:`NoFeasi
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
@@ -33,7 +34,7 @@ from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.checks.absolute import absolute_lateral_stability
 from onbottom.checks.f109_tables import REGIONS, SAFETY_CLASSES
 from onbottom.checks.vertical import VERTICAL_SAFETY_FACTOR, vertical_stability
-from onbottom.errors import InputError, SolutionError
+from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.pipe_buildup import CONDITIONS, PipeBuildUp
@@ -302,7 +303,10 @@ def _minimum_passing(
         return governing(evaluate(build(x))).utilisation
 
     xs = np.linspace(lo, hi, n_scan)
-    us = np.array([util(float(x)) for x in xs])
+    with warnings.catch_warnings():
+        # the scan visits values far from the answer; only the final design's warnings count
+        warnings.simplefilter("ignore", OutOfRangeWarning)
+        us = np.array([util(float(x)) for x in xs])
     ok = np.flatnonzero(us <= 1.0)
     if ok.size == 0:
         ib = int(np.argmin(us))
@@ -320,9 +324,11 @@ def _minimum_passing(
     else:
         a, b = float(xs[i - 1]), float(xs[i])
         if math.isfinite(us[i - 1]):
-            x = brentq(lambda t: util(t) - 1.0, a, b, xtol=xtol)
-            # brentq's root may sit a hair on the failing side: step to the passing side
-            x = min(x + xtol, b) if util(x) > 1.0 else x
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", OutOfRangeWarning)
+                x = brentq(lambda t: util(t) - 1.0, a, b, xtol=xtol)
+                # brentq's root may sit a hair on the failing side: step to the passing side
+                x = min(x + xtol, b) if util(x) > 1.0 else x
         else:
             x = b
         status, msg = 0, f"minimum {variable} found to ±{xtol:g} {unit}"

@@ -23,6 +23,9 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "report",
+    "stability",
+    "loads",
     "storm",
     "curves",
 )

@@ -6,7 +6,13 @@ from pathlib import Path
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 
 
 @click.command("simulate")
@@ -35,10 +41,14 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     [programme] and optional [solver] tables; see examples/section_case.toml. Loads in the
     file are in kN/m.
     """
-    from onbottom.dynamics.case import run_case
+    from onbottom.dynamics.case import load_case, run_case
 
-    res = run_case(case, progress=not quiet and not as_json)
     nc = output if output is not None else case.with_suffix(".nc")
+    check_output_path(nc, field="--output")
+    if plot is not None:
+        check_output_path(plot, field="--plot")
+    load_case(case)  # check the whole file before any work
+    res = run_case(case, progress=not quiet and not as_json)
     res.save(nc)
     if plot is not None:
         import matplotlib.pyplot as plt
@@ -70,6 +80,8 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     }
     if as_json:
         emit_json(payload)
+        if not res.success:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
     click.echo(f"{res.message} after {res.n_steps} steps")
     if res.cycles_to_limit is not None:
@@ -80,4 +92,4 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     click.echo(f"  final displacement   {s['final_displacement']:.3f} m")
     click.echo(f"  written: {nc}" + (f", {plot}" if plot else ""))
     if not res.success:
-        raise click.exceptions.Exit(3)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

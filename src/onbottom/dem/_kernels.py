@@ -66,6 +66,20 @@ P_TIME = 29
 P_DIAG = 30
 N_PRM = 31
 
+# indices into the FIRE state vector ``fire`` (Simulation.fire)
+F_ON = 0  # 1: FIRE mixing instead of local damping
+F_ALPHA = 1  # mixing fraction α of this step
+F_CTR = 2  # α·|v|/|F| (translation) of this step
+F_CROT = 3  # α·|ω|/|T| (rotation) of this step
+F_RESTART = 4  # 1: zero the velocities this step (power F·v was negative)
+F_NPOS = 5  # steps since the last restart
+F_ALPHA0 = 6  # α after a restart (Bitzek et al. 2006: 0.1)
+F_FALPHA = 7  # α ← α·f_α per step after N_min steps (0.99)
+F_NMIN = 8  # N_min (5)
+F_RESTARTS = 9  # number of restarts (diagnostics)
+N_FIRE = 10
+N_BSUM = 5  # FIRE sums per block: F·v, |v|², |F|², ω², T²
+
 BLOCK = 512  # disks per block of the parallel loops (one displacement maximum each)
 N_WALL = 5  # 4 walls + pipe in the per-particle history arrays
 PIPE = 4
@@ -236,6 +250,168 @@ def wall_contact(i, w, nx, ny, overlap, vbx, vby, pos, vel, om, rad, fsw, mrw, k
     return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn
 
 
+@njit(cache=True, inline="always")
+def _stiff_contact(vx, vy, w, ri, nx, ny, overlap, vbx, vby, fs, mr, kn, ks, mu, mur, dt):
+    """:func:`wall_contact` on scalars: (fx, fy, torque, F_s, M_r) of a wall/pipe contact."""
+    if overlap <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    tx = -ny
+    ty = nx
+    vt = (vbx - vx) * tx + (vby - vy) * ty - w * ri
+    fn, fsn, mrn = contact_update(nx, ny, overlap, vt, -w, ri, kn, ks, mu, mur, fs, mr, dt)
+    return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn, fsn, mrn
+
+
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def _subcycle_disk(
+    i, nsub, dt, fsx, fsy, tsoil, asoil, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup,
+    murp, x0, x1, y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th,
+    rad, mass, inert, fsw, mrw, pfx, pfy, unb, app, fire_mix, fa, ctr, crot, restart, ref,
+):  # fmt: skip
+    """Disk i near a wall or the pipe: ``nsub`` sub-steps of Δt/nsub for its stiff contacts.
+
+    Multiple time stepping: the soil force and torque (``fsx``, ``fsy``, ``tsoil``, from the
+    positions at the start of the step) and gravity are held for the step; the wall, lid and
+    pipe contacts (with their history) are evaluated at every sub-step at the disk's current
+    position and the current wall/pipe position, local damping acts on the sub-step's total
+    force. The pipe force stored is the mean over the sub-steps (its impulse / Δt); the
+    diagnostics (unbalanced and applied force) are those of the first sub-step, at the start
+    of the step as for the other disks. With FIRE (``fire_mix``) the velocity is mixed once,
+    with the first sub-step's force, and no local damping acts.
+
+    Returns (squared displacement since the last list build, F·v, |v|², |F|², ω², T²), the
+    last five with the first sub-step's force and the velocity before mixing (FIRE sums).
+    """
+    h = dt / nsub
+    ri = rad[i]
+    m = mass[i]
+    inv_m = 1.0 / m
+    inv_i = 1.0 / inert[i]
+    fgx = fsx + m * gx
+    fgy = fsy + m * gy
+    xi = pos[i, 0]
+    yi = pos[i, 1]
+    vx = vel[i, 0]
+    vy = vel[i, 1]
+    w = om[i]
+    thi = th[i]
+    sumpx = 0.0
+    sumpy = 0.0
+    p_ = 0.0
+    v2 = 0.0
+    f2 = 0.0
+    w2 = 0.0
+    t2 = 0.0
+    for q in range(nsub):
+        fx = fgx
+        fy = fgy
+        tq = tsoil
+        a = asoil + m * np.sqrt(gx * gx + gy * gy)
+        cx, cy, ct_, fsn, mrn = _stiff_contact(
+            vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, fsw[i, 0], mrw[i, 0], knw,
+            ksw, muw, murw, h,
+        )  # fmt: skip
+        fsw[i, 0] = fsn
+        mrw[i, 0] = mrn
+        fx += cx
+        fy += cy
+        tq += ct_
+        a += np.sqrt(cx * cx + cy * cy)
+        cx, cy, ct_, fsn, mrn = _stiff_contact(
+            vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, fsw[i, 1], mrw[i, 1], knw,
+            ksw, muw, murw, h,
+        )  # fmt: skip
+        fsw[i, 1] = fsn
+        mrw[i, 1] = mrn
+        fx += cx
+        fy += cy
+        tq += ct_
+        a += np.sqrt(cx * cx + cy * cy)
+        cx, cy, ct_, fsn, mrn = _stiff_contact(
+            vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, fsw[i, 2], mrw[i, 2], knw,
+            ksw, muw, murw, h,
+        )  # fmt: skip
+        fsw[i, 2] = fsn
+        mrw[i, 2] = mrn
+        fx += cx
+        fy += cy
+        tq += ct_
+        a += np.sqrt(cx * cx + cy * cy)
+        if lid_on:
+            ly = lid_y + lid_v * (q * h)
+            cx, cy, ct_, fsn, mrn = _stiff_contact(
+                vx, vy, w, ri, 0.0, 1.0, ri - (ly - yi), 0.0, lid_v, fsw[i, 3], mrw[i, 3],
+                knw, ksw, muw, murw, h,
+            )  # fmt: skip
+            fsw[i, 3] = fsn
+            mrw[i, 3] = mrn
+            fx += cx
+            fy += cy
+            tq += ct_
+            a += np.sqrt(cx * cx + cy * cy)
+        if pipe_on:
+            pyq = py + pv * (q * h)
+            dx = px - xi
+            dy = pyq - yi
+            d = np.sqrt(dx * dx + dy * dy)
+            if d > 0.0 and d < ri + pr:
+                cx, cy, ct_, fsn, mrn = _stiff_contact(
+                    vx, vy, w, ri, dx / d, dy / d, ri + pr - d, 0.0, pv, fsw[i, PIPE],
+                    mrw[i, PIPE], knp, ksp, mup, murp, h,
+                )  # fmt: skip
+                fsw[i, PIPE] = fsn
+                mrw[i, PIPE] = mrn
+                fx += cx
+                fy += cy
+                tq += ct_
+                a += np.sqrt(cx * cx + cy * cy)
+                sumpx += cx
+                sumpy += cy
+            else:
+                fsw[i, PIPE] = 0.0
+                mrw[i, PIPE] = 0.0
+        if q == 0 and diag:
+            unb[i] = np.sqrt(fx * fx + fy * fy)
+            app[i] = a
+        if fire_mix:
+            if q == 0:
+                # FIRE sums and mixing once per step, with the step's first force
+                p_ = fx * vx + fy * vy + tq * w
+                v2 = vx * vx + vy * vy
+                f2 = fx * fx + fy * fy
+                w2 = w * w
+                t2 = tq * tq
+                if restart:
+                    vx = 0.0
+                    vy = 0.0
+                    w = 0.0
+                else:
+                    vx = (1.0 - fa) * vx + ctr * fx
+                    vy = (1.0 - fa) * vy + ctr * fy
+                    w = (1.0 - fa) * w + crot * tq
+        elif alpha > 0.0:
+            fx -= alpha * abs(fx) * _sign(vx)
+            fy -= alpha * abs(fy) * _sign(vy)
+            tq -= alpha * abs(tq) * _sign(w)
+        vx += h * fx * inv_m
+        vy += h * fy * inv_m
+        w += h * tq * inv_i
+        xi += h * vx
+        yi += h * vy
+        thi += h * w
+    pfx[i] = sumpx / nsub
+    pfy[i] = sumpy / nsub
+    vel[i, 0] = vx
+    vel[i, 1] = vy
+    om[i] = w
+    pos[i, 0] = xi
+    pos[i, 1] = yi
+    th[i] = thi
+    ex = xi - ref[i, 0]
+    ey = yi - ref[i, 1]
+    return ex * ex + ey * ey, p_, v2, f2, w2, t2
+
+
 @njit(cache=True, parallel=True, boundscheck=False, error_model="numpy")
 def gather_integrate(
     prm,
@@ -266,8 +442,16 @@ def gather_integrate(
     fixed,
     ref,
     dmax,
+    nsub,
+    fire,
+    bsum,
 ):
-    """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update."""
+    """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update.
+
+    ``nsub`` > 1: disks within half a skin of a wall or the pipe sub-cycle those contacts
+    (:func:`_subcycle_disk`). ``fire[F_ON]`` > 0.5: FIRE mixing instead of local damping,
+    with the coefficients in ``fire``; per-block FIRE sums go to ``bsum[b, :]``.
+    """
     n = rad.shape[0]
     dt = prm[P_DT]
     gx = prm[P_GX]
@@ -293,14 +477,31 @@ def gather_integrate(
     pr = prm[P_PIPE_R]
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
+    margin = 0.5 * prm[P_SKIN]
+    fire_mix = fire[F_ON] > 0.5
+    fa = fire[F_ALPHA]
+    ctr = fire[F_CTR]
+    crot = fire[F_CROT]
+    restart = fire[F_RESTART] > 0.5
     nblock = (n + BLOCK - 1) // BLOCK
     for b in prange(nblock):
-        dmax[b] = _gather_integrate_block(
-            b * BLOCK, min(n, (b + 1) * BLOCK), dt, gx, gy, alpha, knw, ksw, muw, murw, knp,
-            ksp, mup, murp, x0, x1, y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag,
-            pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy,
-            stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
-        )  # fmt: skip
+        i0 = b * BLOCK
+        i1 = min(n, (b + 1) * BLOCK)
+        if nsub > 1 or fire_mix:
+            dmax[b] = _gather_integrate_block_mts(
+                i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
+                y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
+                mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
+                pfx, pfy, unb, app, fixed, ref, nsub, margin, fire_mix, fa, ctr, crot, restart,
+                bsum, b,
+            )  # fmt: skip
+        else:
+            dmax[b] = _gather_integrate_block(
+                i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
+                y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
+                mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
+                pfx, pfy, unb, app, fixed, ref,
+            )  # fmt: skip
 
 
 @njit(cache=True, boundscheck=False, error_model="numpy")
@@ -428,6 +629,182 @@ def _gather_integrate_block(
         ex = xi - ref[i, 0]
         ey = yi - ref[i, 1]
         dmax = max(dmax, ex * ex + ey * ey)
+    return dmax
+
+
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def _gather_integrate_block_mts(
+    i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
+    lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart,
+    ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
+    nsub, margin, fire_mix, fa, ctr, crot, restart, bsum, b,
+):  # fmt: skip
+    """:func:`_gather_integrate_block` with sub-cycled stiff contacts and/or FIRE mixing.
+
+    A disk whose gap to a wall, the lid or the pipe is below ``margin`` at the start of the
+    step goes through :func:`_subcycle_disk` (when ``nsub`` > 1); the others take the plain
+    step. With ``fire_mix`` the velocities are mixed (FIRE) instead of locally damped, and
+    the block's FIRE sums are stored in ``bsum[b]``.
+    """
+    dmax = 0.0
+    sp = 0.0
+    sv2 = 0.0
+    sf2 = 0.0
+    sw2 = 0.0
+    st2 = 0.0
+    for ii in range(i0, i1):
+        i = np.uint64(ii)
+        ri = rad[i]
+        fx = sfx[i]
+        fy = sfy[i]
+        tq = stq[i]
+        for q in range(rstart[ii], rstart[ii + 1]):
+            k = ridx[np.uint64(q)]
+            fx -= cfx[k]
+            fy -= cfy[k]
+            tq += ri * fs[k] - mr[k]
+        a = 0.0
+        if diag:
+            a = sa[i]
+            for q in range(rstart[ii], rstart[ii + 1]):
+                a += cmag[ridx[q]]
+        xi = pos[i, 0]
+        yi = pos[i, 1]
+        if nsub > 1 and not fixed[i]:
+            gap = min(xi - x0, x1 - xi, yi - y0) - ri
+            if lid_on:
+                gap = min(gap, lid_y - yi - ri)
+            if pipe_on:
+                dxp = px - xi
+                dyp = py - yi
+                gap = min(gap, np.sqrt(dxp * dxp + dyp * dyp) - pr - ri)
+            if gap < margin:
+                d2, p_, v2, f2, w2, t2 = _subcycle_disk(
+                    i, nsub, dt, fx, fy, tq, a, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp,
+                    mup, murp, x0, x1, y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag,
+                    pos, vel, om, th, rad, mass, inert, fsw, mrw, pfx, pfy, unb, app, fire_mix,
+                    fa, ctr, crot, restart, ref,
+                )  # fmt: skip
+                dmax = max(dmax, d2)
+                sp += p_
+                sv2 += v2
+                sf2 += f2
+                sw2 += w2
+                st2 += t2
+                continue
+        wx, wy, wt = wall_contact(
+            i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        wx, wy, wt = wall_contact(
+            i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
+            muw, murw, dt,
+        )  # fmt: skip
+        fx += wx
+        fy += wy
+        tq += wt
+        if diag:
+            a += np.sqrt(wx * wx + wy * wy)
+        if lid_on:
+            wx, wy, wt = wall_contact(
+                i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
+                knw, ksw, muw, murw, dt,
+            )  # fmt: skip
+            fx += wx
+            fy += wy
+            tq += wt
+            if diag:
+                a += np.sqrt(wx * wx + wy * wy)
+        pfx[i] = 0.0
+        pfy[i] = 0.0
+        if pipe_on:
+            dx = px - xi
+            dy = py - yi
+            d = np.sqrt(dx * dx + dy * dy)
+            if d > 0.0 and d < ri + pr:
+                wx, wy, wt = wall_contact(
+                    i, PIPE, dx / d, dy / d, ri + pr - d, 0.0, pv, pos, vel, om, rad, fsw,
+                    mrw, knp, ksp, mup, murp, dt,
+                )  # fmt: skip
+                fx += wx
+                fy += wy
+                tq += wt
+                if diag:
+                    a += np.sqrt(wx * wx + wy * wy)
+                pfx[i] = wx
+                pfy[i] = wy
+            else:
+                fsw[i, PIPE] = 0.0
+                mrw[i, PIPE] = 0.0
+        m = mass[i]
+        fx += m * gx
+        fy += m * gy
+        if diag:
+            a += m * np.sqrt(gx * gx + gy * gy)
+            unb[i] = np.sqrt(fx * fx + fy * fy)
+            app[i] = a
+        if fixed[i]:
+            vel[i, 0] = 0.0
+            vel[i, 1] = 0.0
+            om[i] = 0.0
+            ex = xi - ref[i, 0]
+            ey = yi - ref[i, 1]
+            dmax = max(dmax, ex * ex + ey * ey)
+            continue
+        vx = vel[i, 0]
+        vy = vel[i, 1]
+        w = om[i]
+        if fire_mix:
+            sp += fx * vx + fy * vy + tq * w
+            sv2 += vx * vx + vy * vy
+            sf2 += fx * fx + fy * fy
+            sw2 += w * w
+            st2 += tq * tq
+            if restart:
+                vx = 0.0
+                vy = 0.0
+                w = 0.0
+            else:
+                vx = (1.0 - fa) * vx + ctr * fx
+                vy = (1.0 - fa) * vy + ctr * fy
+                w = (1.0 - fa) * w + crot * tq
+        elif alpha > 0.0:
+            fx -= alpha * abs(fx) * _sign(vx)
+            fy -= alpha * abs(fy) * _sign(vy)
+            tq -= alpha * abs(tq) * _sign(w)
+        vx += dt * fx / m
+        vy += dt * fy / m
+        w += dt * tq / inert[i]
+        vel[i, 0] = vx
+        vel[i, 1] = vy
+        om[i] = w
+        xi = xi + dt * vx
+        yi = yi + dt * vy
+        pos[i, 0] = xi
+        pos[i, 1] = yi
+        th[i] += dt * w
+        ex = xi - ref[i, 0]
+        ey = yi - ref[i, 1]
+        dmax = max(dmax, ex * ex + ey * ey)
+    bsum[b, 0] = sp
+    bsum[b, 1] = sv2
+    bsum[b, 2] = sf2
+    bsum[b, 3] = sw2
+    bsum[b, 4] = st2
     return dmax
 
 
@@ -598,10 +975,14 @@ def run_steps(
     pfy,
     unb,
     app,
+    nsub,
+    fire,
 ):
     """Advance ``nsteps`` steps; rebuild the list when a disk moved more than skin/2.
 
     Moves the pipe and the lid (``prm`` is updated in place, as is the time ``prm[P_TIME]``).
+    ``nsub``: sub-steps of the stiff (wall, lid, pipe) contacts per step (1: none).
+    ``fire``: FIRE state (``F_*`` indices), updated in place after every step when on.
     Returns the (possibly new) list arrays and the number of rebuilds.
     """
     skin = prm[P_SKIN]
@@ -617,6 +998,7 @@ def run_steps(
     stq = np.empty(n)
     sa = np.empty(n)
     dmax = np.empty((n + BLOCK - 1) // BLOCK)
+    bsum = np.zeros(((n + BLOCK - 1) // BLOCK, N_BSUM))
     dt = prm[P_DT]
     owner = list_owner(start, m)
     disp2 = max_displacement2(pos, ref)
@@ -637,8 +1019,10 @@ def run_steps(
         )  # fmt: skip
         gather_integrate(
             prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx,
-            sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax,
+            sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, nsub, fire, bsum,
         )  # fmt: skip
+        if fire[F_ON] > 0.5:
+            fire_update(fire, bsum)
         disp2 = 0.0
         for b in range(dmax.shape[0]):
             if dmax[b] > disp2:
@@ -653,6 +1037,40 @@ def run_steps(
                 prm[P_LID_V] = 0.0
             prm[P_LID_Y] = y
     return start, nbr, fs, mr, rstart, ridx, nreb
+
+
+@njit(cache=True)
+def fire_update(fire, bsum):
+    """FIRE decision for the next step from this step's block sums (Bitzek et al. 2006).
+
+    Power P = Σ F·v + T·ω > 0: the mixing continues (α ← α·f_α once more than N_min steps
+    have passed since the last restart); P ≤ 0: restart (velocities zeroed next step,
+    α ← α_0). The time step stays fixed (its growth would pass the contact stability limit).
+    """
+    p = 0.0
+    v2 = 0.0
+    f2 = 0.0
+    w2 = 0.0
+    t2 = 0.0
+    for b in range(bsum.shape[0]):
+        p += bsum[b, 0]
+        v2 += bsum[b, 1]
+        f2 += bsum[b, 2]
+        w2 += bsum[b, 3]
+        t2 += bsum[b, 4]
+    if p > 0.0:
+        fire[F_RESTART] = 0.0
+        fire[F_NPOS] += 1.0
+        if fire[F_NPOS] > fire[F_NMIN]:
+            fire[F_ALPHA] *= fire[F_FALPHA]
+    else:
+        fire[F_RESTART] = 1.0
+        fire[F_NPOS] = 0.0
+        fire[F_ALPHA] = fire[F_ALPHA0]
+        fire[F_RESTARTS] += 1.0
+    a = fire[F_ALPHA]
+    fire[F_CTR] = a * np.sqrt(v2 / f2) if f2 > 0.0 else 0.0
+    fire[F_CROT] = a * np.sqrt(w2 / t2) if t2 > 0.0 else 0.0
 
 
 @njit(cache=True)

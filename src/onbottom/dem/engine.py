@@ -17,8 +17,20 @@ from onbottom.constants import GRAVITY
 from onbottom.dem import _kernels as K
 from onbottom.dem.config import ContactParameters, ContactSet
 from onbottom.dem.sample import Sample
+from onbottom.errors import InputError
 
-__all__ = ["PARALLEL_MIN_DISKS", "PipeState", "Simulation", "critical_time_step"]
+__all__ = [
+    "FIRE_DEFAULTS",
+    "PARALLEL_MIN_DISKS",
+    "PipeState",
+    "Simulation",
+    "critical_time_step",
+    "step_sizes",
+]
+
+FIRE_DEFAULTS = {"alpha0": 0.1, "f_alpha": 0.99, "n_min": 5}
+"""FIRE parameters (Bitzek et al. 2006, Phys. Rev. Lett. 97:170201, their recommended values;
+the time step is not adapted, see :meth:`Simulation.set_relaxation`)."""
 
 PARALLEL_MIN_DISKS = 20000
 """Below this number of disks the engine runs on one thread unless told otherwise."""
@@ -34,6 +46,27 @@ def critical_time_step(mass_min: float, k_max: float) -> float:
     v.positive("mass_min", mass_min)
     v.positive("k_max", k_max)
     return math.sqrt(mass_min / k_max)
+
+
+def step_sizes(
+    contacts: ContactSet, mass_min: float, dt_safety: float, subcycle: bool
+) -> tuple[float, int]:
+    """Time step [s] and sub-steps of the stiff contacts per step [-].
+
+    Without sub-cycling: Δt = ``dt_safety``·√(m_min/k_max) over all contacts, one sub-step.
+    With it: Δt = ``dt_safety``·√(m_min/k_soil) (soil–soil k_n, k_s) and
+    n_sub = ⌈√(k_stiff/k_soil)⌉ sub-steps for the wall, lid and pipe contacts
+    (k_stiff: their largest k_n or k_s), so that Δt/n_sub ≤ ``dt_safety``·√(m_min/k_stiff).
+    """
+    c = contacts
+    k_soil = max(c.soil.k_n, c.soil.k_s)
+    k_stiff = max(c.pipe.k_n, c.pipe.k_s, c.wall.k_n, c.wall.k_s)
+    if not subcycle or k_stiff <= k_soil:
+        # the engine's original choice (k_s of the walls/pipe equals k_n in Table 3)
+        k_max = max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+        return dt_safety * critical_time_step(mass_min, k_max), 1
+    nsub = math.ceil(math.sqrt(k_stiff / k_soil) - 1e-12)
+    return dt_safety * critical_time_step(mass_min, k_soil), nsub
 
 
 @dataclass
@@ -73,6 +106,9 @@ class Simulation:
     threads
         Numba threads for the kernels; ``None`` → 1 below :data:`PARALLEL_MIN_DISKS` disks
         (thread start-up dominates on small systems and on a loaded machine), else all.
+    nsub
+        Sub-steps of the wall, lid and pipe contacts per time step [-] (multiple time
+        stepping for the disks within half a skin of them, see :func:`step_sizes`); 1: none.
     """
 
     def __init__(
@@ -88,8 +124,13 @@ class Simulation:
         gravity: tuple[float, float] = (0.0, -GRAVITY),
         pipe: PipeState | None = None,
         threads: int | None = None,
+        nsub: int = 1,
     ) -> None:
         v.positive("density", density)
+        if not isinstance(nsub, int) or nsub < 1:
+            raise InputError(f"nsub = {nsub!r} is invalid: must be an integer >= 1")
+        self.nsub = nsub
+        self.fire = np.zeros(K.N_FIRE)
         v.in_range("damping", damping, 0.0, 1.0, high_inclusive=False)
         self.contacts = contacts
         self.density = float(density)
@@ -111,10 +152,9 @@ class Simulation:
         self.unb = np.zeros(n)
         self.app = np.zeros(n)
         self.prm = np.zeros(K.N_PRM)
-        k_max = max(contacts.soil.k_n, contacts.soil.k_s, contacts.pipe.k_n, contacts.wall.k_n)
         if n:
             m_min = float(self.mass.min())
-            self.dt = dt if dt is not None else dt_safety * critical_time_step(m_min, k_max)
+            self.dt = dt if dt is not None else step_sizes(contacts, m_min, dt_safety, nsub > 1)[0]
         else:
             self.dt = dt if dt is not None else 1e-6
         v.positive("dt", self.dt)
@@ -165,6 +205,30 @@ class Simulation:
         """Change the soil–soil contact parameters (e.g. friction during compaction)."""
         self.contacts = ContactSet(soil=soil, pipe=self.contacts.pipe, wall=self.contacts.wall)
         self._set_contacts(self.contacts)
+
+    def set_relaxation(self, method: str) -> None:
+        """``"damped"``: local damping α (the physics of the paper); ``"fire"``: FIRE.
+
+        FIRE (Bitzek et al. 2006) replaces the local damping by a global mixing
+        v ← (1 − a)v + a·|v|·F/|F| (and the same for ω with T) while the power F·v + T·ω is
+        positive, and zeroes all velocities when it is not; a starts at 0.1 and shrinks by
+        0.99 per step after 5 steps without a restart. The contact law is unchanged. Used
+        only to reach static equilibrium (preparation), never for the penetration.
+        """
+        v.one_of("relaxation", method, ("damped", "fire"))
+        f = self.fire
+        f[:] = 0.0
+        if method == "fire":
+            f[K.F_ON] = 1.0
+            f[K.F_ALPHA0] = FIRE_DEFAULTS["alpha0"]
+            f[K.F_ALPHA] = FIRE_DEFAULTS["alpha0"]
+            f[K.F_FALPHA] = FIRE_DEFAULTS["f_alpha"]
+            f[K.F_NMIN] = FIRE_DEFAULTS["n_min"]
+
+    @property
+    def fire_restarts(self) -> int:
+        """Number of FIRE restarts since :meth:`set_relaxation` (0 without FIRE)."""
+        return int(self.fire[K.F_RESTARTS])
 
     def set_gravity(self, gx: float, gy: float) -> None:
         """Gravity vector [m/s²]."""
@@ -309,6 +373,7 @@ class Simulation:
             int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
             self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
+            self.nsub, self.fire,
         )  # fmt: skip
 
     # -------------------------------------------------------------- diagnostics

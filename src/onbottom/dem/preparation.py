@@ -30,8 +30,10 @@ below :data:`STRESS_FREE_FRACTION` × the mean disk weight at 1 g (measured on t
 
 from __future__ import annotations
 
+import json
 import logging
 import math
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -39,7 +41,8 @@ import numpy as np
 
 from onbottom.constants import GRAVITY
 from onbottom.dem.config import ContactParameters, DEMConfig
-from onbottom.dem.engine import Simulation
+from onbottom.dem.engine import Simulation, step_sizes
+from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
 
 __all__ = ["STRESS_FREE_FRACTION", "draw_diameters", "layer_targets", "prepare_sample", "settle"]
@@ -138,11 +141,54 @@ def settle(
     return False, r
 
 
+class _StageClock:
+    """Accumulates wall-clock time and steps per preparation stage into ``timings``."""
+
+    def __init__(self, timings: dict[str, float] | None) -> None:
+        self.timings = timings
+        self.reset()
+
+    def reset(self, steps: int = 0) -> None:
+        self.t = time.perf_counter()
+        self.steps = steps
+
+    def lap(self, stage: str, steps: int, disks: int) -> None:
+        now = time.perf_counter()
+        if self.timings is not None:
+            d = self.timings
+            d[f"{stage}_wall"] = d.get(f"{stage}_wall", 0.0) + now - self.t
+            d[f"{stage}_steps"] = d.get(f"{stage}_steps", 0) + steps - self.steps
+            key = f"{stage}_disk_steps"
+            d[key] = d.get(key, 0) + disks * (steps - self.steps)
+            d[f"{stage}_disks"] = disks
+        self.t = now
+        self.steps = steps
+def _read_checkpoint(ck: Path, identity: dict) -> Sample:
+    """The checkpoint in ``ck`` if it is readable and belongs to the run ``identity``."""
+    from onbottom.dem.identity import RESTART_ADVICE
+
+    try:
+        saved = Sample.load(ck)
+        meta = saved.attrs["_checkpoint"]
+        for key in ("layers_done", "rng_state", "time", "lid"):
+            meta[key]  # presence check
+    except Exception as exc:  # any failure to read means: not a usable checkpoint
+        raise CheckpointError(
+            f"preparation checkpoint {ck} cannot be read ({type(exc).__name__}: {exc}); it is"
+            f" truncated, corrupt or not a checkpoint; {RESTART_ADVICE}"
+        ) from None
+    check_identity(meta.get("identity"), identity, ck, what="preparation checkpoint")
+    return saved
+
+
 def prepare_sample(
     config: DEMConfig,
     progress: Progress | None = None,
     checkpoint: str | Path | None = None,
     checkpoint_every: int = 100_000,
+    timings: dict[str, float] | None = None,
+    *,
+    restart: bool = False,
 ) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
@@ -157,9 +203,20 @@ def prepare_sample(
         stage and every ``checkpoint_every`` steps of the 1 g and N g equilibria, and read back
         when it exists, so an interrupted preparation resumes where it stopped with the same
         result (the random-generator state and the stage's start time are stored with it).
-        Deleted when done.
+        Deleted when done. It carries the run identity (:mod:`onbottom.dem.identity`): a
+        checkpoint of another configuration, seed or engine version raises
+        :class:`~onbottom.dem.identity.CheckpointMismatchError`, an unreadable one
+        :class:`~onbottom.dem.identity.CheckpointError`.
     checkpoint_every
         Steps between checkpoints inside the 1 g and N g equilibria [-].
+    timings
+        Optional dict filled with the wall-clock time [s] and the number of steps of each
+        stage of this call (``<stage>_wall``, ``<stage>_steps``, ``<stage>_disk_steps``,
+        ``<stage>_disks`` (at the end of the stage) for
+        ``generation``, ``compaction``, ``1g``, ``ramp``, ``Ng``; a resumed stage counts
+        only the work of this call). Diagnostics only: the sample does not depend on it.
+    restart
+        Discard an existing checkpoint and start afresh.
 
     Returns
     -------
@@ -167,6 +224,17 @@ def prepare_sample(
         With attributes: void ratio after each stage, convergence of each equilibrium stage,
         the unbalanced-force ratios, the number of disks, the gravity factor.
     """
+    clock = _StageClock(timings)
+    if int(checkpoint_every) < 1:
+        raise CheckpointError(
+            f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
+            field="checkpoint_every",
+        )
+    identity = run_identity(config, "preparation")
+    ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and restart:
+        ck.unlink(missing_ok=True)
+    saved = _read_checkpoint(ck, identity) if ck is not None and ck.exists() else None
     rng = np.random.default_rng(config.seed)
     g = config.geometry
     prep = config.preparation
@@ -186,14 +254,21 @@ def prepare_sample(
     history: dict[str, np.ndarray] | None = None
     vel = np.zeros((0, 2))
     om = np.zeros(0)
-    attrs: dict[str, object] = {"config": config.to_json(), "layers": n_l}
+    attrs: dict[str, object] = {
+        "config": config.to_json(),
+        "layers": n_l,
+        # the configuration itself is under "config"; the rest of the identity here
+        "run_identity": json.dumps(
+            {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
+        ),
+        "run_fingerprint": fingerprint(identity),
+    }
     sim: Simulation | None = None
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
     w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    c = config.contacts
-    dt = config.numerics.dt_safety * math.sqrt(
-        m_min / max(c.soil.k_n, c.soil.k_s, c.pipe.k_n, c.wall.k_n)
+    dt, nsub = step_sizes(
+        config.contacts, m_min, config.numerics.dt_safety, config.numerics.subcycle
     )
 
     def new_sim(sample: Sample) -> Simulation:
@@ -205,6 +280,7 @@ def prepare_sample(
             dt=dt,
             skin=config.numerics.skin_ratio * float(diam.min()),
             gravity=(0.0, 0.0),
+            nsub=nsub,
         )
         s.set_soil_contact(prep_soil)
         return s
@@ -212,9 +288,7 @@ def prepare_sample(
     first_layer = 0
     stage = "compaction"
     stage_values: dict[str, float] = {}
-    ck = Path(checkpoint) if checkpoint is not None else None
-    if ck is not None and ck.exists():
-        saved = Sample.load(ck)
+    if saved is not None:
         meta = saved.attrs.pop("_checkpoint")
         first_layer = int(meta["layers_done"])
         stage = str(meta.get("stage", "compaction"))
@@ -256,6 +330,7 @@ def prepare_sample(
         t_prev = sim.time if sim is not None else 0.0
         sim = new_sim(sample)
         sim.time = t_prev
+        clock.lap("generation", 0, sim.n)
         lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
         stop = float(tops[li])
         sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
@@ -282,6 +357,7 @@ def prepare_sample(
             force_floor=STRESS_FREE_FRACTION * w_mean,
         )
         log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
+        clock.lap("compaction", sim.step_count, sim.n)
         attrs[f"layer{li + 1}_settled"] = bool(ok_l)
         attrs[f"layer{li + 1}_lid"] = float(sim.lid or 0.0)
         attrs[f"layer{li + 1}_lid_target"] = stop
@@ -297,6 +373,7 @@ def prepare_sample(
         if ck is not None:
             snap.attrs = dict(attrs)
             snap.attrs["_checkpoint"] = {
+                "identity": identity,
                 "layers_done": li + 1,
                 "rng_state": rng.bit_generator.state,
                 "time": sim.time,
@@ -305,6 +382,7 @@ def prepare_sample(
             snap.save(ck)
         if progress is not None:
             progress("compaction", (li + 1) / n_l)
+        clock.reset()
     assert sim is not None
     rng_state = rng.bit_generator.state
     last_saved = [sim.step_count]
@@ -314,6 +392,7 @@ def prepare_sample(
         snap = sim.to_sample()
         snap.attrs = dict(attrs)
         snap.attrs["_checkpoint"] = {
+            "identity": identity,
             "layers_done": n_l,
             "rng_state": rng_state,
             "time": sim.time,
@@ -357,7 +436,9 @@ def prepare_sample(
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
+        clock.reset(sim.step_count)
         ok1, r1 = equilibrium("1g")
+        clock.lap("1g", sim.step_count, sim.n)
         stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
         # ramp to N g, then equilibrium
         ramp = config.loading.gravity_ramp_time
@@ -368,12 +449,15 @@ def prepare_sample(
                 f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
                 sim.set_gravity(0.0, -f * GRAVITY)
                 sim.run(steps)
+        clock.lap("ramp", sim.step_count, sim.n)
         stage_values["t0_Ng"] = sim.time
         stage = "Ng"
         if ck is not None:
             save_stage(stage)
     sim.set_gravity(0.0, -n_g * GRAVITY)
+    clock.reset(sim.step_count)
     ok2, r2 = equilibrium("Ng")
+    clock.lap("Ng", sim.step_count, sim.n)
     e_compacted = stage_values["e_compacted"]
     ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
     out = sim.to_sample()

@@ -386,18 +386,20 @@ def simulate_storm_section(
 
         bar = tqdm(total=chunks, desc="storm", unit="chunk", leave=False)
     k = 1
-    while True:
+    status = K.STATUS_CHUNK
+    if s.liftoff == "stop" and dyn[K.D_LIFTED] == 1.0:
+        status = K.STATUS_LIFTOFF  # lifted off at the start
+    while status == K.STATUS_CHUNK:
         t_stop = kin.duration * k / chunks if k < chunks else kin.duration
         n, status = K.integrate(model_id, params, state, st, coef, ku, ka, dyn, t_stop, rec, n)
         if status == K.STATUS_BUFFER_FULL:
             rec = np.concatenate([rec, np.empty_like(rec)])
+            status = K.STATUS_CHUNK
             continue
         if status == K.STATUS_CHUNK:
             k += 1
             if bar is not None:
                 bar.update(1)
-            continue
-        break
     if bar is not None:
         bar.update(bar.total - bar.n)
         bar.close()

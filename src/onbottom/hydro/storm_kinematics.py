@@ -63,7 +63,12 @@ def spreading_factor(direction_deg: float, spreading_s: float, n: int = 721) -> 
     n : int
         Points of the trapezoidal integration over |θ| < π/2.
     """
-    tw = math.radians(direction_deg)
+    # R_D depends on θ_w only through the line of the waves: fold into [0°, 90°] so that
+    # mirrored directions (θ_w, 180° − θ_w, θ_w + 180°, ...) give bitwise the same value
+    folded = math.fmod(abs(direction_deg), 180.0)
+    if folded > 90.0:
+        folded = 180.0 - folded
+    tw = math.radians(folded)
     if spreading_s < 0.0:
         raise InputError(f"spreading_s = {spreading_s!r} is invalid: must be >= 0")
     if spreading_s == 0.0:

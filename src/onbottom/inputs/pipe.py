@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from onbottom._validate import in_range, non_negative, positive
+from onbottom._validate import PIPE_DIAMETER_M, in_range, non_negative, plausible, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER, RHO_STEEL
 from onbottom.errors import InputError
 
@@ -70,7 +70,22 @@ class Pipe:
 
     def __post_init__(self) -> None:
         positive("Pipe.outer_diameter", self.outer_diameter)
+        err, usual = PIPE_DIAMETER_M
+        plausible(
+            "Pipe.outer_diameter",
+            self.outer_diameter,
+            error=err,
+            usual=usual,
+            unit="m",
+            what="the outer diameter of a pipeline",
+            stacklevel=4,
+        )
         positive("Pipe.submerged_weight", self.submerged_weight)
+        if self.submerged_weight > 1.0e6:
+            raise InputError(
+                f"Pipe.submerged_weight = {float(self.submerged_weight)!r} N/m is invalid:"
+                " above the plausible 1e6 N/m (check the unit: N/m, not kN/m·1000)"
+            )
         positive("Pipe.seawater_density", self.seawater_density)
         non_negative("Pipe.bending_stiffness", self.bending_stiffness)
         non_negative("Pipe.axial_stiffness", self.axial_stiffness)

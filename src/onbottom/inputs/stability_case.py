@@ -142,7 +142,11 @@ class SeabedTable(StrictModel):
 
     def seabed(self) -> Sand | Clay | Rock:
         """The soil object of the F109 checks (calcareous → sand law; coulomb → rock)."""
-        mu = {} if self.friction_coefficient is None else {"friction_coefficient": self.friction_coefficient}
+        mu = (
+            {}
+            if self.friction_coefficient is None
+            else {"friction_coefficient": self.friction_coefficient}
+        )
         if self.model in ("sand", "calcareous"):
             extra = {} if self.d50 is None else {"d50": self.d50}
             return Sand(
@@ -285,7 +289,11 @@ class StabilityCase(StrictModel):
 
     def current_object(self, combo: CombinationTable | None = None) -> Current:
         c = self.current
-        v = c.velocity if combo is None or combo.current_velocity is None else combo.current_velocity
+        v = (
+            c.velocity
+            if combo is None or combo.current_velocity is None
+            else combo.current_velocity
+        )
         return Current(
             velocity=v, reference_height=c.reference_height, direction_deg=c.direction_deg, z0=c.z0
         )

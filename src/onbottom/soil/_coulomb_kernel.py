@@ -8,15 +8,18 @@ from __future__ import annotations
 from numba import njit
 
 from onbottom.soil.base import (
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
     OUT_REGION,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_WORK,
     OUT_Z,
     S_FRICTION,
     S_REGION,
+    S_SOIL_WORK,
     S_U,
     S_WORK,
     S_Z,
@@ -58,6 +61,10 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = 0.0
     state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
     state_new[S_REGION] = 0.0
+    state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + 0.5 * (f + state_old[S_FRICTION]) * du
+    stored = 0.0
+    if mu * v_load > 0.0:
+        stored = 0.5 * f * f * delta / (mu * v_load)
     out[OUT_R] = f
     out[OUT_FRICTION] = f
     out[OUT_PASSIVE] = 0.0
@@ -65,6 +72,8 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_Z] = 0.0
     out[OUT_WORK] = state_new[S_WORK]
     out[OUT_REGION] = 0.0
+    out[OUT_STORED] = stored
+    out[OUT_DISSIPATED] = state_new[S_SOIL_WORK] - stored
 
 
 def friction_return_map_py(f_old, du, v_load, mu, delta):
@@ -91,4 +100,8 @@ def coulomb_kernel_py(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = 0.0
     state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
     state_new[S_REGION] = 0.0
-    out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0)
+    state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + 0.5 * (f + state_old[S_FRICTION]) * du
+    cap = params[P_MU] * v_load
+    stored = 0.5 * f * f * params[P_DELTA] / cap if cap > 0.0 else 0.0
+    soil_work = state_new[S_SOIL_WORK]
+    out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0, stored, soil_work - stored)

@@ -4,7 +4,22 @@ from __future__ import annotations
 
 from numba import njit
 
-__all__ = ["envelope", "overlap", "region_of", "sign"]
+__all__ = [
+    "RULE_ELASTOPLASTIC",
+    "RULE_LEGACY_ELASTIC",
+    "envelope",
+    "envelope_energy",
+    "friction_energy",
+    "overlap",
+    "push_only_passive",
+    "region_of",
+    "sign",
+]
+
+RULE_ELASTOPLASTIC = 0
+"""Passive rule: push-only elastic–plastic (dissipative; default)."""
+RULE_LEGACY_ELASTIC = 1
+"""Passive rule: nonlinear-elastic restoring force on the envelope (creates energy; variant)."""
 
 PHASE_TROUGH = 0.0
 """Pipe inside its trough; the peak displacement has not been passed."""
@@ -63,3 +78,67 @@ def region_of(a, y1, y2, y3):
     if a <= y3:
         return 3.0
     return 4.0
+
+
+@njit(cache=True)
+def envelope_energy(a, fr1, fr2, fr3, y1, y2, y3):
+    """∫₀^a envelope(x) dx [N·m/m]: energy of the nonlinear-elastic (legacy) passive spring."""
+    e = 0.0
+    x0 = 0.0
+    f0 = 0.0
+    for seg in range(3):
+        if seg == 0:
+            x1, f1 = y1, fr1
+        elif seg == 1:
+            x1, f1 = y2, fr2
+        else:
+            x1, f1 = y3, fr3
+        if x1 <= x0:
+            continue
+        if a <= x1:
+            fa = f0 + (f1 - f0) * (a - x0) / (x1 - x0)
+            return e + 0.5 * (f0 + fa) * (a - x0)
+        e += 0.5 * (f0 + f1) * (x1 - x0)
+        x0 = x1
+        f0 = f1
+    return e + fr3 * (a - x0)
+
+
+@njit(cache=True)
+def push_only_passive(p_old, du, s_new, mag, slope, k_u):
+    """Push-only elastic–plastic passive force and its tangent [I].
+
+    Elastic predictor p_old + k_u·du, then return to the admissible interval: [0, F_env(s)]
+    on the side s > 0 of the trough centre, [−F_env(|s|), 0] on the side s < 0 (the berm can
+    only push the pipe back towards the centre, never pull it). ``mag``/``slope`` are the
+    envelope magnitude and slope at |s_new|; ``k_u`` the unloading (elastic) stiffness [N/m²].
+    The force on the yield surface follows the envelope; inside it, the elastic line.
+    """
+    p_trial = p_old + k_u * du
+    if s_new > 0.0:
+        lo = 0.0
+        hi = mag
+    elif s_new < 0.0:
+        lo = -mag
+        hi = 0.0
+    else:
+        lo = 0.0
+        hi = 0.0
+    if p_trial > hi:
+        if s_new > 0.0:
+            return hi, slope
+        return hi, 0.0
+    if p_trial < lo:
+        if s_new < 0.0:
+            return lo, slope
+        return lo, 0.0
+    return p_trial, k_u
+
+
+@njit(cache=True)
+def friction_energy(f, v_load, mu, delta):
+    """Elastic energy f²/(2k) of the friction spring, k = μV/δ [N·m/m] (0 when lifted off)."""
+    cap = mu * v_load
+    if cap <= 0.0:
+        return 0.0
+    return 0.5 * f * f * delta / cap

@@ -1,0 +1,198 @@
+"""``onbottom loads``: V–H envelope of the peak hydrodynamic loads per wave cycle."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+from typing import Any
+
+import click
+
+from onbottom.cli._common import emit_json, handle_errors, json_option
+
+__all__ = ["command", "evaluate_loads"]
+
+
+def evaluate_loads(
+    case_path: Path, *, seed: int | None, duration_hours: float
+) -> tuple[dict, list]:
+    """Envelopes of every load combination of a case file: (JSON payload, envelopes)."""
+    from onbottom.checks.design import CheckOptions, run_checks
+    from onbottom.errors import InputError, OutOfRangeWarning
+    from onbottom.hydro.forces import MorisonCoefficients
+    from onbottom.hydro.load_envelope import load_envelope
+    from onbottom.inputs.stability_case import load_stability_case
+
+    case = load_stability_case(case_path)
+    if seed is None:
+        storm_seed = (case.storm or {}).get("seed", 0)
+        if isinstance(storm_seed, bool) or not isinstance(storm_seed, int) or storm_seed < 0:
+            raise InputError(f"storm.seed = {storm_seed!r} is invalid: expected an integer >= 0")
+        seed = storm_seed
+    section = case.section()
+    seabed = case.seabed.seabed()
+    env = case.environment_object()
+    combos = case.load_combinations()
+    h = case.hydro
+    coef = MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl)
+    options = CheckOptions(
+        vertical_conditions=(),
+        penetration=case.seabed.initial_penetration,
+        trench_depth=case.seabed.trench_depth,
+        trench_angle_deg=case.seabed.trench_angle_deg,
+        permeable=case.design.permeable,
+    )
+    out: list[dict[str, Any]] = []
+    envs = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OutOfRangeWarning)
+        rows = run_checks(section, seabed, env, combos, options)
+    by_combo = {r.combination: r.details for r in rows if r.name == "absolute_lateral"}
+    for combo in combos:
+        det = by_combo[combo.name]
+        if "diameter" not in det:
+            raise InputError(
+                f"pipe.condition = {combo.condition!r} is invalid for {combo.name!r}: the pipe"
+                " floats (submerged weight <= 0)"
+            )
+        r_y, r_z = (det["r_y"], det["r_z"]) if h.reductions else (1.0, 1.0)
+        ss = combo.sea_state
+        e = load_envelope(
+            hs=ss.hs,
+            tp=ss.tp,
+            depth=env.water_depth,
+            diameter=det["diameter"],
+            submerged_weight=det["submerged_weight"],
+            current=det["v_star"],
+            gamma=ss.gamma,
+            spectrum=ss.spectrum,
+            wave_direction_deg=ss.direction_deg,
+            spreading_s=ss.spreading_s or None,
+            coefficients=coef,
+            r_y=r_y,
+            r_z=r_z,
+            density=env.water_density,
+            duration=duration_hours * 3600.0,
+            seed=seed,
+        )
+        envs.append(e)
+        out.append(
+            {
+                "combination": combo.name,
+                "condition": combo.condition,
+                "hs": ss.hs,
+                "tp": ss.tp,
+                "n_cycles": e.n_cycles,
+                "fraction_20_45": e.fraction_between(20.0, 45.0),
+                "max_horizontal": float(e.horizontal.max()) if e.n_cycles else None,
+                "min_vertical": float(e.vertical.min()) if e.n_cycles else None,
+                "max_angle_deg": float(e.angle_deg.max()) if e.n_cycles else None,
+                "submerged_weight": e.submerged_weight,
+                "r_y": r_y,
+                "r_z": r_z,
+            }
+        )
+    payload = {
+        "case": str(case_path),
+        "seed": seed,
+        "duration": duration_hours * 3600.0,
+        "coefficients": {"cd": h.cd, "cm": h.cm, "cl": h.cl},
+        "combinations": out,
+    }
+    return payload, envs
+
+
+@click.command("loads")
+@click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--plot",
+    "plot",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the V–H figure to this file (png, pdf, svg).",
+)
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Write the cycle peaks (NetCDF, dims combination × cycle) to this file.",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0),
+    default=None,
+    help="Random-phase seed (default: [storm] seed, else 0).",
+)
+@click.option(
+    "--duration-hours",
+    type=click.FloatRange(min=0.1, max=100.0),
+    default=3.0,
+    show_default=True,
+    help="Length of the simulated record [h] (F109 design sea state: 3 h).",
+)
+@json_option
+@handle_errors
+def command(
+    case: Path,
+    plot: Path | None,
+    output: Path | None,
+    seed: int | None,
+    duration_hours: float,
+    as_json: bool,
+) -> None:
+    """Peak hydrodynamic loads of every wave cycle of each load combination of CASE (TOML),
+    in V–H space (H = |F_Y|, V = w_s − F_Z), and the fraction of cycles whose load angle from
+    the V axis lies between 20° and 45° (Youssef & Cassidy 2014, Fig. 4).
+
+    Loads: Morison drag + inertia and lift with [hydro] cd, cm, cl on the pipe at rest, with
+    the F109 load reductions of the absolute check when [hydro] reductions = true.
+    """
+    payload, envs = evaluate_loads(case, seed=seed, duration_hours=duration_hours)
+    if plot is not None:
+        from onbottom.cli._common import check_output_path
+        from onbottom.plotting.load_envelope import plot_load_envelope
+
+        if plot.suffix.lower() not in (".png", ".pdf", ".svg"):
+            from onbottom.errors import InputError
+
+            raise InputError(
+                f"--plot = {str(plot)!r} is invalid: the file name must end in .png, .pdf or .svg"
+            )
+        check_output_path(plot, field="--plot")
+        fig = plot_load_envelope(
+            envs,
+            [c["combination"] for c in payload["combinations"]],
+            title=f"{case.stem}: peak loads per wave cycle, seed {payload['seed']}",
+        )
+        plot.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(plot, dpi=110)
+        payload["plot"] = str(plot)
+    if output is not None:
+        from onbottom.cli._common import check_output_path
+        from onbottom.hydro.load_envelope import envelopes_dataset
+        from onbottom.results import save_dataset
+
+        check_output_path(output, field="--output")
+        ds = envelopes_dataset(
+            envs, [c["combination"] for c in payload["combinations"]], case=str(case)
+        )
+        save_dataset(ds, output)
+        payload["output"] = str(output)
+    if as_json:
+        emit_json(payload)
+        return
+    click.echo(
+        f"{'combination':<40} {'cycles':>6} {'20–45°':>7} {'max H (kN/m)':>13} {'min V (kN/m)':>13}"
+    )
+    for c in payload["combinations"]:
+        mh = c["max_horizontal"] / 1e3 if c["max_horizontal"] is not None else float("nan")
+        mv = c["min_vertical"] / 1e3 if c["min_vertical"] is not None else float("nan")
+        click.echo(
+            f"{c['combination'][:40]:<40} {c['n_cycles']:>6d} {100 * c['fraction_20_45']:>6.1f}%"
+            f" {mh:>13.3f} {mv:>13.3f}"
+        )
+    if plot is not None:
+        click.echo(f"figure: {plot}")
+    if output is not None:
+        click.echo(f"cycle peaks: {output}")
