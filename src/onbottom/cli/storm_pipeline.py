@@ -365,13 +365,26 @@ def run_pipeline_case(
         else all(bool(r["criteria"]["strain"]) for r in ok)
     )
     success = not failures and all(r["success"] for r in rows)
+    detail = ""
+    verdict = {None: "", True: "PASS", False: "FAIL"}[strain_check]
+    if ok:
+        eps = max(r["max_strain"] for r in ok)
+        detail = (
+            f"; worst node x = {worst['worst_node_x_m']:.1f} m; max strain {100 * eps:.3g} %"
+            + (
+                ""
+                if strain_check is None
+                else f" (limit {100 * table.strain_limit:.3g} %: {verdict})"
+            )
+        )
     message = (
-        worst["message"]
+        worst["message"] + detail
         if n == 1
         else (
             f"{n} seeds: seed-averaged maximum displacement {np.mean(maxes) / d:.3g}D"
             f" (max {np.max(maxes) / d:.3g}D)"
             + (f"; {len(failures)} seed(s) failed" if failures else "")
+            + detail
         )
     )
     payload = {
