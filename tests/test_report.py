@@ -1,8 +1,8 @@
 """The validation report: registry, files, tables, pass/fail, provenance, CLI (fast sections only).
 
-Runs the F114 and DEM sections (a few seconds); the slow sections are exercised by the site
-build in CI. The F114 numbers are those of the reference table in shared/spec/dnv-reference.md
-§3.3 (the same as tests/unit/test_penetration_f114.py).
+Runs the fast sections (F114, centrifuge bands, F109 design sheet, DEM: a few seconds); the
+others run in the site build in CI. The F114 numbers are those of the reference table in
+shared/spec/dnv-reference.md §3.3 (the same as tests/unit/test_penetration_f114.py).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from onbottom.report import SectionContent, SectionContext, build_report, load_s
 from onbottom.report.content import Check, Table
 from onbottom.report.registry import REGISTRY, section
 
-FAST = ["f114", "dem"]
+FAST = ["f114", "centrifuge_bands", "checks_f109", "dem"]
 
 
 @pytest.fixture(scope="module")
@@ -100,6 +100,20 @@ def test_dem_section_reads_committed_summaries(report):
     heave = next(c for c in dem.content.checks if c.name == "SD: heave peak / D")
     assert heave.reference == 0.25 and 0.0 < heave.value < 1.0
     assert heave.status == ("pass" if abs(heave.value - 0.25) <= 0.1 else "fail")
+
+
+def test_bands_and_design_sheet_sections(report):
+    by = {s.name: s for s in report.sections}
+    if by["centrifuge_bands"].state == "ok":  # H14's module and committed CSV present
+        checks = {c.name: c for c in by["centrifuge_bands"].content.checks}
+        assert len(checks) == 7
+        reg = checks["Regular: Table 1 cycles inside the band"]
+        assert reg.reference == 46.22 and reg.status == "fail" and "lift-off" in reg.note
+    if by["checks_f109"].state == "ok":  # H11's design layer present
+        checks = {c.name: c for c in by["checks_f109"].content.checks}
+        d = checks["outer diameter D"]
+        assert d.value == pytest.approx(0.2191 + 2 * (0.0055 + 0.08255), abs=1e-12)
+        assert d.status == "pass" and d.reference == 0.3951
 
 
 def test_provenance(report):
