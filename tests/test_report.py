@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import re
 from html.parser import HTMLParser
 
@@ -17,7 +18,7 @@ import pytest
 from onbottom.cli.main import main
 from onbottom.errors import InputError
 from onbottom.report import SectionContent, SectionContext, build_report, load_sections, within
-from onbottom.report.content import Check, Table
+from onbottom.report.content import Check, Table, format_cell
 from onbottom.report.registry import REGISTRY, section
 
 FAST = ["f114", "centrifuge_bands", "checks_f109", "dem"]
@@ -174,6 +175,8 @@ def test_content_helpers():
     assert within("x", 10.2, 10.0, rtol=0.01).status == "fail"
     assert within("x", float("nan"), 10.0, rtol=0.5).status == "fail"
     assert within("x", 0.05, 0.0, atol=0.06, unit="kN/m").tolerance == "±0.06 kN/m"
+    assert format_cell(-4.97e-8) == "-4.97e-08" and format_cell(0.0) == "0.000"
+    assert format_cell(1.23456, 2) == "1.23" and format_cell(None) == format_cell(math.nan) == "–"
     with pytest.raises(InputError, match="status"):
         Check(name="x", value=1.0, reference=1.0, tolerance="", status="ok")
     with pytest.raises(InputError, match="rows"):
