@@ -33,7 +33,7 @@ from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
 
-__all__ = ["StabilityCase", "load_stability_case"]
+__all__ = ["StabilityCase", "load_stability_case", "penetration_outside_validity"]
 
 Condition = Literal["installation", "flooded", "hydrotest", "operation"]
 
@@ -124,7 +124,9 @@ class SeabedTable(StrictModel):
         None, gt=0.0, le=3.0e4, description="clay total unit weight γ_s [N/m³]"
     )
     friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
-    undrained_shear_strength: float | None = Field(None, gt=0.0, description="s_u [Pa]")
+    undrained_shear_strength: float | None = Field(
+        None, ge=100.0, le=1.0e6, description="s_u [Pa] (not kPa)"
+    )
     d50: float | None = Field(None, gt=0.0, le=1.0, description="median grain size [m]")
     initial_penetration: float | None = Field(None, ge=0.0, description="z_p [m]")
     trench_depth: float = Field(0.0, ge=0.0, description="z_t [m]")
@@ -461,6 +463,26 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
             " steels lie in [7000, 8100] kg/m³",
         )
 
+    if not case.pipe.is_buildup:
+        buoyancy = (
+            case.environment.water_density * GRAVITY * math.pi * case.pipe.outer_diameter**2 / 4.0
+        )
+        sg = 1.0 + case.pipe.submerged_weight / buoyancy
+        if sg < 1.05:
+            chk.warn(
+                "pipe.submerged_weight",
+                f"pipe.submerged_weight = {case.pipe.submerged_weight:g} N/m is unusual: the"
+                f" specific gravity is only {sg:.4g} (check the unit: N/m, not kN/m)",
+            )
+    if case.seabed.model == "clay" and case.seabed.undrained_shear_strength is not None:
+        su = case.seabed.undrained_shear_strength
+        if not 500.0 <= su <= 2.0e5:
+            chk.warn(
+                "seabed.undrained_shear_strength",
+                f"seabed.undrained_shear_strength = {su:g} Pa is unusual: seabed clays lie in"
+                " [500, 200000] Pa (check the unit: Pa, not kPa)",
+            )
+
     # -- sea states -------------------------------------------------------------------------
     depth = case.environment.water_depth
     states = [("waves", case.waves.hs, case.waves.tp, "waves", "waves")]
@@ -561,6 +583,24 @@ def _check_section(case: StabilityCase, chk: _Checker) -> None:
                 f"seabed.{key} = {z!r} m is invalid: deeper than the pipe's outer diameter"
                 f" {diameter:.4g} m (must lie in [0, D]; F109 §3.6 covers an on-bottom pipe)",
             )
+
+
+def penetration_outside_validity(rows: Any) -> list[str]:
+    """Rows of the absolute check whose embedment z_p exceeds D/2 (outside F109 Eqs
+    3.19–3.22 and the soil resistance models): one line per combination, empty if none."""
+    out = []
+    for r in rows:
+        det = r.details
+        if r.name != "absolute_lateral" or "penetration" not in det or "diameter" not in det:
+            continue
+        ratio = det["penetration"] / det["diameter"]
+        if ratio > 0.5:
+            out.append(
+                f"combination {r.combination!r} ({r.condition}): embedment z_p/D = {ratio:.3g}"
+                " > 0.5 lies outside the validity of F109 Eqs 3.19–3.22 (check the soil"
+                " strength and its unit)"
+            )
+    return out
 
 
 def load_stability_case(path: str | os.PathLike) -> StabilityCase:
