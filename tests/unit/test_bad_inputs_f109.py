@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import warnings
 from pathlib import Path
 
@@ -631,11 +632,28 @@ def test_design_oscillation_refuses_non_finite_bed_velocity():
 
 # ---- fuzzing of the stability case file ------------------------------------------------------
 FUZZ = settings(
-    max_examples=40,
+    # ONBOTTOM_FUZZ_EXAMPLES=1000 for a longer hunt (CI keeps the suite to seconds)
+    max_examples=int(os.environ.get("ONBOTTOM_FUZZ_EXAMPLES", "40")),
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture],
 )
 
+BUILDUP_KEYS = [
+    ("pipe", "steel_outer_diameter"),
+    ("pipe", "wall_thickness"),
+    ("pipe", "steel_density"),
+    ("pipe", "contents_density"),
+    ("layer", "thickness"),
+    ("layer", "density"),
+    ("layer", "name"),
+    ("design", "solve_for"),
+    ("design", "layer"),
+    ("design", "thickness_max"),
+    ("waves", "hs"),
+    ("waves", "tp"),
+    ("current", "velocity"),
+    ("environment", "water_depth"),
+]
 KEYS = [
     ("pipe", "outer_diameter"),
     ("pipe", "submerged_weight"),
@@ -667,6 +685,8 @@ KEYS = [
 ]
 SCALARS = st.one_of(
     st.floats(allow_nan=True, allow_infinity=True),
+    st.floats(min_value=1e-4, max_value=1e4),  # plausible magnitudes reach the checks
+    st.floats(min_value=1e-4, max_value=1e4),
     st.sampled_from([0.0, -1.0, 1e-300, 1e300, 0.5, 16.7, 1e3, 1e7, 7.85, 219.1]),
     st.integers(min_value=-(2**63), max_value=2**63 - 1),
     st.booleans(),
@@ -691,9 +711,19 @@ def _toml_value(v) -> str:
     return "[" + ", ".join(_toml_value(x) for x in v) + "]"
 
 
-def _doc() -> dict:
+def _doc(buildup: bool = False) -> dict:
+    pipe = (
+        {
+            "steel_outer_diameter": 0.2191,
+            "wall_thickness": 0.0127,
+            "contents_density": 100.0,
+            "layers": [{"name": "concrete", "thickness": 0.05, "density": 3000.0}],
+        }
+        if buildup
+        else {"outer_diameter": 0.4, "submerged_weight": 1500.0}
+    )
     return {
-        "pipe": {"outer_diameter": 0.4, "submerged_weight": 1500.0},
+        "pipe": pipe,
         "seabed": {"model": "sand", "submerged_unit_weight": 1.0e4},
         "environment": {"water_depth": 30.0},
         "waves": {"hs": 4.0, "tp": 10.0},
@@ -705,7 +735,11 @@ def _toml(doc: dict) -> str:
     out = []
     for table, body in doc.items():
         out.append(f"[{table}]")
-        out.extend(f"{k} = {_toml_value(v)}" for k, v in body.items())
+        layers = body.get("layers") if table == "pipe" else None
+        out.extend(f"{k} = {_toml_value(v)}" for k, v in body.items() if k != "layers")
+        for layer in layers or []:
+            out.append("[[pipe.layers]]")
+            out.extend(f"{k} = {_toml_value(v)}" for k, v in layer.items())
     return "\n".join(out) + "\n"
 
 
@@ -715,23 +749,50 @@ def _toml(doc: dict) -> str:
     drop=st.lists(st.sampled_from(KEYS[:21]), max_size=1),
 )
 def test_fuzz_stability_case_file(tmp_path, capsys, edits, drop):
-    doc = _doc()
+    _fuzz_one("stability", tmp_path, capsys, edits, drop)
+
+
+@settings(FUZZ, max_examples=max(5, FUZZ.max_examples // 4))
+@given(
+    edits=st.lists(st.tuples(st.sampled_from(KEYS), VALUES), min_size=1, max_size=2),
+    drop=st.just([]),
+)
+def test_fuzz_loads_case_file(tmp_path, capsys, edits, drop):
+    _fuzz_one("loads", tmp_path, capsys, edits, drop)
+
+
+@FUZZ
+@given(edits=st.lists(st.tuples(st.sampled_from(BUILDUP_KEYS), VALUES), min_size=1, max_size=3))
+def test_fuzz_stability_buildup_case_file(tmp_path, capsys, edits):
+    _fuzz_one("stability", tmp_path, capsys, edits, [], buildup=True)
+
+
+def _fuzz_one(command, tmp_path, capsys, edits, drop, buildup=False):
+    doc = _doc(buildup)
+    if buildup:
+        doc["design"] = {"solve_for": "concrete_thickness", "thickness_max": 0.2}
     for (table, key), value in edits:
-        doc.setdefault(table, {})[key] = value
+        if table == "layer":
+            doc["pipe"]["layers"][0][key] = value
+        else:
+            doc.setdefault(table, {})[key] = value
     for table, key in drop:
         doc.get(table, {}).pop(key, None)
     path = tmp_path / "fuzz.toml"
     path.write_text(_toml(doc), encoding="utf-8")
-    rc = main(["stability", str(path), "--json"])
+    extra = ["--duration-hours", "0.1"] if command == "loads" else []
+    rc = main([command, str(path), "--json", *extra])
     out = capsys.readouterr().out
     _no_nan(out)
     data = json.loads(out)
     if rc in (0, 3):
-        assert "checks" in data and isinstance(data["success"], bool)
+        assert isinstance(data["success"], bool)
         assert (rc == 0) == data["success"]
-        for row in data["checks"]:
+        for row in data.get("checks", []):
             u = row["utilisation"]
             assert u is None or (np.isfinite(u) and u >= 0.0)
+        for row in data.get("combinations", []):
+            assert row["n_cycles"] >= 0
     else:
         assert rc == 1, data  # never 70 (a bug) and never a usage error for a file
         err = data["error"]

@@ -52,9 +52,9 @@ class ContentsTable(StrictModel):
 
 
 class PipeTable(StrictModel):
-    outer_diameter: float | None = Field(None, gt=0.0, le=5.0, description="D (simple) [m]")
+    outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D (simple) [m]")
     submerged_weight: float | None = Field(None, gt=0.0, description="w_s (simple) [N/m]")
-    steel_outer_diameter: float | None = Field(None, gt=0.0, le=5.0, description="D_s [m]")
+    steel_outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D_s [m]")
     wall_thickness: float | None = Field(None, gt=0.0, description="steel wall t [m]")
     steel_density: float = Field(7850.0, ge=2.0e3, le=2.0e4, description="[kg/m³]")
     youngs_modulus: float = Field(207.0e9, gt=0.0, description="steel E [Pa]")
@@ -499,7 +499,7 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
         )
     for label, hs, tp, hs_at, tp_at in states:
         what = "" if label == "waves" else f" (combination {label!r})"
-        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2)
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
         if steep > MAX_WAVE_STEEPNESS:
             chk.fail(
                 f"{tp_at}.tp",
@@ -559,14 +559,19 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
 
 
 def _check_section(case: StabilityCase, chk: _Checker) -> None:
-    """Build every input object once: errors under their case-file keys; embedment vs D."""
+    """Build every input object once (errors under their case-file keys), the cross-table and
+    plausibility rules (:func:`_check_case`), and the embedment against D."""
     try:
         section = case.section()
         case.seabed.seabed()
         case.environment_object()
-        case.load_combinations()
     except CaseFileError:
         raise
+    except InputError as exc:
+        chk.rename(exc)
+    _check_case(case, chk)  # sea states and cross-table rules before the combinations
+    try:
+        case.load_combinations()
     except InputError as exc:
         chk.rename(exc)
     diameter = (
@@ -621,6 +626,5 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
         text = None
     chk = _Checker(p, text)
-    _check_case(case, chk)
     _check_section(case, chk)
     return case
