@@ -20,6 +20,7 @@ EXPECTED = {
     "ex06_calibrate_verley_sotberg.py": r"C += 0\.7[89]\d\d",
     "ex07_dem_penetration.py": r"inertial number I = ",
     "ex08_f109_design.py": r"absolute lateral stability: utilisation 4\.\d+ \(fails\)",
+    "ex09_storm_section.py": r"max \|y\| = 0\.\d{3} m = 0\.\d{3}D",
 }
 
 

@@ -58,6 +58,21 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "load_angle": ("load angle atan(H/V) from the V axis at the peak of a wave cycle", "degree"),
     "fraction_20_45": ("fraction of wave cycles with load angle in [20, 45] degrees", "1"),
     "w_s": ("submerged weight of the pipe per unit length", "N/m"),
+    # storm section (issue 12)
+    "y": ("lateral displacement of the pipe section", "m"),
+    "y_dot": ("lateral velocity of the pipe section", "m/s"),
+    "F_hydro": ("horizontal hydrodynamic load on the pipe F_Y", "N/m"),
+    "F_Z": ("hydrodynamic lift on the pipe", "N/m"),
+    "U": ("wave-induced near-bed velocity normal to the pipe", "m/s"),
+    "work_hydro": ("work of the hydrodynamic load on the pipe", "J/m"),
+    "work_soil": ("work done by the pipe on the soil", "J/m"),
+    "r_y": ("total horizontal load reduction r_tot,y", "1"),
+    "r_z": ("total vertical load reduction r_tot,z", "1"),
+    # pipeline FE (time × node; onbottom.dynamics.pipeline)
+    "u_axial": ("axial displacement of the pipe", "m"),
+    "moment": ("bending moment in the horizontal plane", "N m"),
+    "axial_force": ("effective axial force (tension positive)", "N"),
+    "strain": ("largest longitudinal fibre strain |N|/EA + |M|c/EI", "1"),
 }
 
 

@@ -45,7 +45,7 @@ def test_presets_match_the_paper_table3():
     # paper: 58,710 and 60,150 disks; the uniform-by-number PSD gives them within 3 %
     assert SM.estimated_particle_count() == pytest.approx(58710, rel=0.03)
     assert SD.estimated_particle_count() == pytest.approx(60150, rel=0.03)
-    assert set(PRESETS) == {"SM", "SD", "SM-reduced", "SD-reduced"}
+    assert set(PRESETS) == {"SM", "SD", "SM-reduced", "SD-reduced", "SM-Dr48"}
 
 
 def test_psd_reproduces_d50_and_cu():

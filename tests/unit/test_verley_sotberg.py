@@ -179,9 +179,14 @@ def test_trial_evaluation_has_no_side_effects(calc_model):
     np.testing.assert_array_equal(t1, t2)
 
 
-def test_numba_kernel_equals_python_twin_on_random_path(calc_model):
+@pytest.mark.parametrize(
+    "options",
+    [{}, {"passive_rule": "legacy_elastic"}, {"b_placement": "inside"}],
+    ids=["default", "legacy_elastic", "b_inside"],
+)
+def test_numba_kernel_equals_python_twin_on_random_path(calc_model, options):
     rng = np.random.default_rng(11)
-    m = calc_model
+    m = dataclasses.replace(calc_model, **options)
     n = 3000
     # random walk with occasional large excursions: visits all regions and new troughs
     u = np.cumsum(rng.normal(0.0, 0.02, n) + 0.05 * (rng.random(n) < 0.02))

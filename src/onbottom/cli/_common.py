@@ -5,7 +5,8 @@ Exit codes of every command:
 * 0 — a valid result was produced;
 * 1 — an input error (bad value, case file or checkpoint: :class:`~onbottom.errors.InputError`)
   or no solution (:class:`~onbottom.errors.SolutionError`), or a file that cannot be written;
-* 2 — a command-line usage error (unknown option, option value out of range);
+  — an option value out of its range (:class:`Number`) included;
+* 2 — a command-line usage error (unknown option, missing argument, a value click rejects);
 * 3 — the command ran but its result is not valid (solver did not converge, a result left its
   model's validity, some runs of a sweep failed);
 * 70 — an internal error (a bug: the traceback goes to stderr).
@@ -23,7 +24,7 @@ import sys
 import traceback
 from collections.abc import Callable, Mapping, Sequence
 from functools import wraps
-from typing import Any
+from typing import Any, NoReturn
 
 import click
 import numpy as np
@@ -82,6 +83,7 @@ def emit_json(payload: Mapping[str, Any] | Sequence[Any]) -> None:
 # errors
 # ---------------------------------------------------------------------------------------------
 _NP_SCALAR = re.compile(r"np\.(?:float|int|uint|bool_?|str_)\d*\(([^()]*)\)")
+_OPTION = re.compile(r"^(--[a-z0-9][a-z0-9-]*)\b")
 _FIELD = re.compile(r"^(?:[^:\n]*?: )?(--[a-z0-9][a-z0-9-]*|[A-Za-z_][\w.\[\]'\"-]*) (?:=|is )")
 
 
@@ -94,11 +96,18 @@ def _field_of(exc: BaseException) -> str | None:
     field = getattr(exc, "field", None)
     if isinstance(field, str) and field:
         return field
+    option = getattr(exc, "option_name", None)  # click.NoSuchOption
+    if isinstance(option, str) and option:
+        return option
     param = getattr(exc, "param", None)
     if param is not None:
         opts = [o for o in getattr(param, "opts", []) if o.startswith("--")]
         return opts[0] if opts else getattr(param, "name", None)
-    m = _FIELD.match(str(exc))
+    text = str(exc)
+    m = _OPTION.match(text)
+    if m:
+        return m.group(1)
+    m = _FIELD.match(text)
     return m.group(1) if m else None
 
 
@@ -109,7 +118,12 @@ def error_payload(exc: BaseException) -> dict[str, dict[str, Any]]:
             exc = exc.__cause__
     if isinstance(exc, click.ClickException):
         message = exc.format_message()
-        kind = "UsageError" if isinstance(exc, click.UsageError) else type(exc).__name__
+        if isinstance(exc, OptionValueError):
+            kind = "InputError"
+        elif isinstance(exc, click.UsageError):
+            kind = "UsageError"
+        else:
+            kind = type(exc).__name__
     else:
         message = str(exc)
         kind = type(exc).__name__
@@ -218,6 +232,12 @@ def _fmt(x: float) -> str:
     return f"{x:g}"
 
 
+class OptionValueError(click.BadParameter):
+    """An option value outside its range: an input error (exit status 1)."""
+
+    exit_code = EXIT_INPUT
+
+
 class Number(click.ParamType):
     """A finite number option with a range: ``type=Number(int, min=1)``.
 
@@ -253,6 +273,11 @@ class Number(click.ParamType):
 
     def get_metavar(self, param: click.Parameter, ctx: click.Context | None = None) -> str:
         return ("INTEGER" if self.kind is int else "FLOAT") + " " + self._range()
+
+    def fail(
+        self, message: str, param: click.Parameter | None = None, ctx: click.Context | None = None
+    ) -> NoReturn:
+        raise OptionValueError(message, ctx=ctx, param=param)
 
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
         if isinstance(value, bool):

@@ -101,8 +101,14 @@ def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float |
 
 
 def _weights(text: str | None):
+    from dataclasses import fields
+
     from onbottom.calibration.objective import MisfitWeights
 
+    allowed = [f.name for f in fields(MisfitWeights)]
+    for k in _pairs(text, "--weights"):
+        if k not in allowed:
+            raise InputError(f"--weights {k}= is invalid: must be among {allowed}")
     return MisfitWeights(
         **{k: _float("--weights", k, v) for k, v in _pairs(text, "--weights").items()}
     )
@@ -196,16 +202,23 @@ def command(
     from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
 
     params = _parameters(vary, bounds, start, gamma)
+    misfit_weights = HISTORY_ONLY if history_only else _weights(weights)
     if output:
         check_output_path(output, field="--output")
-    recs = [load_record(p) for p in records]
+    recs = []
+    for p in records:
+        try:
+            recs.append(load_record(p))
+        except InputError as exc:
+            exc.field = getattr(exc, "field", None) or "records"  # type: ignore[attr-defined]
+            raise
     if loads == "preset":
         simulator = CentrifugeSimulator(gamma=gamma)
     else:
         simulator = RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
     kwargs = dict(
         simulator=simulator,
-        weights=HISTORY_ONLY if history_only else _weights(weights),
+        weights=misfit_weights,
         method=method,
         seed=seed,
         maxiter=maxiter,

@@ -48,6 +48,42 @@ def _check_out(path: Path, field: str) -> None:
     check_output_path(path, field=field)
 
 
+def _existing_identity(path: Path) -> dict | None:
+    """The run identity recorded in a result or specimen file (None if none/unreadable)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            attrs = dict(ds.attrs)
+        if "sample_attrs" in attrs and "run_identity" not in attrs:
+            attrs = json.loads(attrs["sample_attrs"])
+        return {**json.loads(attrs["run_identity"]), "config": json.loads(attrs["config"])}
+    except Exception:  # unreadable or without identity: not a result of this run either
+        return None
+
+
+def _guard_output(path: Path, identity: dict, restart: bool, field: str) -> None:
+    """Refuse to overwrite a file that holds the result of another run (unless --restart)."""
+    from onbottom.dem.identity import differences
+
+    if restart or not path.exists():
+        return
+    found = _existing_identity(path)
+    if found == identity:
+        return
+    what = (
+        "a file without a run identity"
+        if found is None
+        else "the result of another run (" + "; ".join(differences(found, identity)[:8]) + ")"
+    )
+    err = InputError(
+        f"{field} = {str(path)!r} is invalid: it already holds {what}; give another {field},"
+        " or --restart to replace it"
+    )
+    err.field = field  # type: ignore[attr-defined]
+    raise err
+
+
 def _load_sample(path: Path):
     """A specimen file; a file that is not one is an input error naming it."""
     from onbottom.dem.sample import Sample
@@ -129,8 +165,9 @@ threads_option = click.option(
 restart_option = click.option(
     "--restart",
     is_flag=True,
-    help="Discard an existing checkpoint of this output and start afresh (a checkpoint of "
-    "another run, or a corrupt one, is otherwise an error).",
+    help="Start afresh: discard an existing checkpoint of this output and replace an output "
+    "of another run (a checkpoint or output of another run, or a corrupt checkpoint, is "
+    "otherwise an error).",
 )
 progress_option = click.option(
     "--progress/--no-progress", default=True, show_default=True, help="Show a progress bar."
@@ -160,10 +197,12 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool, restart: bool = False):
     previous run was interrupted (if it belongs to the same run), and removed once the specimen
     is saved.
     """
+    from onbottom.dem.identity import run_identity
     from onbottom.dem.preparation import prepare_sample
     from onbottom.results import clean_stale_temporaries
 
     _check_out(out, "--out")
+    _guard_output(out, run_identity(cfg, "preparation"), restart, "--out")
     checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
     clean_stale_temporaries(out)
     clean_stale_temporaries(checkpoint)
@@ -292,7 +331,7 @@ def penetrate_cmd(
     and names the differing fields (--restart discards the checkpoint).
     """
     from onbottom.dem.experiment import initial_state, penetrate
-    from onbottom.dem.identity import check_sample_config
+    from onbottom.dem.identity import check_sample_config, run_identity
     from onbottom.results import clean_stale_temporaries, save_dataset
 
     cfg = _config(preset, seed, config_file)
@@ -304,6 +343,8 @@ def penetrate_cmd(
     else:
         sample, _ = _prepare(cfg, sample_path, show)
     ck = checkpoint if checkpoint is not None else out.with_suffix(".checkpoint.nc")
+    if not ck.exists():  # else the checkpoint's own identity check decides (in penetrate)
+        _guard_output(out, run_identity(cfg, "penetration", sample=sample), restart, "--out")
     if ck.resolve() in (out.resolve(), sample_path.resolve()):
         raise InputError(
             f"--checkpoint = {str(ck)!r} is invalid: it must differ from --out and --sample"

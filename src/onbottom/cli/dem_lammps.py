@@ -19,7 +19,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 from onbottom.dem.config import PRESETS, DEMConfig, get_preset
 from onbottom.dem.lammps_backend import (
     LammpsError,
@@ -61,7 +61,14 @@ __all__ = ["command"]
     default=None,
     help="Write the V–w record (NetCDF, same variables as 'onbottom dem penetrate').",
 )
-@click.option("--np", "n_procs", type=int, default=1, show_default=True, help="MPI ranks.")
+@click.option(
+    "--np",
+    "n_procs",
+    type=Number(int, min=1, max=4096),
+    default=1,
+    show_default=True,
+    help="MPI ranks.",
+)
 @click.option(
     "--workdir",
     type=click.Path(file_okay=False, path_type=Path),
@@ -70,7 +77,7 @@ __all__ = ["command"]
 )
 @click.option(
     "--settle-time",
-    type=float,
+    type=Number(float, min=0.0),
     default=0.0,
     show_default=True,
     help="Settle with the pipe at rest first [s] (the data file carries no contact history).",

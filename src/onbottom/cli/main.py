@@ -26,6 +26,8 @@ COMMAND_MODULES: tuple[str, ...] = (
     "report",
     "stability",
     "loads",
+    "storm",
+    "curves",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 

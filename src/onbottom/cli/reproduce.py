@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 
 
 @click.command("reproduce")
@@ -22,7 +22,7 @@ from onbottom.cli._common import emit_json, handle_errors, json_option
 )
 @click.option(
     "--gamma-kn",
-    type=float,
+    type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
     default=None,
     help="Submerged unit weight of the sand [kN/m³] (default 7.5, see the docs).",
 )
@@ -38,6 +38,12 @@ from onbottom.cli._common import emit_json, handle_errors, json_option
     " tests 4-5) on Dask; writes centrifuge_bands.csv/.md under --out.",
 )
 @click.option("--scheduler", default=None, help="Address of a running Dask scheduler (--bands).")
+@click.option(
+    "--band-test",
+    "band_tests",
+    multiple=True,
+    help="With --bands: only this test (repeatable; default all seven).",
+)
 @click.option(
     "--workers",
     type=click.IntRange(min=0),
@@ -55,6 +61,7 @@ def command(
     quiet: bool,
     bands: bool,
     scheduler: str | None,
+    band_tests: tuple[str, ...],
     workers: int | None,
     as_json: bool,
 ) -> None:
@@ -67,7 +74,7 @@ def command(
     (docs/validation/bands/centrifuge_bands.md is the committed copy).
     """
     if bands:
-        _bands(out, scheduler, workers, quiet, as_json)
+        _bands(out, scheduler, workers, band_tests or None, quiet, as_json)
         return
     from onbottom.study.youssef_cassidy import reproduce
 
@@ -97,12 +104,20 @@ def command(
     click.echo(f"{len(res['files'])} files written under {out} in {wall:.1f} s")
 
 
-def _bands(out: Path, scheduler: str | None, workers: int | None, quiet: bool, as_json: bool):
+def _bands(
+    out: Path,
+    scheduler: str | None,
+    workers: int | None,
+    tests: tuple[str, ...] | None,
+    quiet: bool,
+    as_json: bool,
+) -> None:
     from onbottom.study.centrifuge_bands import bands
 
     t0 = time.perf_counter()
     res = bands(
         out,
+        tests=tests,
         scheduler_address=scheduler,
         n_workers=workers,
         progress=not quiet and not as_json,

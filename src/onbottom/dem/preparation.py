@@ -44,8 +44,22 @@ from onbottom.dem.config import ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
+from onbottom.errors import InputError
 
-__all__ = ["STRESS_FREE_FRACTION", "draw_diameters", "layer_targets", "prepare_sample", "settle"]
+__all__ = [
+    "MAX_PARTICLES",
+    "STRESS_FREE_FRACTION",
+    "draw_diameters",
+    "layer_targets",
+    "prepare_sample",
+    "settle",
+]
+
+MAX_PARTICLES = 2_000_000
+"""Largest specimen :func:`prepare_sample` accepts (estimated up front; the full SM and SD
+presets hold about 60,000 disks)."""
+BYTES_PER_PARTICLE = 2048
+"""Order of the memory one disk takes in the engine (state, neighbour list, contact history)."""
 
 STRESS_FREE_FRACTION = 1e-3
 """A compacted layer whose mean applied force per disk is below this fraction of the mean
@@ -115,6 +129,7 @@ def settle(
     force_floor: float = 0.0,
     start_time: float | None = None,
     on_check: Callable[[float], None] | None = None,
+    relaxation: str = "damped",
 ) -> tuple[bool, float]:
     """Cycle until the unbalanced-force ratio < ``ratio`` (after ``min_time``) or ``max_time``.
 
@@ -124,6 +139,10 @@ def settle(
     ``start_time`` [s]: simulated time at which the stage began (default: now), so that a stage
     resumed from a checkpoint keeps its original time window. ``on_check(fraction)`` is called
     after every check that does not end the stage (fraction of ``max_time`` used).
+    ``relaxation``: ``"damped"`` (local damping) or ``"fire"``; FIRE can meet the ratio while
+    the assembly still moves, so when it does the velocities are zeroed and the cycling goes
+    on with local damping until the criterion holds again (the end state meets the same
+    criterion under the same law as a damped stage). The simulation is left damped.
 
     Returns (converged, final ratio).
     """
@@ -131,13 +150,24 @@ def settle(
     t_end = t0 + max_time
     t_min = t0 + min_time
     r = math.inf
-    while sim.time < t_end:
-        sim.run(check_every)
-        r = sim.unbalanced_ratio()
-        if sim.time >= t_min and (r < ratio or sim.mean_applied_force() < force_floor):
-            return True, r
-        if on_check is not None:
-            on_check((sim.time - t0) / max_time)
+    sim.set_relaxation(relaxation)
+    polishing = relaxation == "damped"
+    try:
+        while sim.time < t_end:
+            sim.run(check_every)
+            r = sim.unbalanced_ratio()
+            if sim.time >= t_min and (r < ratio or sim.mean_applied_force() < force_floor):
+                if polishing:
+                    return True, r
+                sim.vel[:] = 0.0
+                sim.om[:] = 0.0
+                sim.set_relaxation("damped")
+                polishing = True
+                continue
+            if on_check is not None:
+                on_check((sim.time - t0) / max_time)
+    finally:
+        sim.set_relaxation("damped")
     return False, r
 
 
@@ -231,6 +261,13 @@ def prepare_sample(
         raise CheckpointError(
             f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
             field="checkpoint_every",
+        )
+    n_est = config.estimated_particle_count()
+    if n_est > MAX_PARTICLES:
+        raise InputError(
+            f"geometry is invalid: the specimen would hold about {n_est:.3g} disks (about"
+            f" {n_est * BYTES_PER_PARTICLE / 1024**3:.3g} GiB of memory), more than the"
+            f" {MAX_PARTICLES:.0e} allowed; reduce the box or enlarge the disks"
         )
     identity = run_identity(config, "preparation")
     ck = Path(checkpoint) if checkpoint is not None else None
@@ -357,6 +394,7 @@ def prepare_sample(
             prep.max_settle_time / 5.0,
             min_time=2e-3,
             force_floor=STRESS_FREE_FRACTION * w_mean,
+            relaxation=prep.relaxation,
         )
         log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
         clock.lap("compaction", sim.step_count, sim.n)
@@ -424,6 +462,7 @@ def prepare_sample(
             min_time=5e-3,
             start_time=stage_values[f"t0_{name}"],
             on_check=on_check(name),
+            relaxation=prep.relaxation,
         )
         if progress is not None:
             progress(name, 1.0)
@@ -435,6 +474,14 @@ def prepare_sample(
         stage_values["t0_1g"] = sim.time
         stage = "1g"
     sim.set_lid(None)
+    if config.numerics.sort_disks:
+        # renumber in cell order for memory locality (round-off only; idempotent on resume)
+        snap = sim.to_sample()
+        order = snap.cell_order()
+        if not np.array_equal(order, np.arange(snap.n)):
+            t_now = sim.time
+            sim = new_sim(snap.permuted(order))
+            sim.time = t_now
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)

@@ -210,7 +210,7 @@ def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
     programme = None
     if case.programme is not None:
         kind = case.programme.get("kind")
-        if kind not in _PROGRAMMES:
+        if not isinstance(kind, str) or kind not in _PROGRAMMES:
             raise CaseFileError(
                 f"{path or 'case'}: programme.kind = {kind!r} is invalid: must be one of"
                 f" {', '.join(map(repr, _PROGRAMMES))}",

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -578,7 +579,9 @@ def _read_programme_csv(path: str) -> np.ndarray:
     if not os.path.isfile(path):
         raise InputError(f"programme.file = {path!r} is invalid: file not found")
     try:
-        data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        with warnings.catch_warnings():  # an empty file is reported below, not warned
+            warnings.simplefilter("ignore", UserWarning)
+            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     except (ValueError, UnicodeDecodeError) as exc:
         raise InputError(
             f"programme.file = {path!r} is invalid: expected numeric CSV columns time [s],"

@@ -129,8 +129,8 @@ class SectionResult:
     status : int
         1 end of programme, 2 displacement limit (stopped), 3 limit reached and ran on until
         the pipe stopped, −1 step failure, −2 soil kernel NaN, −3 the run left the soil
-        model's validity (penetration beyond D/2 for the Verley & Sotberg sand models; the
-        time series is kept, ``success`` is False).
+        model's validity (lift-off: V <= 0; penetration beyond D/2 for the Verley & Sotberg
+        sand models; the time series is kept, ``success`` is False).
     message : str
         Human-readable status.
     n_steps : int
@@ -316,6 +316,23 @@ def simulate_section(
         cycles = (t_cross - float(pt[0])) / programme.cycle_period
     u = rec[:, K.REC_U]
     w = rec[:, K.REC_W]
+    # lift-off: the vertical load of the programme (up to the end of the run) or of a step
+    t_end = float(rec[-1, K.REC_T]) if len(rec) else 0.0
+    tp = np.asarray(programme.time, float)
+    vp = np.asarray(programme.vertical_load, float)[tp <= t_end + 1e-12]
+    tp = tp[tp <= t_end + 1e-12]
+    v_all = np.concatenate([vp, rec[:, K.REC_V]])
+    t_all = np.concatenate([tp, rec[:, K.REC_T]])
+    if success and v_all.size and float(np.min(v_all)) <= 0.0:
+        i = int(np.argmin(v_all))
+        success = False
+        status = STATUS_OUTSIDE_VALIDITY
+        message = (
+            f"outside the model's validity: lift-off, the vertical load falls to"
+            f" {float(v_all[i]):.4g} N/m at t = {float(t_all[i]):.4g} s (the soil models hold"
+            f" for a pipe resting on the seabed, V > 0; {message})"
+        )
+        logger.warning("simulate_section: %s", message)
     d_soil = getattr(soil, "outer_diameter", None)
     if success and d_soil is not None and float(np.max(w)) > 0.5 * float(d_soil):
         success = False

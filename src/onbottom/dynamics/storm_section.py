@@ -276,6 +276,7 @@ def simulate_storm_section(
     depth: float | None = None,
     current: Current | None = None,
     z0: float | None = None,
+    sample_interval: float | None = None,
     force_model: ForceModel | None = None,
     reductions: LoadReductions | None = None,
     settings: StormSolverSettings | None = None,
@@ -300,6 +301,8 @@ def simulate_storm_section(
         Steady current.
     z0 : float or None
         Seabed roughness [m] when ``current.z0`` is None.
+    sample_interval : float or None
+        Flow sample interval [s] of the synthesis (None → min T_p/50).
     force_model : ForceModel or None
         Default :class:`~onbottom.hydro.force_model.MorisonLift` (C_D 0.7, C_M 3.29, C_L 0.9).
     reductions : LoadReductions or None
@@ -324,7 +327,9 @@ def simulate_storm_section(
     elif isinstance(storm, Storm):
         if depth is None:
             raise InputError("depth = None is invalid: the water depth [m] is needed")
-        kin = storm_kinematics(storm, depth, diameter=d, current=current, z0=z0)
+        kin = storm_kinematics(
+            storm, depth, diameter=d, current=current, z0=z0, sample_interval=sample_interval
+        )
         storm_obj = storm
     else:
         raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
@@ -381,18 +386,20 @@ def simulate_storm_section(
 
         bar = tqdm(total=chunks, desc="storm", unit="chunk", leave=False)
     k = 1
-    while True:
+    status = K.STATUS_CHUNK
+    if s.liftoff == "stop" and dyn[K.D_LIFTED] == 1.0:
+        status = K.STATUS_LIFTOFF  # lifted off at the start
+    while status == K.STATUS_CHUNK:
         t_stop = kin.duration * k / chunks if k < chunks else kin.duration
         n, status = K.integrate(model_id, params, state, st, coef, ku, ka, dyn, t_stop, rec, n)
         if status == K.STATUS_BUFFER_FULL:
             rec = np.concatenate([rec, np.empty_like(rec)])
+            status = K.STATUS_CHUNK
             continue
         if status == K.STATUS_CHUNK:
             k += 1
             if bar is not None:
                 bar.update(1)
-            continue
-        break
     if bar is not None:
         bar.update(bar.total - bar.n)
         bar.close()

@@ -31,6 +31,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.fft import irfft, next_fast_len
 from scipy.special import gammaln
 
 from onbottom._validate import positive
@@ -63,7 +64,12 @@ def spreading_factor(direction_deg: float, spreading_s: float, n: int = 721) -> 
     n : int
         Points of the trapezoidal integration over |θ| < π/2.
     """
-    tw = math.radians(direction_deg)
+    # R_D depends on θ_w only through the line of the waves: fold into [0°, 90°] so that
+    # mirrored directions (θ_w, 180° − θ_w, θ_w + 180°, ...) give bitwise the same value
+    folded = math.fmod(abs(direction_deg), 180.0)
+    if folded > 90.0:
+        folded = 180.0 - folded
+    tw = math.radians(folded)
     if spreading_s < 0.0:
         raise InputError(f"spreading_s = {spreading_s!r} is invalid: must be >= 0")
     if spreading_s == 0.0:
@@ -245,7 +251,10 @@ def storm_kinematics(
     dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
     total = storm.duration_s
     n = math.ceil(total / dts) + 1
-    nfft = n + (n % 2)  # even length ≥ n: T_rep = nfft·Δt_s ≥ duration
+    # even length >= n with small prime factors (FFT speed): T_rep = nfft·Δt_s >= duration
+    nfft = next_fast_len(n + (n % 2), real=True)
+    while nfft % 2:
+        nfft = next_fast_len(nfft + 1, real=True)
     dw = 2.0 * math.pi / (nfft * dts)
     wmax = omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages)
     nbins = nfft // 2 + 1
@@ -270,8 +279,8 @@ def storm_kinematics(
         if abs(math.sin(math.radians(sea.direction_deg))) < 1e-12:
             sgn = 1.0
         spec = (0.5 * nfft) * amp * rot * (rd * sgn)
-        uk = np.fft.irfft(spec, nfft)[:n]
-        ak = np.fft.irfft(1j * omega * spec, nfft)[:n]
+        uk = irfft(spec, nfft)[:n]
+        ak = irfft(1j * omega * spec, nfft)[:n]
         u += weights[k] * uk
         a += weights[k] * ak + dweights[k] * uk
         params.append(seabed_velocity_parameters(sea, depth))

@@ -197,9 +197,13 @@ def _run(sec: Section, ctx: SectionContext) -> RenderedSection:
         if not isinstance(content, SectionContent):
             raise TypeError(f"section {sec.name} returned {type(content).__name__}")
         rs.content = content
-    except ModuleNotFoundError as exc:  # an optional package the section imports lazily
+    except ImportError as exc:  # a part of onbottom (or a package) missing from this build
         rs.state = "unavailable"
-        rs.reason = f"module {exc.name} is not in this build"
+        rs.reason = (
+            f"module {exc.name} is not in this build"
+            if isinstance(exc, ModuleNotFoundError)
+            else f"{exc} (that part of onbottom is not complete in this build)"
+        )
     except Exception:
         rs.state = "error"
         rs.reason = traceback.format_exc(limit=8)

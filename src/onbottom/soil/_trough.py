@@ -12,8 +12,11 @@ __all__ = [
     "friction_energy",
     "overlap",
     "push_only_passive",
+    "push_only_start",
     "region_of",
+    "side_bounds",
     "sign",
+    "spring_work",
 ]
 
 RULE_ELASTOPLASTIC = 0
@@ -105,25 +108,40 @@ def envelope_energy(a, fr1, fr2, fr3, y1, y2, y3):
 
 
 @njit(cache=True)
+def side_bounds(s_new, mag):
+    """Admissible passive force interval at s_new: [0, mag] for s > 0, [−mag, 0] for s < 0."""
+    if s_new > 0.0:
+        return 0.0, mag
+    if s_new < 0.0:
+        return -mag, 0.0
+    return 0.0, 0.0
+
+
+@njit(cache=True)
+def push_only_start(p_old, s_new, mag):
+    """Start of the elastic predictor: the committed force returned into the current bounds.
+
+    The bounds move with the penetration, V and the side of the trough; a force left outside
+    them (the envelope shrank) is first brought back onto them, so that a reversal unloads
+    from the bound rather than from a force the soil can no longer carry.
+    """
+    lo, hi = side_bounds(s_new, mag)
+    return min(max(p_old, lo), hi)
+
+
+@njit(cache=True)
 def push_only_passive(p_old, du, s_new, mag, slope, k_u):
     """Push-only elastic–plastic passive force and its tangent [I].
 
-    Elastic predictor p_old + k_u·du, then return to the admissible interval: [0, F_env(s)]
-    on the side s > 0 of the trough centre, [−F_env(|s|), 0] on the side s < 0 (the berm can
-    only push the pipe back towards the centre, never pull it). ``mag``/``slope`` are the
-    envelope magnitude and slope at |s_new|; ``k_u`` the unloading (elastic) stiffness [N/m²].
-    The force on the yield surface follows the envelope; inside it, the elastic line.
+    Elastic predictor p_start + k_u·Δu (p_start: :func:`push_only_start`), then return to
+    the admissible interval: [0, F_env(s)] on the side s > 0 of the trough centre,
+    [−F_env(|s|), 0] on the side s < 0 (the berm can only push the pipe back towards the
+    centre, never pull it). ``mag``/``slope`` are the envelope magnitude and slope at
+    |s_new|; ``k_u`` the unloading (elastic) stiffness [N/m²]. The force on the yield surface
+    follows the envelope; inside it, the elastic line.
     """
-    p_trial = p_old + k_u * du
-    if s_new > 0.0:
-        lo = 0.0
-        hi = mag
-    elif s_new < 0.0:
-        lo = -mag
-        hi = 0.0
-    else:
-        lo = 0.0
-        hi = 0.0
+    lo, hi = side_bounds(s_new, mag)
+    p_trial = min(max(p_old, lo), hi) + k_u * du
     if p_trial > hi:
         if s_new > 0.0:
             return hi, slope
@@ -142,3 +160,19 @@ def friction_energy(f, v_load, mu, delta):
     if cap <= 0.0:
         return 0.0
     return 0.5 * f * f * delta / cap
+
+
+@njit(cache=True)
+def spring_work(x_old, x_new, x_trial, k):
+    """Work done on an elastic–plastic spring over one return-mapped increment [N·m/m].
+
+    Force ``x_old`` → ``x_new`` with elastic predictor ``x_trial`` = x_old + k·Δu. The work
+    is the change of the stored energy x²/(2k) plus the dissipation x_new·Δu_p with the
+    plastic slip Δu_p = (x_trial − x_new)/k (exact for the piecewise-linear path of one
+    increment: an unloading that reaches a zero bound returns exactly the stored energy, where
+    the trapezoidal rule would return more). The dissipation is >= 0 because the return is to
+    a bound on the side of the slip. 0 for k <= 0.
+    """
+    if k <= 0.0:
+        return 0.0
+    return (x_new * x_new - x_old * x_old) / (2.0 * k) + x_new * (x_trial - x_new) / k

@@ -20,8 +20,9 @@ saturating form::
 
 fitted by least squares to points read along the published curves for 0 <= κ <= 16 (the
 curve shape was taken from a public digitisation, groundhog's ``penetration.py``, used as a
-reference only; no code or data copied). The fit is within about 0.5 % of those points; it is
-*not* the standard's figure. κ > 16 is an extrapolation (OutOfRangeWarning).
+reference only; no code or data copied). The fit is within 0.67 % (rough) and 0.85 %
+(smooth) of those points; it is *not* the standard's figure. κ > 16 is an extrapolation
+(OutOfRangeWarning).
 
 Model 2 — empirical, deep-water soft clay (F114 Eq 4.8)::
 

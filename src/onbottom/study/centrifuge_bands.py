@@ -79,13 +79,12 @@ CHOICES: dict[str, dict[str, Any]] = {
     "work_integrand": {
         "values": ("total", "passive"),
         "default": "total",
-        "why": "V&S Eq 6 integrates the total resistance F_h; passive F_r only is the"
-        " alternative",
+        "why": "V&S Eq 6 integrates the total resistance F_h; passive F_r only is the alternative",
         "applies": "all",
     },
     "alpha_deg": {
         "values": None,  # per test: ALPHA_CHOICES
-        "default": None,
+        "default": "30° (tests 1–4), 65° (test 5)",
         "why": "tests 1–3: 30° (stated); 4: the 20°–45° hydrodynamic envelope the paper"
         " discusses, default 30° (limit-equilibrium inference, the angle of tests 1–3);"
         " 5: 60°–70° around the inferred 65° (no 20°–45° path reaches 29 cycles)",
@@ -254,11 +253,7 @@ def summarise(rows: Sequence[BandRow]) -> list[BandSummary]:
             inside = lo is not None and lo <= t.cycles_used
         oat = {}
         for k in _ORDER:
-            sub = [
-                r
-                for r in rs
-                if all(getattr(r, j) == default[j] for j in _ORDER if j != k)
-            ]
+            sub = [r for r in rs if all(getattr(r, j) == default[j] for j in _ORDER if j != k)]
             oat[k] = _range(r.cycles_model for r in sub)
         out.append(
             BandSummary(
@@ -371,6 +366,10 @@ def write_markdown(summaries: Sequence[BandSummary], path: str | Path) -> Path:
     for k in _ORDER:
         c = CHOICES[k]
         vals = c["values"] if c["values"] is not None else ALPHA_CHOICES
+        if isinstance(vals, dict):
+            vals = "; ".join(f"{t}: {', '.join(f'{a:g}°' for a in v)}" for t, v in vals.items())
+        else:
+            vals = ", ".join(str(v) for v in vals)
         lines.append(f"- **{_LABELS[k]}** (`{k}`): {vals}; default {c['default']}: {c['why']}.")
     lines += [
         f"- γ' default {SUBMERGED_UNIT_WEIGHT / 1e3:.1f} kN/m³ is"

@@ -66,46 +66,89 @@ def element_local(d, e, props):
 
 @njit(cache=True)
 def element_force_tangent(d, e, props, fe, ke, want_k):
-    """Global internal force ``fe`` (6) and, if ``want_k``, tangent ``ke`` (6×6) of element e."""
+    """Global internal force ``fe`` (6) and, if ``want_k``, tangent ``ke`` (6×6) of element e.
+
+    Returns the local forces (N, M₁, M₂).
+    """
     ln, c, s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
-    r0, r1, r3, r4 = -c, -s, c, s
-    z0, z1, z3, z4 = s, -c, -s, c
     il = 1.0 / ln
-    # b1 = e3 − z/L, b2 = e6 − z/L
-    fe[0] = n * r0 - (m1 + m2) * z0 * il
-    fe[1] = n * r1 - (m1 + m2) * z1 * il
+    msum = (m1 + m2) * il
+    # f = N r − (M₁ + M₂) z/L + M₁ e₃ + M₂ e₆ ; r = (−c, −s, 0, c, s, 0), z = (s, −c, 0, −s, c, 0)
+    fe[0] = -n * c - msum * s
+    fe[1] = -n * s + msum * c
     fe[2] = m1
-    fe[3] = n * r3 - (m1 + m2) * z3 * il
-    fe[4] = n * r4 - (m1 + m2) * z4 * il
+    fe[3] = n * c + msum * s
+    fe[4] = n * s - msum * c
     fe[5] = m2
     if not want_k:
-        return
+        return n, m1, m2
     l0 = props[e, EL_L0]
     ka = props[e, EL_EA] / l0
     kb = props[e, EL_EI] / l0
-    r = (r0, r1, 0.0, r3, r4, 0.0)
-    z = (z0, z1, 0.0, z3, z4, 0.0)
+    # With a = (c, s), b = (−s, c): r = (−a, 0, a, 0), z = (−b, 0, b, 0) on (u, v, θ) of the
+    # nodes; expanding Bᵀ D B gives 4kb(e₃e₃ᵀ + e₆e₆ᵀ) + 2kb(e₃e₆ᵀ + e₆e₃ᵀ) + 12kb/L² z zᵀ
+    # − 6kb/L [(e₃ + e₆) zᵀ + z (e₃ + e₆)ᵀ]. Translational node blocks: ±A with
+    # A = ka a aᵀ + (N/L + 12kb/L²) b bᵀ + (M₁ + M₂)/L² (a bᵀ + b aᵀ).
+    bb = n * il + 12.0 * kb * il * il
+    mm = msum * il
+    a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
+    a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
+    a01 = (ka - bb) * c * s + mm * (c * c - s * s)
+    h = 6.0 * kb * il
+    # ∂f_θ/∂(u, v) = −h z: node a (−h s, h c), node b (h s, −h c)
+    tu = -h * s
+    tv = h * c
+    for i in range(6):
+        for j in range(6):
+            ke[i, j] = 0.0
+    for i0, sgn_i in ((0, 1.0), (3, -1.0)):
+        for j0, sgn_j in ((0, 1.0), (3, -1.0)):
+            sg = sgn_i * sgn_j
+            ke[i0, j0] = sg * a00
+            ke[i0, j0 + 1] = sg * a01
+            ke[i0 + 1, j0] = sg * a01
+            ke[i0 + 1, j0 + 1] = sg * a11
+        for rot in (2, 5):
+            ke[rot, i0] = sgn_i * tu
+            ke[rot, i0 + 1] = sgn_i * tv
+            ke[i0, rot] = sgn_i * tu
+            ke[i0 + 1, rot] = sgn_i * tv
+    ke[2, 2] = 4.0 * kb
+    ke[5, 5] = 4.0 * kb
+    ke[2, 5] = 2.0 * kb
+    ke[5, 2] = 2.0 * kb
+    return n, m1, m2
+
+
+@njit(cache=True)
+def element_force_tangent_ref(d, e, props, fe, ke, want_k):
+    """Reference form of :func:`element_force_tangent` (B^T D B + geometric terms; tests)."""
+    ln, c, s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
+    r = (-c, -s, 0.0, c, s, 0.0)
+    z = (s, -c, 0.0, -s, c, 0.0)
+    il = 1.0 / ln
+    for p in range(6):
+        fe[p] = n * r[p] - (m1 + m2) * z[p] * il
+    fe[2] += m1
+    fe[5] += m2
+    if not want_k:
+        return n, m1, m2
+    l0 = props[e, EL_L0]
+    ka = props[e, EL_EA] / l0
+    kb = props[e, EL_EI] / l0
     mm = (m1 + m2) * il * il
     for p in range(6):
-        b1p = -z[p] * il
-        b2p = -z[p] * il
-        if p == 2:
-            b1p += 1.0
-        if p == 5:
-            b2p += 1.0
-        for q in range(p, 6):
-            b1q = -z[q] * il
-            b2q = -z[q] * il
-            if q == 2:
-                b1q += 1.0
-            if q == 5:
-                b2q += 1.0
+        b1p = -z[p] * il + (1.0 if p == 2 else 0.0)
+        b2p = -z[p] * il + (1.0 if p == 5 else 0.0)
+        for q in range(6):
+            b1q = -z[q] * il + (1.0 if q == 2 else 0.0)
+            b2q = -z[q] * il + (1.0 if q == 5 else 0.0)
             v = ka * r[p] * r[q]
             v += kb * (4.0 * b1p * b1q + 2.0 * (b1p * b2q + b2p * b1q) + 4.0 * b2p * b2q)
             v += n * il * z[p] * z[q]
             v += mm * (r[p] * z[q] + z[p] * r[q])
             ke[p, q] = v
-            ke[q, p] = v
+    return n, m1, m2
 
 
 @njit(cache=True)
@@ -117,14 +160,23 @@ def element_energy(d, e, props):
 
 
 @njit(cache=True)
-def assemble_internal(d, props, f, ab, want_k, fe, ke):
+def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
     """Add the internal forces of all elements to ``f`` and (``want_k``) tangents to band ``ab``.
 
     ``ab[i, k]`` holds the lower band A[i, i − k]; ``fe`` (6) and ``ke`` (6×6) are work arrays.
+    The nodal bending moment and axial force (see :func:`node_section_forces`) are written to
+    ``moment`` and ``axial`` (length n_nodes) on the way.
     """
     n_el = props.shape[0]
+    for i in range(moment.shape[0]):
+        moment[i] = 0.0
+        axial[i] = 0.0
     for e in range(n_el):
-        element_force_tangent(d, e, props, fe, ke, want_k)
+        n, m1, m2 = element_force_tangent(d, e, props, fe, ke, want_k)
+        moment[e] -= m1
+        moment[e + 1] += m2
+        axial[e] += n
+        axial[e + 1] += n
         i0 = NDOF_NODE * e
         for p in range(6):
             f[i0 + p] += fe[p]
@@ -132,6 +184,9 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke):
             for p in range(6):
                 for q in range(p + 1):
                     ab[i0 + p, p - q] += ke[p, q]
+    for i in range(1, moment.shape[0] - 1):
+        moment[i] *= 0.5
+        axial[i] *= 0.5
 
 
 @njit(cache=True)

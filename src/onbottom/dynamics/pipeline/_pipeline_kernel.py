@@ -73,7 +73,8 @@ ST_DT_KIN = 20  # kinematics sample interval [s]
 ST_PEN_RED = 21  # 1: penetration reductions r_pen,y/z
 ST_EA = 22  # reference EA for strain [N]
 ST_EI = 23  # reference EI for strain [N·m²]
-N_SETTINGS = 24
+ST_PREDICTOR = 24  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
+N_SETTINGS = 25
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -195,11 +196,12 @@ def node_loads(settings, nodes, sstate, uk, vcont, ry):
 def evaluate(
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
     d1, v1, uk, ak, vcont, ry, c_v, want_k,
-    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out,
+    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
 ):  # fmt: skip
     """Net force P(d₁, v₁) = f_hyd − f_int − f_spring − f_soil and (``want_k``) its negative
     Jacobian K_T = ∂(−P)/∂d + c_v·∂(−f_hyd)/∂ḋ into the band ``ab`` (not yet with mass).
 
+    The nodal bending moment and axial force at d₁ are written to ``mom``, ``nax``.
     Returns False if a soil kernel gave NaN.
     """
     ndof = d1.shape[0]
@@ -212,7 +214,7 @@ def evaluate(
             for k in range(ab.shape[1]):
                 ab[j, k] = 0.0
     # internal forces (assembled as +f_int into p, then negated)
-    assemble_internal(d1, props, p, ab, want_k, fe, ke)
+    assemble_internal(d1, props, p, ab, want_k, fe, ke, mom, nax)
     for j in range(ndof):
         p[j] = -p[j] - spring[j] * d1[j]
         if want_k:
@@ -280,6 +282,7 @@ def initial_acceleration(
         settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
         vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, node_r, node_f, node_fa, fe, ke, out,
+        np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
     for i in range(n_nodes):
         for c in range(3):
@@ -319,7 +322,6 @@ def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, 
 
 @njit(cache=True)
 def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
-    node_section_forces(vec[V_D], props, mom, nax)
     c = settings[ST_FIBRE]
     ea = settings[ST_EA]
     ei = settings[ST_EI]
@@ -377,6 +379,7 @@ def integrate(
     growth = settings[ST_GROWTH]
     t0k = settings[ST_T_KIN0]
     dtk = settings[ST_DT_KIN]
+    pred = settings[ST_PREDICTOR]
     mass = np.empty(ndof)
     for i in range(n_nodes):
         mass[NDOF_NODE * i] = nodes[i, ND_MASS_U]
@@ -448,19 +451,22 @@ def integrate(
             if fixed[j] != 0.0:
                 d1[j] = d0[j]
             else:
-                d1[j] = d0[j] + dt * v0[j]
+                d1[j] = d0[j] + dt * v0[j] + pred * dt * dt * a0[j]
         conv = False
         iters = 0
         neg = 0
+        r_prev = math.inf
         for it in range(max_iter):
             iters = it + 1
             for j in range(ndof):
                 a1[j] = c_a * (d1[j] - d0[j] - dt * v0[j]) - (0.5 / beta - 1.0) * a0[j]
                 v1[j] = v0[j] + dt * ((1.0 - gam) * a0[j] + gam * a1[j])
+            # the tangent is assembled on the first iteration, later only when needed
+            want_k = it == 0
             ok = evaluate(
                 settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-                d1, v1, uk, ak, vcont, ry, c_v, True,
-                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out,
+                d1, v1, uk, ak, vcont, ry, c_v, want_k,
+                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
@@ -478,21 +484,31 @@ def integrate(
             if rmax <= 1e-3 * tol:
                 conv = True
                 break
-            # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
-            for j in range(ndof):
-                for k in range(HALF_BAND + 1):
-                    ab[j, k] *= 1.0 + alpha
-                ab[j, 0] += mass[j] * c_a
-            for j in range(ndof):
-                if fixed[j] != 0.0:
-                    for k in range(1, HALF_BAND + 1):
-                        ab[j, k] = 0.0
-                        if j + k < ndof:
-                            ab[j + k, k] = 0.0
-                    ab[j, 0] = 1.0
-            neg = ldl_factor(ab)
-            if neg < 0:
-                return n_rec, STATUS_SINGULAR
+            # modified Newton: keep the factor while the residual contracts fast (4×);
+            # otherwise assemble the consistent tangent at d₁ and refactor
+            if want_k or rmax > 0.25 * r_prev:
+                if not want_k:
+                    evaluate(
+                        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
+                        d1, v1, uk, ak, vcont, ry, c_v, True,
+                        p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
+                    )  # fmt: skip
+                # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
+                for j in range(ndof):
+                    for k in range(HALF_BAND + 1):
+                        ab[j, k] *= 1.0 + alpha
+                    ab[j, 0] += mass[j] * c_a
+                for j in range(ndof):
+                    if fixed[j] != 0.0:
+                        for k in range(1, HALF_BAND + 1):
+                            ab[j, k] = 0.0
+                            if j + k < ndof:
+                                ab[j + k, k] = 0.0
+                        ab[j, 0] = 1.0
+                neg = ldl_factor(ab)
+                if neg < 0:
+                    return n_rec, STATUS_SINGULAR
+            r_prev = rmax
             for j in range(ndof):
                 res[j] = -res[j]
             ldl_solve(ab, res)
@@ -574,6 +590,8 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
     res = np.empty(ndof)
     fe = np.empty(6)
     ke = np.empty((6, 6))
+    mom = np.empty(ndof // NDOF_NODE)
+    nax = np.empty(ndof // NDOF_NODE)
     its = 0
     for ls in range(1, n_load_steps + 1):
         lam = ls / n_load_steps
@@ -584,7 +602,7 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
                 for k in range(HALF_BAND + 1):
                     ab[j, k] = 0.0
                 ab[j, 0] = spring[j]
-            assemble_internal(d, props, f, ab, True, fe, ke)
+            assemble_internal(d, props, f, ab, True, fe, ke, mom, nax)
             rmax = 0.0
             for j in range(ndof):
                 if fixed[j] != 0.0:
@@ -621,7 +639,9 @@ def tangent_band(props, fixed, spring, d):
     f = np.zeros(ndof)
     fe = np.empty(6)
     ke = np.empty((6, 6))
-    assemble_internal(d, props, f, ab, True, fe, ke)
+    assemble_internal(
+        d, props, f, ab, True, fe, ke, np.empty(ndof // NDOF_NODE), np.empty(ndof // NDOF_NODE)
+    )
     for j in range(ndof):
         ab[j, 0] += spring[j]
     return ab

@@ -1,0 +1,152 @@
+"""Do the speed levers change the V–w curve beyond the seed scatter? (reduced preset)
+
+For each seed the specimen is prepared once (plain engine) and penetrated twice, plain and
+with the lever (``--lever subcycle``: wall/pipe contacts sub-cycled at the soil time step;
+``--lever sort``: disks renumbered in cell order), so the paired difference isolates the
+lever. With ``--lever fire`` (or ``subcycle-prep``) the *preparation* changes, so each seed is
+prepared twice and the specimens (void ratios, steps) are compared as well.
+
+Printed per bin of w/D (prototype V, kN/m): the mean over seeds of both runs, the seed
+scatter (standard deviation across seeds of the plain runs) and the mean paired difference;
+then the ratio |mean difference| / seed scatter. The lever passes when that ratio stays below
+1 in every bin (the difference is within the seed scatter). Wall time per run and the load
+average are printed too (shared machine: noisy).
+
+Run (in a worktree prefix ``PYTHONPATH=src``)::
+
+    python benchmarks/dem_lever_check.py --preset SM-reduced --seeds 1 2 3 --lever subcycle
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import os
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import numpy as np
+
+from onbottom.dem.config import PRESETS, DEMConfig
+from onbottom.dem.experiment import penetrate
+from onbottom.dem.preparation import prepare_sample
+from onbottom.dem.sample import Sample
+
+EDGES = np.arange(0.0, 0.5001, 0.05)
+
+
+def lever(cfg: DEMConfig, name: str) -> DEMConfig:
+    """``cfg`` with one lever on."""
+    if name in ("subcycle", "subcycle-prep"):
+        return cfg.replace(numerics=dataclasses.replace(cfg.numerics, subcycle=True))
+    if name == "sort":
+        return cfg.replace(numerics=dataclasses.replace(cfg.numerics, sort_disks=True))
+    if name == "fire":
+        return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation="fire"))
+    raise ValueError(name)
+
+
+def binned(ds) -> np.ndarray:
+    """Mean prototype V [kN/m] per bin of w/D (``EDGES``)."""
+    w = ds["w_over_D"].values
+    v = ds["V_prototype"].values / 1e3
+    idx = np.digitize(w, EDGES) - 1
+    return np.array([v[idx == b].mean() if np.any(idx == b) else np.nan for b in range(10)])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--preset", default="SM-reduced", choices=sorted(PRESETS))
+    ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    ap.add_argument(
+        "--lever", default="subcycle", choices=("subcycle", "subcycle-prep", "sort", "fire")
+    )
+    ap.add_argument("--json", default=None)
+    ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
+    ap.add_argument(
+        "--cache", default=None, help="folder keeping the specimens and plain curves between calls"
+    )
+    args = ap.parse_args()
+    cache = Path(args.cache) if args.cache else None
+    if cache is not None:
+        cache.mkdir(parents=True, exist_ok=True)
+    base = PRESETS[args.preset]
+    prep_changes = args.lever in ("fire", "subcycle-prep")
+    rows = []
+    for seed in args.seeds:
+        cfg = base.replace(seed=seed)
+        lcfg = lever(cfg, args.lever)
+        if args.dt_safety is not None:
+            lcfg = lcfg.replace(
+                numerics=dataclasses.replace(lcfg.numerics, dt_safety=args.dt_safety)
+            )
+        t0 = time.perf_counter()
+        spath = cache / f"{cfg.name}_seed{seed}.nc" if cache is not None else None
+        if spath is not None and spath.exists():
+            sample = Sample.load(spath)
+        else:
+            sample = prepare_sample(cfg)
+            if spath is not None:
+                sample.save(spath)
+        tp = time.perf_counter() - t0
+        lsample = sample.permuted(sample.cell_order()) if args.lever == "sort" else sample
+        tpl = tp
+        if prep_changes:
+            t0 = time.perf_counter()
+            lsample = prepare_sample(lcfg)
+            tpl = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        cpath = cache / f"{cfg.name}_seed{seed}_plain.json" if cache is not None else None
+        if cpath is not None and cpath.exists():
+            plain_curve, ta, plain_steps = json.loads(cpath.read_text())
+        else:
+            a = penetrate(cfg, sample, snapshots=())
+            ta = time.perf_counter() - t0
+            plain_curve, plain_steps = binned(a).tolist(), int(a.attrs["steps"])
+            if cpath is not None:
+                cpath.write_text(json.dumps([plain_curve, ta, plain_steps]))
+        t0 = time.perf_counter()
+        b = penetrate(lcfg if not prep_changes else cfg, lsample, snapshots=())
+        tb = time.perf_counter() - t0
+        row = {
+            "seed": seed,
+            "plain": plain_curve,
+            "lever": binned(b).tolist(),
+            "wall_prep": (tp, tpl),
+            "wall_pen": (ta, tb),
+            "e_Ng": (sample.attrs["void_ratio_Ng"], lsample.attrs["void_ratio_Ng"]),
+            "steps": (plain_steps, int(b.attrs["steps"])),
+            "load": os.getloadavg()[0],
+        }
+        rows.append(row)
+        print(json.dumps(row), flush=True)
+    pa = np.array([r["plain"] for r in rows])
+    pb = np.array([r["lever"] for r in rows])
+    scatter = pa.std(axis=0, ddof=1)
+    diff = (pb - pa).mean(axis=0)
+    print(f"lever {args.lever}, preset {args.preset}, seeds {args.seeds}")
+    print("w/D bin    plain  lever  scatter  mean diff  |diff|/scatter")
+    for k in range(10):
+        print(
+            f"{EDGES[k]:.2f}-{EDGES[k + 1]:.2f} {pa[:, k].mean():7.1f} {pb[:, k].mean():6.1f} "
+            f"{scatter[k]:8.1f} {diff[k]:10.1f} {abs(diff[k]) / scatter[k]:10.2f}"
+        )
+    ratio = np.abs(diff) / scatter
+    print(
+        "mean V over the curve per seed, plain:",
+        np.round(pa.mean(axis=1), 1),
+        "lever:",
+        np.round(pb.mean(axis=1), 1),
+    )
+    verdict = "PASS" if np.nanmax(ratio) < 1 else "FAIL"
+    print(f"max |diff|/scatter = {np.nanmax(ratio):.2f} -> {verdict}")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
