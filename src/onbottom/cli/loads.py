@@ -38,14 +38,19 @@ def evaluate_loads(
         env = case.environment_object()
         combos = case.load_combinations()
     caught.extend(loading)
+    storm_seed = 0
+    if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
+        from onbottom._casefile import parse_case
+        from onbottom.dynamics.storm_case import StormTable
+
+        storm_seed = parse_case(
+            StormTable,
+            case.storm,
+            file=case_path,
+            text=Path(case_path).read_text(encoding="utf-8"),
+            root="storm",
+        ).seed
     if seed is None:
-        storm_seed = (case.storm or {}).get("seed", 0)
-        if isinstance(storm_seed, bool) or not isinstance(storm_seed, int) or storm_seed < 0:
-            err = InputError(
-                f"storm.seed = {storm_seed!r} is invalid: expected a whole number >= 0"
-            )
-            err.field = "storm.seed"  # type: ignore[attr-defined]
-            raise err
         seed = storm_seed
     h = case.hydro
     coef = MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl)

@@ -33,7 +33,12 @@ from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
 
-__all__ = ["StabilityCase", "load_stability_case", "penetration_outside_validity"]
+__all__ = [
+    "StabilityCase",
+    "check_common_tables",
+    "load_stability_case",
+    "penetration_outside_validity",
+]
 
 Condition = Literal["installation", "flooded", "hydrotest", "operation"]
 
@@ -399,7 +404,6 @@ def _plain(text: str) -> str:
 
 def _check_case(case: StabilityCase, chk: _Checker) -> None:
     """Cross-table rules and engineering plausibility of a parsed case."""
-    from onbottom.constants import GRAVITY
 
     # -- combinations and design against the pipe form ------------------------------------
     if case.waves.spectrum != "jonswap":
@@ -449,6 +453,27 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
             "design.solve_for = 'submerged_weight' is invalid: it needs the simple [pipe] form"
             " (outer_diameter, submerged_weight)",
         )
+    states = []
+    for i, c in enumerate(case.combinations):
+        key = f"combinations[{i}]"
+        states.append(
+            (
+                f"combination {c.name!r}",
+                case.waves.hs if c.hs is None else c.hs,
+                case.waves.tp if c.tp is None else c.tp,
+                key if c.hs is not None else "waves",
+                key if c.tp is not None else "waves",
+            )
+        )
+    _check_common(case, chk, states)
+
+
+def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
+    """Plausibility of the tables every on-bottom command shares ([pipe], [seabed],
+    [environment], [waves], [current]) and of extra sea states
+    ``(label, hs, tp, hs_table, tp_table)``."""
+    from onbottom.constants import GRAVITY
+
     for i, layer in enumerate(case.pipe.layers):
         if "concrete" in layer.name.lower() and not 1800.0 <= layer.density <= 3600.0:
             chk.warn(
@@ -485,20 +510,10 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
 
     # -- sea states -------------------------------------------------------------------------
     depth = case.environment.water_depth
-    states = [("waves", case.waves.hs, case.waves.tp, "waves", "waves")]
-    for i, c in enumerate(case.combinations):
-        key = f"combinations[{i}]"
-        states.append(
-            (
-                c.name,
-                case.waves.hs if c.hs is None else c.hs,
-                case.waves.tp if c.tp is None else c.tp,
-                key if c.hs is not None else "waves",
-                key if c.tp is not None else "waves",
-            )
-        )
+    states = [] if case.waves is None else [("", case.waves.hs, case.waves.tp, "waves", "waves")]
+    states += list(extra_states)
     for label, hs, tp, hs_at, tp_at in states:
-        what = "" if label == "waves" else f" (combination {label!r})"
+        what = f" ({label})" if label else ""
         steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
         if steep > MAX_WAVE_STEEPNESS:
             chk.fail(
@@ -556,6 +571,31 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
                 f"seabed.d50 = {sb.d50:g} m is unusual for model = {sb.model!r}: sand grains"
                 " lie in [6e-05, 0.002] m (check the unit: m, not mm)",
             )
+
+
+def check_common_tables(
+    case: Any,
+    path: str | os.PathLike,
+    *,
+    sea_states: list[tuple[str, float, float, str, str]] | None = None,
+) -> None:
+    """Engineering plausibility of the shared tables of any parsed case file.
+
+    For the case files of other commands that reuse these tables (``onbottom storm``: section
+    and pipeline): ``case`` has ``pipe``, ``seabed``, ``environment``, ``waves`` (may be None)
+    and ``current`` attributes as in :class:`StabilityCase`; ``sea_states`` adds sea states
+    ``(label, hs [m], tp [s], table of hs, table of tp)``, e.g. ``("stage 0", 3.0, 9.0,
+    "storm.stages[0]", "storm.stages[0]")``. Raises :class:`CaseFileError` (key, value, range,
+    file, line) for a sea state steeper than breaking or higher than 0.78 × depth, a current
+    reference height outside (z_0, depth], densities and strengths in the wrong unit; warns
+    (:class:`OutOfRangeWarning`) for unusual values. See :func:`load_stability_case`.
+    """
+    p = Path(path)
+    try:
+        text: str | None = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        text = None
+    _check_common(case, _Checker(p, text), list(sea_states or []))
 
 
 def _check_section(case: StabilityCase, chk: _Checker) -> None:
