@@ -33,6 +33,12 @@ _LAZY: dict[str, str] = {
     "absolute_lateral_stability": "onbottom.checks",
     "design_concrete_thickness": "onbottom.checks.design",
     "significant_bed_velocity": "onbottom.hydro.design_sea_state",
+    "SeaState": "onbottom.inputs.storm",
+    "Storm": "onbottom.inputs.storm",
+    "Current": "onbottom.inputs.storm",
+    "simulate_storm_section": "onbottom.dynamics.storm_section",
+    "run_storm_seeds": "onbottom.study.storm_seeds",
+    "stability_curves": "onbottom.study.stability_curves",
 }
 
 __all__ = [

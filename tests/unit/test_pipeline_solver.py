@@ -298,3 +298,25 @@ axial_friction_coefficient = 0.3
     assert m.sections[1].mu_axial == 0.3 and m.sections[0].mu_axial == 0.6
     assert run["settings"].strain_limit == 0.002
     assert m.fibre_distance == pytest.approx(0.2191 / 2)
+
+
+def test_simple_pipe_form_takes_ei_ea_mass_from_the_pipeline_table(tmp_path):
+    from onbottom._casefile import CaseFileError
+    from onbottom.cli.storm_pipeline import build_pipeline_run
+
+    text = EXAMPLE.read_text()
+    _head, tail = text.split("[seabed]", 1)
+    simple = "[pipe]\nouter_diameter = 0.3\nsubmerged_weight = 900.0\n\n[seabed]" + tail
+    case = tmp_path / "simple.toml"
+    case.write_text(simple)
+    with pytest.raises(CaseFileError, match="EI must be > 0"):
+        build_pipeline_run(case)
+    case.write_text(
+        simple.replace(
+            "[pipeline]\n",
+            "[pipeline]\nbending_stiffness = 9.1e6\naxial_stiffness = 1.7e9\nmass = 150.0\n",
+        )
+    )
+    m = build_pipeline_run(case)["model"]
+    assert (m.ei, m.ea, m.pipe.structural_mass) == (9.1e6, 1.7e9, 150.0)
+    assert m.fibre_distance == pytest.approx(0.15)  # D/2 without a build-up

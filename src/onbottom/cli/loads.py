@@ -8,7 +8,13 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import Number, emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 
 __all__ = ["command", "evaluate_loads"]
 
@@ -21,26 +27,31 @@ def evaluate_loads(
     from onbottom.errors import InputError, OutOfRangeWarning
     from onbottom.hydro.forces import MorisonCoefficients
     from onbottom.hydro.load_envelope import load_envelope
-    from onbottom.inputs.stability_case import load_stability_case
+    from onbottom.inputs.stability_case import load_stability_case, penetration_outside_validity
 
     caught: list[warnings.WarningMessage] = []
     with warnings.catch_warnings(record=True) as loading:
         warnings.simplefilter("always", OutOfRangeWarning)
         case = load_stability_case(case_path)
+        section = case.section()
+        seabed = case.seabed.seabed()
+        env = case.environment_object()
+        combos = case.load_combinations()
     caught.extend(loading)
+    storm_seed = 0
+    if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
+        from onbottom._casefile import parse_case
+        from onbottom.dynamics.storm_case import StormTable
+
+        storm_seed = parse_case(
+            StormTable,
+            case.storm,
+            file=case_path,
+            text=Path(case_path).read_text(encoding="utf-8"),
+            root="storm",
+        ).seed
     if seed is None:
-        storm_seed = (case.storm or {}).get("seed", 0)
-        if isinstance(storm_seed, bool) or not isinstance(storm_seed, int) or storm_seed < 0:
-            err = InputError(
-                f"storm.seed = {storm_seed!r} is invalid: expected a whole number >= 0"
-            )
-            err.field = "storm.seed"  # type: ignore[attr-defined]
-            raise err
         seed = storm_seed
-    section = case.section()
-    seabed = case.seabed.seabed()
-    env = case.environment_object()
-    combos = case.load_combinations()
     h = case.hydro
     coef = MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl)
     options = CheckOptions(
@@ -56,6 +67,7 @@ def evaluate_loads(
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
     caught.extend(checking)
+    invalid = penetration_outside_validity(rows)
     by_combo = {r.combination: r.details for r in rows if r.name == "absolute_lateral"}
     for combo in combos:
         det = by_combo[combo.name]
@@ -114,6 +126,8 @@ def evaluate_loads(
         "duration": duration_hours * 3600.0,
         "coefficients": {"cd": h.cd, "cm": h.cm, "cl": h.cl},
         "combinations": out,
+        "success": not invalid,
+        "message": "; ".join(invalid),
         "warnings": sorted(
             {str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)}
         ),
@@ -222,6 +236,8 @@ def command(
         payload["output"] = str(output)
     if as_json:
         emit_json(payload)
+        if not payload["success"]:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
     for w in payload["warnings"]:
         click.echo(f"warning: {w}", err=True)
@@ -239,3 +255,6 @@ def command(
         click.echo(f"figure: {plot}")
     if output is not None:
         click.echo(f"cycle peaks: {output}")
+    if not payload["success"]:
+        click.echo(f"NOT VALID: {payload['message']}", err=True)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

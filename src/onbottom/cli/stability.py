@@ -37,17 +37,17 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         run_checks,
     )
     from onbottom.errors import OutOfRangeWarning
-    from onbottom.inputs.stability_case import load_stability_case
+    from onbottom.inputs.stability_case import load_stability_case, penetration_outside_validity
 
     caught: list[warnings.WarningMessage] = []
     with warnings.catch_warnings(record=True) as loading:
         warnings.simplefilter("always", OutOfRangeWarning)
         case = load_stability_case(case_path)
+        section = case.section()
+        seabed = case.seabed.seabed()
+        env = case.environment_object()
+        combos = case.load_combinations()
     caught.extend(loading)
-    section = case.section()
-    seabed = case.seabed.seabed()
-    env = case.environment_object()
-    combos = case.load_combinations()
     d = case.design
     options = CheckOptions(
         safety_class=d.safety_class,
@@ -101,6 +101,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
                     }
                 )
     caught.extend(checking)
+    invalid = penetration_outside_validity(rows)
     notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
     return {
         "case": str(case_path),
@@ -109,7 +110,10 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
             {k: v for k, v in r.as_dict().items() if k != "details"} | {"details": r.details}
             for r in rows
         ],
-        "success": design.get("success", True),
+        "success": bool(design.get("success", True)) and not invalid,
+        "message": "; ".join(invalid)
+        if invalid
+        else ("" if design.get("success", True) else "the design solve has no solution"),
         "all_pass": all(r.passes for r in rows),
         "design": design,
         "warnings": notes,
@@ -148,6 +152,8 @@ def _table(payload: dict[str, Any]) -> str:
             lines.append(f"Design: no solution — {d['message']}")
     for w in payload["warnings"]:
         lines.append(f"warning: {w}")
+    if not payload["success"] and payload["message"]:
+        lines.append(f"NOT VALID: {payload['message']}")
     return "\n".join(lines)
 
 

@@ -207,7 +207,7 @@ def _report(payload: dict[str, Any], as_json: bool) -> None:
     if payload.get("max_displacement_m") is not None:
         d = payload.get("diameter_m")
         tail = f" ({payload['max_displacement_m'] / d:.3g}D)" if d else ""
-        label = "mean max" if payload.get("seeds", 1) > 1 else "max"
+        label = "mean max" if (payload.get("seeds") or 1) > 1 else "max"
         click.echo(f"  {label} |y|            {payload['max_displacement_m']:.4g} m{tail}")
     if payload.get("final_displacement_m") is not None:
         click.echo(f"  final y (|y| mean)   {payload['final_displacement_m']:.4g} m")

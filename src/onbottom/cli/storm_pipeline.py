@@ -8,7 +8,7 @@
 :func:`onbottom.dynamics.pipeline.simulate_pipeline` for each seed.
 
 From the shared tables the pipeline uses: the pipe (D, w_s, mass; EI and EA from the build-up
-form, or ``[pipeline] bending_stiffness / axial_stiffness`` with the simple form), the soil
+form, or ``[pipeline] bending_stiffness / axial_stiffness / mass`` with the simple form), the soil
 model of [seabed] (or ``[[pipeline.sections]]`` along the route), the storm and its seed,
 current (normal component, mean over D), [hydro] coefficients and reductions, ``[storm]
 time_step`` (largest step) and ``sample_interval``, ``[solver] max_displacement_over_d``
@@ -67,6 +67,9 @@ class PipelineTable(StrictModel):
     effective_axial_force: float = Field(0.0, description="initial N₀ [N], tension +")
     bending_stiffness: float | None = Field(None, gt=0.0, description="EI [N·m²]")
     axial_stiffness: float | None = Field(None, gt=0.0, description="EA [N]")
+    mass: float | None = Field(
+        None, gt=0.0, description="structural mass incl. contents [kg/m] (simple pipe form)"
+    )
     axial_friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="[-]")
     axial_mobilisation: float = Field(5.0e-3, gt=0.0, le=1.0, description="δ_ax [m]")
     strain_limit: float | None = Field(None, gt=0.0, le=1.0, description="user limit [-]")
@@ -127,6 +130,17 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
     setup = build_setup(case, p)
     pipe = setup.pipe
+    if table.mass is not None:
+        from dataclasses import replace
+
+        try:
+            pipe = replace(pipe, mass=table.mass)
+        except InputError as exc:
+            raise CaseFileError(
+                f"{p}: pipeline.mass = {table.mass!r} is invalid: {exc}",
+                field="pipeline.mass",
+                file=str(p),
+            ) from None
     d = pipe.outer_diameter
     if table.sections:
         soil: Any = tuple(
@@ -365,13 +379,26 @@ def run_pipeline_case(
         else all(bool(r["criteria"]["strain"]) for r in ok)
     )
     success = not failures and all(r["success"] for r in rows)
+    detail = ""
+    verdict = {None: "", True: "PASS", False: "FAIL"}[strain_check]
+    if ok:
+        eps = max(r["max_strain"] for r in ok)
+        detail = (
+            f"; worst node x = {worst['worst_node_x_m']:.1f} m; max strain {100 * eps:.3g} %"
+            + (
+                ""
+                if strain_check is None
+                else f" (limit {100 * table.strain_limit:.3g} %: {verdict})"
+            )
+        )
     message = (
-        worst["message"]
+        worst["message"] + detail
         if n == 1
         else (
             f"{n} seeds: seed-averaged maximum displacement {np.mean(maxes) / d:.3g}D"
             f" (max {np.max(maxes) / d:.3g}D)"
             + (f"; {len(failures)} seed(s) failed" if failures else "")
+            + detail
         )
     )
     payload = {

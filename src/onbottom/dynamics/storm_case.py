@@ -84,7 +84,9 @@ class SolverTable(StrictModel):
         10.0, gt=0.0, le=1000.0, description="runaway stop |y|/D [-]"
     )
     liftoff: Literal["free", "stop"] = "free"
-    record_interval: float = Field(0.0, ge=0.0, description="time between records [s], 0 = all")
+    record_interval: float = Field(
+        0.5, ge=0.0, description="time between records [s], 0 = every step"
+    )
     dt_min: float | None = Field(None, gt=0.0, description="smallest step [s]")
     max_displacement_increment_over_d: float = Field(0.05, gt=0.0, le=1.0, description="[-]")
     force_tolerance: float = Field(1e-9, gt=0.0, le=1e-3, description="relative [-]")

@@ -307,7 +307,8 @@ def design_oscillation(
         if spectrum == "pierson-moskowitz"
         else (jonswap_gamma(hs, tp) if gamma is None else np.asarray(gamma, dtype=float))
     )
-    us_lc, tu = significant_bed_velocity(hs, tp, depth, gam, spectrum)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # checked below
+        us_lc, tu = significant_bed_velocity(hs, tp, depth, gam, spectrum)
     dia = _array("diameter", diameter, 0.0)
     rd = spreading_factor(spreading_s, wave_direction_deg)
     us = rd * us_lc

@@ -31,6 +31,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.fft import irfft, next_fast_len
 from scipy.special import gammaln
 
 from onbottom._validate import positive
@@ -250,7 +251,10 @@ def storm_kinematics(
     dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
     total = storm.duration_s
     n = math.ceil(total / dts) + 1
-    nfft = n + (n % 2)  # even length ≥ n: T_rep = nfft·Δt_s ≥ duration
+    # even length >= n with small prime factors (FFT speed): T_rep = nfft·Δt_s >= duration
+    nfft = next_fast_len(n + (n % 2), real=True)
+    while nfft % 2:
+        nfft = next_fast_len(nfft + 1, real=True)
     dw = 2.0 * math.pi / (nfft * dts)
     wmax = omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages)
     nbins = nfft // 2 + 1
@@ -275,8 +279,8 @@ def storm_kinematics(
         if abs(math.sin(math.radians(sea.direction_deg))) < 1e-12:
             sgn = 1.0
         spec = (0.5 * nfft) * amp * rot * (rd * sgn)
-        uk = np.fft.irfft(spec, nfft)[:n]
-        ak = np.fft.irfft(1j * omega * spec, nfft)[:n]
+        uk = irfft(spec, nfft)[:n]
+        ak = irfft(1j * omega * spec, nfft)[:n]
         u += weights[k] * uk
         a += weights[k] * ak + dweights[k] * uk
         params.append(seabed_velocity_parameters(sea, depth))

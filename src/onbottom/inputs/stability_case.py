@@ -33,7 +33,12 @@ from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
 
-__all__ = ["StabilityCase", "load_stability_case"]
+__all__ = [
+    "StabilityCase",
+    "check_common_tables",
+    "load_stability_case",
+    "penetration_outside_validity",
+]
 
 Condition = Literal["installation", "flooded", "hydrotest", "operation"]
 
@@ -52,9 +57,9 @@ class ContentsTable(StrictModel):
 
 
 class PipeTable(StrictModel):
-    outer_diameter: float | None = Field(None, gt=0.0, le=5.0, description="D (simple) [m]")
+    outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D (simple) [m]")
     submerged_weight: float | None = Field(None, gt=0.0, description="w_s (simple) [N/m]")
-    steel_outer_diameter: float | None = Field(None, gt=0.0, le=5.0, description="D_s [m]")
+    steel_outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D_s [m]")
     wall_thickness: float | None = Field(None, gt=0.0, description="steel wall t [m]")
     steel_density: float = Field(7850.0, ge=2.0e3, le=2.0e4, description="[kg/m³]")
     youngs_modulus: float = Field(207.0e9, gt=0.0, description="steel E [Pa]")
@@ -124,7 +129,9 @@ class SeabedTable(StrictModel):
         None, gt=0.0, le=3.0e4, description="clay total unit weight γ_s [N/m³]"
     )
     friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
-    undrained_shear_strength: float | None = Field(None, gt=0.0, description="s_u [Pa]")
+    undrained_shear_strength: float | None = Field(
+        None, ge=100.0, le=1.0e6, description="s_u [Pa] (not kPa)"
+    )
     d50: float | None = Field(None, gt=0.0, le=1.0, description="median grain size [m]")
     initial_penetration: float | None = Field(None, ge=0.0, description="z_p [m]")
     trench_depth: float = Field(0.0, ge=0.0, description="z_t [m]")
@@ -397,7 +404,6 @@ def _plain(text: str) -> str:
 
 def _check_case(case: StabilityCase, chk: _Checker) -> None:
     """Cross-table rules and engineering plausibility of a parsed case."""
-    from onbottom.constants import GRAVITY
 
     # -- combinations and design against the pipe form ------------------------------------
     if case.waves.spectrum != "jonswap":
@@ -447,6 +453,27 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
             "design.solve_for = 'submerged_weight' is invalid: it needs the simple [pipe] form"
             " (outer_diameter, submerged_weight)",
         )
+    states = []
+    for i, c in enumerate(case.combinations):
+        key = f"combinations[{i}]"
+        states.append(
+            (
+                f"combination {c.name!r}",
+                case.waves.hs if c.hs is None else c.hs,
+                case.waves.tp if c.tp is None else c.tp,
+                key if c.hs is not None else "waves",
+                key if c.tp is not None else "waves",
+            )
+        )
+    _check_common(case, chk, states)
+
+
+def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
+    """Plausibility of the tables every on-bottom command shares ([pipe], [seabed],
+    [environment], [waves], [current]) and of extra sea states
+    ``(label, hs, tp, hs_table, tp_table)``."""
+    from onbottom.constants import GRAVITY
+
     for i, layer in enumerate(case.pipe.layers):
         if "concrete" in layer.name.lower() and not 1800.0 <= layer.density <= 3600.0:
             chk.warn(
@@ -461,23 +488,33 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
             " steels lie in [7000, 8100] kg/m³",
         )
 
+    if not case.pipe.is_buildup:
+        buoyancy = (
+            case.environment.water_density * GRAVITY * math.pi * case.pipe.outer_diameter**2 / 4.0
+        )
+        sg = 1.0 + case.pipe.submerged_weight / buoyancy
+        if sg < 1.05:
+            chk.warn(
+                "pipe.submerged_weight",
+                f"pipe.submerged_weight = {case.pipe.submerged_weight:g} N/m is unusual: the"
+                f" specific gravity is only {sg:.4g} (check the unit: N/m, not kN/m)",
+            )
+    if case.seabed.model == "clay" and case.seabed.undrained_shear_strength is not None:
+        su = case.seabed.undrained_shear_strength
+        if not 500.0 <= su <= 2.0e5:
+            chk.warn(
+                "seabed.undrained_shear_strength",
+                f"seabed.undrained_shear_strength = {su:g} Pa is unusual: seabed clays lie in"
+                " [500, 200000] Pa (check the unit: Pa, not kPa)",
+            )
+
     # -- sea states -------------------------------------------------------------------------
     depth = case.environment.water_depth
-    states = [("waves", case.waves.hs, case.waves.tp, "waves", "waves")]
-    for i, c in enumerate(case.combinations):
-        key = f"combinations[{i}]"
-        states.append(
-            (
-                c.name,
-                case.waves.hs if c.hs is None else c.hs,
-                case.waves.tp if c.tp is None else c.tp,
-                key if c.hs is not None else "waves",
-                key if c.tp is not None else "waves",
-            )
-        )
+    states = [] if case.waves is None else [("", case.waves.hs, case.waves.tp, "waves", "waves")]
+    states += list(extra_states)
     for label, hs, tp, hs_at, tp_at in states:
-        what = "" if label == "waves" else f" (combination {label!r})"
-        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2)
+        what = f" ({label})" if label else ""
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
         if steep > MAX_WAVE_STEEPNESS:
             chk.fail(
                 f"{tp_at}.tp",
@@ -536,15 +573,45 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
             )
 
 
+def check_common_tables(
+    case: Any,
+    path: str | os.PathLike,
+    *,
+    sea_states: list[tuple[str, float, float, str, str]] | None = None,
+) -> None:
+    """Engineering plausibility of the shared tables of any parsed case file.
+
+    For the case files of other commands that reuse these tables (``onbottom storm``: section
+    and pipeline): ``case`` has ``pipe``, ``seabed``, ``environment``, ``waves`` (may be None)
+    and ``current`` attributes as in :class:`StabilityCase`; ``sea_states`` adds sea states
+    ``(label, hs [m], tp [s], table of hs, table of tp)``, e.g. ``("stage 0", 3.0, 9.0,
+    "storm.stages[0]", "storm.stages[0]")``. Raises :class:`CaseFileError` (key, value, range,
+    file, line) for a sea state steeper than breaking or higher than 0.78 × depth, a current
+    reference height outside (z_0, depth], densities and strengths in the wrong unit; warns
+    (:class:`OutOfRangeWarning`) for unusual values. See :func:`load_stability_case`.
+    """
+    p = Path(path)
+    try:
+        text: str | None = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        text = None
+    _check_common(case, _Checker(p, text), list(sea_states or []))
+
+
 def _check_section(case: StabilityCase, chk: _Checker) -> None:
-    """Build every input object once: errors under their case-file keys; embedment vs D."""
+    """Build every input object once (errors under their case-file keys), the cross-table and
+    plausibility rules (:func:`_check_case`), and the embedment against D."""
     try:
         section = case.section()
         case.seabed.seabed()
         case.environment_object()
-        case.load_combinations()
     except CaseFileError:
         raise
+    except InputError as exc:
+        chk.rename(exc)
+    _check_case(case, chk)  # sea states and cross-table rules before the combinations
+    try:
+        case.load_combinations()
     except InputError as exc:
         chk.rename(exc)
     diameter = (
@@ -561,6 +628,24 @@ def _check_section(case: StabilityCase, chk: _Checker) -> None:
                 f"seabed.{key} = {z!r} m is invalid: deeper than the pipe's outer diameter"
                 f" {diameter:.4g} m (must lie in [0, D]; F109 §3.6 covers an on-bottom pipe)",
             )
+
+
+def penetration_outside_validity(rows: Any) -> list[str]:
+    """Rows of the absolute check whose embedment z_p exceeds D/2 (outside F109 Eqs
+    3.19–3.22 and the soil resistance models): one line per combination, empty if none."""
+    out = []
+    for r in rows:
+        det = r.details
+        if r.name != "absolute_lateral" or "penetration" not in det or "diameter" not in det:
+            continue
+        ratio = det["penetration"] / det["diameter"]
+        if ratio > 0.5:
+            out.append(
+                f"combination {r.combination!r} ({r.condition}): embedment z_p/D = {ratio:.3g}"
+                " > 0.5 lies outside the validity of F109 Eqs 3.19–3.22 (check the soil"
+                " strength and its unit)"
+            )
+    return out
 
 
 def load_stability_case(path: str | os.PathLike) -> StabilityCase:
@@ -581,6 +666,5 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
         text = None
     chk = _Checker(p, text)
-    _check_case(case, chk)
     _check_section(case, chk)
     return case

@@ -398,7 +398,12 @@ def stability_curves(
     job = _PointJob(s)
     t0 = time.perf_counter()
     if n_workers == 0 and scheduler is None and client is None:
-        rows = SerialMap()(job, items)
+        if progress:
+            from tqdm.auto import tqdm
+
+            rows = [job(x) for x in tqdm(items, unit="point")]
+        else:
+            rows = SerialMap()(job, items)
         workers = 1
     else:
         with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:

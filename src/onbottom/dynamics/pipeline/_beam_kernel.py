@@ -51,16 +51,18 @@ def element_local(d, e, props):
     dy = d[i + 4] - d[i + 1]
     dx = l0 + du
     ln = math.sqrt(dx * dx + dy * dy)
-    c = dx / ln
-    s = dy / ln
+    il = 1.0 / ln
+    c = dx * il
+    s = dy * il
     beta = math.atan2(dy, dx)
     ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
     t1 = d[i + 2] - beta
     t2 = d[i + 5] - beta
-    ei = props[e, EL_EI]
-    n = props[e, EL_N0] + props[e, EL_EA] * ul / l0
-    m1 = ei * (4.0 * t1 + 2.0 * t2) / l0
-    m2 = ei * (2.0 * t1 + 4.0 * t2) / l0
+    il0 = 1.0 / l0
+    eil = props[e, EL_EI] * il0
+    n = props[e, EL_N0] + props[e, EL_EA] * ul * il0
+    m1 = eil * (4.0 * t1 + 2.0 * t2)
+    m2 = eil * (2.0 * t1 + 4.0 * t2)
     return ln, c, s, ul, t1, t2, n, m1, m2
 
 

@@ -111,7 +111,7 @@ SC_T_LIFT = 8  # first lift-off time [s] (nan: none)
 SC_K_OUT = 9  # index of the next output time
 SC_T_LIMIT = 10  # time the displacement limit was first reached [s] (nan: none)
 SC_NEG_PIVOT = 11  # steps whose Jacobian had a negative pivot
-SC_W_SPRING = 12  # reserved
+SC_N_FACTOR = 12  # band factorisations
 SC_LIFT_NODE = 13  # node of the first lift-off
 N_SCAL = 14
 
@@ -506,6 +506,7 @@ def integrate(
                                 ab[j + k, k] = 0.0
                         ab[j, 0] = 1.0
                 neg = ldl_factor(ab)
+                scal[SC_N_FACTOR] += 1.0
                 if neg < 0:
                     return n_rec, STATUS_SINGULAR
             r_prev = rmax

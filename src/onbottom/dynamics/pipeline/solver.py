@@ -606,6 +606,7 @@ def simulate_pipeline(
         "strain_energy": se,
         "energy_residual": ke + se - w_h - w_s,
         "negative_pivot_steps": float(scal[K.SC_NEG_PIVOT]),
+        "n_factorisations": float(scal[K.SC_N_FACTOR]),
         "n_nodes": float(n),
     }
     success = status in (K.STATUS_END, K.STATUS_LIMIT)
