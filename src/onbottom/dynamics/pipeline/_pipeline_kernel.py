@@ -74,7 +74,8 @@ ST_PEN_RED = 21  # 1: penetration reductions r_pen,y/z
 ST_EA = 22  # reference EA for strain [N]
 ST_EI = 23  # reference EI for strain [N·m²]
 ST_PREDICTOR = 24  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
-N_SETTINGS = 25
+ST_CTOL = 25  # Newton correction [m] below which a step is accepted (displacement resolution)
+N_SETTINGS = 26
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -401,6 +402,7 @@ def integrate(
     t0k = settings[ST_T_KIN0]
     dtk = settings[ST_DT_KIN]
     pred = settings[ST_PREDICTOR]
+    ctol = settings[ST_CTOL]
     mass = np.empty(ndof)
     for i in range(n_nodes):
         mass[NDOF_NODE * i] = nodes[i, ND_MASS_U]
@@ -534,6 +536,15 @@ def integrate(
             for j in range(ndof):
                 res[j] = -res[j]
             ldl_solve(ab, res)
+            cmax = 0.0
+            for j in range(ndof):
+                if abs(res[j]) > cmax and j % NDOF_NODE != 2:
+                    cmax = abs(res[j])
+            if it > 0 and cmax <= ctol:
+                # the correction is below the displacement resolution: the residual sits on a
+                # jump of a discontinuous soil law (or at round-off); accept the evaluated state
+                conv = True
+                break
             for j in range(ndof):
                 d1[j] += res[j]
         scal[SC_NITER] += iters
