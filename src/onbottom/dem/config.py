@@ -348,8 +348,9 @@ class Numerics:
         ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil force applied
         as one impulse per step (r-RESPA; ``docs/theory/dem.md``, "Speed levers"). Applies
         to the penetration only (the preparation's equilibrium stages stall with it: a
-        known defect). ``False`` (default): one time step for all, set by the stiffest
-        contact.
+        known defect). *Experimental:* the sub-cycled penetration fails the V–w
+        equivalence check on SM-reduced (``docs/validation/dem_penetration.md``).
+        ``False`` (default): one time step for all, set by the stiffest contact.
     sort_disks
         Renumber the prepared specimen in cell order (rows of cells 2·d_max high, then x)
         for memory locality [-]; the physics is unchanged (round-off only).
