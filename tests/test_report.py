@@ -1,14 +1,15 @@
 """The validation report: registry, files, tables, pass/fail, provenance, CLI (fast sections only).
 
-Runs the F114 and DEM sections (a few seconds); the slow sections are exercised by the site
-build in CI. The F114 numbers are those of the reference table in shared/spec/dnv-reference.md
-§3.3 (the same as tests/unit/test_penetration_f114.py).
+Runs the fast sections (F114, centrifuge bands, F109 design sheet, DEM: a few seconds); the
+others run in the site build in CI. The F114 numbers are those of the reference table in
+shared/spec/dnv-reference.md §3.3 (the same as tests/unit/test_penetration_f114.py).
 """
 
 from __future__ import annotations
 
 import csv
 import json
+import math
 import re
 from html.parser import HTMLParser
 
@@ -17,10 +18,10 @@ import pytest
 from onbottom.cli.main import main
 from onbottom.errors import InputError
 from onbottom.report import SectionContent, SectionContext, build_report, load_sections, within
-from onbottom.report.content import Check, Table
+from onbottom.report.content import Check, Table, format_cell
 from onbottom.report.registry import REGISTRY, section
 
-FAST = ["f114", "dem"]
+FAST = ["f114", "centrifuge_bands", "checks_f109", "dem"]
 
 
 @pytest.fixture(scope="module")
@@ -102,6 +103,20 @@ def test_dem_section_reads_committed_summaries(report):
     assert heave.status == ("pass" if abs(heave.value - 0.25) <= 0.1 else "fail")
 
 
+def test_bands_and_design_sheet_sections(report):
+    by = {s.name: s for s in report.sections}
+    if by["centrifuge_bands"].state == "ok":  # H14's module and committed CSV present
+        checks = {c.name: c for c in by["centrifuge_bands"].content.checks}
+        assert len(checks) == 7
+        reg = checks["Regular: Table 1 cycles inside the band"]
+        assert reg.reference == 46.22 and reg.status == "fail" and "lift-off" in reg.note
+    if by["checks_f109"].state == "ok":  # H11's design layer present
+        checks = {c.name: c for c in by["checks_f109"].content.checks}
+        d = checks["outer diameter D"]
+        assert d.value == pytest.approx(0.2191 + 2 * (0.0055 + 0.08255), abs=1e-12)
+        assert d.status == "pass" and d.reference == 0.3951
+
+
 def test_provenance(report):
     p = report.provenance
     assert p["onbottom_version"]
@@ -160,6 +175,8 @@ def test_content_helpers():
     assert within("x", 10.2, 10.0, rtol=0.01).status == "fail"
     assert within("x", float("nan"), 10.0, rtol=0.5).status == "fail"
     assert within("x", 0.05, 0.0, atol=0.06, unit="kN/m").tolerance == "±0.06 kN/m"
+    assert format_cell(-4.97e-8) == "-4.97e-08" and format_cell(0.0) == "0.000"
+    assert format_cell(1.23456, 2) == "1.23" and format_cell(None) == format_cell(math.nan) == "–"
     with pytest.raises(InputError, match="status"):
         Check(name="x", value=1.0, reference=1.0, tolerance="", status="ok")
     with pytest.raises(InputError, match="rows"):

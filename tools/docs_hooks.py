@@ -237,6 +237,9 @@ def _report(files: Files, config, scratch: Path) -> None:
         t0 = time.perf_counter()
         res = build_report(out, fast=(mode == "fast"))
         timings["report"] = time.perf_counter() - t0
+        for s in res.sections:  # a section that raised is a bug: fail the strict build
+            if s.state == "error":
+                log.warning("validation report: section %s raised:\n%s", s.name, s.reason)
         for path in sorted(p for p in out.rglob("*") if p.is_file()):
             _add(files, config, f"{REPORT_DIR}/{path.relative_to(out).as_posix()}", src=path)
         page += [

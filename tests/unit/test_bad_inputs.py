@@ -92,44 +92,44 @@ SIMULATE_CASES = [
         "submerged_unit_weight_kn = 7.5",
         "submerged_unit_weight_kn = 0.0075",
         "soil.submerged_unit_weight_kn",
-    ),  # noqa: E501
+    ),
     (
         "gamma-in-N",
         "submerged_unit_weight_kn = 7.5",
         "submerged_unit_weight_kn = 7500.0",
         "soil.submerged_unit_weight_kn",
-    ),  # noqa: E501
+    ),
     (
         "mu-3",
         "friction_coefficient = 0.48",
         "friction_coefficient = 3.0",
         "soil.friction_coefficient",
-    ),  # noqa: E501
+    ),
     (
         "mu-negative",
         "friction_coefficient = 0.48",
         "friction_coefficient = -0.1",
         "soil.friction_coefficient",
-    ),  # noqa: E501
+    ),
     ("unknown-model", 'model = "verley_sotberg_calcareous"', 'model = "clay"', "soil.model"),
     (
         "coulomb-with-gamma",
         'model = "verley_sotberg_calcareous"',
         'model = "coulomb"',
         "soil.submerged_unit_weight_kn",
-    ),  # noqa: E501
+    ),
     (
         "silica-with-A",
         'model = "verley_sotberg_calcareous"',
         'model = "verley_sotberg_silica"\nA = 0.3',
         "soil.A",
-    ),  # noqa: E501
+    ),
     (
         "A-negative",
         "submerged_unit_weight_kn = 7.5",
         "submerged_unit_weight_kn = 7.5\nA = -0.2",
         "soil.A",
-    ),  # noqa: E501
+    ),
     ("gamma-missing", "submerged_unit_weight_kn = 7.5", "", "soil.submerged_unit_weight_kn"),
     ("required-key-missing", "vertical_load_kn = 10.52\n", "", "programme.vertical_load_kn"),
     ("unknown-kind", 'kind = "inclined_cyclic"', 'kind = "inclined"', "programme.kind"),
@@ -144,7 +144,7 @@ SIMULATE_CASES = [
         "displacement_limit = 3.0",
         "displacement_limit = -3.0",
         "solver.displacement_limit",
-    ),  # noqa: E501
+    ),
     ("zero-iterations", "displacement_limit = 3.0", "max_iterations = 0", "solver.max_iterations"),
     ("table-missing", "[soil]", "[soil_x]", "soil_x"),
     (
@@ -152,7 +152,7 @@ SIMULATE_CASES = [
         "submerged_weight_kn = 10.52",
         "submerged_weight_kn = 10.52\nmass = 1.0",
         "mass",
-    ),  # noqa: E501
+    ),
     ("preset-and-pipe", "[pipe]", '[preset]\ntest = "Inclined 1"\n\n[pipe]', "preset"),
     ("malformed-toml", "period = 40.0", "period = = 40", None),
     ("duplicate-key", "period = 40.0", "period = 40.0\nperiod = 41.0", None),
@@ -164,20 +164,26 @@ SIMULATE_CASES = [
         "n_cycles = 2",
         "n_cycles = 2\npoints_per_cycle = 2",
         "programme.points_per_cycle",
-    ),  # noqa: E501
+    ),
     (
         "ca-negative",
         "submerged_weight_kn = 10.52",
         "submerged_weight_kn = 10.52\nadded_mass_coefficient = -1",
         "pipe.added_mass_coefficient",
-    ),  # noqa: E501
+    ),
     (
         "installation-negative",
         "n_cycles = 2",
         "n_cycles = 2\ninstallation_load_kn = -5",
         "programme.installation_load_kn",
-    ),  # noqa: E501
+    ),
     ("dt-max-zero", "displacement_limit = 3.0", "dt_max = 0.0", "solver.dt_max"),
+    (
+        "increment-tiny",
+        "displacement_limit = 3.0",
+        "max_displacement_increment = 1e-12",
+        "solver.max_displacement_increment",
+    ),
 ]
 
 
@@ -200,6 +206,8 @@ PRESET_CASES = [
     ("preset-test-missing", 'parameters = "table2"', "preset.test"),
     ("preset-bad-parameters", 'test = "Inclined 1"\nparameters = "table9"', "preset.parameters"),
     ("preset-dt-negative", 'test = "Inclined 1"\ndt = -0.1', "preset.dt"),
+    ("preset-dt-tiny", 'test = "Inclined 1"\ndt = 1e-9', "preset.dt"),  # would run for days
+    ("preset-dt-huge", 'test = "Inclined 1"\ndt = 1e6', "preset.dt"),
     ("preset-unknown-test", 'test = "Inclined 9"', "test"),
 ]
 
@@ -279,15 +287,16 @@ SWEEP_CASES = [
         "A = [0.2, 0.3]",
         "A = { start = 0.1, stop = 0.3, num = 2.5 }",
         "grid.A.num",
-    ),  # noqa: E501
+    ),
     ("linspace-typo", "A = [0.2, 0.3]", "A = { start = 0.1, stp = 0.3, num = 2 }", "grid.A.stp"),
     ("values-empty", "A = [0.2, 0.3]", "A = { values = [] }", "grid.A.values"),
     (
         "grid-too-large",
         "A = [0.2, 0.3]",
-        "A = { start = 0.1, stop = 0.3, num = 100000 }\nB = { start = 0.1, stop = 0.3, num = 100000 }",
+        "A = { start = 0.1, stop = 0.3, num = 100000 }\n"
+        "B = { start = 0.1, stop = 0.3, num = 100000 }",
         "grid",
-    ),  # noqa: E501
+    ),
     ("unknown-argument", "A = [0.2, 0.3]", "Z = [0.2, 0.3]", "grid.Z"),
     ("misspelled-fixed-key", 'test = "Inclined 1"', 'tset = "Inclined 1"', "fixed.tset"),
     ("fixed-table", 'test = "Inclined 1"', "test = { a = 1 }", "fixed.test"),
@@ -442,13 +451,13 @@ OPTION_CASES = [
         "pen-diameter-mm",
         ["penetration", "--diameter", "500", "--gamma-kn", "10", "--phi-deg", "35"],
         "diameter",
-    ),  # noqa: E501
+    ),
     ("pen-diameter-negative", [*SAND[:2], "-0.5", *SAND[3:]], "--diameter"),
     (
         "pen-gamma-low",
         ["penetration", "--diameter", "0.5", "--gamma-kn", "0.5", "--phi-deg", "35"],
         "--gamma-kn",
-    ),  # noqa: E501
+    ),
     ("pen-phi-80", [*SAND[:-1], "80"], "--phi-deg"),
     ("pen-phi-missing", SAND[:-2], "--phi-deg"),
     ("pen-su-missing", CLAY, "--su-kpa"),
@@ -483,17 +492,17 @@ OPTION_CASES = [
         "dem-threads-zero",
         ["dem", "penetrate", "--sample", "s.nc", "--out", "r.nc", "--threads", "0"],
         "--threads",
-    ),  # noqa: E501
+    ),
     (
         "dem-checkpoint-every-zero",
         ["dem", "penetrate", "--sample", "s.nc", "--out", "r.nc", "--checkpoint-every", "0"],
         "--checkpoint-every",
-    ),  # noqa: E501
+    ),
     (
         "dem-max-steps-negative",
         ["dem", "penetrate", "--sample", "s.nc", "--out", "r.nc", "--max-steps", "-1"],
         "--max-steps",
-    ),  # noqa: E501
+    ),
     ("dem-plot-gamma", ["dem", "plot", "R", "--gamma-kn", "0.1"], "--gamma-kn"),
     ("dem-plot-phi", ["dem", "plot", "R", "--phi-lower-deg", "5"], "--phi-lower-deg"),
     ("dem-summarize-step", ["dem", "summarize", "R", "--step", "0"], "--step"),

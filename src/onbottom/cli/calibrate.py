@@ -245,20 +245,31 @@ def command(
         if len(results) == 1:
             write_text_atomic(out, results[0].to_toml())
         else:
-            for res in results:
+            used: set[str] = set()
+            for i, res in enumerate(results):
                 tag = "".join(ch if ch.isalnum() else "_" for ch in res.record_names[0])
+                if tag in used:  # two records of one name: never overwrite a fit
+                    tag = f"{tag}_{i + 1}"
+                used.add(tag)
                 write_text_atomic(out.with_name(f"{out.stem}_{tag}{out.suffix}"), res.to_toml())
     if plot_dir:
         from onbottom.plotting.calibration import plot_fit
 
         pdir = Path(plot_dir)
         pdir.mkdir(parents=True, exist_ok=True)
+        written_plots: set[str] = set()
         for res in results:
             for rec in (r for r in recs if r.name in res.record_names):
                 sim = simulator(rec, res.values)
                 fig = plot_fit(rec, sim, title=f"{rec.name}: fitted")
                 tag = "".join(ch if ch.isalnum() else "_" for ch in rec.name)
-                fig.savefig(pdir / f"fit_{tag}.png", dpi=120)
+                name = f"fit_{tag}.png"
+                k = 2
+                while name in written_plots:  # two records of one name: keep both figures
+                    name = f"fit_{tag}_{k}.png"
+                    k += 1
+                written_plots.add(name)
+                fig.savefig(pdir / name, dpi=120)
     rows = parameter_table(results)
     names = [p.name for p in params if p.vary]
     rec_rows = recommend(rows, names=names) if each else []

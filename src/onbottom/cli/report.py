@@ -65,7 +65,9 @@ def command(out: str, only: tuple[str, ...], fast: bool, list_: bool, as_json: b
         emit_json(res.summary())
         return
     for s in res.sections:
-        if s.state == "ok":
+        if s.state == "ok" and not (s.n_pass or s.n_fail):
+            state = f"for information  ({s.run_time:.1f} s)"
+        elif s.state == "ok":
             state = f"{s.n_pass} pass, {s.n_fail} fail  ({s.run_time:.1f} s)"
         elif s.state == "error":
             state = f"ERROR: {s.reason.strip().splitlines()[-1]}"

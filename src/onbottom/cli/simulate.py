@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import click
@@ -13,6 +14,7 @@ from onbottom.cli._common import (
     handle_errors,
     json_option,
 )
+from onbottom.errors import OutOfRangeWarning
 
 
 @click.command("simulate")
@@ -48,7 +50,10 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     if plot is not None:
         check_output_path(plot, field="--plot")
     load_case(case)  # check the whole file before any work
-    res = run_case(case, progress=not quiet and not as_json)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        res = run_case(case, progress=not quiet and not as_json)
+    messages = list(dict.fromkeys(str(w.message) for w in caught))
     res.save(nc)
     if plot is not None:
         import matplotlib.pyplot as plt
@@ -77,12 +82,15 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
         **{f"{k}": v for k, v in res.summary.items()},
         "netcdf": str(nc),
         "plot": None if plot is None else str(plot),
+        "warnings": messages,
     }
     if as_json:
         emit_json(payload)
         if not res.success:
             raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
+    for msg in messages:
+        click.echo(f"warning: {msg}", err=True)
     click.echo(f"{res.message} after {res.n_steps} steps")
     if res.cycles_to_limit is not None:
         click.echo(f"  load cycles to the displacement limit: {res.cycles_to_limit:.2f}")

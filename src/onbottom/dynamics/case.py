@@ -85,7 +85,9 @@ class PresetTable(StrictModel):
     time_basis: str = "paper"
     shape: Literal["sine", "triangle"] = "sine"
     after_limit: _AfterLimit = "stop"
-    dt: _Pos | None = Field(None, description="largest time step [s]")
+    dt: Annotated[float, Field(ge=1.0e-4, le=10.0)] | None = Field(
+        None, description="largest time step [s] (1e-4 to 10 s: smaller would take days)"
+    )
 
 
 class PipeTable(StrictModel):
@@ -121,9 +123,11 @@ class SolverTable(StrictModel):
     displacement_limit: _Pos | None = Field(None, description="terminal displacement [m]")
     after_limit: _AfterLimit = "stop"
     integrator: Literal["backward_euler", "newmark"] = "backward_euler"
-    dt_max: _Pos | None = Field(None, description="[s]")
+    dt_max: Annotated[float, Field(ge=1.0e-4, le=100.0)] | None = Field(None, description="[s]")
     dt_min: _Pos | None = Field(None, description="[s]")
-    max_displacement_increment: _Pos | None = Field(None, description="[m]")
+    max_displacement_increment: Annotated[float, Field(ge=1.0e-6, le=1.0)] | None = Field(
+        None, description="largest displacement per step [m]"
+    )
     force_tolerance: _Pos | None = Field(None, description="[N/m]")
     max_iterations: Annotated[int, Field(ge=1, le=10_000)] | None = None
     chunks: Annotated[int, Field(ge=1, le=100_000)] | None = None

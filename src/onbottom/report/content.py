@@ -154,7 +154,7 @@ class Table:
 
 
 def format_cell(value: Any, digits: int = 3) -> str:
-    """Format one cell: floats to ``digits`` decimals, None and NaN as ``–``."""
+    """Format one cell: floats to ``digits`` decimals (tiny ones in e-notation), None/NaN ``–``."""
     if value is None:
         return "–"
     if isinstance(value, bool):
@@ -162,6 +162,8 @@ def format_cell(value: Any, digits: int = 3) -> str:
     if isinstance(value, float):
         if not math.isfinite(value):
             return "–"
+        if value != 0.0 and abs(value) < 0.5 * 10.0**-digits:  # would print as 0.000
+            return f"{value:.2e}"
         return f"{value:.{digits}f}"
     return str(value)
 
