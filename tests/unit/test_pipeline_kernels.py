@@ -172,3 +172,52 @@ def test_kinematics_interpolation():
     np.testing.assert_allclose(ak, [-3.0, -4.0])
     K.kinematics_at(10.0, ku, ka, 0.0, 0.5, uk, ak)
     np.testing.assert_allclose(uk, [4.0, 5.0])
+
+
+def test_assemble_tangent_equals_the_full_evaluation():
+    """The tangent rebuilt from stored nodal tangents equals evaluate(..., want_k=True)."""
+    from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings
+    from onbottom.dynamics.pipeline.solver import _kernel_settings
+    from onbottom.hydro.short_crested import regular_node_kinematics
+    from onbottom.inputs.pipe import Pipe
+    from onbottom.inputs.soil import Sand
+    from onbottom.soil.base import OUT_SIZE
+    from onbottom.soil.verley_sotberg import VerleySotberg
+
+    pipe = Pipe(
+        outer_diameter=0.4, submerged_weight=600.0, bending_stiffness=5e7, axial_stiffness=5e9
+    )
+    soil = VerleySotberg.silica(pipe, Sand(submerged_unit_weight=1e4))
+    m = PipelineModel(
+        pipe=pipe, length=40.0, element_length=4.0, soil=soil, end_conditions="spring",
+        end_springs=(1e6, 1e5, 1e4),
+    )  # fmt: skip
+    a = m.arrays()
+    n = m.x.size
+    st = _kernel_settings(
+        m, regular_node_kinematics(n, 1.0, 0.1, 1.0, 5.0), PipelineSettings(), 0.7
+    )
+    rng = np.random.default_rng(2)
+    d1 = rng.normal(scale=0.01, size=3 * n)
+    v1 = rng.normal(scale=0.1, size=3 * n)
+    uk, ak = rng.normal(size=n), rng.normal(size=n)
+    vc, ry = np.full(n, 450.0), np.full(n, 0.9)
+    outs = []
+    for full in (True, False):
+        p, fh, fs = np.zeros(3 * n), np.zeros(3 * n), np.zeros(3 * n)
+        ab = np.zeros((3 * n, 6))
+        ktu, ktv = np.zeros(n), np.zeros(n)
+        args = (st, a["props"], a["nodes"], a["fixed"], a["spring"], a["model_ids"], a["sparams"],
+                a["sstate"], a["axst"], d1, v1, uk, ak, vc, ry, 7.0, full, p, fh, fs, ab,
+                a["sstate"].copy(), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(6),
+                np.zeros((6, 6)), np.zeros(OUT_SIZE), np.zeros(n), np.zeros(n), ktu,
+                ktv)  # fmt: skip
+        assert K.evaluate(*args)
+        if not full:
+            K.assemble_tangent(
+                d1, a["props"], a["spring"], ab, np.zeros(6), np.zeros((6, 6)), np.zeros(n),
+                np.zeros(n), ktu, ktv, np.zeros(3 * n),
+            )  # fmt: skip
+        outs.append((ab, p))
+    np.testing.assert_array_equal(outs[0][0], outs[1][0])
+    np.testing.assert_array_equal(outs[0][1], outs[1][1])

@@ -74,7 +74,8 @@ ST_PEN_RED = 21  # 1: penetration reductions r_pen,y/z
 ST_EA = 22  # reference EA for strain [N]
 ST_EI = 23  # reference EI for strain [N·m²]
 ST_PREDICTOR = 24  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
-N_SETTINGS = 25
+ST_CTOL = 25  # Newton correction [m] below which a step is accepted (displacement resolution)
+N_SETTINGS = 26
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -196,12 +197,13 @@ def node_loads(settings, nodes, sstate, uk, vcont, ry):
 def evaluate(
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
     d1, v1, uk, ak, vcont, ry, c_v, want_k,
-    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
+    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax, kt_u, kt_v,
 ):  # fmt: skip
     """Net force P(d₁, v₁) = f_hyd − f_int − f_spring − f_soil and (``want_k``) its negative
     Jacobian K_T = ∂(−P)/∂d + c_v·∂(−f_hyd)/∂ḋ into the band ``ab`` (not yet with mass).
 
-    The nodal bending moment and axial force at d₁ are written to ``mom``, ``nax``.
+    The nodal bending moment and axial force at d₁ are written to ``mom``, ``nax``; the nodal
+    (soil + drag) tangents on u and v to ``kt_u``, ``kt_v`` (see :func:`assemble_tangent`).
     Returns False if a soil kernel gave NaN.
     """
     ndof = d1.shape[0]
@@ -250,10 +252,30 @@ def evaluate(
         fs[iu] = -ell * fa
         p[iv] += fh[iv] + fs[iv]
         p[iu] += fs[iu]
+        kt_v[i] = ell * (out[OUT_TANGENT] - c_v * dfdv)
+        kt_u[i] = ell * ka
         if want_k:
-            ab[iv, 0] += ell * (out[OUT_TANGENT] - c_v * dfdv)
-            ab[iu, 0] += ell * ka
+            ab[iv, 0] += kt_v[i]
+            ab[iu, 0] += kt_u[i]
     return True
+
+
+@njit(cache=True)
+def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch):
+    """K_T at d₁ into ``ab`` from the beam and the nodal tangents stored by :func:`evaluate`
+    at the same d₁ (same band as ``evaluate(..., want_k=True)``, without re-running the soil
+    and load kernels)."""
+    ndof = d1.shape[0]
+    for j in range(ndof):
+        scratch[j] = 0.0
+        for k in range(ab.shape[1]):
+            ab[j, k] = 0.0
+    assemble_internal(d1, props, scratch, ab, True, fe, ke, mom, nax)
+    for j in range(ndof):
+        ab[j, 0] += spring[j]
+    for i in range(kt_u.shape[0]):
+        ab[NDOF_NODE * i, 0] += kt_u[i]
+        ab[NDOF_NODE * i + 1, 0] += kt_v[i]
 
 
 @njit(cache=True)
@@ -282,7 +304,7 @@ def initial_acceleration(
         settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
         vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, node_r, node_f, node_fa, fe, ke, out,
-        np.empty(n_nodes), np.empty(n_nodes),
+        np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
     for i in range(n_nodes):
         for c in range(3):
@@ -380,6 +402,7 @@ def integrate(
     t0k = settings[ST_T_KIN0]
     dtk = settings[ST_DT_KIN]
     pred = settings[ST_PREDICTOR]
+    ctol = settings[ST_CTOL]
     mass = np.empty(ndof)
     for i in range(n_nodes):
         mass[NDOF_NODE * i] = nodes[i, ND_MASS_U]
@@ -406,6 +429,9 @@ def integrate(
     res = np.empty(ndof)
     mom = np.empty(n_nodes)
     nax = np.empty(n_nodes)
+    kt_u = np.empty(n_nodes)
+    kt_v = np.empty(n_nodes)
+    scratch = np.empty(ndof)
     d0 = vec[V_D]
     v0 = vec[V_V]
     a0 = vec[V_A]
@@ -466,7 +492,8 @@ def integrate(
             ok = evaluate(
                 settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
                 d1, v1, uk, ak, vcont, ry, c_v, want_k,
-                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
+                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax, kt_u,
+                kt_v,
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
@@ -488,11 +515,7 @@ def integrate(
             # otherwise assemble the consistent tangent at d₁ and refactor
             if want_k or rmax > 0.25 * r_prev:
                 if not want_k:
-                    evaluate(
-                        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-                        d1, v1, uk, ak, vcont, ry, c_v, True,
-                        p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax,
-                    )  # fmt: skip
+                    assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch)
                 # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
                 for j in range(ndof):
                     for k in range(HALF_BAND + 1):
@@ -513,6 +536,15 @@ def integrate(
             for j in range(ndof):
                 res[j] = -res[j]
             ldl_solve(ab, res)
+            cmax = 0.0
+            for j in range(ndof):
+                if abs(res[j]) > cmax and j % NDOF_NODE != 2:
+                    cmax = abs(res[j])
+            if it > 0 and cmax <= ctol:
+                # the correction is below the displacement resolution: the residual sits on a
+                # jump of a discontinuous soil law (or at round-off); accept the evaluated state
+                conv = True
+                break
             for j in range(ndof):
                 d1[j] += res[j]
         scal[SC_NITER] += iters

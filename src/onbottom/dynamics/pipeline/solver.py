@@ -278,6 +278,7 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     st[K.ST_EA] = model.ea
     st[K.ST_EI] = model.ei
     st[K.ST_PREDICTOR] = _PREDICTOR
+    st[K.ST_CTOL] = 1e-9 * d
     return st
 
 
@@ -611,6 +612,9 @@ def simulate_pipeline(
     }
     success = status in (K.STATUS_END, K.STATUS_LIMIT)
     message = _STATUS_MESSAGES.get(status, f"status {status}")
+    if not success:
+        message += f" (t = {scal[K.SC_T]:.6g} s, dt_min = {st[K.ST_DT_MIN]:.3g} s)"
+        logger.warning("simulate_pipeline: %s", message)
     final_attrs = {
         "status": int(status),
         "message": message,
