@@ -294,6 +294,13 @@ ERRORS = [
         "current.reference_height",
     ),
     (
+        "ref-height-below-table-z0",
+        SIMPLE,
+        "reference_height = 2.0",
+        "reference_height = 1e-9",
+        "current.reference_height",
+    ),
+    (
         "penetration-deeper-than-D",
         SIMPLE,
         "submerged_unit_weight = 10.0e3",
