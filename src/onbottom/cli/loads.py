@@ -24,6 +24,7 @@ def evaluate_loads(
 ) -> tuple[dict, list]:
     """Envelopes of every load combination of a case file: (JSON payload, envelopes)."""
     from onbottom.checks.design import CheckOptions, run_checks
+    from onbottom.cli.stability import check_reference_height
     from onbottom.errors import InputError, OutOfRangeWarning
     from onbottom.hydro.forces import MorisonCoefficients
     from onbottom.hydro.load_envelope import load_envelope
@@ -37,6 +38,7 @@ def evaluate_loads(
         seabed = case.seabed.seabed()
         env = case.environment_object()
         combos = case.load_combinations()
+    check_reference_height(case, case_path, seabed)
     caught.extend(loading)
     storm_seed = 0
     if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`

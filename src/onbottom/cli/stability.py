@@ -27,6 +27,24 @@ def _section_summary(section: Any, condition: str) -> dict[str, Any]:
     }
 
 
+def check_reference_height(case: Any, case_path: Path, seabed: Any) -> None:
+    """[current] reference_height must lie above the seabed roughness z_0 (given, or F109
+    Table 3-1 from the seabed) — a case-file error naming the key (F109 Eq 3.3 log profile)."""
+    from onbottom._casefile import CaseFileError
+    from onbottom.checks.absolute import seabed_roughness
+
+    c = case.current
+    z0 = c.z0 if c.z0 is not None else seabed_roughness(seabed)
+    if c.reference_height <= z0:
+        raise CaseFileError(
+            f"{case_path}: current.reference_height = {c.reference_height!r} m is invalid: not"
+            f" above the seabed roughness z_0 = {z0:g} m (F109 Table 3-1), where the"
+            " logarithmic current profile (F109 Eq 3.3) is undefined",
+            field="current.reference_height",
+            file=str(case_path),
+        )
+
+
 def evaluate_case(case_path: Path) -> dict[str, Any]:
     """Run the checks (and the design solve) of a case file; return the JSON payload."""
     from onbottom.checks.design import (
@@ -47,6 +65,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         seabed = case.seabed.seabed()
         env = case.environment_object()
         combos = case.load_combinations()
+    check_reference_height(case, case_path, seabed)
     caught.extend(loading)
     d = case.design
     options = CheckOptions(

@@ -523,19 +523,22 @@ def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
                 f" {math.sqrt(2.0 * math.pi * hs / (GRAVITY * MAX_WAVE_STEEPNESS)):.3g} s"
                 " (check the units: m and s)",
             )
-        if steep > _steepness_limit(tp):
-            chk.warn(
-                f"{tp_at}.tp",
-                f"{tp_at}.tp = {tp:g} s is unusual with H_s = {hs:g} m{what}: the steepness"
-                f" {steep:.3g} exceeds the DNV-RP-C205 §3.5.5.4 limit"
-                f" {_steepness_limit(tp):.3g} of a design sea state",
-            )
         if hs > MAX_HS_OVER_DEPTH * depth:
             chk.fail(
                 f"{hs_at}.hs",
                 f"{hs_at}.hs = {hs!r} m is invalid in water_depth = {depth:g} m{what}: waves"
                 f" break above H/d = {MAX_HS_OVER_DEPTH:g} (H_s must be <="
                 f" {MAX_HS_OVER_DEPTH * depth:.3g} m; check environment.water_depth)",
+            )
+    for label, hs, tp, hs_at, tp_at in states:  # warnings after every error
+        what = f" ({label})" if label else ""
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
+        if steep > _steepness_limit(tp):
+            chk.warn(
+                f"{tp_at}.tp",
+                f"{tp_at}.tp = {tp:g} s is unusual with H_s = {hs:g} m{what}: the steepness"
+                f" {steep:.3g} exceeds the DNV-RP-C205 §3.5.5.4 limit"
+                f" {_steepness_limit(tp):.3g} of a design sea state",
             )
         if hs > USUAL_HS_OVER_DEPTH * depth:
             chk.warn(
