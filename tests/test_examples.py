@@ -19,6 +19,8 @@ EXPECTED = {
     "ex03_section_time_domain.py": r"cycles to the 3 m limit: 1[23]\.\d\d",
     "ex06_calibrate_verley_sotberg.py": r"C += 0\.7[89]\d\d",
     "ex07_dem_penetration.py": r"inertial number I = ",
+    "ex08_f109_design.py": r"absolute lateral stability: utilisation 4\.\d+ \(fails\)",
+    "ex09_storm_section.py": r"max \|y\| = 0\.\d{3} m = 0\.\d{3}D",
 }
 
 

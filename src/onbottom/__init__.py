@@ -29,6 +29,16 @@ _LAZY: dict[str, str] = {
     "inclined_cyclic": "onbottom.dynamics",
     "run_centrifuge_test": "onbottom.dynamics",
     "simulate_section": "onbottom.dynamics",
+    "PipeBuildUp": "onbottom.inputs.pipe_buildup",
+    "absolute_lateral_stability": "onbottom.checks",
+    "design_concrete_thickness": "onbottom.checks.design",
+    "significant_bed_velocity": "onbottom.hydro.design_sea_state",
+    "SeaState": "onbottom.inputs.storm",
+    "Storm": "onbottom.inputs.storm",
+    "Current": "onbottom.inputs.storm",
+    "simulate_storm_section": "onbottom.dynamics.storm_section",
+    "run_storm_seeds": "onbottom.study.storm_seeds",
+    "stability_curves": "onbottom.study.stability_curves",
 }
 
 __all__ = [

@@ -276,6 +276,9 @@ def _case_error(
     root: str,
 ) -> CaseFileError:
     errors = exc.errors(include_url=False)
+    # an unknown key first: a misspelled required key is also reported missing, and the
+    # misspelling (with its did-you-mean) is the useful message
+    errors.sort(key=lambda e: e.get("type") != "extra_forbidden")
     first = errors[0]
     loc = tuple(first.get("loc", ()))
     field = _dotted(loc, root) or None

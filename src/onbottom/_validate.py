@@ -5,15 +5,20 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Iterable
-from numbers import Real
+from numbers import Integral, Real
 
 from onbottom.errors import InputError, OutOfRangeWarning
 
 __all__ = [
+    "FRICTION_COEFFICIENT",
+    "PIPE_DIAMETER_M",
+    "SOIL_UNIT_WEIGHT_N_M3",
     "finite",
     "in_range",
+    "integer",
     "non_negative",
     "one_of",
+    "plausible",
     "positive",
     "warn_outside",
 ]
@@ -70,6 +75,75 @@ def in_range(
         hb = "]" if high_inclusive else ")"
         raise InputError(f"{field} = {x!r} is invalid: must lie in {lb}{low:g}, {high:g}{hb}")
     return x
+
+
+def integer(field: str, value: object, low: int | None = None, high: int | None = None) -> int:
+    """Return ``value`` as int; raise unless it is a whole number in ``[low, high]``.
+
+    ``16.0`` is accepted, ``16.7`` is an error (never truncated), as are booleans and NaN.
+    """
+    if isinstance(value, bool):
+        raise InputError(f"{field} = {value!r} is invalid: expected a whole number")
+    if isinstance(value, Integral):
+        n = int(value)
+    else:
+        x = finite(field, value)
+        if x != math.floor(x):
+            raise InputError(
+                f"{field} = {x!r} is invalid: expected a whole number (it is never truncated)"
+            )
+        n = int(x)
+    if (low is not None and n < low) or (high is not None and n > high):
+        lo = "-inf" if low is None else str(low)
+        hi = "inf" if high is None else str(high)
+        raise InputError(f"{field} = {n} is invalid: must lie in [{lo}, {hi}]")
+    return n
+
+
+def plausible(
+    field: str,
+    value: object,
+    *,
+    error: tuple[float, float],
+    usual: tuple[float, float],
+    unit: str,
+    what: str,
+    stacklevel: int = 3,
+) -> float:
+    """Engineering plausibility of an input: an error outside ``error``, a warning outside
+    ``usual``.
+
+    ``error`` bounds are inclusive; a value outside them is no engineering input (a pipe of
+    500 m, a unit weight of 0.0075 kN/m³ typed in the wrong unit): :class:`InputError` naming
+    the field, the value, the allowed range and the unit. A value inside ``error`` but outside
+    ``usual`` gives :class:`OutOfRangeWarning` (``what`` says what the usual range is).
+    """
+    x = finite(field, value)
+    lo, hi = error
+    if not (lo <= x <= hi):
+        raise InputError(
+            f"{field} = {x!r} {unit} is invalid: must lie in the plausible range"
+            f" [{lo:g}, {hi:g}] {unit} (check the unit)"
+        )
+    ulo, uhi = usual
+    if not (ulo <= x <= uhi):
+        warnings.warn(
+            f"{field} = {x:.4g} {unit} is unusual: {what} lies in [{ulo:g}, {uhi:g}] {unit}",
+            OutOfRangeWarning,
+            stacklevel=stacklevel,
+        )
+    return x
+
+
+# Engineering plausibility ranges (error range, usual range) shared by the inputs.
+PIPE_DIAMETER_M = ((0.005, 5.0), (0.05, 2.0))
+"""Outer diameter D [m]: errors outside 5 mm–5 m (mm typed as m); usual 0.05–2 m (pipelines
+and their coatings; a model pipe of a laboratory test can be smaller)."""
+SOIL_UNIT_WEIGHT_N_M3 = ((1.0e3, 2.5e4), (3.0e3, 1.8e4))
+"""Submerged (effective) unit weight γ' [N/m³]: errors below 1 or above 25 kN/m³ (kN typed
+as N); usual 3–18 kN/m³ (submerged soils ~4–12; dry centrifuge sand up to ~17)."""
+FRICTION_COEFFICIENT = ((0.0, 2.0), (0.1, 1.2))
+"""Pipe–soil friction μ [-]: usual 0.1–1.2 (DNV-RP-F109: clay 0.2, sand 0.6)."""
 
 
 def one_of(field: str, value: object, allowed: Iterable[str]) -> str:

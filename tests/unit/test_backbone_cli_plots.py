@@ -41,7 +41,7 @@ def test_cli_table_path_and_plots(tmp_path, capsys):
 
 def test_cli_bad_input_names_the_field(capsys):
     assert main([*ARGS[:4], "-1", *ARGS[5:]]) == 1
-    assert "outer_diameter" in capsys.readouterr().err
+    assert "--diameter" in capsys.readouterr().err  # the option at fault
 
 
 def test_path_response_dataset_and_plot():

@@ -85,4 +85,4 @@ def test_sweep_misfit_builtin_and_bad_function(record_csv, tmp_path, capsys):
     assert float(ds["misfit"].sel(C=0.79)) < 1e-4 < float(ds["misfit"].sel(C=1.0))
     grid.write_text('[sweep]\nfunction = "nope"\n[grid]\nA = [1]\n')
     assert main(["sweep", str(grid), "-o", str(out)]) == 1
-    assert "built-in" in capsys.readouterr().err
+    assert "not a registered function" in capsys.readouterr().err

@@ -57,3 +57,51 @@ def test_warn_outside_range():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         warn_outside("K_s", 0.5, 0.0, 1.0, "Src")
+
+
+# --------------------------------------------------------------------------------------------
+# files and checks of issue #10
+# --------------------------------------------------------------------------------------------
+def test_saved_files_have_ordinary_permissions_and_stale_temporaries_go(tmp_path):
+    import os
+    import stat
+
+    import xarray as xr
+
+    from onbottom.results import save_dataset, write_text_atomic
+
+    target = tmp_path / "new" / "folder" / "r.nc"  # folders are created
+    stale = target.parent / "r.nc.k1ll3d.tmp"
+    target.parent.mkdir(parents=True)
+    stale.write_bytes(b"half a file")
+    old = os.umask(0o022)
+    try:
+        save_dataset(xr.Dataset({"x": ("i", [1.0])}), target)
+        text = write_text_atomic(tmp_path / "t" / "a.csv", "a,b\n")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(target.stat().st_mode) == 0o644
+    assert stat.S_IMODE(text.stat().st_mode) == 0o644
+    assert not stale.exists() and sorted(p.name for p in target.parent.iterdir()) == ["r.nc"]
+
+
+def test_integer_never_truncates():
+    from onbottom._validate import integer
+
+    assert integer("n", 16) == 16 and integer("n", 16.0) == 16
+    for bad in (16.7, float("nan"), True, "16"):
+        with pytest.raises(InputError, match="n = "):
+            integer("n", bad)
+    with pytest.raises(InputError, match=r"must lie in \[1, 5\]"):
+        integer("n", 0, 1, 5)
+
+
+def test_plausible_errors_and_warnings():
+    from onbottom._validate import plausible
+
+    kw = {"error": (1.0, 10.0), "usual": (2.0, 5.0), "unit": "m", "what": "a length"}
+    assert plausible("L", 3.0, **kw) == 3.0
+    with pytest.warns(OutOfRangeWarning, match="L = 7 m is unusual"):
+        plausible("L", 7.0, **kw)
+    with pytest.raises(InputError, match=r"L = 500.0 m is invalid: must lie in the plausible"):
+        plausible("L", 500.0, **kw)

@@ -88,3 +88,57 @@ def test_dask_cluster_two_workers_matches_serial():
     np.testing.assert_array_equal(parallel["failed"].values, serial["failed"].values)
     assert parallel.attrs["n_failed"] == 6 and parallel.attrs["engine"] == "dask"
     assert "RuntimeError: diagonal" in str(parallel["error"].sel(a=2.0, b=2.0).item())
+
+
+# --------------------------------------------------------------------------------------------
+# registry and failures (issue #10)
+# --------------------------------------------------------------------------------------------
+def _fails_above(*, x: float, limit: float = 1.5) -> dict[str, float]:
+    if x > limit:
+        raise ValueError(f"x = {x} above {limit}")
+    return {"y": 2.0 * x}
+
+
+def test_registry_runs_only_registered_names():
+    from onbottom.errors import InputError
+    from onbottom.study.functions import get_function, register, registered
+
+    register("test_fails_above", _fails_above, replace=True)
+    assert get_function("test_fails_above") is _fails_above
+    assert "centrifuge_response" in registered()
+    for bad in ("subprocess:getoutput", "os.system", "test_fails_abov"):
+        with pytest.raises(InputError, match="not a registered function"):
+            get_function(bad)
+    with pytest.raises(InputError, match="no ':'"):
+        register("pkg.mod:fn", _fails_above)
+    with pytest.raises(InputError, match="already registered"):
+        register("test_fails_above", lambda **_: 0.0)
+
+
+@pytest.mark.parametrize(
+    ("values", "flags", "code", "n_failed"),
+    [
+        ("[1.0]", [], 0, 0),
+        ("[1.0, 2.0]", [], 3, 1),
+        ("[1.0, 2.0]", ["--allow-failures"], 0, 1),
+        ("[2.0, 3.0]", ["--allow-failures"], 3, 2),  # every run failed: never a success
+    ],
+)
+def test_sweep_command_exit_status_follows_failures(tmp_path, values, flags, code, n_failed):
+    import json
+
+    from click.testing import CliRunner
+
+    from onbottom.cli.main import cli
+    from onbottom.study.functions import register
+
+    register("test_fails_above", _fails_above, replace=True)
+    grid = tmp_path / "g.toml"
+    grid.write_text(f'[sweep]\nfunction = "test_fails_above"\n[grid]\nx = {values}\n')
+    out = tmp_path / "o.nc"
+    args = ["sweep", str(grid), "-o", str(out), "--workers", "0", "--json", *flags]
+    r = CliRunner().invoke(cli, args)
+    assert r.exit_code == code, r.output
+    summary = json.loads(r.stdout)
+    assert summary["n_failed"] == n_failed and out.exists()  # results kept for diagnosis
+    assert summary["success"] is (n_failed == 0)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -177,9 +179,14 @@ def test_trial_evaluation_has_no_side_effects(calc_model):
     np.testing.assert_array_equal(t1, t2)
 
 
-def test_numba_kernel_equals_python_twin_on_random_path(calc_model):
+@pytest.mark.parametrize(
+    "options",
+    [{}, {"passive_rule": "legacy_elastic"}, {"b_placement": "inside"}],
+    ids=["default", "legacy_elastic", "b_inside"],
+)
+def test_numba_kernel_equals_python_twin_on_random_path(calc_model, options):
     rng = np.random.default_rng(11)
-    m = calc_model
+    m = dataclasses.replace(calc_model, **options)
     n = 3000
     # random walk with occasional large excursions: visits all regions and new troughs
     u = np.cumsum(rng.normal(0.0, 0.02, n) + 0.05 * (rng.random(n) < 0.02))
@@ -290,8 +297,9 @@ def test_work_law_none_and_passive_integrand():
     assert np.any(h_pas[:, OUT_Z] < h_tot[:, OUT_Z])
 
 
-def test_return_from_breakout_keeps_penetration_and_frozen_envelope(calc_model):
-    m = calc_model
+@pytest.mark.parametrize("rule", ["elastoplastic", "legacy_elastic"])
+def test_return_from_breakout_keeps_penetration_and_frozen_envelope(calc_model, rule):
+    m = dataclasses.replace(calc_model, passive_rule=rule)
     v = 10.52 * KN
     u = np.concatenate([np.linspace(0.0, 0.5, 2001)[1:], np.linspace(0.5, 0.1, 801)[1:]])
     h, state = _drive(m, u, v)
@@ -301,8 +309,19 @@ def test_return_from_breakout_keeps_penetration_and_frozen_envelope(calc_model):
     z_reached = z2 + (z3 - z2) * (0.5 - m.y2) / (m.y3 - m.y2)
     assert h[-1, OUT_Z] == pytest.approx(z_reached, rel=1e-12)
     fr2 = m.peak_passive(v, z2)
-    expected = 0.3 * fr2 + 0.7 * fr2 * (0.1 - m.y1) / (m.y2 - m.y1)
-    assert h[-1, OUT_PASSIVE] == pytest.approx(expected, rel=1e-9)
+    if rule == "legacy_elastic":
+        # restoring force on the frozen envelope
+        expected = 0.3 * fr2 + 0.7 * fr2 * (0.1 - m.y1) / (m.y2 - m.y1)
+        assert h[-1, OUT_PASSIVE] == pytest.approx(expected, rel=1e-9)
+    else:
+        # push-only: the force unloads along k_u = 0.3 F_r2/y1 and never pulls
+        p_top = h[1999, OUT_PASSIVE]
+        k_u = 0.3 * fr2 / m.y1
+        back = 0.5 - u[2000:]
+        np.testing.assert_allclose(
+            h[2000:, OUT_PASSIVE], np.maximum(p_top - k_u * back, 0.0), atol=1e-9 * fr2
+        )
+        assert h[-1, OUT_PASSIVE] == 0.0
 
 
 def test_check_validity_warns_after_a_run(calc_model):

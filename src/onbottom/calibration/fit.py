@@ -59,6 +59,7 @@ from onbottom.calibration.parameters import Parameter
 from onbottom.calibration.records import TestRecord
 from onbottom.errors import InputError
 from onbottom.study.engine import ParallelMap, SerialMap, dask_client
+from onbottom.study.functions import register
 from onbottom.study.sweep import sweep
 
 __all__ = [
@@ -707,3 +708,6 @@ def record_misfit(
         raise RuntimeError(f"simulation failed: {getattr(res, 'message', '')}")
     m = evaluate_misfit(record, res, weights)
     return {"misfit": m.total, **{f"term_{k}": v for k, v in m.terms.items()}}
+
+
+register("misfit", record_misfit)

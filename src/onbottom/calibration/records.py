@@ -268,7 +268,8 @@ def _validated_data(data: xr.Dataset, name: str) -> xr.Dataset:
     if bad.size:
         i = int(bad[0]) + 1
         raise InputError(
-            f"record {name!r}: column 'time' row {i} is {t[i]!r} after {t[i - 1]!r}:"
+            f"record {name!r}: column 'time' row {i} is {float(t[i])!r} after"
+            f" {float(t[i - 1])!r}:"
             " time must increase strictly"
         )
     for col in ds.variables:
@@ -367,8 +368,8 @@ def _read_csv(path: Path) -> TestRecord:
     if bad.size:
         r = int(bad[0]) + 1
         raise InputError(
-            f"{path}: column 'time' row {r} (line {first_data_line + r}) = {t[r]!r} s after"
-            f" {t[r - 1]!r} s: time must increase strictly"
+            f"{path}: column 'time' row {r} (line {first_data_line + r}) = {float(t[r])!r} s"
+            f" after {float(t[r - 1])!r} s: time must increase strictly"
         )
     ds = xr.Dataset(coords={"time": ("time", t)})
     for c, col in enumerate(names):
@@ -496,13 +497,21 @@ def load_record(path: str | os.PathLike) -> TestRecord:
     if not p.exists():
         raise InputError(f"record file {str(p)!r} does not exist")
     suffix = p.suffix.lower()
-    if suffix == ".csv":
-        return _read_csv(p)
-    if suffix in (".nc", ".nc4", ".netcdf"):
-        return _read_netcdf(p)
-    raise InputError(
-        f"record file {str(p)!r}: suffix {suffix!r} is invalid: must be '.csv' or '.nc'"
-    )
+    if suffix not in (".csv", ".nc", ".nc4", ".netcdf"):
+        raise InputError(
+            f"record file {str(p)!r}: suffix {suffix!r} is invalid: must be '.csv' or '.nc'"
+        )
+    try:
+        return _read_csv(p) if suffix == ".csv" else _read_netcdf(p)
+    except InputError:
+        raise
+    except UnicodeDecodeError:
+        raise InputError(f"record file {str(p)!r} is invalid: not a UTF-8 text file") from None
+    except Exception as exc:  # unreadable, truncated, not NetCDF, missing variables ...
+        raise InputError(
+            f"record file {str(p)!r} is invalid: cannot be read as a test record"
+            f" ({type(exc).__name__}: {exc})"
+        ) from None
 
 
 def save_record(record: TestRecord, path: str | os.PathLike) -> Path:

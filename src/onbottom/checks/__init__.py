@@ -1,1 +1,24 @@
-"""onbottom.checks."""
+"""onbottom.checks — DNV-RP-F109 design checks (closed form, no time integration).
+
+* :func:`absolute_lateral_stability` — F109 (2017) §3.6, Eqs 3.38–3.41;
+* :func:`vertical_stability` — F109 §3.3, Eq 3.1;
+* :mod:`onbottom.checks.f109_tables` — C*_Y, C*_Z, γ_SC.
+"""
+
+from onbottom.checks.absolute import (
+    AbsoluteStabilityResult,
+    absolute_lateral_stability,
+    absolute_stability_of_sea_state,
+)
+from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
+from onbottom.checks.vertical import VerticalStabilityResult, vertical_stability
+
+__all__ = [
+    "AbsoluteStabilityResult",
+    "VerticalStabilityResult",
+    "absolute_lateral_stability",
+    "absolute_stability_of_sea_state",
+    "peak_load_coefficients",
+    "safety_factor",
+    "vertical_stability",
+]

@@ -12,12 +12,26 @@ from pathlib import Path
 import click
 import numpy as np
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+from onbottom.errors import InputError
 from onbottom.inputs import Pipe, Sand
 
 __all__ = ["command"]
 
 _KN = 1.0e3
+_POINTS_PER_CYCLE = 400  # soil.response.cyclic_path default
+_BYTES_PER_POINT = 160  # measured peak 72 B/point (tracemalloc, 1e5 points) + room for plots
+MAX_PATH_BYTES = 2 * 1024**3
+"""Largest memory a --cycles path may take (estimated up front; larger requests are refused)."""
+
+_POS = Number(float, min=0.0, min_open=True)
 
 
 @click.command("backbone")
@@ -30,39 +44,68 @@ _KN = 1.0e3
     help="silica: Verley & Sotberg (1994); calcareous: Youssef & Cassidy (2014); "
     "f109: silica with the DNV-RP-F109 §3.4.6 passive law.",
 )
-@click.option("--diameter", type=float, default=1.0, show_default=True, help="D [m].")
+@click.option("--diameter", type=_POS, default=1.0, show_default=True, help="D [m].")
 @click.option(
     "--weight-kn",
-    type=float,
+    type=_POS,
     required=True,
     help="Vertical contact load V = W_s − F_L [kN/m] (submerged weight when F_L = 0).",
 )
 @click.option(
     "--load-kn",
-    type=float,
+    type=_POS,
     default=None,
     help="Installation load W for z_i (Eq 7) [kN/m]; default --weight-kn.",
 )
-@click.option("--gamma-kn", type=float, required=True, help="Submerged unit weight γ' [kN/m³].")
-@click.option("--mu", type=float, default=0.6, show_default=True, help="Friction μ [-].")
-@click.option("--A", "a_factor", type=float, default=None, help="Factor A (default by model).")
-@click.option("--B", "b_factor", type=float, default=None, help="Factor B (default by model).")
-@click.option("--C", "c_factor", type=float, default=None, help="Factor C (default by model).")
+@click.option(
+    "--gamma-kn",
+    type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
+    required=True,
+    help="Submerged unit weight γ' [kN/m³].",
+)
+@click.option(
+    "--mu",
+    type=Number(float, min=0.0, max=2.0, min_open=True),
+    default=0.6,
+    show_default=True,
+    help="Friction μ [-].",
+)
+@click.option(
+    "--A",
+    "a_factor",
+    type=Number(float, min=0.0, max=10.0, min_open=True),
+    default=None,
+    help="Factor A (default by model).",
+)
+@click.option(
+    "--B",
+    "b_factor",
+    type=Number(float, min=0.0, max=10.0, min_open=True),
+    default=None,
+    help="Factor B (default by model).",
+)
+@click.option(
+    "--C",
+    "c_factor",
+    type=Number(float, min=0.0, max=10.0, min_open=True),
+    default=None,
+    help="Factor C (default by model).",
+)
 @click.option(
     "--z2-over-d",
-    type=float,
+    type=Number(float, min=0.0, max=1.0),
     default=None,
     help="Penetration at breakout z2/D [-] for the backbone; default z_i/D.",
 )
 @click.option(
     "--cycles",
-    type=float,
+    type=_POS,
     default=None,
     help="Drive a sinusoidal displacement path of this many cycles (penetration path).",
 )
 @click.option(
     "--amplitude",
-    type=float,
+    type=_POS,
     default=None,
     help="Amplitude of the cyclic path [m]; default 0.1·D.",
 )
@@ -96,6 +139,19 @@ def command(
     Example: onbottom backbone --model calcareous --diameter 1.0 --weight-kn 10.52
     --load-kn 42.98 --gamma-kn 7.5 --mu 0.48 --cycles 5 --plot bb.png
     """
+    if cycles is not None:
+        need = cycles * _POINTS_PER_CYCLE * _BYTES_PER_POINT
+        if need > MAX_PATH_BYTES:
+            err = InputError(
+                f"--cycles = {cycles:g} is invalid: the path of {cycles * _POINTS_PER_CYCLE:.3g}"
+                f" points would need about {need / 1024**3:.3g} GiB of memory, more than the"
+                f" {MAX_PATH_BYTES / 1024**3:g} GiB allowed (at most"
+                f" {MAX_PATH_BYTES / (_POINTS_PER_CYCLE * _BYTES_PER_POINT):.0f} cycles)"
+            )
+            err.field = "--cycles"  # type: ignore[attr-defined]
+            raise err
+    if plot_path is not None:
+        check_output_path(plot_path, field="--plot")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         payload = _run(
@@ -113,12 +169,36 @@ def command(
         )
     messages = list(dict.fromkeys(str(w.message) for w in caught))
     payload["warnings"] = messages
+    validity = _validity(payload, diameter)
+    payload["success"] = not validity
+    payload["message"] = (
+        "outside the model's validity: " + "; ".join(validity) if validity else "ok"
+    )
     if as_json:
         emit_json(payload)
-        return
-    _print_table(payload, diameter)
-    for msg in messages:
-        click.echo(f"warning: {msg}", err=True)
+    else:
+        _print_table(payload, diameter)
+        for msg in messages:
+            click.echo(f"warning: {msg}", err=True)
+        if validity:
+            click.echo(f"Error: {payload['message']}", err=True)
+    if validity:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _validity(payload: dict, d: float) -> list[str]:
+    """Where the result leaves the Verley & Sotberg model's validity (penetration > D/2)."""
+    out = []
+    pts = payload["backbone"]
+    for key in ("z_i", "z2", "z3"):
+        z = float(pts[key])
+        if z > 0.5 * d:
+            out.append(f"{key} = {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
+    path = payload.get("path")
+    if path is not None and float(path["final_penetration"]) > 0.5 * d:
+        z = float(path["final_penetration"])
+        out.append(f"the path's penetration {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
+    return out
 
 
 def _run(

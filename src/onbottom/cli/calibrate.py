@@ -7,7 +7,14 @@ from pathlib import Path
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 from onbottom.errors import InputError
 
 DEFAULT_START = {"A": 0.25, "B": 0.35, "C": 0.98, "mu": 0.6}
@@ -36,9 +43,12 @@ def _pairs(text: str | None, option: str) -> dict[str, str]:
 
 def _float(option: str, name: str, text: str) -> float:
     try:
-        return float(text)
+        x = float(text)
     except ValueError as exc:
         raise InputError(f"{option} {name}={text!r} is invalid: expected a number") from exc
+    if not math.isfinite(x):
+        raise InputError(f"{option} {name}={text!r} is invalid: expected a finite number")
+    return x
 
 
 def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float | None):
@@ -49,16 +59,26 @@ def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float |
     bad = [n for n in names if n not in known]
     if bad:
         raise InputError(f"--vary names {bad} are invalid: must be among {sorted(known)}")
+    if not names:
+        raise InputError(f"--vary = {vary!r} is invalid: name at least one of {sorted(known)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"--vary = {vary!r} is invalid: a name is repeated")
     b = {k: v for k, v in DEFAULT_BOUNDS.items()}
     for k, v in _pairs(bounds, "--bounds").items():
         if ":" not in v:
             raise InputError(f"--bounds {k}={v!r} is invalid: expected LOWER:UPPER")
+        if k not in known:
+            raise InputError(f"--bounds {k}= is invalid: must be among {sorted(known)}")
         lo, hi = v.split(":", 1)
         b[k] = (_float("--bounds", k, lo), _float("--bounds", k, hi))
+        if not b[k][0] < b[k][1]:
+            raise InputError(f"--bounds {k}={v} is invalid: LOWER must be below UPPER")
     s = dict(DEFAULT_START)
     if gamma is not None:
         s["gamma"] = gamma
     for k, v in _pairs(start, "--start").items():
+        if k not in known:
+            raise InputError(f"--start {k}= is invalid: must be among {sorted(known)}")
         s[k] = _float("--start", k, v)
     if "gamma" in names and "gamma" not in s:
         s["gamma"] = 0.5 * (b["gamma"][0] + b["gamma"][1])
@@ -81,8 +101,14 @@ def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float |
 
 
 def _weights(text: str | None):
+    from dataclasses import fields
+
     from onbottom.calibration.objective import MisfitWeights
 
+    allowed = [f.name for f in fields(MisfitWeights)]
+    for k in _pairs(text, "--weights"):
+        if k not in allowed:
+            raise InputError(f"--weights {k}= is invalid: must be among {allowed}")
     return MisfitWeights(
         **{k: _float("--weights", k, v) for k, v in _pairs(text, "--weights").items()}
     )
@@ -93,7 +119,11 @@ def _weights(text: str | None):
 @click.option("--vary", default="A,B,C,mu", show_default=True, help="Parameters to fit.")
 @click.option("--bounds", help="Search bounds, e.g. 'A=0.1:0.6,mu=0.4:1.2'.")
 @click.option("--start", help="Start/fixed values, e.g. 'A=0.3,mu=0.5'.")
-@click.option("--gamma", type=float, help="Submerged unit weight γ' [N/m³] (default: preset's).")
+@click.option(
+    "--gamma",
+    type=Number(float, min=1.0e3, max=2.5e4, unit="N/m³"),
+    help="Submerged unit weight γ' [N/m³] (default: preset's).",
+)
 @click.option("--weights", help="Misfit weights, e.g. 'u_history=2,time_to_limit=0'.")
 @click.option(
     "--history-only",
@@ -111,14 +141,31 @@ def _weights(text: str | None):
     show_default=True,
     help="Simulate the record's centrifuge preset, or drive by its recorded H and V.",
 )
-@click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--maxiter", type=int, default=40, show_default=True, help="DE generations.")
-@click.option("--popsize", type=int, default=10, show_default=True, help="DE population factor.")
+@click.option("--seed", type=Number(int, min=0), default=0, show_default=True)
+@click.option(
+    "--maxiter",
+    type=Number(int, min=1, max=100_000),
+    default=40,
+    show_default=True,
+    help="DE generations (local: iterations).",
+)
+@click.option(
+    "--popsize",
+    type=Number(int, min=5, max=1000),
+    default=10,
+    show_default=True,
+    help="DE population factor (population = popsize × parameters; below 5 the search is"
+    " too thin to trust).",
+)
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write fitted TOML here.")
 @click.option("--plot-dir", type=click.Path(file_okay=False), help="Write fit figures here.")
 @click.option("--scheduler", help="Dask scheduler address (remote cluster).")
 @click.option(
-    "--workers", type=int, default=0, show_default=True, help="Local Dask workers (0 = serial)."
+    "--workers",
+    type=Number(int, min=0, max=1024),
+    default=0,
+    show_default=True,
+    help="Local Dask workers (0 = serial).",
 )
 @json_option
 @handle_errors
@@ -154,15 +201,24 @@ def command(
     from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
     from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
 
-    recs = [load_record(p) for p in records]
     params = _parameters(vary, bounds, start, gamma)
+    misfit_weights = HISTORY_ONLY if history_only else _weights(weights)
+    if output:
+        check_output_path(output, field="--output")
+    recs = []
+    for p in records:
+        try:
+            recs.append(load_record(p))
+        except InputError as exc:
+            exc.field = getattr(exc, "field", None) or "records"  # type: ignore[attr-defined]
+            raise
     if loads == "preset":
         simulator = CentrifugeSimulator(gamma=gamma)
     else:
         simulator = RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
     kwargs = dict(
         simulator=simulator,
-        weights=HISTORY_ONLY if history_only else _weights(weights),
+        weights=misfit_weights,
         method=method,
         seed=seed,
         maxiter=maxiter,
@@ -183,32 +239,45 @@ def command(
     else:
         results = run()
     if output:
+        from onbottom.results import write_text_atomic
+
         out = Path(output)
-        out.parent.mkdir(parents=True, exist_ok=True)
         if len(results) == 1:
-            out.write_text(results[0].to_toml(), encoding="utf-8")
+            write_text_atomic(out, results[0].to_toml())
         else:
-            for res in results:
+            used: set[str] = set()
+            for i, res in enumerate(results):
                 tag = "".join(ch if ch.isalnum() else "_" for ch in res.record_names[0])
-                out.with_name(f"{out.stem}_{tag}{out.suffix}").write_text(
-                    res.to_toml(), encoding="utf-8"
-                )
+                if tag in used:  # two records of one name: never overwrite a fit
+                    tag = f"{tag}_{i + 1}"
+                used.add(tag)
+                write_text_atomic(out.with_name(f"{out.stem}_{tag}{out.suffix}"), res.to_toml())
     if plot_dir:
         from onbottom.plotting.calibration import plot_fit
 
         pdir = Path(plot_dir)
         pdir.mkdir(parents=True, exist_ok=True)
+        written_plots: set[str] = set()
         for res in results:
             for rec in (r for r in recs if r.name in res.record_names):
                 sim = simulator(rec, res.values)
                 fig = plot_fit(rec, sim, title=f"{rec.name}: fitted")
                 tag = "".join(ch if ch.isalnum() else "_" for ch in rec.name)
-                fig.savefig(pdir / f"fit_{tag}.png", dpi=120)
+                name = f"fit_{tag}.png"
+                k = 2
+                while name in written_plots:  # two records of one name: keep both figures
+                    name = f"fit_{tag}_{k}.png"
+                    k += 1
+                written_plots.add(name)
+                fig.savefig(pdir / name, dpi=120)
     rows = parameter_table(results)
     names = [p.name for p in params if p.vary]
     rec_rows = recommend(rows, names=names) if each else []
+    ok = all(bool(r.success) for r in results)
     if as_json:
         emit_json({"fits": [r.to_dict() for r in results], "recommended": rec_rows})
+        if not ok:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
     for res in results:
         click.echo(f"{', '.join(res.record_names)}: {res.message}")
@@ -226,3 +295,6 @@ def command(
                 rec_rows, columns=["parameter", "min", "mean", "max", "rule", "recommended"]
             )
         )
+    if not ok:
+        click.echo("Error: a fit did not succeed (see its message)", err=True)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -20,8 +20,9 @@ from pathlib import Path
 import click
 import numpy as np
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 from onbottom.dem.config import PRESETS, DEMConfig, get_preset
+from onbottom.errors import InputError
 
 __all__ = ["command"]
 
@@ -33,12 +34,88 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 def _config(preset: str, seed: int | None, config_file: Path | None) -> DEMConfig:
     if config_file is not None:
-        cfg = DEMConfig.from_json(config_file.read_text())
+        cfg = DEMConfig.from_file(config_file)
     else:
         cfg = get_preset(preset)
     if seed is not None:
         cfg = cfg.replace(seed=seed)
     return cfg
+
+
+def _check_out(path: Path, field: str) -> None:
+    from onbottom.cli._common import check_output_path
+
+    check_output_path(path, field=field)
+
+
+def _existing_identity(path: Path) -> dict | None:
+    """The run identity recorded in a result or specimen file (None if none/unreadable)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            attrs = dict(ds.attrs)
+        if "sample_attrs" in attrs and "run_identity" not in attrs:
+            attrs = json.loads(attrs["sample_attrs"])
+        return {**json.loads(attrs["run_identity"]), "config": json.loads(attrs["config"])}
+    except Exception:  # unreadable or without identity: not a result of this run either
+        return None
+
+
+def _guard_output(path: Path, identity: dict, restart: bool, field: str) -> None:
+    """Refuse to overwrite a file that holds the result of another run (unless --restart)."""
+    from onbottom.dem.identity import differences
+
+    if restart or not path.exists():
+        return
+    found = _existing_identity(path)
+    if found == identity:
+        return
+    what = (
+        "a file without a run identity"
+        if found is None
+        else "the result of another run (" + "; ".join(differences(found, identity)[:8]) + ")"
+    )
+    err = InputError(
+        f"{field} = {str(path)!r} is invalid: it already holds {what}; give another {field},"
+        " or --restart to replace it"
+    )
+    err.field = field  # type: ignore[attr-defined]
+    raise err
+
+
+def _load_sample(path: Path):
+    """A specimen file; a file that is not one is an input error naming it."""
+    from onbottom.dem.sample import Sample
+
+    try:
+        return Sample.load(path)
+    except Exception as exc:  # unreadable, truncated or another kind of file
+        err = InputError(
+            f"--sample = {str(path)!r} is invalid: not a readable specimen file"
+            f" ({type(exc).__name__}: {exc}); prepare one with 'onbottom dem prepare'"
+        )
+        err.field = "--sample"  # type: ignore[attr-defined]
+        raise err from None
+
+
+def _load_run(path: Path):
+    """A run or summary file of ``dem penetrate`` / ``dem summarize``."""
+    from onbottom.results import load_dataset
+
+    try:
+        ds = load_dataset(path)
+    except Exception as exc:  # unreadable, truncated or not NetCDF
+        raise InputError(
+            f"results = {str(path)!r} is invalid: not a readable NetCDF file"
+            f" ({type(exc).__name__}: {exc})"
+        ) from None
+    if not ({"V_prototype", "V_prototype_mean"} & set(ds.data_vars)):
+        raise InputError(
+            f"results = {str(path)!r} is invalid: not a 'dem penetrate' run or a"
+            " 'dem summarize' summary"
+        )
+    return ds
 
 
 class _Bar:
@@ -72,7 +149,9 @@ preset_option = click.option(
     show_default=True,
     help="Experiment preset (SM/SD: the paper's full size; -reduced: minutes).",
 )
-seed_option = click.option("--seed", type=int, default=None, help="Override the preset seed.")
+seed_option = click.option(
+    "--seed", type=Number(int, min=0), default=None, help="Override the preset seed."
+)
 config_option = click.option(
     "--config",
     "config_file",
@@ -81,7 +160,14 @@ config_option = click.option(
     help="DEMConfig as JSON (DEMConfig.to_json); overrides --preset.",
 )
 threads_option = click.option(
-    "--threads", type=int, default=None, help="Numba threads (default: automatic)."
+    "--threads", type=Number(int, min=1), default=None, help="Numba threads (default: automatic)."
+)
+restart_option = click.option(
+    "--restart",
+    is_flag=True,
+    help="Start afresh: discard an existing checkpoint of this output and replace an output "
+    "of another run (a checkpoint or output of another run, or a corrupt checkpoint, is "
+    "otherwise an error).",
 )
 progress_option = click.option(
     "--progress/--no-progress", default=True, show_default=True, help="Show a progress bar."
@@ -104,15 +190,22 @@ def command() -> None:
     """2D DEM of a pipe pushed into sand (model scale SI; prototype = ×N)."""
 
 
-def _prepare(cfg: DEMConfig, out: Path, progress: bool):
+def _prepare(cfg: DEMConfig, out: Path, progress: bool, restart: bool = False):
     """Prepare and save the specimen; resumable per compacted layer.
 
     The layer checkpoint ``<out>.prep-checkpoint.nc`` is written after every layer, read when a
-    previous run was interrupted, and removed once the specimen is saved.
+    previous run was interrupted (if it belongs to the same run), and removed once the specimen
+    is saved.
     """
+    from onbottom.dem.identity import run_identity
     from onbottom.dem.preparation import prepare_sample
+    from onbottom.results import clean_stale_temporaries
 
+    _check_out(out, "--out")
+    _guard_output(out, run_identity(cfg, "preparation"), restart, "--out")
     checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
+    clean_stale_temporaries(out)
+    clean_stale_temporaries(checkpoint)
     bar = _Bar(progress, f"prepare {cfg.name}")
     t0 = time.perf_counter()
     try:
@@ -122,6 +215,7 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool):
                 0.8 * f if stage == "compaction" else (0.8 if stage == "1g" else 0.9) + 0.1 * f
             ),
             checkpoint=checkpoint,
+            restart=restart,
         )
     finally:
         bar.close()
@@ -135,6 +229,7 @@ def _prepare(cfg: DEMConfig, out: Path, progress: bool):
 @seed_option
 @config_option
 @click.option("--out", type=click.Path(dir_okay=False, path_type=Path), required=True)
+@restart_option
 @progress_option
 @json_option
 @handle_errors
@@ -143,6 +238,7 @@ def prepare_cmd(
     seed: int | None,
     config_file: Path | None,
     out: Path,
+    restart: bool,
     progress: bool,
     as_json: bool,
 ) -> None:
@@ -153,7 +249,7 @@ def prepare_cmd(
     (OUT.prep-checkpoint.nc, every 100,000 steps).
     """
     cfg = _config(preset, seed, config_file)
-    sample, wall = _prepare(cfg, out, progress and not as_json)
+    sample, wall = _prepare(cfg, out, progress and not as_json, restart)
     summary = {
         "preset": cfg.name,
         "file": str(out),
@@ -161,6 +257,7 @@ def prepare_cmd(
         "target_void_ratio": cfg.target.void_ratio,
         "void_ratio": sample.attrs.get("void_ratio_Ng"),
         "equilibrium_Ng_converged": sample.attrs.get("equilibrium_Ng_converged"),
+        "run_fingerprint": sample.attrs.get("run_fingerprint"),
         "wall_time_s": wall,
     }
     if as_json:
@@ -190,7 +287,7 @@ def prepare_cmd(
 )
 @click.option(
     "--checkpoint-every",
-    type=int,
+    type=Number(int, min=1),
     default=200_000,
     show_default=True,
     help="Steps between checkpoints.",
@@ -201,7 +298,13 @@ def prepare_cmd(
     show_default=True,
     help="Resume from the checkpoint if present.",
 )
-@click.option("--max-steps", type=int, default=None, help="Stop after this many steps (resumable).")
+@click.option(
+    "--max-steps",
+    type=Number(int, min=1),
+    default=None,
+    help="Stop after this many steps (resumable).",
+)
+@restart_option
 @threads_option
 @progress_option
 @json_option
@@ -216,22 +319,38 @@ def penetrate_cmd(
     checkpoint_every: int,
     resume: bool,
     max_steps: int | None,
+    restart: bool,
     threads: int | None,
     progress: bool,
     as_json: bool,
 ) -> None:
-    """Push the pipe to the final embedment; write the V–w record and field snapshots."""
+    """Push the pipe to the final embedment; write the V–w record and field snapshots.
+
+    Resumable: rerunning the same command continues from the checkpoint, if it belongs to the
+    same run (configuration, seed, velocity, specimen, engine); otherwise the command stops
+    and names the differing fields (--restart discards the checkpoint).
+    """
     from onbottom.dem.experiment import initial_state, penetrate
-    from onbottom.dem.sample import Sample
-    from onbottom.results import save_dataset
+    from onbottom.dem.identity import check_sample_config, run_identity
+    from onbottom.results import clean_stale_temporaries, save_dataset
 
     cfg = _config(preset, seed, config_file)
     show = progress and not as_json
+    _check_out(out, "--out")
     if sample_path.exists():
-        sample = Sample.load(sample_path)
+        sample = _load_sample(sample_path)
+        check_sample_config(sample, cfg, sample_path)
     else:
         sample, _ = _prepare(cfg, sample_path, show)
     ck = checkpoint if checkpoint is not None else out.with_suffix(".checkpoint.nc")
+    if not ck.exists():  # else the checkpoint's own identity check decides (in penetrate)
+        _guard_output(out, run_identity(cfg, "penetration", sample=sample), restart, "--out")
+    if ck.resolve() in (out.resolve(), sample_path.resolve()):
+        raise InputError(
+            f"--checkpoint = {str(ck)!r} is invalid: it must differ from --out and --sample"
+        )
+    clean_stale_temporaries(out)
+    clean_stale_temporaries(ck)
     bar = _Bar(show, f"penetrate {cfg.name}")
     t0 = time.perf_counter()
     try:
@@ -244,6 +363,7 @@ def penetrate_cmd(
             threads=threads,
             max_steps=max_steps,
             progress=bar,
+            restart=restart,
         )
     finally:
         bar.close()
@@ -268,6 +388,7 @@ def penetrate_cmd(
         "n_particles": int(ds.attrs["n_particles"]),
         "inertial_number": float(ds.attrs["inertial_number"]),
         "quasi_static": bool(ds.attrs["quasi_static"]),
+        "run_fingerprint": ds.attrs.get("run_fingerprint"),
         **_key_figures(small),
         "wall_time_s": wall,
     }
@@ -275,6 +396,35 @@ def penetrate_cmd(
         emit_json(summary)
     else:
         click.echo(json.dumps(summary, indent=2))
+
+
+def _summary_names(results: tuple[Path, ...], runs: list, outdir: Path) -> list[str]:
+    """File stems of the summaries: the preset name, unless that would overwrite the summary
+    of another run (two runs of one preset in this call, or an existing summary written from
+    another file); then ``<preset>_<run file stem>``."""
+    import xarray as xr
+
+    base = [
+        str(ds.attrs.get("preset", "")) or Path(p).stem for p, ds in zip(results, runs, strict=True)
+    ]
+    names = []
+    for p, name in zip(results, base, strict=True):
+        clash = base.count(name) > 1
+        existing = outdir / f"{name}_summary.nc"
+        if not clash and existing.exists():
+            try:
+                with xr.open_dataset(existing, engine="h5netcdf") as old:
+                    src = old.attrs.get("source_file")
+            except Exception:  # unreadable old summary: do not overwrite it silently either
+                src = None
+            clash = src != str(Path(p).resolve())
+        names.append(f"{name}_{Path(p).stem}" if clash else name)
+    if len(set(names)) != len(names):
+        raise InputError(
+            "results are invalid: two run files would write the same summary names"
+            f" ({', '.join(names)}); give each run file a different name"
+        )
+    return names
 
 
 def _key_figures(small) -> dict[str, object]:
@@ -315,35 +465,35 @@ def _f114_unit_weight(ds, gamma_kn: float | None) -> float | None:
 @outdir_option
 @click.option(
     "--chain-threshold",
-    type=float,
+    type=Number(float, min=0.0),
     default=200.0,
     show_default=True,
     help="Force-chain threshold [N].",
 )
 @click.option(
     "--rotation-threshold",
-    type=float,
+    type=Number(float, min=0.0, max=360.0),
     default=20.0,
     show_default=True,
     help="Rotation highlight [deg].",
 )
 @click.option(
     "--gamma-kn",
-    type=float,
+    type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
     default=None,
     help="Prototype dry unit weight of the sand for the F114 bounds [kN/m³]; default by "
     "preset (SM 15.9, SD 16.7: estimates, see onbottom.plotting.dem_f114).",
 )
 @click.option(
     "--phi-lower-deg",
-    type=float,
+    type=Number(float, min=15.0, max=50.0, unit="deg"),
     default=33.0,
     show_default=True,
     help="φ' of the F114 lower bound [deg] (φ_c of the test sand).",
 )
 @click.option(
     "--phi-upper-deg",
-    type=float,
+    type=Number(float, min=15.0, max=50.0, unit="deg"),
     default=40.0,
     show_default=True,
     help="φ' of the F114 upper bound [deg] (peak angle implied by the paper).",
@@ -369,10 +519,14 @@ def plot_cmd(
     import xarray as xr
 
     from onbottom.plotting import dem as P
-    from onbottom.results import load_dataset
 
+    if phi_lower_deg > phi_upper_deg:
+        raise InputError(
+            f"--phi-lower-deg = {phi_lower_deg:g} is invalid: must not exceed --phi-upper-deg"
+            f" = {phi_upper_deg:g}"
+        )
+    runs = [_load_run(p) for p in results]
     outdir.mkdir(parents=True, exist_ok=True)
-    runs = [load_dataset(p) for p in results]
     written: list[str] = []
 
     def save(fig, name):
@@ -439,14 +593,14 @@ def plot_cmd(
 @outdir_option
 @click.option(
     "--step",
-    type=float,
+    type=Number(float, min=0.0, max=0.5, min_open=True),
     default=0.005,
     show_default=True,
     help="Bin width of the V–w curve in w/D [-].",
 )
 @click.option(
     "--drop-fraction",
-    type=float,
+    type=Number(float, min=0.0, max=1.0, min_open=True, max_open=True),
     default=0.05,
     show_default=True,
     help="Smallest drop below the running peak counted as softening [-].",
@@ -464,26 +618,35 @@ def summarize_cmd(
     every disk.
     """
     from onbottom.dem.summary import summarize_run
-    from onbottom.results import load_dataset, save_dataset
+    from onbottom.results import save_dataset, write_text_atomic
 
+    runs = [_load_run(p) for p in results]
+    for path, ds in zip(results, runs, strict=True):
+        if "V_prototype" not in ds:
+            raise InputError(f"results = {str(path)!r} is invalid: already a summary")
+    names = _summary_names(results, runs, outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     report = []
-    for path in results:
-        ds = load_dataset(path)
+    for path, ds, name in zip(results, runs, names, strict=True):
         small = summarize_run(ds, step=step, drop_fraction=drop_fraction)
-        name = str(ds.attrs.get("preset", path.stem))
+        small.attrs["source_file"] = str(Path(path).resolve())
         save_dataset(small, outdir / f"{name}_summary.nc")
         curve = small[["V_prototype_mean", "V_prototype_min", "V_prototype_max"]] / 1e3
-        curve.to_dataframe().rename(columns=lambda c: c + "_kN_per_m").to_csv(
-            outdir / f"{name}_V_w.csv", float_format="%.4f"
+        write_text_atomic(
+            outdir / f"{name}_V_w.csv",
+            curve.to_dataframe()
+            .rename(columns=lambda c: c + "_kN_per_m")
+            .to_csv(float_format="%.4f"),
         )
         surf = small[["surface0", "surface", "heave"]] * 1e3
-        surf.to_dataframe().rename(columns=lambda c: c + "_mm").to_csv(
-            outdir / f"{name}_surface.csv", float_format="%.4f"
+        write_text_atomic(
+            outdir / f"{name}_surface.csv",
+            surf.to_dataframe().rename(columns=lambda c: c + "_mm").to_csv(float_format="%.4f"),
         )
         report.append(
             {
-                "preset": name,
+                "preset": str(ds.attrs.get("preset", "")),
+                "summary": str(outdir / f"{name}_summary.nc"),
                 "file": str(path),
                 "complete": bool(ds.attrs.get("complete", 0)),
                 **_key_figures(small),

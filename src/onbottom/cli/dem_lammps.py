@@ -19,7 +19,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import Number, emit_json, handle_errors, json_option
 from onbottom.dem.config import PRESETS, DEMConfig, get_preset
 from onbottom.dem.lammps_backend import (
     LammpsError,
@@ -27,7 +27,6 @@ from onbottom.dem.lammps_backend import (
     run_lammps_case,
     write_lammps_case,
 )
-from onbottom.dem.sample import Sample
 from onbottom.results import save_dataset
 
 __all__ = ["command"]
@@ -61,7 +60,14 @@ __all__ = ["command"]
     default=None,
     help="Write the V–w record (NetCDF, same variables as 'onbottom dem penetrate').",
 )
-@click.option("--np", "n_procs", type=int, default=1, show_default=True, help="MPI ranks.")
+@click.option(
+    "--np",
+    "n_procs",
+    type=Number(int, min=1, max=4096),
+    default=1,
+    show_default=True,
+    help="MPI ranks.",
+)
 @click.option(
     "--workdir",
     type=click.Path(file_okay=False, path_type=Path),
@@ -70,7 +76,7 @@ __all__ = ["command"]
 )
 @click.option(
     "--settle-time",
-    type=float,
+    type=Number(float, min=0.0),
     default=0.0,
     show_default=True,
     help="Settle with the pipe at rest first [s] (the data file carries no contact history).",
@@ -96,12 +102,10 @@ def command(
     as_json: bool,
 ) -> None:
     """Run the pipe-penetration experiment with LAMMPS (cross-check of 'onbottom dem')."""
-    config = (
-        DEMConfig.from_json(config_file.read_text())
-        if config_file is not None
-        else get_preset(preset)
-    )
-    sample = Sample.load(sample_file)
+    config = DEMConfig.from_file(config_file) if config_file is not None else get_preset(preset)
+    from onbottom.cli.dem import _load_sample
+
+    sample = _load_sample(sample_file)
     case = LammpsPenetrationCase.from_config(
         config, sample, settle_time=settle_time, ramp_gravity=ramp_gravity
     )

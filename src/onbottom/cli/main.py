@@ -12,6 +12,7 @@ import sys
 import click
 
 from onbottom._version import __version__
+from onbottom.cli._common import JsonErrorGroup, report_click_error
 
 COMMAND_MODULES: tuple[str, ...] = (
     "reproduce",
@@ -22,11 +23,19 @@ COMMAND_MODULES: tuple[str, ...] = (
     "penetration",
     "dem",
     "dem_lammps",
+    "report",
+    "stability",
+    "loads",
+    "storm",
+    "curves",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100})
+@click.group(
+    cls=JsonErrorGroup,
+    context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
+)
 @click.version_option(__version__, prog_name="onbottom")
 def cli() -> None:
     """onbottom — subsea pipeline–seabed interaction.
@@ -49,16 +58,15 @@ for _name in COMMAND_MODULES:
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the exit code (for tests, ``main([...])``)."""
     try:
-        cli.main(args=argv, prog_name="onbottom", standalone_mode=False)
+        rv = cli.main(args=argv, prog_name="onbottom", standalone_mode=False)
     except click.exceptions.Abort:
         click.echo("Aborted!", err=True)
         return 1
     except click.ClickException as exc:
-        exc.show()
-        return exc.exit_code
+        return report_click_error(exc, argv if argv is not None else sys.argv[1:])
     except SystemExit as exc:  # --help / --version
         return int(exc.code or 0)
-    return 0
+    return rv if isinstance(rv, int) else 0
 
 
 if __name__ == "__main__":

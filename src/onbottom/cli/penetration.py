@@ -8,8 +8,15 @@ from typing import Any
 import click
 import numpy as np
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
-from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS, UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import (
     LayConditions,
@@ -26,6 +33,7 @@ from onbottom.soil.penetration_sand import (
 __all__ = ["command"]
 
 _KN = 1.0e3
+_POS = Number(float, min=0.0, min_open=True)
 
 
 def _parse_levels(text: str) -> np.ndarray:
@@ -89,23 +97,28 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
     show_default=True,
     help="Drained sand (F114 Eq 4.9) or undrained clay (Model 1 or 2).",
 )
-@click.option("--diameter", type=float, required=True, help="Pipe outer diameter D [m].")
+@click.option("--diameter", type=_POS, required=True, help="Pipe outer diameter D [m].")
 @click.option(
     "--gamma-kn",
-    type=float,
+    type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
     required=True,
     help="Effective (submerged; dry for dry centrifuge sand) unit weight γ' [kN/m³].",
 )
-@click.option("--phi-deg", type=float, default=None, help="Sand: friction angle φ' [deg].")
+@click.option(
+    "--phi-deg",
+    type=Number(float, min=15.0, max=50.0, unit="deg"),
+    default=None,
+    help="Sand: friction angle φ' [deg].",
+)
 @click.option(
     "--phi-lower-deg",
-    type=float,
+    type=Number(float, min=15.0, max=50.0, unit="deg"),
     default=None,
     help="Sand: φ' of the lower estimate [deg] (e.g. φ_cv); default --phi-deg.",
 )
 @click.option(
     "--phi-upper-deg",
-    type=float,
+    type=Number(float, min=15.0, max=50.0, unit="deg"),
     default=None,
     help="Sand: φ' of the upper estimate [deg] (e.g. peak); default --phi-deg.",
 )
@@ -134,15 +147,15 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
 )
 @click.option(
     "--depth-coefficient",
-    type=float,
+    type=Number(float, min=0.0, max=10.0),
     default=DEPTH_FACTOR_COEFFICIENT,
     show_default=True,
     help="Sand: coefficient of the depth factor d_q (F114 1.2; Brinch Hansen 2).",
 )
-@click.option("--su-kpa", type=float, default=None, help="Clay: s_u at the mudline [kPa].")
+@click.option("--su-kpa", type=_POS, default=None, help="Clay: s_u at the mudline [kPa].")
 @click.option(
     "--su-gradient-kpa",
-    type=float,
+    type=Number(float, min=0.0, max=1.0e4),
     default=0.0,
     show_default=True,
     help="Clay: s_u gradient ρ [kPa/m].",
@@ -156,7 +169,7 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
 )
 @click.option(
     "--roughness",
-    type=float,
+    type=Number(float, min=0.0, max=1.0),
     default=DEFAULT_ROUGHNESS,
     show_default=True,
     help="Clay Model 1: pipe roughness r in [0, 1].",
@@ -168,9 +181,9 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
     show_default=True,
     help="Comma-separated z/D values for the table.",
 )
-@click.option("--load-kn", type=float, default=None, help="Vertical load W [kN/m]: embedment.")
-@click.option("--ei", type=float, default=None, help="Lay factor: bending stiffness EI [N·m²].")
-@click.option("--tension-kn", type=float, default=None, help="Lay factor: bottom tension [kN].")
+@click.option("--load-kn", type=_POS, default=None, help="Vertical load W [kN/m]: embedment.")
+@click.option("--ei", type=_POS, default=None, help="Lay factor: bending stiffness EI [N·m²].")
+@click.option("--tension-kn", type=_POS, default=None, help="Lay factor: bottom tension [kN].")
 @click.option(
     "--plot", "plot_path", type=click.Path(dir_okay=False), default=None, help="Save a V–w plot."
 )
@@ -192,6 +205,9 @@ def command(**opts: Any) -> None:
     solves Q_v(z) = k_lay·W on 0 < z <= D; give --ei and --tension-kn to apply the lay factor.
     """
     levels = _parse_levels(opts["levels"])
+    for key, option in (("plot_path", "--plot"), ("save_path", "--save")):
+        if opts[key]:
+            check_output_path(opts[key], field=option)
     lay = None
     if (opts["ei"] is None) != (opts["tension_kn"] is None):
         raise InputError("--ei and --tension-kn are invalid: give both or neither")
@@ -203,8 +219,20 @@ def command(**opts: Any) -> None:
         d = model.diameter
         table = penetration_curve(model, levels * d, bounds=bounds)
         embedment = None
+        validity: list[str] = []
         if opts["load_kn"] is not None:
-            embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
+            with warnings.catch_warnings(record=True) as at_solution:
+                warnings.simplefilter("always", OutOfRangeWarning)
+                try:
+                    embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
+                except SolutionError as exc:
+                    exc.field = "--load-kn"  # type: ignore[attr-defined]
+                    raise
+            validity = list(dict.fromkeys(str(w.message) for w in at_solution))
+            for w in at_solution:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+            if not embedment.success:
+                validity.append(embedment.message)
         curve = None
         if opts["plot_path"] or opts["save_path"]:
             zmax = max(0.5, float(levels.max()))
@@ -214,6 +242,13 @@ def command(**opts: Any) -> None:
                 model, bounds=bounds, embedment=embedment, n=201, z_over_d_max=zmax
             )
     messages = list(dict.fromkeys(str(w.message) for w in caught))
+    emb: dict[str, Any] | None = None
+    if embedment is not None:
+        emb = embedment.as_dict()
+        if validity:
+            emb["success"] = False
+            emb["status"] = "outside_validity"
+            emb["message"] = "outside the model's validity at the solution: " + "; ".join(validity)
 
     if curve is not None and opts["save_path"]:
         from onbottom.results import save_dataset
@@ -241,12 +276,14 @@ def command(**opts: Any) -> None:
             "parameters": model.parameters(),
             "units": {"z": "m", "B": "m", "Q_v": "N/m", "load": "N/m"},
             "table": rows,
-            "embedment": embedment.as_dict() if embedment is not None else None,
+            "embedment": emb,
             "warnings": messages,
         }
         if bounds is not None:
             payload["bounds"] = bounds.parameters()
         emit_json(payload)
+        if validity:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
     for msg in messages:
@@ -281,5 +318,7 @@ def command(**opts: Any) -> None:
         click.echo(
             f"embedment: z = {embedment.z:.4f} m (z/D = {embedment.z_over_d:.4f}) for "
             f"W = {embedment.load / _KN:g} kN/m, k_lay = {embedment.lay_factor:.3f}, "
-            f"Q_v = {embedment.resistance / _KN:.3f} kN/m; {embedment.message}"
+            f"Q_v = {embedment.resistance / _KN:.3f} kN/m; {emb['message']}"
         )
+    if validity:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import click
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+from onbottom.errors import OutOfRangeWarning
 
 
 @click.command("simulate")
@@ -35,10 +43,17 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     [programme] and optional [solver] tables; see examples/section_case.toml. Loads in the
     file are in kN/m.
     """
-    from onbottom.dynamics.case import run_case
+    from onbottom.dynamics.case import load_case, run_case
 
-    res = run_case(case, progress=not quiet and not as_json)
     nc = output if output is not None else case.with_suffix(".nc")
+    check_output_path(nc, field="--output")
+    if plot is not None:
+        check_output_path(plot, field="--plot")
+    load_case(case)  # check the whole file before any work
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        res = run_case(case, progress=not quiet and not as_json)
+    messages = list(dict.fromkeys(str(w.message) for w in caught))
     res.save(nc)
     if plot is not None:
         import matplotlib.pyplot as plt
@@ -67,10 +82,15 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
         **{f"{k}": v for k, v in res.summary.items()},
         "netcdf": str(nc),
         "plot": None if plot is None else str(plot),
+        "warnings": messages,
     }
     if as_json:
         emit_json(payload)
+        if not res.success:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
+    for msg in messages:
+        click.echo(f"warning: {msg}", err=True)
     click.echo(f"{res.message} after {res.n_steps} steps")
     if res.cycles_to_limit is not None:
         click.echo(f"  load cycles to the displacement limit: {res.cycles_to_limit:.2f}")
@@ -80,4 +100,4 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     click.echo(f"  final displacement   {s['final_displacement']:.3f} m")
     click.echo(f"  written: {nc}" + (f", {plot}" if plot else ""))
     if not res.success:
-        raise click.exceptions.Exit(3)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

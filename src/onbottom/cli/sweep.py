@@ -3,7 +3,7 @@
 Grid file (see ``examples/sweep_grid.toml``)::
 
     [sweep]
-    function = "centrifuge_response"   # built-in name, or "package.module:callable"
+    function = "centrifuge_response"   # a registered function name
     seed = 1                           # optional: per-point random streams
     batch_size = 2                     # optional: runs per Dask task
 
@@ -13,95 +13,156 @@ Grid file (see ``examples/sweep_grid.toml``)::
     mu = { values = [0.48, 0.85] }
 
     [fixed]                            # keyword arguments passed to every run
-    test = "inclined_1"
+    test = "Inclined 1"
 
-Built-in functions: ``centrifuge_response`` (:func:`onbottom.study.functions.centrifuge_response`)
-and ``misfit`` (:func:`onbottom.calibration.fit.record_misfit`; ``[fixed] record = "path"`` is
-loaded as a :class:`~onbottom.calibration.records.TestRecord`, relative to the grid file).
+Functions: only those registered by name in :mod:`onbottom.study.functions` —
+``centrifuge_response`` (:func:`onbottom.study.functions.centrifuge_response`), ``misfit``
+(:func:`onbottom.calibration.fit.record_misfit`; ``[fixed] record = "path"`` is loaded as a
+:class:`~onbottom.calibration.records.TestRecord`, relative to the grid file) and any a user
+registers from Python (``onbottom.study.functions.register``). A grid file never imports code.
+
+The file is checked against a strict schema (unknown tables or keys are errors with the line
+and a did-you-mean), and the grid and fixed names against the function's arguments. The
+command exits with status 3 when some runs failed (the results, with ``failed`` and
+``error``, are still written), unless ``--allow-failures``; always when every run failed.
 """
 
 from __future__ import annotations
 
-import importlib
-import tomllib
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 
 import click
 import numpy as np
+from pydantic import Field
 
-from onbottom.cli._common import emit_json, handle_errors, json_option
-from onbottom.errors import InputError
+from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 
-BUILTINS = {
-    "centrifuge_response": "onbottom.study.functions:centrifuge_response",
-    "misfit": "onbottom.calibration.fit:record_misfit",
-}
-
-
-def resolve_function(spec: str) -> Callable[..., Any]:
-    """``"module:attr"`` (or a built-in name) → the callable."""
-    target = BUILTINS.get(spec, spec)
-    if ":" not in target:
-        raise InputError(
-            f"sweep.function = {spec!r} is invalid: use a built-in ({', '.join(BUILTINS)})"
-            " or 'package.module:callable'"
-        )
-    mod_name, attr = target.split(":", 1)
-    try:
-        fn = getattr(importlib.import_module(mod_name), attr)
-    except (ImportError, AttributeError) as exc:
-        raise InputError(f"sweep.function = {spec!r} cannot be imported: {exc}") from exc
-    if not callable(fn):
-        raise InputError(f"sweep.function = {spec!r} is not callable")
-    return fn
+_Scalar = bool | int | float | str
 
 
-def _axis(name: str, spec: Any) -> list[Any]:
+class SweepTable(StrictModel):
+    """``[sweep]``: the function (a registered name) and run options."""
+
+    function: str = Field(description="registered function name")
+    seed: Annotated[int, Field(ge=0)] | None = None
+    batch_size: Annotated[int, Field(ge=1, le=1_000_000)] | None = None
+
+
+class ValuesAxis(StrictModel):
+    """``name = { values = [...] }``."""
+
+    values: list[_Scalar] = Field(min_length=1, max_length=100_000)
+
+
+class LinspaceAxis(StrictModel):
+    """``name = { start, stop, num }`` (numpy.linspace)."""
+
+    start: float
+    stop: float
+    num: Annotated[int, Field(ge=1, le=100_000)]
+
+
+class GridFile(StrictModel):
+    """Schema of a sweep grid file."""
+
+    sweep: SweepTable
+    grid: dict[str, Any] = Field(min_length=1)
+    fixed: dict[str, _Scalar] = Field(default_factory=dict)
+
+
+MAX_POINTS = 10_000_000
+"""Largest number of grid points a sweep file may ask for."""
+
+
+def resolve_function(spec: str):
+    """The registered sweep function ``spec`` (never imports code named in a file)."""
+    import onbottom.calibration.fit  # noqa: F401 - registers "misfit"
+    from onbottom.study.functions import get_function
+
+    return get_function(spec)
+
+
+def _axis(name: str, spec: Any, file: Path, text: str) -> list[Any]:
+    field = f"grid.{name}"
     if isinstance(spec, list):
-        return spec
-    if isinstance(spec, Mapping):
-        if "values" in spec:
-            return list(spec["values"])
-        if {"start", "stop", "num"} <= set(spec):
-            return np.linspace(float(spec["start"]), float(spec["stop"]), int(spec["num"])).tolist()
-    raise InputError(
-        f"grid.{name} = {spec!r} is invalid: expected a list, {{values = [...]}} or"
-        " {start, stop, num}"
-    )
+        values = spec
+        if not values:
+            raise CaseFileError(
+                f"{file}: {field} is invalid: empty list", field=field, file=str(file)
+            )
+    elif isinstance(spec, Mapping):
+        model = LinspaceAxis if "values" not in spec else ValuesAxis
+        axis = parse_case(model, spec, file=file, text=text, root=field)
+        if isinstance(axis, ValuesAxis):
+            values = list(axis.values)
+        else:
+            values = np.linspace(axis.start, axis.stop, axis.num).tolist()
+    else:
+        raise CaseFileError(
+            f"{file}: {field} = {spec!r} is invalid: expected a list, {{values = [...]}} or"
+            " {start, stop, num}",
+            field=field,
+            file=str(file),
+        )
+    for i, v in enumerate(values):
+        if isinstance(v, (list, dict)) or (isinstance(v, float) and not np.isfinite(v)):
+            raise CaseFileError(
+                f"{file}: {field}[{i}] = {v!r} is invalid: expected a finite number or a string",
+                field=f"{field}[{i}]",
+                file=str(file),
+            )
+    return values
 
 
 def read_grid(path: str | Path) -> dict[str, Any]:
-    """Parse a grid TOML file into ``function``, ``grid``, ``fixed`` and options."""
+    """Parse and check a grid TOML file into ``function``, ``grid``, ``fixed`` and options."""
+    from onbottom.study.functions import check_arguments
+
     p = Path(path)
-    try:
-        doc = tomllib.loads(p.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{p}: invalid TOML: {exc}") from exc
-    sw = doc.get("sweep", {})
-    if "function" not in sw:
-        raise InputError(f"{p}: [sweep] function is missing")
-    if not doc.get("grid"):
-        raise InputError(f"{p}: [grid] is missing or empty")
-    fn_spec = str(sw["function"])
-    fixed = dict(doc.get("fixed", {}))
-    if fn_spec == "misfit":
+    doc, text = read_toml(p)
+    spec = parse_case(GridFile, doc, file=p, text=text)
+    fn = resolve_function(spec.sweep.function)
+    grid = {k: _axis(k, v, p, text) for k, v in spec.grid.items()}
+    n_points = int(np.prod([len(v) for v in grid.values()], dtype=float))
+    if n_points > MAX_POINTS:
+        raise CaseFileError(
+            f"{p}: grid is invalid: {n_points} points, more than the {MAX_POINTS} allowed",
+            field="grid",
+            file=str(p),
+        )
+    fixed = dict(spec.fixed)
+    check_arguments(fn, list(grid), where="grid")
+    check_arguments(fn, list(fixed), where="fixed")
+    if spec.sweep.function == "misfit":
+        from onbottom._casefile import resolve_path
         from onbottom.calibration.records import load_record
 
         if "record" not in fixed:
-            raise InputError(f"{p}: function 'misfit' needs [fixed] record = 'path'")
-        rec_path = Path(fixed["record"])
-        if not rec_path.is_absolute():
-            rec_path = p.parent / rec_path
-        fixed["record"] = load_record(rec_path)
+            raise CaseFileError(
+                f"{p}: fixed.record is missing: function 'misfit' needs [fixed] record = 'path'",
+                field="fixed.record",
+                file=str(p),
+            )
+        fixed["record"] = load_record(
+            resolve_path(str(fixed["record"]), relative_to=p, field="fixed.record")
+        )
     return {
-        "function": resolve_function(fn_spec),
-        "function_name": fn_spec,
-        "grid": {k: _axis(k, v) for k, v in doc["grid"].items()},
+        "function": fn,
+        "function_name": spec.sweep.function,
+        "grid": grid,
         "fixed": fixed,
-        "seed": sw.get("seed"),
-        "batch_size": sw.get("batch_size"),
+        "seed": spec.sweep.seed,
+        "batch_size": spec.sweep.batch_size,
     }
 
 
@@ -111,18 +172,24 @@ def read_grid(path: str | Path) -> dict[str, Any]:
 @click.option("--scheduler", help="Address of a running Dask scheduler.")
 @click.option(
     "--workers",
-    type=int,
+    type=Number(int, min=0, max=1024),
     default=None,
     help="Local worker processes (default one per core; 0 = serial, no Dask).",
+)
+@click.option(
+    "--allow-failures",
+    is_flag=True,
+    help="Exit 0 when some (not all) runs failed (default: exit status 3).",
 )
 @click.option("--no-progress", is_flag=True, help="Hide the progress bar.")
 @json_option
 @handle_errors
-def command(grid_file, output, scheduler, workers, no_progress, as_json):
+def command(grid_file, output, scheduler, workers, allow_failures, no_progress, as_json):
     """Run the sweep of GRID_FILE (TOML) and write the results to NetCDF."""
     from onbottom.results import save_dataset
     from onbottom.study.sweep import sweep
 
+    check_output_path(output, field="--output")
     spec = read_grid(grid_file)
     ds = sweep(
         spec["function"],
@@ -137,18 +204,37 @@ def command(grid_file, output, scheduler, workers, no_progress, as_json):
     ds.attrs["grid_file"] = str(grid_file)
     ds.attrs["function"] = spec["function_name"]
     save_dataset(ds, output)
+    n_points = int(ds.attrs["n_points"])
+    n_failed = int(ds.attrs["n_failed"])
+    errors = sorted({str(e) for e in np.ravel(ds["error"].values) if str(e)})
     summary = {
+        "success": n_failed == 0,
         "output": str(output),
         "dims": {k: int(v) for k, v in ds.sizes.items()},
         "variables": [str(v) for v in ds.data_vars],
-        "n_points": int(ds.attrs["n_points"]),
-        "n_failed": int(ds.attrs["n_failed"]),
+        "n_points": n_points,
+        "n_failed": n_failed,
+        "errors": errors[:10],
         "wall_time": float(ds.attrs["wall_time"]),
     }
+    failed = n_failed == n_points or (n_failed > 0 and not allow_failures)
     if as_json:
         emit_json(summary)
-        return
-    click.echo(
-        f"{summary['n_points']} runs ({summary['n_failed']} failed) in"
-        f" {summary['wall_time']:.1f} s → {output}"
-    )
+    else:
+        click.echo(
+            f"{n_points} runs ({n_failed} failed) in {summary['wall_time']:.1f} s → {output}"
+        )
+        for e in errors[:5]:
+            click.echo(f"  failure: {e}", err=True)
+        if failed:
+            click.echo(
+                "Error: "
+                + (
+                    "every run failed"
+                    if n_failed == n_points
+                    else f"{n_failed} of {n_points} runs failed (--allow-failures to accept)"
+                ),
+                err=True,
+            )
+    if failed:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -29,6 +29,13 @@ from onbottom.dem import _kernels as K
 from onbottom.dem.analysis import inertial_number, measuring_circles, surface_profile
 from onbottom.dem.config import DEMConfig
 from onbottom.dem.engine import PipeState, Simulation, step_sizes
+from onbottom.dem.identity import (
+    RESTART_ADVICE,
+    CheckpointError,
+    check_identity,
+    fingerprint,
+    run_identity,
+)
 from onbottom.dem.sample import Sample
 from onbottom.results import load_dataset, provenance, save_dataset
 
@@ -136,10 +143,23 @@ def _save_checkpoint(
     save_dataset(ds, path)
 
 
-def _load_checkpoint(path: Path, config: DEMConfig, threads: int | None):
-    ds = load_dataset(path)
-    meta = json.loads(ds.attrs["checkpoint_meta"])
-    sample = Sample.from_dataset(ds)
+def _load_checkpoint(
+    path: Path, config: DEMConfig, threads: int | None, identity: dict | None = None
+):
+    try:
+        ds = load_dataset(path)
+        meta = json.loads(ds.attrs["checkpoint_meta"])
+        for key in ("step_count", "n_snapshots", "surf0"):
+            meta[key]  # presence check
+        sample = Sample.from_dataset(ds)
+        ds["engine_prm"], ds["theta0"]  # presence check
+    except Exception as exc:  # any failure to read means: not a usable checkpoint
+        raise CheckpointError(
+            f"penetration checkpoint {path} cannot be read ({type(exc).__name__}: {exc}); it"
+            f" is truncated, corrupt or not a checkpoint; {RESTART_ADVICE}"
+        ) from None
+    if identity is not None:
+        check_identity(meta.get("identity"), identity, path, what="penetration checkpoint")
     sim = make_simulation(config, sample, threads)
     sim.prm[:] = ds["engine_prm"].values
     sim.step_count = int(meta["step_count"])
@@ -202,6 +222,7 @@ def penetrate(
     threads: int | None = None,
     max_steps: int | None = None,
     progress: Progress | None = None,
+    restart: bool = False,
 ) -> xr.Dataset:
     """Push the pipe into ``sample`` and return the V–w record and the field snapshots.
 
@@ -213,7 +234,11 @@ def penetrate(
         Specimen at N g equilibrium (from :func:`~onbottom.dem.preparation.prepare_sample`).
     checkpoint
         Checkpoint file (NetCDF); written every ``checkpoint_every`` steps, read when it exists
-        and ``resume`` is true.
+        and ``resume`` is true. It carries the run identity (configuration, seed, velocity,
+        specimen, engine and file-format versions, :mod:`onbottom.dem.identity`): resuming a
+        checkpoint of another run raises
+        :class:`~onbottom.dem.identity.CheckpointMismatchError` naming the differing fields,
+        an unreadable one :class:`~onbottom.dem.identity.CheckpointError`.
     checkpoint_every
         Steps between checkpoints [-].
     snapshots
@@ -225,6 +250,8 @@ def penetrate(
         to the final embedment.
     progress
         Callback receiving the fraction of the final embedment reached.
+    restart
+        Delete an existing checkpoint and start afresh.
 
     Returns
     -------
@@ -239,9 +266,21 @@ def penetrate(
     w_end = config.loading.final_embedment_ratio * D
     v = config.loading.pipe_velocity
     rec_every = config.numerics.record_every
+    if int(checkpoint_every) < 1:
+        raise CheckpointError(
+            f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
+            field="checkpoint_every",
+        )
+    if max_steps is not None and int(max_steps) < 0:
+        raise CheckpointError(
+            f"max_steps = {max_steps!r} is invalid: must be >= 0", field="max_steps"
+        )
+    identity = run_identity(config, "penetration", sample=sample)
     ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and restart:
+        ck.unlink(missing_ok=True)
     if ck is not None and resume and ck.exists():
-        sim, records, snaps, meta, theta0 = _load_checkpoint(ck, config, threads)
+        sim, records, snaps, meta, theta0 = _load_checkpoint(ck, config, threads, identity)
         log.info("resumed from %s at step %d", ck, sim.step_count)
         _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
     else:
@@ -255,6 +294,7 @@ def penetrate(
         records = {k: [] for k in ("time", "w", "V", "H", "unbalanced_ratio")}
         snaps = []
         meta = {"surf0": surf0, "xc": xc}
+    meta["identity"] = identity
     surf0 = float(meta["surf0"])
     steps_total = math.ceil(w_end / v / sim.dt)
     next_ck = (sim.step_count // checkpoint_every + 1) * checkpoint_every
@@ -285,7 +325,14 @@ def penetrate(
     complete = sim.step_count >= steps_total
     if ck is not None and not complete:
         _save_checkpoint(ck, sim, records, snaps, meta, theta0)
-    return _assemble(config, sample, sim, records, snaps, surf0, complete, N)
+    ds = _assemble(config, sample, sim, records, snaps, surf0, complete, N)
+    # the configuration itself is in attrs["config"]; the rest of the identity here
+    ds.attrs["run_identity"] = json.dumps(
+        {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
+    )
+    ds.attrs["run_fingerprint"] = fingerprint(identity)
+    ds.attrs["sample_fingerprint"] = identity["sample"]
+    return ds
 
 
 def _assemble(

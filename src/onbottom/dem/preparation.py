@@ -30,6 +30,7 @@ below :data:`STRESS_FREE_FRACTION` × the mean disk weight at 1 g (measured on t
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import time
@@ -41,9 +42,24 @@ import numpy as np
 from onbottom.constants import GRAVITY
 from onbottom.dem.config import ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
+from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
+from onbottom.errors import InputError
 
-__all__ = ["STRESS_FREE_FRACTION", "draw_diameters", "layer_targets", "prepare_sample", "settle"]
+__all__ = [
+    "MAX_PARTICLES",
+    "STRESS_FREE_FRACTION",
+    "draw_diameters",
+    "layer_targets",
+    "prepare_sample",
+    "settle",
+]
+
+MAX_PARTICLES = 2_000_000
+"""Largest specimen :func:`prepare_sample` accepts (estimated up front; the full SM and SD
+presets hold about 60,000 disks)."""
+BYTES_PER_PARTICLE = 2048
+"""Order of the memory one disk takes in the engine (state, neighbour list, contact history)."""
 
 STRESS_FREE_FRACTION = 1e-3
 """A compacted layer whose mean applied force per disk is below this fraction of the mean
@@ -179,12 +195,32 @@ class _StageClock:
         self.steps = steps
 
 
+def _read_checkpoint(ck: Path, identity: dict) -> Sample:
+    """The checkpoint in ``ck`` if it is readable and belongs to the run ``identity``."""
+    from onbottom.dem.identity import RESTART_ADVICE
+
+    try:
+        saved = Sample.load(ck)
+        meta = saved.attrs["_checkpoint"]
+        for key in ("layers_done", "rng_state", "time", "lid"):
+            meta[key]  # presence check
+    except Exception as exc:  # any failure to read means: not a usable checkpoint
+        raise CheckpointError(
+            f"preparation checkpoint {ck} cannot be read ({type(exc).__name__}: {exc}); it is"
+            f" truncated, corrupt or not a checkpoint; {RESTART_ADVICE}"
+        ) from None
+    check_identity(meta.get("identity"), identity, ck, what="preparation checkpoint")
+    return saved
+
+
 def prepare_sample(
     config: DEMConfig,
     progress: Progress | None = None,
     checkpoint: str | Path | None = None,
     checkpoint_every: int = 100_000,
     timings: dict[str, float] | None = None,
+    *,
+    restart: bool = False,
 ) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
@@ -199,7 +235,10 @@ def prepare_sample(
         stage and every ``checkpoint_every`` steps of the 1 g and N g equilibria, and read back
         when it exists, so an interrupted preparation resumes where it stopped with the same
         result (the random-generator state and the stage's start time are stored with it).
-        Deleted when done.
+        Deleted when done. It carries the run identity (:mod:`onbottom.dem.identity`): a
+        checkpoint of another configuration, seed or engine version raises
+        :class:`~onbottom.dem.identity.CheckpointMismatchError`, an unreadable one
+        :class:`~onbottom.dem.identity.CheckpointError`.
     checkpoint_every
         Steps between checkpoints inside the 1 g and N g equilibria [-].
     timings
@@ -208,6 +247,8 @@ def prepare_sample(
         ``<stage>_disks`` (at the end of the stage) for
         ``generation``, ``compaction``, ``1g``, ``ramp``, ``Ng``; a resumed stage counts
         only the work of this call). Diagnostics only: the sample does not depend on it.
+    restart
+        Discard an existing checkpoint and start afresh.
 
     Returns
     -------
@@ -216,6 +257,23 @@ def prepare_sample(
         the unbalanced-force ratios, the number of disks, the gravity factor.
     """
     clock = _StageClock(timings)
+    if int(checkpoint_every) < 1:
+        raise CheckpointError(
+            f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
+            field="checkpoint_every",
+        )
+    n_est = config.estimated_particle_count()
+    if n_est > MAX_PARTICLES:
+        raise InputError(
+            f"geometry is invalid: the specimen would hold about {n_est:.3g} disks (about"
+            f" {n_est * BYTES_PER_PARTICLE / 1024**3:.3g} GiB of memory), more than the"
+            f" {MAX_PARTICLES:.0e} allowed; reduce the box or enlarge the disks"
+        )
+    identity = run_identity(config, "preparation")
+    ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and restart:
+        ck.unlink(missing_ok=True)
+    saved = _read_checkpoint(ck, identity) if ck is not None and ck.exists() else None
     rng = np.random.default_rng(config.seed)
     g = config.geometry
     prep = config.preparation
@@ -235,7 +293,15 @@ def prepare_sample(
     history: dict[str, np.ndarray] | None = None
     vel = np.zeros((0, 2))
     om = np.zeros(0)
-    attrs: dict[str, object] = {"config": config.to_json(), "layers": n_l}
+    attrs: dict[str, object] = {
+        "config": config.to_json(),
+        "layers": n_l,
+        # the configuration itself is under "config"; the rest of the identity here
+        "run_identity": json.dumps(
+            {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
+        ),
+        "run_fingerprint": fingerprint(identity),
+    }
     sim: Simulation | None = None
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
@@ -261,9 +327,7 @@ def prepare_sample(
     first_layer = 0
     stage = "compaction"
     stage_values: dict[str, float] = {}
-    ck = Path(checkpoint) if checkpoint is not None else None
-    if ck is not None and ck.exists():
-        saved = Sample.load(ck)
+    if saved is not None:
         meta = saved.attrs.pop("_checkpoint")
         first_layer = int(meta["layers_done"])
         stage = str(meta.get("stage", "compaction"))
@@ -349,6 +413,7 @@ def prepare_sample(
         if ck is not None:
             snap.attrs = dict(attrs)
             snap.attrs["_checkpoint"] = {
+                "identity": identity,
                 "layers_done": li + 1,
                 "rng_state": rng.bit_generator.state,
                 "time": sim.time,
@@ -367,6 +432,7 @@ def prepare_sample(
         snap = sim.to_sample()
         snap.attrs = dict(attrs)
         snap.attrs["_checkpoint"] = {
+            "identity": identity,
             "layers_done": n_l,
             "rng_state": rng_state,
             "time": sim.time,

@@ -31,11 +31,13 @@ from numba import njit
 
 from onbottom.soil._dispatch import lateral_step
 from onbottom.soil.base import (
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
     OUT_REGION,
     OUT_SIZE,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_WORK,
     OUT_Z,
@@ -88,7 +90,9 @@ REC_FP = 7
 REC_FS = 8
 REC_WORK = 9
 REC_REGION = 10
-N_REC = 11
+REC_E_STORED = 11  # elastic energy stored in the soil [N·m/m] (soil kernel OUT_STORED)
+REC_E_DISSIPATED = 12  # energy dissipated by the soil since the start [N·m/m]
+N_REC = 13
 
 STATUS_CHUNK = 0
 STATUS_END = 1
@@ -194,6 +198,8 @@ def _write(rec, n, t, h, v, u, udot, out):
     rec[n, REC_FS] = out[OUT_R]
     rec[n, REC_WORK] = out[OUT_WORK]
     rec[n, REC_REGION] = out[OUT_REGION]
+    rec[n, REC_E_STORED] = out[OUT_STORED]
+    rec[n, REC_E_DISSIPATED] = out[OUT_DISSIPATED]
 
 
 @njit(cache=True)

@@ -35,11 +35,18 @@ Schema (loads in kN/m, unit weights in kN/m³, lengths in m, times in s; see
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping
-from typing import Any
+from typing import Annotated, Any, Literal
 
-from onbottom._validate import one_of
+from pydantic import Field
+
+from onbottom._casefile import (
+    CaseFileError,
+    StrictModel,
+    parse_case,
+    read_toml,
+    resolve_path,
+)
 from onbottom.dynamics import centrifuge
 from onbottom.dynamics.programmes import from_toml as programme_from_toml
 from onbottom.dynamics.section import (
@@ -48,29 +55,232 @@ from onbottom.dynamics.section import (
     section_mass,
     simulate_section,
 )
-from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
 from onbottom.soil.coulomb import CoulombFriction
 
-__all__ = ["load_case", "run_case"]
+__all__ = ["SectionCase", "load_case", "run_case"]
 
 _KN = 1.0e3
 _SOIL_MODELS = ("verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb")
 
+_Pos = Annotated[float, Field(gt=0.0)]
+_Factor = Annotated[float, Field(gt=0.0, le=10.0)]
+_Mu = Annotated[float, Field(gt=0.0, le=2.0)]
+_GammaKn = Annotated[float, Field(ge=1.0, le=25.0)]
+_AfterLimit = Literal["stop", "runaway_end", "continue"]
+
+
+class PresetTable(StrictModel):
+    """``[preset]``: one of the seven centrifuge tests (Youssef & Cassidy 2014, Table 1)."""
+
+    test: str = Field(description="Table 1 test name [-]")
+    parameters: Literal["table2", "recommended"] = "table2"
+    A: _Factor | None = None
+    B: _Factor | None = None
+    C: _Factor | None = None
+    mu: _Mu | None = None
+    gamma_kn: _GammaKn | None = Field(None, description="submerged unit weight [kN/m³]")
+    alpha_deg: Annotated[float, Field(ge=0.0, le=90.0)] | None = None
+    time_basis: str = "paper"
+    shape: Literal["sine", "triangle"] = "sine"
+    after_limit: _AfterLimit = "stop"
+    dt: Annotated[float, Field(ge=1.0e-4, le=10.0)] | None = Field(
+        None, description="largest time step [s] (1e-4 to 10 s: smaller would take days)"
+    )
+
+
+class PipeTable(StrictModel):
+    """``[pipe]``: D [m], submerged weight [kN/m], optional mass [kg/m] and C_a [-]."""
+
+    outer_diameter: _Pos = Field(description="outer diameter D [m]")
+    submerged_weight_kn: _Pos = Field(description="submerged weight W_s [kN/m]")
+    mass: _Pos | None = Field(None, description="structural mass [kg/m]")
+    added_mass_coefficient: Annotated[float, Field(ge=0.0, le=10.0)] = Field(
+        centrifuge.ADDED_MASS_COEFFICIENT, description="added-mass coefficient C_a [-]"
+    )
+
+
+class SoilTable(StrictModel):
+    """``[soil]``: model and its parameters (μ [-], γ' [kN/m³], A, B, C [-])."""
+
+    model: Literal["verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb"]
+    friction_coefficient: _Mu = 0.6
+    submerged_unit_weight_kn: _GammaKn | None = None
+    A: _Factor | None = None
+    B: _Factor | None = None
+    C: _Factor | None = None
+    mobilisation_displacement: _Pos | None = Field(None, description="[m]")
+    passive_law: str | None = None
+    work_law: str | None = None
+    max_penetration_law: str | None = None
+    work_integrand: str | None = None
+
+
+class SolverTable(StrictModel):
+    """``[solver]``: stop criterion and step control (all optional)."""
+
+    displacement_limit: _Pos | None = Field(None, description="terminal displacement [m]")
+    after_limit: _AfterLimit = "stop"
+    integrator: Literal["backward_euler", "newmark"] = "backward_euler"
+    dt_max: Annotated[float, Field(ge=1.0e-4, le=100.0)] | None = Field(None, description="[s]")
+    dt_min: _Pos | None = Field(None, description="[s]")
+    max_displacement_increment: Annotated[float, Field(ge=1.0e-6, le=1.0)] | None = Field(
+        None, description="largest displacement per step [m]"
+    )
+    force_tolerance: _Pos | None = Field(None, description="[N/m]")
+    max_iterations: Annotated[int, Field(ge=1, le=10_000)] | None = None
+    chunks: Annotated[int, Field(ge=1, le=100_000)] | None = None
+
+
+class _ProgrammeBase(StrictModel):
+    name: str | None = None
+    installation_load_kn: _Pos | None = Field(None, description="V_peak [kN/m]")
+
+
+class InclinedCyclicTable(_ProgrammeBase):
+    kind: Literal["inclined_cyclic"]
+    vertical_load_kn: _Pos
+    amplitude_step_kn: _Pos
+    period: _Pos = Field(description="[s]")
+    alpha_deg: Annotated[float, Field(ge=0.0, le=90.0)]
+    n_cycles: Annotated[int, Field(ge=1, le=100_000)]
+    shape: Literal["sine", "triangle"] = "sine"
+    points_per_cycle: Annotated[int, Field(ge=4, le=100_000)] = 200
+
+
+class WaveGroupsTable(_ProgrammeBase):
+    kind: Literal["regular", "irregular"]
+    vertical_load_kn: _Pos
+    n_groups: Annotated[int, Field(ge=1, le=100_000)]
+    group_period: _Pos | None = None
+    sub_cycles: Annotated[int, Field(ge=1, le=100_000)] | None = None
+    h_peak_kn: float | None = None
+    h_trough_kn: float | None = None
+    v_peak_kn: float | None = None
+    increment: float | None = None
+    hs: _Pos | None = None
+    tp: _Pos | None = None
+    depth: _Pos | None = None
+    seed: Annotated[int, Field(ge=0)] | None = None
+    waves_per_group: _Pos | None = None
+
+
+class ArraysTable(_ProgrammeBase):
+    kind: Literal["arrays"]
+    time: list[float] = Field(min_length=2)
+    horizontal_load_kn: list[float] = Field(min_length=2)
+    vertical_load_kn: list[float] = Field(min_length=2)
+    cycle_period: _Pos | None = None
+
+
+class CsvTable(_ProgrammeBase):
+    kind: Literal["csv"]
+    file: str = Field(description="CSV file, relative to the case file")
+    cycle_period: _Pos | None = None
+
+
+_PROGRAMMES: dict[str, type[_ProgrammeBase]] = {
+    "inclined_cyclic": InclinedCyclicTable,
+    "regular": WaveGroupsTable,
+    "irregular": WaveGroupsTable,
+    "arrays": ArraysTable,
+    "csv": CsvTable,
+}
+
+
+class SectionCase(StrictModel):
+    """Schema of an ``onbottom simulate`` case file (module docstring)."""
+
+    preset: PresetTable | None = None
+    pipe: PipeTable | None = None
+    soil: SoilTable | None = None
+    programme: dict[str, Any] | None = None  # checked by kind in load_case
+    solver: SolverTable = SolverTable()
+
 
 def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
-    """Read a case file (or mapping) into a dict; relative CSV paths resolve beside the file."""
+    """Read and check a case file (or mapping): ``{"case": SectionCase, "doc", "path"}``.
+
+    Unknown tables or keys, wrong types and missing keys raise
+    :class:`~onbottom._casefile.CaseFileError` naming the key, the file and the line.
+    """
     if isinstance(source, Mapping):
-        return {"doc": dict(source), "path": None}
-    with open(source, "rb") as fh:
-        return {"doc": tomllib.load(fh), "path": os.fspath(source)}
-
-
-def _check_keys(table: Mapping[str, Any], allowed: tuple[str, ...], where: str) -> None:
-    extra = sorted(set(table) - set(allowed))
-    if extra:
-        raise InputError(f"[{where}] has unknown keys {extra}; allowed: {sorted(allowed)}")
+        doc, text, path = dict(source), None, None
+    else:
+        doc, text = read_toml(source)
+        path = os.fspath(source)
+    case = parse_case(SectionCase, doc, file=path, text=text)
+    programme = None
+    if case.programme is not None:
+        kind = case.programme.get("kind")
+        if not isinstance(kind, str) or kind not in _PROGRAMMES:
+            raise CaseFileError(
+                f"{path or 'case'}: programme.kind = {kind!r} is invalid: must be one of"
+                f" {', '.join(map(repr, _PROGRAMMES))}",
+                field="programme.kind",
+                file=path,
+            )
+        programme = parse_case(
+            _PROGRAMMES[kind], case.programme, file=path, text=text, root="programme"
+        )
+    if case.preset is not None:
+        extra = [k for k in ("pipe", "soil", "programme") if k in doc]
+        if extra:
+            raise CaseFileError(
+                f"{path or 'case'}: [preset] and {', '.join(f'[{k}]' for k in extra)} are"
+                " invalid together: give either [preset] or [pipe], [soil] and [programme]",
+                field="preset",
+                file=path,
+            )
+        if "solver" in doc:
+            raise CaseFileError(
+                f"{path or 'case'}: [solver] is invalid with [preset]: set dt and after_limit"
+                " in [preset]",
+                field="solver",
+                file=path,
+            )
+    else:
+        for key in ("pipe", "soil", "programme"):
+            if getattr(case, key) is None:  # programme: checked above
+                raise CaseFileError(
+                    f"{path or 'case'}: [{key}] is missing: give [pipe], [soil] and"
+                    " [programme] (or a [preset] table)",
+                    field=key,
+                    file=path,
+                )
+        if case.soil.model != "coulomb" and case.soil.submerged_unit_weight_kn is None:
+            raise CaseFileError(
+                "soil.submerged_unit_weight_kn is missing (required for the Verley & Sotberg"
+                " models) [kN/m³]",
+                field="soil.submerged_unit_weight_kn",
+                file=path,
+            )
+        if case.soil.model == "coulomb":
+            used = [
+                k
+                for k in ("submerged_unit_weight_kn", "A", "B", "C", "passive_law", "work_law")
+                if getattr(case.soil, k) is not None
+            ]
+            if used:
+                raise CaseFileError(
+                    f"soil.{used[0]} is invalid with model = 'coulomb' (it takes"
+                    " friction_coefficient and mobilisation_displacement only)",
+                    field=f"soil.{used[0]}",
+                    file=path,
+                )
+        if case.soil.model == "verley_sotberg_silica":
+            used = [k for k in ("A", "B", "C") if getattr(case.soil, k) is not None]
+            if used:
+                raise CaseFileError(
+                    f"soil.{used[0]} is invalid with model = 'verley_sotberg_silica' (A, B, C"
+                    " are the calcareous factors)",
+                    field=f"soil.{used[0]}",
+                    file=path,
+                )
+        if isinstance(programme, CsvTable):
+            resolve_path(programme.file, relative_to=path, field="programme.file")
+    return {"case": case, "programme": programme, "doc": doc, "path": path}
 
 
 def run_case(
@@ -78,109 +288,92 @@ def run_case(
 ) -> SectionResult:
     """Run the case of a TOML file or mapping (schema in the module docstring)."""
     loaded = load_case(source)
-    doc = loaded["doc"]
-    if "preset" in doc:
-        p = dict(doc["preset"])
-        allowed = (
-            "test",
-            "parameters",
-            "A",
-            "B",
-            "C",
-            "mu",
-            "gamma_kn",
-            "alpha_deg",
-            "time_basis",
-            "shape",
-            "after_limit",
-            "dt",
-        )
-        _check_keys(p, allowed, "preset")
-        if "test" not in p:
-            raise InputError("[preset] test is missing: give a Table 1 test name")
-        gamma = p.get("gamma_kn")
+    case: SectionCase = loaded["case"]
+    if case.preset is not None:
+        p = case.preset
         return centrifuge.run_centrifuge_test(
-            str(p["test"]),
-            parameters=str(p.get("parameters", "table2")),
-            A=p.get("A"),
-            B=p.get("B"),
-            C=p.get("C"),
-            mu=p.get("mu"),
-            gamma=None if gamma is None else float(gamma) * _KN,
-            alpha_deg=p.get("alpha_deg"),
-            time_basis=str(p.get("time_basis", "paper")),
-            shape=str(p.get("shape", "sine")),
-            after_limit=str(p.get("after_limit", "stop")),
-            dt=p.get("dt"),
+            p.test,
+            parameters=p.parameters,
+            A=p.A,
+            B=p.B,
+            C=p.C,
+            mu=p.mu,
+            gamma=None if p.gamma_kn is None else p.gamma_kn * _KN,
+            alpha_deg=p.alpha_deg,
+            time_basis=p.time_basis,
+            shape=p.shape,
+            after_limit=p.after_limit,
+            dt=p.dt,
             progress=progress,
         )
-    for key in ("pipe", "soil", "programme"):
-        if key not in doc:
-            raise InputError(f"case has no [{key}] table (and no [preset])")
-    pt = dict(doc["pipe"])
-    _check_keys(
-        pt,
-        ("outer_diameter", "submerged_weight_kn", "mass", "added_mass_coefficient"),
-        "pipe",
-    )
-    ca = float(pt.pop("added_mass_coefficient", centrifuge.ADDED_MASS_COEFFICIENT))
+    pt, st, sv = case.pipe, case.soil, case.solver
     pipe = Pipe(
-        outer_diameter=float(pt["outer_diameter"]),
-        submerged_weight=float(pt["submerged_weight_kn"]) * _KN,
-        mass=None if pt.get("mass") is None else float(pt["mass"]),
+        outer_diameter=pt.outer_diameter,
+        submerged_weight=pt.submerged_weight_kn * _KN,
+        mass=pt.mass,
     )
-    prog = programme_from_toml(
-        {"programme": doc["programme"]} if loaded["path"] is None else loaded["path"]
-    )
-    st = dict(doc["soil"])
-    model = one_of("soil.model", st.pop("model", None), _SOIL_MODELS)
-    mu = float(st.pop("friction_coefficient", 0.6))
-    if model == "coulomb":
-        _check_keys(st, ("mobilisation_displacement",), "soil")
-        soil = CoulombFriction(friction_coefficient=mu, **st)
+    table = loaded["doc"]["programme"]
+    if isinstance(loaded["programme"], CsvTable):
+        table = dict(table)
+        table["file"] = os.fspath(
+            resolve_path(
+                loaded["programme"].file, relative_to=loaded["path"], field="programme.file"
+            )
+        )
+    prog = programme_from_toml({"programme": table})
+    if st.model == "coulomb":
+        extra = {}
+        if st.mobilisation_displacement is not None:
+            extra["mobilisation_displacement"] = st.mobilisation_displacement
+        soil = CoulombFriction(friction_coefficient=st.friction_coefficient, **extra)
     else:
         from onbottom.soil.verley_sotberg import VerleySotberg
 
-        if "submerged_unit_weight_kn" not in st:
-            raise InputError("soil.submerged_unit_weight_kn is missing (required for V&S)")
         sand = Sand(
-            submerged_unit_weight=float(st.pop("submerged_unit_weight_kn")) * _KN,
-            friction_coefficient=mu,
+            submerged_unit_weight=st.submerged_unit_weight_kn * _KN,
+            friction_coefficient=st.friction_coefficient,
         )
-        options = dict(st)
-        if model == "verley_sotberg_calcareous":
-            soil = VerleySotberg.calcareous(
-                pipe, sand, installation_load=prog.peak_vertical_load, **options
+        options = {
+            k: getattr(st, k)
+            for k in (
+                "A",
+                "B",
+                "C",
+                "mobilisation_displacement",
+                "passive_law",
+                "work_law",
+                "max_penetration_law",
+                "work_integrand",
             )
-        else:
-            soil = VerleySotberg.silica(
-                pipe, sand, installation_load=prog.peak_vertical_load, **options
+            if getattr(st, k) is not None
+        }
+        build = (
+            VerleySotberg.calcareous
+            if st.model == "verley_sotberg_calcareous"
+            else VerleySotberg.silica
+        )
+        soil = build(pipe, sand, installation_load=prog.peak_vertical_load, **options)
+    settings = SolverSettings(
+        **{
+            k: getattr(sv, k)
+            for k in (
+                "integrator",
+                "dt_max",
+                "dt_min",
+                "max_displacement_increment",
+                "force_tolerance",
+                "max_iterations",
+                "chunks",
             )
-    sv = dict(doc.get("solver", {}))
-    _check_keys(
-        sv,
-        (
-            "displacement_limit",
-            "after_limit",
-            "integrator",
-            "dt_max",
-            "dt_min",
-            "max_displacement_increment",
-            "force_tolerance",
-            "max_iterations",
-            "chunks",
-        ),
-        "solver",
+            if getattr(sv, k) is not None
+        }
     )
-    limit = sv.pop("displacement_limit", None)
-    after = str(sv.pop("after_limit", "stop"))
-    settings = SolverSettings(**sv)
     return simulate_section(
         prog,
         soil,
-        mass=section_mass(pipe, ca),
-        displacement_limit=None if limit is None else float(limit),
-        after_limit=after,
+        mass=section_mass(pipe, pt.added_mass_coefficient),
+        displacement_limit=sv.displacement_limit,
+        after_limit=sv.after_limit,
         settings=settings,
         progress=progress,
         attrs={"case_file": loaded["path"] or "<mapping>"},

@@ -29,8 +29,9 @@ each and the reproduction reports the sensitivity):
 4. **Time**: the paper's cycle durations (40 s inclined, 60 s regular group, 50 s irregular
    group) are used directly as the time axis (``time_basis="paper"``). They are probably
    model time at 50 g; ``time_basis="prototype"`` multiplies them by N = 50 (dynamic time
-   scaling). Only inertia during the final runaway depends on this choice: the cycles to the
-   limit hardly change, the distance run past the limit does.
+   scaling). The cycles to the limit change by up to −2.3 (Regular −2.03, Irregular −2.29,
+   Inclined 3 −1.10, Inclined 4 +0.93; docs/validation/bands/centrifuge_bands.md), and the
+   distance run past the limit grows without bound (no stop within the half cycle).
 5. **Mass**: m = pipe mass (from W_s = V_i and the buoyancy of a 1 m pipe, 1 878 kg/m for
    Inclined 1) + added mass C_a = 2.29 (cylinder on a wall), :func:`section_mass`.
 6. **Regular/irregular loads**: shapes from the Morison model of :mod:`onbottom.hydro`,

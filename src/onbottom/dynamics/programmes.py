@@ -23,14 +23,14 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from onbottom._validate import in_range, non_negative, one_of, positive
+from onbottom._validate import in_range, integer, non_negative, one_of, positive
 from onbottom.errors import InputError
 from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
 from onbottom.hydro.timeseries import near_bed_velocity_series, regular_velocity_series
@@ -574,6 +574,29 @@ def from_arrays(
 _KN = 1.0e3
 
 
+def _read_programme_csv(path: str) -> np.ndarray:
+    """Columns time [s], H [kN/m], V [kN/m] of a programme CSV (one header line)."""
+    if not os.path.isfile(path):
+        raise InputError(f"programme.file = {path!r} is invalid: file not found")
+    try:
+        with warnings.catch_warnings():  # an empty file is reported below, not warned
+            warnings.simplefilter("ignore", UserWarning)
+            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise InputError(
+            f"programme.file = {path!r} is invalid: expected numeric CSV columns time [s],"
+            f" H [kN/m], V [kN/m] after one header line ({exc})"
+        ) from None
+    if data.ndim != 2 or data.shape[1] < 3 or data.shape[0] < 2:
+        raise InputError(
+            f"programme.file = {path!r} is invalid: expected at least 2 rows of 3 columns"
+            f" (time, H, V), got shape {tuple(data.shape)}"
+        )
+    if not np.all(np.isfinite(data[:, :3])):
+        raise InputError(f"programme.file = {path!r} is invalid: contains NaN or inf")
+    return data
+
+
 def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
     """Build a programme from a TOML file (its ``[programme]`` table) or an equivalent mapping.
 
@@ -597,8 +620,9 @@ def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
     if isinstance(source, Mapping):
         table = dict(source.get("programme", source))
     else:
-        with open(source, "rb") as fh:
-            doc = tomllib.load(fh)
+        from onbottom._casefile import read_toml
+
+        doc, _ = read_toml(source)
         if "programme" not in doc:
             raise InputError(f"{source}: no [programme] table")
         table = dict(doc["programme"])
@@ -626,9 +650,11 @@ def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
             take("amplitude_step_kn", kn=True),
             float(take("period")),
             float(take("alpha_deg")),
-            int(take("n_cycles")),
+            integer("programme.n_cycles", take("n_cycles"), 1),
             shape=str(take("shape", default="sine")),
-            points_per_cycle=int(take("points_per_cycle", default=200)),
+            points_per_cycle=integer(
+                "programme.points_per_cycle", take("points_per_cycle", default=200), 4
+            ),
             installation_load=v_peak,
             name=name,
         )
@@ -642,13 +668,13 @@ def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
                 kwargs[key] = float(take(key))
         for key in ("sub_cycles", "seed"):
             if key in table:
-                kwargs[key] = int(take(key))
+                kwargs[key] = integer(f"programme.{key}", take(key), 0)
         builder = (
             regular_wave_current_groups if kind == "regular" else irregular_wave_current_groups
         )
         prog = builder(
             take("vertical_load_kn", kn=True),
-            int(take("n_groups")),
+            integer("programme.n_groups", take("n_groups"), 1),
             installation_load=v_peak,
             name=name,
             **kwargs,
@@ -662,7 +688,7 @@ def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
             path = str(take("file"))
             if base is not None and not os.path.isabs(path):
                 path = os.path.join(base, path)
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+            data = _read_programme_csv(path)
             t, h, v = data[:, 0], data[:, 1] * _KN, data[:, 2] * _KN
         period = table.pop("cycle_period", None)
         prog = from_arrays(

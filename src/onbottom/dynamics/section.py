@@ -128,7 +128,9 @@ class SectionResult:
         True if the run ended normally (programme end or displacement-limit event).
     status : int
         1 end of programme, 2 displacement limit (stopped), 3 limit reached and ran on until
-        the pipe stopped, −1 step failure, −2 soil kernel NaN.
+        the pipe stopped, −1 step failure, −2 soil kernel NaN, −3 the run left the soil
+        model's validity (lift-off: V <= 0; penetration beyond D/2 for the Verley & Sotberg
+        sand models; the time series is kept, ``success`` is False).
     message : str
         Human-readable status.
     n_steps : int
@@ -137,7 +139,8 @@ class SectionResult:
         Rejected (halved) steps.
     data : xarray.Dataset
         Time series (dimension ``time``): H, V, u, u_dot, w, F_friction, F_passive, F_soil,
-        work, region; provenance attributes.
+        work, region, soil_energy_stored, soil_energy_dissipated (their sum is the work done
+        on the soil, ∫F_soil du); provenance attributes.
     time_to_limit : float or None
         Time at which |u| first reached the displacement limit [s] (linear interpolation in
         the step), None if never.
@@ -163,6 +166,10 @@ class SectionResult:
         return save_dataset(self.data, path)
 
 
+STATUS_OUTSIDE_VALIDITY = -3
+"""Status of a run that left its soil model's validity (e.g. penetration > D/2)."""
+
+
 def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset:
     names = {
         "H": K.REC_H,
@@ -175,6 +182,8 @@ def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset
         "F_soil": K.REC_FS,
         "work": K.REC_WORK,
         "region": K.REC_REGION,
+        "soil_energy_stored": K.REC_E_STORED,
+        "soil_energy_dissipated": K.REC_E_DISSIPATED,
     }
     ds = xr.Dataset(
         {k: ("time", np.ascontiguousarray(rec[:, i])) for k, i in names.items()},
@@ -307,6 +316,33 @@ def simulate_section(
         cycles = (t_cross - float(pt[0])) / programme.cycle_period
     u = rec[:, K.REC_U]
     w = rec[:, K.REC_W]
+    # lift-off: the vertical load of the programme (up to the end of the run) or of a step
+    t_end = float(rec[-1, K.REC_T]) if len(rec) else 0.0
+    tp = np.asarray(programme.time, float)
+    vp = np.asarray(programme.vertical_load, float)[tp <= t_end + 1e-12]
+    tp = tp[tp <= t_end + 1e-12]
+    v_all = np.concatenate([vp, rec[:, K.REC_V]])
+    t_all = np.concatenate([tp, rec[:, K.REC_T]])
+    if success and v_all.size and float(np.min(v_all)) <= 0.0:
+        i = int(np.argmin(v_all))
+        success = False
+        status = STATUS_OUTSIDE_VALIDITY
+        message = (
+            f"outside the model's validity: lift-off, the vertical load falls to"
+            f" {float(v_all[i]):.4g} N/m at t = {float(t_all[i]):.4g} s (the soil models hold"
+            f" for a pipe resting on the seabed, V > 0; {message})"
+        )
+        logger.warning("simulate_section: %s", message)
+    d_soil = getattr(soil, "outer_diameter", None)
+    if success and d_soil is not None and float(np.max(w)) > 0.5 * float(d_soil):
+        success = False
+        status = STATUS_OUTSIDE_VALIDITY
+        message = (
+            f"outside the model's validity: penetration {float(np.max(w)):.4g} m exceeds D/2 ="
+            f" {0.5 * float(d_soil):.4g} m (the Verley & Sotberg sand models hold for z <= D/2;"
+            f" {message})"
+        )
+        logger.warning("simulate_section: %s", message)
     summary = {
         "initial_penetration": float(w[0]),
         "max_penetration": float(np.max(w)),

@@ -4,6 +4,7 @@ References: DNV-RP-F109 (2010, re-issued 2017) §3.3–3.4; DNV-RP-C205 (2010) �
 """
 
 from onbottom.hydro.current import SEABED_ROUGHNESS, mean_current_over_pipe
+from onbottom.hydro.design_sea_state import design_oscillation, significant_bed_velocity
 from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
 from onbottom.hydro.kinematics import (
     near_bed_velocity_spectrum,
@@ -28,6 +29,7 @@ from onbottom.hydro.timeseries import (
 __all__ = [
     "SEABED_ROUGHNESS",
     "MorisonCoefficients",
+    "design_oscillation",
     "horizontal_force",
     "jonswap",
     "jonswap_peak_enhancement",
@@ -40,6 +42,7 @@ __all__ = [
     "regular_velocity_series",
     "regular_wave_bed_velocity",
     "seabed_transfer",
+    "significant_bed_velocity",
     "significant_velocity",
     "spectral_moment",
     "wave_number",

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from onbottom._validate import in_range, non_negative, positive
+from onbottom._validate import PIPE_DIAMETER_M, in_range, non_negative, plausible, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER, RHO_STEEL
 from onbottom.errors import InputError
 
@@ -54,6 +54,8 @@ class Pipe:
         the submerged weight: ``(W_s + ρ_w g π D²/4) / g``.
     bending_stiffness : float
         EI [N·m²], >= 0 (0 = not given; needed only by lay-factor and FE models).
+    axial_stiffness : float
+        EA [N], >= 0 (0 = not given; needed by the pipeline FE model).
     seawater_density : float
         ρ_w [kg/m³] used for buoyancy, > 0.
     """
@@ -62,14 +64,31 @@ class Pipe:
     submerged_weight: float
     mass: float | None = None
     bending_stiffness: float = 0.0
+    axial_stiffness: float = 0.0
     seawater_density: float = RHO_SEAWATER
     layers: tuple[Layer, ...] = field(default=())
 
     def __post_init__(self) -> None:
         positive("Pipe.outer_diameter", self.outer_diameter)
+        err, usual = PIPE_DIAMETER_M
+        plausible(
+            "Pipe.outer_diameter",
+            self.outer_diameter,
+            error=err,
+            usual=usual,
+            unit="m",
+            what="the outer diameter of a pipeline",
+            stacklevel=4,
+        )
         positive("Pipe.submerged_weight", self.submerged_weight)
+        if self.submerged_weight > 1.0e6:
+            raise InputError(
+                f"Pipe.submerged_weight = {float(self.submerged_weight)!r} N/m is invalid:"
+                " above the plausible 1e6 N/m (check the unit: N/m, not kN/m·1000)"
+            )
         positive("Pipe.seawater_density", self.seawater_density)
         non_negative("Pipe.bending_stiffness", self.bending_stiffness)
+        non_negative("Pipe.axial_stiffness", self.axial_stiffness)
         if self.mass is not None:
             positive("Pipe.mass", self.mass)
             if self.mass * GRAVITY < self.submerged_weight:
@@ -135,7 +154,7 @@ class Pipe:
         seawater_density : float
             ρ_w [kg/m³], > 0.
         youngs_modulus : float
-            Steel E [Pa], > 0; the bending stiffness uses the steel wall only.
+            Steel E [Pa], > 0; the bending and axial stiffnesses use the steel wall only.
         """
         ds = positive("Pipe.steel_outer_diameter", steel_outer_diameter)
         t = in_range("Pipe.wall_thickness", wall_thickness, 0.0, ds / 2.0, low_inclusive=False)
@@ -158,11 +177,13 @@ class Pipe:
                 " add weight coating or contents (must be > 0)"
             )
         ei = youngs_modulus * math.pi * (ds**4 - di**4) / 64.0
+        ea = youngs_modulus * math.pi * (ds**2 - di**2) / 4.0
         return cls(
             outer_diameter=d,
             submerged_weight=ws,
             mass=mass,
             bending_stiffness=ei,
+            axial_stiffness=ea,
             seawater_density=seawater_density,
             layers=tuple(layers),
         )

@@ -5,9 +5,30 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from onbottom._validate import in_range, non_negative, positive
+from onbottom._validate import (
+    FRICTION_COEFFICIENT,
+    SOIL_UNIT_WEIGHT_N_M3,
+    in_range,
+    non_negative,
+    plausible,
+    positive,
+)
 
 __all__ = ["Clay", "Rock", "Sand", "Seabed"]
+
+
+def _unit_weight(field: str, value: float) -> None:
+    err, usual = SOIL_UNIT_WEIGHT_N_M3
+    plausible(
+        field, value, error=err, usual=usual, unit="N/m³", what="γ' of seabed soils", stacklevel=5
+    )
+
+
+def _friction(field: str, value: float) -> None:
+    err, usual = FRICTION_COEFFICIENT
+    plausible(
+        field, value, error=err, usual=usual, unit="", what="pipe–soil friction", stacklevel=5
+    )
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -17,7 +38,8 @@ class Sand:
     Parameters
     ----------
     submerged_unit_weight : float
-        γ' [N/m³], in (0, 20 000]. For dry centrifuge samples use the dry unit weight.
+        γ' [N/m³], in [1 000, 25 000] (an error outside; a warning outside the usual
+        3 000–18 000). For dry centrifuge samples use the dry unit weight.
     friction_coefficient : float
         Pipe–soil Coulomb friction μ [-], in (0, 2]. DNV-RP-F109 default for sand: 0.6.
     friction_angle_deg : float
@@ -35,16 +57,11 @@ class Sand:
     kind: str = "silica"
 
     def __post_init__(self) -> None:
-        in_range(
-            "Sand.submerged_unit_weight",
-            self.submerged_unit_weight,
-            0.0,
-            2.0e4,
-            low_inclusive=False,
-        )
+        _unit_weight("Sand.submerged_unit_weight", self.submerged_unit_weight)
         in_range(
             "Sand.friction_coefficient", self.friction_coefficient, 0.0, 2.0, low_inclusive=False
         )
+        _friction("Sand.friction_coefficient", self.friction_coefficient)
         in_range("Sand.friction_angle_deg", self.friction_angle_deg, 15.0, 50.0)
         positive("Sand.d50", self.d50)
 
@@ -65,7 +82,7 @@ class Clay:
     strength_gradient : float
         ds_u/dz [Pa/m], >= 0 (ρ in DNVGL-RP-F114).
     submerged_unit_weight : float
-        γ' [N/m³], in (0, 20 000].
+        γ' [N/m³], in [1 000, 25 000] (warning outside 3 000–18 000).
     unit_weight : float
         Total (dry/bulk) unit weight γ_s [N/m³], > submerged; the Verley & Lund (1995)
         parameter G_c = s_u/(D·γ_s) uses it (DNV-RP-F109 §3.4.6).
@@ -82,17 +99,12 @@ class Clay:
     def __post_init__(self) -> None:
         positive("Clay.undrained_shear_strength", self.undrained_shear_strength)
         non_negative("Clay.strength_gradient", self.strength_gradient)
-        in_range(
-            "Clay.submerged_unit_weight",
-            self.submerged_unit_weight,
-            0.0,
-            2.0e4,
-            low_inclusive=False,
-        )
+        _unit_weight("Clay.submerged_unit_weight", self.submerged_unit_weight)
         in_range("Clay.unit_weight", self.unit_weight, self.submerged_unit_weight, 3.0e4)
         in_range(
             "Clay.friction_coefficient", self.friction_coefficient, 0.0, 2.0, low_inclusive=False
         )
+        _friction("Clay.friction_coefficient", self.friction_coefficient)
 
     def strength_at(self, depth: float) -> float:
         """s_u at ``depth`` below the mudline [Pa] (linear profile)."""

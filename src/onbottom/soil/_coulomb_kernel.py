@@ -7,16 +7,20 @@ from __future__ import annotations
 
 from numba import njit
 
+from onbottom.soil._trough import spring_work
 from onbottom.soil.base import (
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
     OUT_REGION,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_WORK,
     OUT_Z,
     S_FRICTION,
     S_REGION,
+    S_SOIL_WORK,
     S_U,
     S_WORK,
     S_Z,
@@ -31,13 +35,15 @@ def friction_return_map(f_old: float, du: float, v_load: float, mu: float, delta
     """Elastic predictor / plastic corrector for the Coulomb force (resisting +u).
 
     Stiffness k = μ·V/δ so that full friction μV mobilises after a displacement δ from rest.
+    The predictor starts from the committed force returned into the current capacity ±μV (V
+    may have dropped since), so a reversal unloads from the capacity.
     Returns (force, tangent). With V <= 0 the pipe is lifted off: force 0, tangent 0.
     """
     if v_load <= 0.0:
         return 0.0, 0.0
     cap = mu * v_load
     k = cap / delta
-    f_trial = f_old + k * du
+    f_trial = min(max(f_old, -cap), cap) + k * du
     if f_trial > cap:
         return cap, 0.0
     if f_trial < -cap:
@@ -58,6 +64,14 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = 0.0
     state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
     state_new[S_REGION] = 0.0
+    stored = 0.0
+    k_fr = 0.0
+    if mu * v_load > 0.0:
+        stored = 0.5 * f * f * delta / (mu * v_load)
+        k_fr = mu * v_load / delta
+    f0 = min(max(state_old[S_FRICTION], -mu * v_load), mu * v_load)
+    w_f = spring_work(f0, f, f0 + k_fr * du, k_fr)
+    state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + w_f
     out[OUT_R] = f
     out[OUT_FRICTION] = f
     out[OUT_PASSIVE] = 0.0
@@ -65,6 +79,8 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_Z] = 0.0
     out[OUT_WORK] = state_new[S_WORK]
     out[OUT_REGION] = 0.0
+    out[OUT_STORED] = stored
+    out[OUT_DISSIPATED] = state_new[S_SOIL_WORK] - stored
 
 
 def friction_return_map_py(f_old, du, v_load, mu, delta):
@@ -73,7 +89,7 @@ def friction_return_map_py(f_old, du, v_load, mu, delta):
         return 0.0, 0.0
     cap = mu * v_load
     k = cap / delta
-    f_trial = f_old + k * du
+    f_trial = min(max(f_old, -cap), cap) + k * du
     if f_trial > cap:
         return cap, 0.0
     if f_trial < -cap:
@@ -91,4 +107,12 @@ def coulomb_kernel_py(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = 0.0
     state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
     state_new[S_REGION] = 0.0
-    out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0)
+    cap = params[P_MU] * v_load
+    stored = 0.5 * f * f * params[P_DELTA] / cap if cap > 0.0 else 0.0
+    k_fr = cap / params[P_DELTA] if cap > 0.0 else 0.0
+    f0 = min(max(state_old[S_FRICTION], -cap), cap) if cap > 0.0 else 0.0
+    state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + spring_work.py_func(
+        f0, f, f0 + k_fr * du, k_fr
+    )
+    soil_work = state_new[S_SOIL_WORK]
+    out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0, stored, soil_work - stored)

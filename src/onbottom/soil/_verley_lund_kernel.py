@@ -14,22 +14,31 @@ from onbottom.soil._trough import (
     PHASE_BREAKOUT,
     PHASE_OUT,
     PHASE_TROUGH,
+    RULE_LEGACY_ELASTIC,
     envelope,
+    envelope_energy,
+    friction_energy,
+    push_only_passive,
+    push_only_start,
     region_of,
     sign,
+    spring_work,
 )
 from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
     OUT_REGION,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_WORK,
     OUT_Z,
     S_FRICTION,
     S_REGION,
+    S_SOIL_WORK,
     S_U,
     S_WORK,
     S_Z,
@@ -45,7 +54,8 @@ P_BRK1 = 5
 P_YRES = 6  # residual displacement y_res [m]
 P_ZRES = 7  # residual penetration z_res [m]
 P_ZI = 8  # initial penetration z_i [m]
-N_PARAMS = 9
+P_PASSIVE_RULE = 9  # RULE_* code of onbottom.soil._trough (elastoplastic / legacy_elastic)
+N_PARAMS = 10
 
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # centre of the current trough y0 [m]
@@ -86,11 +96,15 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
     z = state_old[S_Z]
 
     # out of the trough and reversing: a new trough at the turning point, z_t = z_res [I]
+    legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
+    p_old = state_old[S_PASSIVE]
     if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
         y0 = u_old
         zt = z
         smax = 0.0
         phase = PHASE_TROUGH
+        if not legacy:
+            p_old = 0.0  # the berm pushed so far is left: its force released (dissipated)
 
     s_new = u_new - y0
     a_new = abs(s_new)
@@ -111,14 +125,42 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
     fr_peak = clay_passive(params, zt)
     fr_res = clay_passive(params, z_res)
     mag, slope = envelope(a_new, fr_peak, fr_peak, fr_res, y_brk, y_brk, y_res)
-    passive = sign(s_new) * mag
+    k_u = fr_peak / y_brk
+    if legacy:
+        passive = sign(s_new) * mag
+        e_passive = envelope_energy(a_new, fr_peak, fr_peak, fr_res, y_brk, y_brk, y_res)
+    else:
+        passive, slope = push_only_passive(p_old, du, s_new, mag, slope, k_u)
+        e_passive = 0.0
+        if k_u > 0.0:
+            e_passive = 0.5 * passive * passive / k_u
     if v_load <= 0.0:
         passive = 0.0
         slope = 0.0
+        e_passive = 0.0
 
-    r_old = f_old + state_old[S_PASSIVE]
     r_new = f + passive
+    r_old = f_old + state_old[S_PASSIVE]
     work = state_old[S_WORK] + 0.5 * (abs(r_old) + abs(r_new)) * abs(du)
+    if not legacy:
+        r_old = f_old + p_old
+    if legacy:
+        soil_work = state_old[S_SOIL_WORK] + 0.5 * (r_old + r_new) * du
+    else:
+        # each spring: work along its return-mapped increment, from its start force
+        k_fr = 0.0
+        f0 = 0.0
+        if v_load > 0.0:
+            cap = params[P_MU] * v_load
+            k_fr = cap / params[P_DELTA]
+            f0 = min(max(f_old, -cap), cap)
+        w_f = spring_work(f0, f, f0 + k_fr * du, k_fr)
+        w_p = 0.0
+        if v_load > 0.0:
+            p0 = push_only_start(p_old, s_new, mag)
+            w_p = spring_work(p0, passive, p0 + k_u * du, k_u)
+        soil_work = state_old[S_SOIL_WORK] + w_f + w_p
+    stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
 
     region = region_of(a_new, y_brk, y_brk, y_res)  # 1 rising, 3 softening, 4 residual
     state_new[S_U] = u_new
@@ -126,6 +168,7 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = z
     state_new[S_WORK] = work
     state_new[S_REGION] = region
+    state_new[S_SOIL_WORK] = soil_work
     state_new[S_Y0] = y0
     state_new[S_ZT] = zt
     state_new[S_SMAX] = smax
@@ -141,6 +184,8 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_Z] = z
     out[OUT_WORK] = work
     out[OUT_REGION] = region
+    out[OUT_STORED] = stored
+    out[OUT_DISSIPATED] = soil_work - stored
 
 
 verley_lund_kernel_py = pure_python(verley_lund_kernel)

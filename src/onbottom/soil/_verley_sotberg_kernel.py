@@ -20,23 +20,32 @@ from onbottom.soil._trough import (
     PHASE_BREAKOUT,
     PHASE_OUT,
     PHASE_TROUGH,
+    RULE_LEGACY_ELASTIC,
     envelope,
+    envelope_energy,
+    friction_energy,
     overlap,
+    push_only_passive,
+    push_only_start,
     region_of,
     sign,
+    spring_work,
 )
 from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
+    OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
     OUT_R,
     OUT_REGION,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_WORK,
     OUT_Z,
     S_FRICTION,
     S_REGION,
+    S_SOIL_WORK,
     S_U,
     S_WORK,
     S_Z,
@@ -57,7 +66,9 @@ P_WORK_LAW = 10  # WORK_LAW_* code
 P_ZMAX_LAW = 11  # ZMAX_LAW_* code
 P_WORK_INTEGRAND = 12  # INTEGRAND_* code
 P_ZI = 13  # initial penetration of the first trough z_i [m] (Eq 7/15)
-N_PARAMS = 14
+P_PASSIVE_RULE = 14  # RULE_* code of onbottom.soil._trough (elastoplastic / legacy_elastic)
+P_B_PLACEMENT = 15  # B_* code: factor B outside or inside the bracket of Eqs 13-14
+N_PARAMS = 16
 
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # origin (centre) of the current trough y0 [m]
@@ -81,6 +92,9 @@ WORK_LAW_NONE = 1  # no work-driven growth: z stays at z_i in region 2
 
 ZMAX_LAW_RECONSTRUCTION = 0  # Eq 8 with the factor 0.5 (spec [R])
 ZMAX_LAW_NO_HALF = 1  # alternative reading of Eq 8 without the factor 0.5
+
+B_OUTSIDE = 0  # z/D = z_i/D + B·0.23·[E/(γ'D³)]^0.5·... and + B·0.5·[s/(K_s D)]^0.5
+B_INSIDE = 1  # B inside the powers: factor B^0.5 (0.23·[B·E/(γ'D³)]^0.5, 0.5·[B·s/(K_s D)]^0.5)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -130,6 +144,8 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     d = params[P_D]
     g = params[P_GAMMA]
     b = params[P_B]
+    if params[P_B_PLACEMENT] == B_INSIDE:
+        b = b**0.5
     ks = g * d * d / v_load
     z_work = zi
     if work > 0.0:
@@ -168,6 +184,8 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     z = state_old[S_Z]
     work = state_old[S_WORK]
 
+    legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
+    p_old = state_old[S_PASSIVE]
     # out of the trough and reversing: a new trough starts at the turning point [I]
     if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
         y0 = u_old
@@ -176,6 +194,10 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         z2 = 0.0
         work = 0.0
         phase = PHASE_TROUGH
+        if not legacy:
+            # the pipe leaves the berm it pushed: its force is released at the turning
+            # point (a jump at zero displacement; the stored energy is dissipated)
+            p_old = 0.0
 
     s_old = u_old - y0
     s_new = u_new - y0
@@ -187,12 +209,16 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         smax_c = min(max(smax, a_new), y2)
         if du2 > 0.0 and v_load > 0.0:
             fr2 = peak_passive(params, z, v_load)
-            p_pred, _slope = envelope(min(a_new, y2), 0.3 * fr2, fr2, fr2, y1, y2, y3)
-            p_old = state_old[S_PASSIVE]
-            if params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE:
-                mean = 0.5 * (abs(p_old) + p_pred)
+            if legacy:
+                mag_p, _slope = envelope(min(a_new, y2), 0.3 * fr2, fr2, fr2, y1, y2, y3)
+                p_pred = sign(s_new) * mag_p
             else:
-                mean = 0.5 * (abs(f_old + p_old) + abs(f + sign(s_new) * p_pred))
+                mag_p, slope_p = envelope(a_new, 0.3 * fr2, fr2, fr2, y1, y2, y3)
+                p_pred, _k = push_only_passive(p_old, du, s_new, mag_p, slope_p, 0.3 * fr2 / y1)
+            if params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE:
+                mean = 0.5 * (abs(p_old) + abs(p_pred))
+            else:
+                mean = 0.5 * (abs(f_old + p_old) + abs(f + p_pred))
             work = work + mean * du2
             z = grown_penetration(params, z, zi, work, smax_c, v_load)
         smax = max(smax, a_new)
@@ -212,18 +238,49 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
             phase = PHASE_OUT
             z = z3
 
-    # passive force: restoring about y0 along the envelope
+    # passive force about y0 bounded by the envelope
     if phase == PHASE_TROUGH:
         fr2 = peak_passive(params, z, v_load)
         fr3 = fr2
     else:
         fr2 = peak_passive(params, z2, v_load)
         fr3 = peak_passive(params, residual_ratio(z2 / d) * z2, v_load)
-    mag, slope = envelope(a_new, 0.3 * fr2, fr2, fr3, y1, y2, y3)
-    passive = sign(s_new) * mag
+    fr1 = 0.3 * fr2
+    mag, slope = envelope(a_new, fr1, fr2, fr3, y1, y2, y3)
+    k_u = fr1 / y1
+    if legacy:
+        passive = sign(s_new) * mag
+        e_passive = envelope_energy(a_new, fr1, fr2, fr3, y1, y2, y3)
+    else:
+        passive, slope = push_only_passive(p_old, du, s_new, mag, slope, k_u)
+        e_passive = 0.0
+        if k_u > 0.0:
+            e_passive = 0.5 * passive * passive / k_u
     if v_load <= 0.0:
         passive = 0.0
         slope = 0.0
+        e_passive = 0.0
+
+    # energy bookkeeping: soil work (trapezoid over the increment), stored, dissipated
+    r_new = f + passive
+    if legacy:
+        # trapezoidal work of a nonlinear-elastic force (the variant's own bookkeeping)
+        soil_work = state_old[S_SOIL_WORK] + 0.5 * (f_old + state_old[S_PASSIVE] + r_new) * du
+    else:
+        # each spring: work along its return-mapped increment, from its start force
+        k_fr = 0.0
+        f0 = 0.0
+        if v_load > 0.0:
+            cap = params[P_MU] * v_load
+            k_fr = cap / params[P_DELTA]
+            f0 = min(max(f_old, -cap), cap)
+        w_f = spring_work(f0, f, f0 + k_fr * du, k_fr)
+        w_p = 0.0
+        if v_load > 0.0:
+            p0 = push_only_start(p_old, s_new, mag)
+            w_p = spring_work(p0, passive, p0 + k_u * du, k_u)
+        soil_work = state_old[S_SOIL_WORK] + w_f + w_p
+    stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
 
     region = region_of(a_new, y1, y2, y3)
     state_new[S_U] = u_new
@@ -231,6 +288,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     state_new[S_Z] = z
     state_new[S_WORK] = work
     state_new[S_REGION] = region
+    state_new[S_SOIL_WORK] = soil_work
     state_new[S_Y0] = y0
     state_new[S_ZI] = zi
     state_new[S_SMAX] = smax
@@ -240,13 +298,15 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         state_new[S_DIR] = direction
     state_new[S_PASSIVE] = passive
 
-    out[OUT_R] = f + passive
+    out[OUT_R] = r_new
     out[OUT_FRICTION] = f
     out[OUT_PASSIVE] = passive
     out[OUT_TANGENT] = k_f + slope
     out[OUT_Z] = z
     out[OUT_WORK] = work
     out[OUT_REGION] = region
+    out[OUT_STORED] = stored
+    out[OUT_DISSIPATED] = soil_work - stored
 
 
 verley_sotberg_kernel_py = pure_python(verley_sotberg_kernel)

@@ -28,14 +28,22 @@ plain-Python twin, used by the tests), both with the signature::
 6. ``out`` — float64 array of length :data:`OUT_SIZE`; the kernel writes
    ``out[OUT_R]`` resistance R [N/m], ``out[OUT_FRICTION]`` Coulomb part, ``out[OUT_PASSIVE]``
    passive part, ``out[OUT_TANGENT]`` dR/du [N/m²], ``out[OUT_Z]`` penetration z [m],
-   ``out[OUT_WORK]`` accumulated work [N], ``out[OUT_REGION]`` region code.
+   ``out[OUT_WORK]`` accumulated work [N], ``out[OUT_REGION]`` region code,
+   ``out[OUT_STORED]`` elastic energy stored in the soil (friction and passive springs) [N·m/m]
+   and ``out[OUT_DISSIPATED]`` energy dissipated by the soil since the start [N·m/m]: the
+   soil work ∫R du (trapezoidal per committed increment, common slot ``S_SOIL_WORK``) minus the
+   stored energy. A physically admissible law never lets the dissipated energy decrease on a
+   path at constant V (``tests/verification/test_energy_balance.py``).
 7. Sign: R is the soil force *resisting* positive pipe motion, so the equation of lateral motion
    of a pipe section is ``m·ü = H − R``; R > 0 pushes the pipe towards −y.
 8. No allocation, no Python objects, no printing inside the kernel; float64 only.
 
 Common state slots: ``S_U`` committed displacement u [m]; ``S_FRICTION`` friction force
 [N/m] (elastic–plastic, see :mod:`onbottom.soil.coulomb`); ``S_Z`` penetration z [m];
-``S_WORK`` accumulated work E [N]; ``S_REGION`` region code.
+``S_WORK`` accumulated work E [N]; ``S_REGION`` region code; ``S_SOIL_WORK`` work done on the
+soil ∫R du since the start [N·m/m] (energy bookkeeping). Model-specific slots follow
+``N_COMMON_STATE``; never hard-code state lengths (use ``model.state_size`` or the kernels'
+``N_STATE``).
 """
 
 from __future__ import annotations
@@ -48,16 +56,19 @@ import numpy as np
 
 __all__ = [
     "N_COMMON_STATE",
+    "OUT_DISSIPATED",
     "OUT_FRICTION",
     "OUT_PASSIVE",
     "OUT_R",
     "OUT_REGION",
     "OUT_SIZE",
+    "OUT_STORED",
     "OUT_TANGENT",
     "OUT_WORK",
     "OUT_Z",
     "S_FRICTION",
     "S_REGION",
+    "S_SOIL_WORK",
     "S_U",
     "S_WORK",
     "S_Z",
@@ -70,7 +81,8 @@ S_FRICTION = 1
 S_Z = 2
 S_WORK = 3
 S_REGION = 4
-N_COMMON_STATE = 5
+S_SOIL_WORK = 5
+N_COMMON_STATE = 6
 
 # output slots
 OUT_R = 0
@@ -80,7 +92,9 @@ OUT_TANGENT = 3
 OUT_Z = 4
 OUT_WORK = 5
 OUT_REGION = 6
-OUT_SIZE = 7
+OUT_STORED = 7
+OUT_DISSIPATED = 8
+OUT_SIZE = 9
 
 KernelFn = Callable[[np.ndarray, np.ndarray, float, float, np.ndarray, np.ndarray], None]
 

@@ -48,7 +48,16 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from onbottom._validate import in_range, non_negative, one_of, positive, warn_outside
+from onbottom._validate import (
+    PIPE_DIAMETER_M,
+    SOIL_UNIT_WEIGHT_N_M3,
+    in_range,
+    non_negative,
+    one_of,
+    plausible,
+    positive,
+    warn_outside,
+)
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
@@ -248,12 +257,23 @@ class DrainedPenetration:
 
     def __post_init__(self) -> None:
         positive("DrainedPenetration.diameter", self.diameter)
-        in_range(
+        plausible(
+            "DrainedPenetration.diameter",
+            self.diameter,
+            error=PIPE_DIAMETER_M[0],
+            usual=PIPE_DIAMETER_M[1],
+            unit="m",
+            what="the outer diameter of a pipeline",
+            stacklevel=4,
+        )
+        plausible(
             "DrainedPenetration.unit_weight",
             self.unit_weight,
-            0.0,
-            3.0e4,
-            low_inclusive=False,
+            error=SOIL_UNIT_WEIGHT_N_M3[0],
+            usual=SOIL_UNIT_WEIGHT_N_M3[1],
+            unit="N/m³",
+            what="γ' of seabed sands (dry centrifuge sand up to ~17 kN/m³)",
+            stacklevel=4,
         )
         in_range("DrainedPenetration.friction_angle_deg", self.friction_angle_deg, 15.0, 50.0)
         one_of("DrainedPenetration.n_gamma", self.n_gamma, N_GAMMA_METHODS)

@@ -46,7 +46,7 @@ from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay
 from onbottom.soil import _verley_lund_kernel as _k
 from onbottom.soil._dispatch import MODEL_VERLEY_LUND
-from onbottom.soil._trough import PHASE_TROUGH
+from onbottom.soil._trough import PHASE_TROUGH, RULE_ELASTOPLASTIC, RULE_LEGACY_ELASTIC
 from onbottom.soil.base import S_REGION, S_Z, LateralResistanceModel
 
 __all__ = [
@@ -63,6 +63,11 @@ PENETRATION_FORMS: tuple[str, ...] = ("product", "quotient")
 
 UNIT_WEIGHTS: tuple[str, ...] = ("total", "submerged")
 """Unit weight used in G_c: total (dry/bulk) γ_s as in F109 (default) or submerged γ'."""
+
+_PASSIVE_RULES: dict[str, int] = {
+    "elastoplastic": RULE_ELASTOPLASTIC,
+    "legacy_elastic": RULE_LEGACY_ELASTIC,
+}
 
 GROUP_VALIDITY_MAX = 2.5
 """Upper validity limit of the penetration fit in S·G^0.3 (Bai 2005, p. 107)."""
@@ -171,6 +176,11 @@ class VerleyLund(LateralResistanceModel):
         z_res/z_i [-], in [0, 1].
     mobilisation_displacement : float or None
         Friction mobilisation δ [m], > 0; None → 0.001·D.
+    passive_rule : str
+        "elastoplastic" (default: push-only elastic–plastic passive force, unloading stiffness
+        F_R/y_brk, dissipative) or "legacy_elastic" (nonlinear-elastic restoring force on the
+        envelope, kept as a named variant; it can create energy on closed paths).
+        See :data:`onbottom.soil.verley_sotberg.PASSIVE_RULES`.
     """
 
     name: ClassVar[str] = "verley_lund"
@@ -191,9 +201,11 @@ class VerleyLund(LateralResistanceModel):
     residual_over_d: float = 1.5
     residual_penetration_ratio: float = 0.5
     mobilisation_displacement: float | None = None
+    passive_rule: str = "elastoplastic"
 
     def __post_init__(self) -> None:
         cls = "VerleyLund"
+        one_of(f"{cls}.passive_rule", self.passive_rule, _PASSIVE_RULES)
         positive(f"{cls}.outer_diameter", self.outer_diameter)
         positive(f"{cls}.undrained_shear_strength", self.undrained_shear_strength)
         in_range(f"{cls}.unit_weight", self.unit_weight, 0.0, 3.0e6, low_inclusive=False)
@@ -360,6 +372,7 @@ class VerleyLund(LateralResistanceModel):
         zi = self.initial_penetration
         p[_k.P_ZRES] = self.residual_penetration_ratio * zi
         p[_k.P_ZI] = zi
+        p[_k.P_PASSIVE_RULE] = _PASSIVE_RULES[self.passive_rule]
         return p
 
     def initial_state(self) -> np.ndarray:
@@ -384,4 +397,5 @@ class VerleyLund(LateralResistanceModel):
             "residual_over_d": self.residual_over_d,
             "residual_penetration_ratio": self.residual_penetration_ratio,
             "mobilisation_displacement": self.delta,
+            "passive_rule": self.passive_rule,
         }

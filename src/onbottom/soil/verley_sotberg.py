@@ -36,11 +36,14 @@ from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
 from onbottom.soil import _verley_sotberg_kernel as _k
 from onbottom.soil._dispatch import MODEL_VERLEY_SOTBERG
+from onbottom.soil._trough import RULE_ELASTOPLASTIC, RULE_LEGACY_ELASTIC
 from onbottom.soil.base import S_REGION, S_Z, LateralResistanceModel
 
 __all__ = [
+    "B_PLACEMENTS",
     "KS_CALIBRATION_RANGE",
     "PASSIVE_LAWS",
+    "PASSIVE_RULES",
     "PENETRATION_LAWS",
     "WORK_INTEGRANDS",
     "WORK_LAWS",
@@ -76,6 +79,31 @@ WORK_INTEGRANDS: dict[str, int] = {
     "passive": _k.INTEGRAND_PASSIVE,
 }
 """Work integrand in region 2: total resistance F_h, or passive resistance F_r only."""
+
+PASSIVE_RULES: dict[str, int] = {
+    "elastoplastic": RULE_ELASTOPLASTIC,
+    "legacy_elastic": RULE_LEGACY_ELASTIC,
+}
+"""How the passive force follows the envelope [I] (``docs/theory/verley_sotberg.md``):
+
+* ``"elastoplastic"`` (default): push-only elastic–plastic. The envelope is a yield limit; the
+  force changes by k_u·Δu inside it (k_u = F_r1/y1, the region-1 slope, so region 1 stays
+  elastic as the papers say), follows the envelope when pushed onto it, unloads along k_u and
+  never pulls (0 <= F_r <= F_env on the side s > 0, the mirror image for s < 0). Dissipative:
+  no closed displacement path creates energy.
+* ``"legacy_elastic"``: nonlinear-elastic restoring force sign(s)·F_env(|s|) at the current
+  penetration (the rule of onbottom ≤ 0.1). Because F_env grows with z while the pipe is away
+  from the trough centre, it returns more energy than it stored (negative net work on closed
+  cycles): kept only as a named variant for comparison.
+"""
+
+B_PLACEMENTS: dict[str, int] = {
+    "outside": _k.B_OUTSIDE,
+    "inside": _k.B_INSIDE,
+}
+"""Where the factor B of Youssef & Cassidy (2014) Eqs 13–14 stands [R]: ``"outside"`` the
+bracket (z/D = z_i/D + B·0.23·[E/(γ'D³)]^0.5·[K_s s/D]^−0.31, default) or ``"inside"`` it
+(0.23·[B·E/(γ'D³)]^0.5, 0.5·[B·s/(K_s D)]^0.5, i.e. an effective factor B^0.5)."""
 
 KS_CALIBRATION_RANGE: tuple[float, float] = (0.1, 30.0)
 """Assumed range of K_s = γ'D²/V covered by the V&S data (PIPESTAB, AGA, DHI tests).
@@ -202,6 +230,7 @@ def work_penetration(
     vertical_load: float,
     amplitude: float,
     B: float = 1.0,
+    b_placement: str = "outside",
 ) -> float:
     """Penetration from accumulated work [m] (V&S Eq 6 / Y&C Eq 13, **reconstruction**).
 
@@ -219,10 +248,15 @@ def work_penetration(
         s_max [m], > 0.
     B : float
         Factor B [-] (1 silica, 0.35 calcareous).
+    b_placement : str
+        "outside" (B·0.23·[...]^0.5) or "inside" (0.23·[B·...]^0.5), :data:`B_PLACEMENTS`.
     """
     ks = stiffness_parameter(submerged_unit_weight, diameter, vertical_load)
     e = in_range("work", work, 0.0, math.inf)
     s = positive("amplitude", amplitude)
+    one_of("b_placement", b_placement, B_PLACEMENTS)
+    if b_placement == "inside":
+        B = B**0.5
     d = diameter
     return initial_penetration + B * 0.23 * d * (e / (submerged_unit_weight * d**3)) ** 0.5 * (
         ks * s / d
@@ -237,15 +271,20 @@ def max_cyclic_penetration(
     amplitude: float,
     B: float = 1.0,
     law: str = "reconstruction",
+    b_placement: str = "outside",
 ) -> float:
     """Largest penetration from cyclic motion of amplitude s_max [m] (V&S Eq 8 / Y&C Eq 14).
 
     **Reconstruction**: z2max/D = z_i/D + B·0.5·[s_max/(K_s·D)]^0.5 (``law="reconstruction"``);
-    ``law="reconstruction_no_half"`` drops the factor 0.5.
+    ``law="reconstruction_no_half"`` drops the factor 0.5. ``b_placement="inside"`` puts B
+    inside the bracket (0.5·[B·s_max/(K_s·D)]^0.5).
     """
     ks = stiffness_parameter(submerged_unit_weight, diameter, vertical_load)
     s = positive("amplitude", amplitude)
     one_of("law", law, PENETRATION_LAWS)
+    one_of("b_placement", b_placement, B_PLACEMENTS)
+    if b_placement == "inside":
+        B = B**0.5
     half = 0.5 if law == "reconstruction" else 1.0
     return initial_penetration + B * half * diameter * (s / (ks * diameter)) ** 0.5
 
@@ -291,6 +330,11 @@ class VerleySotberg(LateralResistanceModel):
         "total" (E += |F_h Δy|) or "passive" (E += |F_r Δy|).
     mobilisation_displacement : float or None
         Friction mobilisation displacement δ [m], > 0 and < y1; None → 0.001·D.
+    passive_rule : str
+        "elastoplastic" (default, push-only elastic–plastic, dissipative) or
+        "legacy_elastic" (restoring force on the envelope); see :data:`PASSIVE_RULES`.
+    b_placement : str
+        "outside" (default) or "inside" the bracket of Eqs 13–14; see :data:`B_PLACEMENTS`.
     variant : str
         Label stored in results ("silica", "calcareous", "f109", "custom").
     """
@@ -316,6 +360,8 @@ class VerleySotberg(LateralResistanceModel):
     max_penetration_law: str = "reconstruction"
     work_integrand: str = "total"
     mobilisation_displacement: float | None = None
+    passive_rule: str = "elastoplastic"
+    b_placement: str = "outside"
     variant: str = "custom"
 
     def __post_init__(self) -> None:
@@ -356,6 +402,8 @@ class VerleySotberg(LateralResistanceModel):
         one_of(f"{cls}.work_law", self.work_law, WORK_LAWS)
         one_of(f"{cls}.max_penetration_law", self.max_penetration_law, PENETRATION_LAWS)
         one_of(f"{cls}.work_integrand", self.work_integrand, WORK_INTEGRANDS)
+        one_of(f"{cls}.passive_rule", self.passive_rule, PASSIVE_RULES)
+        one_of(f"{cls}.b_placement", self.b_placement, B_PLACEMENTS)
         if self.mobilisation_displacement is not None:
             in_range(
                 f"{cls}.mobilisation_displacement",
@@ -557,6 +605,8 @@ class VerleySotberg(LateralResistanceModel):
         p[_k.P_ZMAX_LAW] = PENETRATION_LAWS[self.max_penetration_law]
         p[_k.P_WORK_INTEGRAND] = WORK_INTEGRANDS[self.work_integrand]
         p[_k.P_ZI] = self.initial_penetration
+        p[_k.P_PASSIVE_RULE] = PASSIVE_RULES[self.passive_rule]
+        p[_k.P_B_PLACEMENT] = B_PLACEMENTS[self.b_placement]
         return p
 
     def initial_state(self) -> np.ndarray:
@@ -585,4 +635,6 @@ class VerleySotberg(LateralResistanceModel):
             "max_penetration_law": self.max_penetration_law,
             "work_integrand": self.work_integrand,
             "mobilisation_displacement": self.delta,
+            "passive_rule": self.passive_rule,
+            "b_placement": self.b_placement,
         }

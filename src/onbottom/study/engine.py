@@ -133,6 +133,8 @@ class ParallelMap:
     progress : bool
         Show a tqdm bar per call.
 
+    Notes
+    -----
     Results come back in input order. An exception in ``func`` propagates (the sweep wraps its
     function so that failures are recorded instead).
     """

@@ -1,0 +1,211 @@
+"""``onbottom curves``: F109-style generalized-stability curves from dynamic storm analyses.
+
+Reads the ``[curves]`` table (grid and settings) and the optional ``[hydro]`` and
+``[environment]`` tables of a case file, bisects L_stable and L_10 on the grid
+(:func:`onbottom.study.stability_curves.stability_curves`) on Dask, and writes a NetCDF file,
+a CSV table and a figure of L/(2 + M)² against K.
+
+Case file::
+
+    [curves]
+    K = [5.0, 10.0, 20.0, 40.0]
+    M = [0.0, 0.2, 0.4, 0.8]
+    N = [0.003]
+    soils = ["sand", "clay"]
+    seeds = 5
+"""
+
+from __future__ import annotations
+
+import csv
+import time
+from pathlib import Path
+from typing import Any, Literal
+
+import click
+from pydantic import Field
+
+from onbottom._casefile import StrictModel, load_case_file
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
+
+
+class CurvesTable(StrictModel):
+    K: list[float] = Field(min_length=1, description="Keulegan–Carpenter numbers K [-]")
+    M: list[float] = Field(min_length=1, description="current ratios M = V/U_s [-]")
+    N: list[float] = Field(default_factory=lambda: [0.003], min_length=1, description="N [-]")
+    soils: list[Literal["sand", "clay"]] = Field(default_factory=lambda: ["sand", "clay"])
+    criteria: list[Literal["L_stable", "L_10"]] = Field(
+        default_factory=lambda: ["L_stable", "L_10"]
+    )
+    seeds: int = Field(5, ge=1, le=1000, description="storms per evaluation [-]")
+    first_seed: int = Field(0, ge=0, description="[-]")
+    build_up_hours: float = Field(0.5, ge=0.0, le=100.0, description="[h]")
+    peak_hours: float = Field(3.0, gt=0.0, le=100.0, description="[h]")
+    tolerance: float = Field(0.02, gt=0.0, le=0.5, description="relative L bracket [-]")
+    l_min: float = Field(1.0, gt=0.0, description="initial L bracket low [-]")
+    l_max: float = Field(300.0, gt=0.0, description="initial L bracket high [-]")
+    diameter: float = Field(0.5, gt=0.0, le=5.0, description="D [m]")
+    time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest step [s]")
+    gamma: float = Field(3.3, ge=1.0, le=7.0, description="JONSWAP γ [-]")
+    tn_over_tp: float = Field(0.1, gt=0.0, le=1.0, description="T_n/T_p [-]")
+    sand_unit_weight: float = Field(10.0e3, gt=0.0, le=2.0e4, description="γ'_s [N/m³]")
+    sand_friction: float = Field(0.6, gt=0.0, le=2.0, description="μ [-]")
+    clay_gc: float = Field(0.222, gt=0.0, le=10.0, description="G_c = s_u/(D γ_s) [-]")
+    clay_unit_weight: float = Field(18.0e3, gt=0.0, le=3.0e4, description="γ_s [N/m³]")
+    clay_submerged_unit_weight: float = Field(8.0e3, gt=0.0, le=2.0e4, description="[N/m³]")
+    clay_friction: float = Field(0.2, gt=0.0, le=2.0, description="μ [-]")
+
+
+class CurvesCase(StrictModel):
+    curves: CurvesTable
+    hydro: HydroTable = HydroTable()
+    environment: EnvironmentTable | None = None
+    # other tables of a shared case file are accepted and not used here
+    pipe: dict[str, Any] | None = None
+    seabed: dict[str, Any] | None = None
+    waves: dict[str, Any] | None = None
+    current: dict[str, Any] | None = None
+    storm: dict[str, Any] | None = None
+    solver: dict[str, Any] | None = None
+    run: dict[str, Any] | None = None
+    pipeline: dict[str, Any] | None = None
+    combinations: list[Any] | None = None
+    design: dict[str, Any] | None = None
+
+
+@click.command("curves")
+@click.argument("case", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="NetCDF file (default CASE with suffix .nc); the CSV and PNG go beside it.",
+)
+@click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler address.")
+@click.option(
+    "--workers",
+    type=Number(int, min=0, max=1024),
+    default=None,
+    help="Local Dask worker processes (default one per core; 0 = in this process).",
+)
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+@json_option
+@handle_errors
+def command(
+    case: Path,
+    output: Path | None,
+    scheduler: str | None,
+    workers: int | None,
+    quiet: bool,
+    as_json: bool,
+) -> None:
+    """Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).
+
+    For each soil, N, M and K, bisects the weight parameter L = w_s/(½ρDU_s²) at which the
+    seed-averaged maximum displacement of a storm is 0.5D and 10D; writes NetCDF, CSV and a
+    figure of L/(2 + M)² against K (the form of DNV-RP-F109's tables).
+    """
+    from onbottom.hydro.force_model import MorisonLift
+    from onbottom.results import save_dataset
+    from onbottom.study.stability_curves import CurveSettings, curves_table, stability_curves
+
+    cfg = load_case_file(case, CurvesCase)
+    c = cfg.curves
+    h = cfg.hydro
+    settings = CurveSettings(
+        diameter=c.diameter,
+        seeds=c.seeds,
+        first_seed=c.first_seed,
+        build_up_hours=c.build_up_hours,
+        peak_hours=c.peak_hours,
+        tolerance=c.tolerance,
+        l_min=c.l_min,
+        l_max=c.l_max,
+        gamma=c.gamma,
+        tn_over_tp=c.tn_over_tp,
+        time_step=c.time_step,
+        sand_unit_weight=c.sand_unit_weight,
+        sand_friction=c.sand_friction,
+        clay_gc=c.clay_gc,
+        clay_unit_weight=c.clay_unit_weight,
+        clay_submerged_unit_weight=c.clay_submerged_unit_weight,
+        clay_friction=c.clay_friction,
+        water_density=cfg.environment.water_density if cfg.environment else 1025.0,
+        force_model=MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient),
+    )
+    nc = output if output is not None else case.with_suffix(".nc")
+    check_output_path(nc, field="--output")
+    t0 = time.perf_counter()
+    ds = stability_curves(
+        c.K,
+        c.M,
+        c.N,
+        soils=c.soils,
+        criteria=c.criteria,
+        settings=settings,
+        n_workers=workers,
+        scheduler=scheduler,
+        progress=not quiet and not as_json,
+    )
+    save_dataset(ds, nc)
+    rows = curves_table(ds)
+    csv_path = nc.with_suffix(".csv")
+    with open(csv_path, "w", newline="", encoding="utf-8") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    import matplotlib.pyplot as plt
+
+    from onbottom.plotting.storm import plot_stability_curves
+
+    fig = plot_stability_curves(
+        ds, title=f"{case.stem}: {c.seeds} seeds, {c.build_up_hours:g} h + {c.peak_hours:g} h"
+    )
+    png = nc.with_suffix(".png")
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    failures = ds.attrs.get("failures", "[]")
+    import json
+
+    failures = json.loads(failures) if isinstance(failures, str) else failures
+    notes = ds.attrs.get("no_crossing", "[]")
+    notes = json.loads(notes) if isinstance(notes, str) else notes
+    payload = {
+        "points": rows,
+        "total_storms": int(ds.attrs["total_storms"]),
+        "wall_time_s": time.perf_counter() - t0,
+        "workers": int(ds.attrs["workers"]),
+        "failures": failures,
+        "no_crossing": notes,
+        "netcdf": str(nc),
+        "csv": str(csv_path),
+        "figure": str(png),
+    }
+    if as_json:
+        emit_json(payload)
+    else:
+        for r in rows:
+            txt = ", ".join(
+                f"{k} = {v:.3g}" for k, v in r.items() if k not in ("soil", "N", "M", "K")
+            )
+            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {txt}")
+        for note in notes:
+            click.echo(
+                f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
+                f" M={note['M']:g}: {note['message']}"
+            )
+        click.echo(
+            f"{payload['total_storms']} storms in {payload['wall_time_s']:.1f} s on"
+            f" {payload['workers']} worker(s); written: {nc}, {csv_path}, {png}"
+        )
+    if failures:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -1,0 +1,220 @@
+"""``onbottom storm``: dynamic on-bottom stability of a pipe section (or a pipeline) in a storm.
+
+A case file with a ``[pipeline]`` table is handed to the pipeline FE
+(``onbottom.cli.storm_pipeline.run_pipeline_case``, issue 13); otherwise the rigid section is
+simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`) for one seed, or for
+``--seeds N`` seeds on Dask with statistics of the maximum displacement.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import click
+
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    check_output_path,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+from onbottom.errors import InputError
+
+
+def _has_pipeline_table(case: Path) -> bool:
+    try:
+        with open(case, "rb") as fh:
+            return "pipeline" in tomllib.load(fh)
+    except (OSError, tomllib.TOMLDecodeError):
+        return False  # the strict loader reports the problem with its line
+
+
+def _run_pipeline(case: Path, **options: Any) -> Any:
+    try:
+        from onbottom.cli.storm_pipeline import run_pipeline_case
+    except ImportError as exc:
+        err = InputError(
+            f"{case}: the case has a [pipeline] table but the pipeline FE"
+            " (onbottom.cli.storm_pipeline, issue 13) is not available in this installation;"
+            " remove [pipeline] to run the pipe section"
+        )
+        err.field = "pipeline"  # type: ignore[attr-defined]
+        raise err from exc
+    return run_pipeline_case(case, **options)
+
+
+@click.command("storm")
+@click.argument("case", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option(
+    "--seeds",
+    type=Number(int, min=1, max=100000),
+    default=None,
+    help="Number of storms (seeds storm.seed, storm.seed + 1, ...); default [run] seeds.",
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    metavar="ADDRESS",
+    help="Dask scheduler address (tcp://host:8786); default a local cluster.",
+)
+@click.option(
+    "--workers",
+    type=Number(int, min=0, max=1024),
+    default=None,
+    help="Local Dask worker processes (default one per core; 0 = in this process).",
+)
+@click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="NetCDF file (default: CASE with suffix .nc): time series, or per-seed results.",
+)
+@click.option(
+    "--plot",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="Figure (png, pdf, svg): y–t, z–t, H–y and V–H (one seed only).",
+)
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+@json_option
+@handle_errors
+def command(
+    case: Path,
+    seeds: int | None,
+    scheduler: str | None,
+    workers: int | None,
+    output: Path | None,
+    plot: Path | None,
+    quiet: bool,
+    as_json: bool,
+) -> None:
+    """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
+
+    The storm is [waves] as the peak after a 0.5 h build-up, 3 h at the peak (or
+    [[storm.stages]]); [current], [seabed] (sand: Verley & Sotberg, clay: Verley & Lund,
+    rock: Coulomb), [hydro] coefficients and F109 load reductions. Reports the maximum and
+    final lateral displacement and the DNV-RP-F109 verdicts against 0.5D and 10D. See
+    examples/storm_case.toml.
+    """
+    progress = not quiet and not as_json
+    if _has_pipeline_table(case):
+        payload = _run_pipeline(
+            case,
+            seeds=seeds,
+            scheduler=scheduler,
+            workers=workers,
+            output=output,
+            plot=plot,
+            progress=progress,
+            as_json=as_json,
+        )
+        if isinstance(payload, dict):
+            _report(payload, as_json)
+        return
+
+    from onbottom.dynamics.storm_case import load_storm_case
+
+    setup = load_storm_case(case)
+    n = setup.seeds if seeds is None else int(seeds)
+    nc = output if output is not None else case.with_suffix(".nc")
+    check_output_path(nc, field="--output")
+    if n == 1:
+        from onbottom.dynamics.storm_section import simulate_storm_section
+
+        res = simulate_storm_section(
+            setup.pipe,
+            setup.soil,
+            setup.storm,
+            progress=progress,
+            attrs={"case_file": str(case)},
+            **setup.kwargs(),
+        )
+        res.save(nc)
+        if plot is not None:
+            import matplotlib.pyplot as plt
+
+            from onbottom.plotting.storm import plot_storm_result
+
+            check_output_path(plot, field="--plot")
+            fig = plot_storm_result(res, title=f"{case.stem}: {res.message}")
+            fig.savefig(plot, dpi=110)
+            plt.close(fig)
+        payload = {
+            **res.to_dict(),
+            "seeds": 1,
+            "seed": setup.storm.seed,
+            "diameter_m": res.diameter,
+            "netcdf": str(nc),
+            "plot": None if plot is None else str(plot),
+        }
+        _report(payload, as_json)
+        if not res.success:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+        return
+
+    from onbottom.results import save_dataset
+    from onbottom.study.storm_seeds import run_storm_seeds
+
+    study = run_storm_seeds(
+        setup.pipe,
+        setup.soil,
+        setup.storm,
+        seeds=n,
+        fractile=setup.fractile,
+        n_workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        **setup.kwargs(),
+    )
+    save_dataset(study.data, nc)
+    st = study.statistics
+    d = setup.pipe.outer_diameter
+    ok_rows = study.data["status"].values > 0
+    final = study.data["final_displacement"].values[ok_rows]
+    payload = {
+        "max_displacement_m": st["mean"],
+        "final_displacement_m": float(abs(final).mean()) if final.size else None,
+        "criteria": study.criteria,
+        "status": 1 if study.success else -9,
+        "success": study.success,
+        "message": (
+            f"{n} seeds: seed-averaged maximum displacement {st['mean'] / d:.3g}D"
+            f" (max {st['max'] / d:.3g}D, {st['fractile_level']:g} fractile"
+            f" {st['fractile'] / d:.3g}D)"
+            + (f"; {st['n_failed']} seed(s) failed" if study.failures else "")
+        ),
+        "statistics": st,
+        "failures": study.failures,
+        "seeds": n,
+        "diameter_m": d,
+        "netcdf": str(nc),
+    }
+    _report(payload, as_json)
+    if not study.success:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _report(payload: dict[str, Any], as_json: bool) -> None:
+    if as_json:
+        emit_json(payload)
+        return
+    click.echo(payload.get("message", ""))
+    if payload.get("max_displacement_m") is not None:
+        d = payload.get("diameter_m")
+        tail = f" ({payload['max_displacement_m'] / d:.3g}D)" if d else ""
+        label = "mean max" if (payload.get("seeds") or 1) > 1 else "max"
+        click.echo(f"  {label} |y|            {payload['max_displacement_m']:.4g} m{tail}")
+    if payload.get("final_displacement_m") is not None:
+        click.echo(f"  final y (|y| mean)   {payload['final_displacement_m']:.4g} m")
+    for k, v in (payload.get("criteria") or {}).items():
+        click.echo(f"  F109 {k:>4} criterion  {'PASS' if v else 'FAIL'}")
+    if payload.get("netcdf"):
+        click.echo(
+            f"  written: {payload['netcdf']}"
+            + (f", {payload['plot']}" if payload.get("plot") else "")
+        )

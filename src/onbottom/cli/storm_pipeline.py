@@ -1,0 +1,427 @@
+"""Pipeline FE storm runs from a case file: ``onbottom storm CASE`` with a ``[pipeline]`` table.
+
+``onbottom storm`` (:mod:`onbottom.cli.storm`) hands a case with a ``[pipeline]`` table to
+:func:`run_pipeline_case`. The shared tables ([pipe], [seabed], [environment], [waves],
+[current], [hydro], [storm], [solver], [run]) are read by
+:func:`onbottom.dynamics.storm_case.load_storm_case`; this module validates ``[pipeline]``
+(strict: unknown keys are errors with their line) and runs
+:func:`onbottom.dynamics.pipeline.simulate_pipeline` for each seed.
+
+From the shared tables the pipeline uses: the pipe (D, w_s, mass; EI and EA from the build-up
+form, or ``[pipeline] bending_stiffness / axial_stiffness / mass`` with the simple form), the soil
+model of [seabed] (or ``[[pipeline.sections]]`` along the route), the storm and its seed,
+current (normal component, mean over D), [hydro] coefficients and reductions, ``[storm]
+time_step`` (largest step) and ``sample_interval``, ``[solver] max_displacement_over_d``
+(runaway stop), ``dt_min`` and ``max_displacement_increment_over_d``, ``[run] seeds``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
+from onbottom.errors import InputError
+
+__all__ = ["PipelineTable", "RouteSectionTable", "build_pipeline_run", "run_pipeline_case"]
+
+EndName = Literal["fixed", "pinned", "free", "spring"]
+
+
+class RouteSectionTable(StrictModel):
+    """``[[pipeline.sections]]``: a stretch of the route with its own seabed."""
+
+    start: float = Field(ge=0.0, description="start of the section along the pipe [m]")
+    end: float = Field(gt=0.0, description="end of the section along the pipe [m]")
+    model: Literal["sand", "calcareous", "clay", "rock", "coulomb"] | None = None
+    submerged_unit_weight: float | None = Field(None, gt=0.0, le=2.0e4, description="[N/m³]")
+    unit_weight: float | None = Field(None, gt=0.0, le=3.0e4, description="[N/m³]")
+    friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
+    undrained_shear_strength: float | None = Field(None, gt=0.0, description="s_u [Pa]")
+    axial_friction_coefficient: float | None = Field(
+        None, gt=0.0, le=2.0, description="μ_ax [-] (default: μ)"
+    )
+
+    @model_validator(mode="after")
+    def _order(self) -> RouteSectionTable:
+        if not self.end > self.start:
+            raise ValueError("end must exceed start")
+        return self
+
+
+class PipelineTable(StrictModel):
+    """``[pipeline]``: presence selects the pipeline FE (issue 13)."""
+
+    length: float = Field(gt=0.0, le=1.0e5, description="pipeline length L [m]")
+    element_length: float = Field(gt=0.0, description="element length [m]")
+    end_conditions: EndName | list[EndName] = "fixed"
+    end_springs: list[float] = Field(
+        default_factory=lambda: [0.0, 0.0, 0.0],
+        description="axial [N/m], lateral [N/m], rotational [N·m/rad] springs at 'spring' ends",
+    )
+    effective_axial_force: float = Field(0.0, description="initial N₀ [N], tension +")
+    bending_stiffness: float | None = Field(None, gt=0.0, description="EI [N·m²]")
+    axial_stiffness: float | None = Field(None, gt=0.0, description="EA [N]")
+    mass: float | None = Field(
+        None, gt=0.0, description="structural mass incl. contents [kg/m] (simple pipe form)"
+    )
+    axial_friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="[-]")
+    axial_mobilisation: float = Field(5.0e-3, gt=0.0, le=1.0, description="δ_ax [m]")
+    strain_limit: float | None = Field(None, gt=0.0, le=1.0, description="user limit [-]")
+    strain_fibre_distance: float | None = Field(None, gt=0.0, description="c [m]")
+    hht_alpha: float = Field(-0.1, ge=-1.0 / 3.0, le=0.0, description="HHT-α [-]")
+    force_tolerance: float = Field(1.0e-6, gt=0.0, le=1.0e-2, description="relative [-]")
+    max_iterations: int = Field(8, ge=3, le=200, description="Newton iterations [-]")
+    record_interval: float | None = Field(
+        1.0, gt=0.0, description="time between records [s]; absent/None → envelopes only"
+    )
+    chunk_duration: float = Field(600.0, gt=0.0, description="NetCDF/checkpoint interval [s]")
+    duration: float | None = Field(None, gt=0.0, description="simulate only [0, duration] [s]")
+    animation: str | None = Field(None, description="GIF file of the line in the storm")
+    relative_velocity: bool = True
+    sections: list[RouteSectionTable] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _checks(self) -> PipelineTable:
+        if self.element_length > self.length:
+            raise ValueError("element_length must not exceed length")
+        if isinstance(self.end_conditions, list) and len(self.end_conditions) != 2:
+            raise ValueError("end_conditions: one name, or [start, end]")
+        if len(self.end_springs) != 3 or any(k < 0 for k in self.end_springs):
+            raise ValueError("end_springs: three values >= 0 (axial, lateral, rotational)")
+        return self
+
+
+def _soil_for(section: RouteSectionTable | None, case: Any, pipe: Any):
+    from onbottom.dynamics.storm_case import soil_model
+
+    sb = case.seabed
+    if section is not None:
+        upd = {
+            k: getattr(section, k)
+            for k in (
+                "model",
+                "submerged_unit_weight",
+                "unit_weight",
+                "friction_coefficient",
+                "undrained_shear_strength",
+            )
+            if getattr(section, k) is not None
+        }
+        sb = type(sb).model_validate({**sb.model_dump(), **upd})
+    return soil_model(sb.model, pipe, sb.seabed())
+
+
+def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
+    """Read and validate a pipeline case; return the model, storm setup and settings."""
+    from onbottom._casefile import load_case_file
+    from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, SoilSection
+    from onbottom.dynamics.storm_case import StormCase, build_setup
+    from onbottom.hydro.storm_kinematics import current_normal_to_pipe
+
+    p = Path(path)
+    case = load_case_file(p, StormCase)
+    doc, text = read_toml(p)
+    table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
+    setup = build_setup(case, p)
+    pipe = setup.pipe
+    if table.mass is not None:
+        from dataclasses import replace
+
+        try:
+            pipe = replace(pipe, mass=table.mass)
+        except InputError as exc:
+            raise CaseFileError(
+                f"{p}: pipeline.mass = {table.mass!r} is invalid: {exc}",
+                field="pipeline.mass",
+                file=str(p),
+            ) from None
+    d = pipe.outer_diameter
+    if table.sections:
+        soil: Any = tuple(
+            SoilSection(
+                start=s.start,
+                end=s.end,
+                model=_soil_for(s, case, pipe),
+                axial_friction_coefficient=s.axial_friction_coefficient
+                or table.axial_friction_coefficient,
+            )
+            for s in table.sections
+        )
+    elif table.axial_friction_coefficient is not None:
+        soil = (
+            SoilSection(
+                start=0.0,
+                end=table.length,
+                model=setup.soil,
+                axial_friction_coefficient=table.axial_friction_coefficient,
+            ),
+        )
+    else:
+        soil = setup.soil
+    fibre = table.strain_fibre_distance
+    if fibre is None and case.pipe.steel_outer_diameter is not None:
+        fibre = 0.5 * case.pipe.steel_outer_diameter
+    ends = (
+        table.end_conditions
+        if isinstance(table.end_conditions, str)
+        else tuple(table.end_conditions)
+    )
+    try:
+        model = PipelineModel(
+            pipe=pipe,
+            length=table.length,
+            element_length=table.element_length,
+            soil=soil,
+            bending_stiffness=table.bending_stiffness,
+            axial_stiffness=table.axial_stiffness,
+            effective_axial_force=table.effective_axial_force,
+            end_conditions=ends,
+            end_springs=tuple(table.end_springs),
+            axial_mobilisation=table.axial_mobilisation,
+            force_model=setup.force_model,
+            reductions=setup.reductions,
+            current=current_normal_to_pipe(setup.current, d, setup.z0),
+            relative_velocity=table.relative_velocity,
+            strain_fibre_distance=fibre,
+        )
+    except InputError as exc:
+        raise CaseFileError(
+            f"{p}: [pipeline] is invalid: {exc}", field="pipeline", file=str(p)
+        ) from None
+    sv = case.solver
+    settings = PipelineSettings(
+        alpha=table.hht_alpha,
+        dt_max=case.storm.time_step,
+        dt_min=sv.dt_min,
+        max_iterations=table.max_iterations,
+        force_tolerance=table.force_tolerance,
+        max_displacement_increment_over_d=max(sv.max_displacement_increment_over_d, 0.05),
+        stop_displacement_over_d=sv.max_displacement_over_d,
+        record_interval=table.record_interval,
+        chunk_duration=table.chunk_duration,
+        strain_limit=table.strain_limit,
+    )
+    return {
+        "model": model,
+        "setup": setup,
+        "settings": settings,
+        "table": table,
+        "text": text,
+        "path": p,
+    }
+
+
+STATUS_ERROR = -9
+"""Status recorded for a seed whose run raised an exception."""
+
+
+class _SeedJob:
+    """One seed of a pipeline case (picklable: workers re-read the case file)."""
+
+    def __init__(self, path: str, base: str, n: int, progress: bool) -> None:
+        self.path, self.base, self.n, self.progress = path, base, n, progress
+
+    def output(self, seed: int) -> Path:
+        b = Path(self.base)
+        return b if self.n == 1 else b.with_name(f"{b.stem}.seed{seed}{b.suffix}")
+
+    def run(self, seed: int):
+        from onbottom.dynamics.pipeline import simulate_pipeline
+        from onbottom.hydro.short_crested import pipeline_kinematics
+
+        run = build_pipeline_run(self.path)
+        setup, model, table = run["setup"], run["model"], run["table"]
+        storm = setup.storm.with_seed(int(seed))
+        kin = pipeline_kinematics(
+            storm, setup.depth, model.x, sample_interval=setup.sample_interval
+        )
+        return simulate_pipeline(
+            model,
+            kin,
+            duration=table.duration,
+            settings=run["settings"],
+            output=self.output(seed),
+            progress=self.progress,
+            attrs={"case_file": str(self.path), "seed": int(seed)},
+            identity_extra={"case": run["text"], "seed": int(seed)},
+        )
+
+    def __call__(self, seed: int) -> dict[str, Any]:
+        import traceback
+
+        try:
+            r = self.run(seed)
+        except Exception as exc:  # recorded, not raised: one bad seed must not sink N
+            return {
+                "seed": int(seed),
+                "status": STATUS_ERROR,
+                "success": False,
+                "message": f"{type(exc).__name__}: {exc}",
+                "traceback": traceback.format_exc(limit=3),
+            }
+        return {"seed": int(seed), **r.to_dict()}
+
+
+def run_pipeline_case(
+    path: str | os.PathLike,
+    *,
+    seeds: int | None = None,
+    output: str | os.PathLike | None = None,
+    plot: str | os.PathLike | None = None,
+    animation: str | os.PathLike | None = None,
+    progress: bool = False,
+    as_json: bool = False,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    **_ignored: Any,
+) -> dict[str, Any]:
+    """Run the pipeline FE for a case file; return the JSON payload of ``onbottom storm``.
+
+    Parameters
+    ----------
+    path : path
+        TOML case with a ``[pipeline]`` table.
+    seeds : int or None
+        Number of storms (seeds storm.seed, storm.seed + 1, ...); default ``[run] seeds``.
+        Several seeds run on Dask (:func:`onbottom.study.engine.dask_client`: ``scheduler``
+        address or a local cluster of ``workers`` processes; ``workers=0`` → in this
+        process); a seed that raises is recorded (status −9), never dropped.
+    output : path or None
+        NetCDF file (default: CASE with suffix .nc; with several seeds ``stem.seedN.nc``),
+        appended during the run; its checkpoint ``<output>.ckpt.npz`` resumes an interrupted
+        run of the same case.
+    plot : path or None
+        Figure of the envelopes, deflected-shape snapshots and worst-node histories.
+    animation : path or None
+        GIF of the line in the storm (default ``[pipeline] animation``).
+    progress, as_json : bool
+        Progress bar; JSON output (the payload is returned either way).
+
+    Returns
+    -------
+    dict
+        ``max_displacement_m`` (worst seed), ``max_strain``, ``worst_node_x_m``,
+        ``criteria`` (F109 0.5D/10D), ``strain_check`` (None without ``strain_limit``),
+        ``status``, ``success``, ``message``, ``diameter_m``, ``netcdf``, ``plot``,
+        ``animation``, ``seeds``, ``per_seed``.
+    """
+
+    run = build_pipeline_run(path)
+    p: Path = run["path"]
+    model = run["model"]
+    setup = run["setup"]
+    table: PipelineTable = run["table"]
+    n = setup.seeds if seeds is None else int(seeds)
+    base = Path(output) if output is not None else p.with_suffix(".nc")
+    if n > 1 and (plot is not None or animation is not None):
+        raise InputError("--plot/animation are for one seed: run the seed of interest alone")
+    job = _SeedJob(str(p), str(base), n, progress and n == 1)
+    first = setup.storm.seed
+    if n == 1:
+        res = job.run(first)
+        rows = [{"seed": int(first), **res.to_dict()}]
+    elif workers == 0:
+        rows = [job(first + k) for k in range(n)]
+    else:
+        from onbottom.study.engine import ParallelMap, dask_client
+
+        with dask_client(scheduler_address=scheduler, n_workers=workers) as client:
+            rows = ParallelMap(client, batch_size=1, progress=progress)(
+                job, [first + k for k in range(n)]
+            )
+    ok = [r for r in rows if r["success"]]
+    failures = [
+        {"seed": r["seed"], "status": r["status"], "message": r["message"]}
+        for r in rows
+        if not r["success"]
+    ]
+    d = model.pipe.outer_diameter
+    plot_file = None
+    anim_file = None
+    if n == 1:
+        if plot is not None:
+            import matplotlib.pyplot as plt
+
+            from onbottom.plotting.pipeline import plot_pipeline_result
+
+            fig = plot_pipeline_result(res, title=f"{p.stem}: {res.message}")
+            Path(plot).parent.mkdir(parents=True, exist_ok=True)
+            fig.savefig(plot, dpi=110)
+            plt.close(fig)
+            plot_file = str(plot)
+        anim = animation if animation is not None else table.animation
+        if anim is not None:
+            from onbottom.plotting.pipeline import animate_pipeline
+
+            ap = Path(anim)
+            if not ap.is_absolute() and animation is None:
+                ap = p.parent / ap
+            animate_pipeline(res, ap)
+            anim_file = str(ap)
+    if not ok:
+        worst: dict[str, Any] = rows[0]
+        maxes = np.array([math.nan])
+    else:
+        worst = max(ok, key=lambda r: r["max_displacement_m"])
+        maxes = np.array([r["max_displacement_m"] for r in ok])
+    criteria = {
+        key: bool(ok) and all(bool(r["criteria"][key]) for r in ok) for key in ("0.5D", "10D")
+    }
+    strain_check = (
+        None
+        if table.strain_limit is None or not ok
+        else all(bool(r["criteria"]["strain"]) for r in ok)
+    )
+    success = not failures and all(r["success"] for r in rows)
+    detail = ""
+    verdict = {None: "", True: "PASS", False: "FAIL"}[strain_check]
+    if ok:
+        eps = max(r["max_strain"] for r in ok)
+        detail = (
+            f"; worst node x = {worst['worst_node_x_m']:.1f} m; max strain {100 * eps:.3g} %"
+            + (
+                ""
+                if strain_check is None
+                else f" (limit {100 * table.strain_limit:.3g} %: {verdict})"
+            )
+        )
+    message = (
+        worst["message"] + detail
+        if n == 1
+        else (
+            f"{n} seeds: seed-averaged maximum displacement {np.mean(maxes) / d:.3g}D"
+            f" (max {np.max(maxes) / d:.3g}D)"
+            + (f"; {len(failures)} seed(s) failed" if failures else "")
+            + detail
+        )
+    )
+    payload = {
+        "max_displacement_m": worst.get("max_displacement_m"),
+        "max_displacement_over_D": worst.get("max_displacement_over_D"),
+        "mean_max_displacement_m": float(np.mean(maxes)),
+        "max_strain": max((r["max_strain"] for r in ok), default=None),
+        "worst_node_x_m": worst.get("worst_node_x_m"),
+        "criteria": criteria,
+        "strain_limit": table.strain_limit,
+        "strain_check": strain_check,
+        "status": worst["status"] if success else min(r["status"] for r in rows),
+        "success": success,
+        "message": message,
+        "diameter_m": d,
+        "n_nodes": int(model.x.size),
+        "seeds": n,
+        "netcdf": str(job.output(first)) if n == 1 else [str(job.output(r["seed"])) for r in rows],
+        "plot": plot_file,
+        "animation": anim_file,
+        "failures": failures,
+        "per_seed": rows,
+        "model": "pipeline_fe",
+    }
+    del as_json  # the command formats the payload
+    return payload

@@ -1,0 +1,449 @@
+"""Numba time loop of a pipe section in a storm, loads fed back by the pipe's motion (private).
+
+Equation of lateral motion per unit length (docs/theory/storm_section.md):
+
+    (m + m_a) ÿ = F_Y(t, ẏ, z) − R(y, V(t), history),    m_a = ρ_w (π D²/4) C_a
+    F_Y = r_y(z) [ ½ ρ_w D C_D (U + V_c − ẏ)|U + V_c − ẏ| + ρ_w (π D²/4) C_M U̇ ]
+    V(t) = w_s − F_Z,   F_Z = r_z(z) ½ ρ_w D C_L (U + V_c)²
+
+(:func:`onbottom.hydro._load_kernels.morison_lateral` / ``lift``). R from
+``onbottom.soil._dispatch.lateral_step`` with V(t) as its vertical load. r_y = r_const,y ·
+r_pen,y(z/D), r_z = r_const,z · r_pen,z(z/D) (DNV-RP-F109 (2017) Eqs 3.17–3.20) with z the
+penetration of the committed soil state at the start of the step (one-step lag, as CORUS-3D
+updates them "every increment").
+
+Each step t → t + Δt is Newmark (γ, β; default average acceleration ½, ¼) for the increment Δy:
+a₁ = (Δy − Δŷ)/(βΔt²), ẏ₁ = ẏ₀ + Δt(1 − γ)a₀ + γ/(βΔt)·(Δy − Δŷ), Δŷ = Δt ẏ₀ + Δt²(½ − β)a₀,
+residual r(Δy) = M a₁ + R(y₀ + Δy) − F_Y(t₁, ẏ₁) = 0, with the velocity-dependent drag inside the
+Newton iteration: dr/dΔy = M/(βΔt²) + dR/dy − (dF_Y/dẏ)·γ/(βΔt) (dF_Y/dẏ <= 0 adds damping). The
+Newton iterate is safeguarded by a bracket and bisection as in ``_section_kernel.solve_step``.
+A step is accepted when r converged and |Δy| <= du_max; otherwise Δt is halved down to dt_min.
+After easy steps Δt doubles back up to dt_max.
+
+Energy accounting (trapezoidal, signed): W_hydro += ½(F₀ + F₁)Δy, W_soil += ½(R₀ + R₁)Δy; with
+average-acceleration Newmark ½M(ẏ₁² − ẏ₀²) = W_hydro − W_soil holds to round-off per step.
+
+Events: lift-off (V <= 0) — the pipe is free of soil while lifted (``LIFTOFF_FREE``, the soil
+kernels return zero resistance) or the run stops (``LIFTOFF_STOP``); |y| >= y_limit stops the run
+(runaway).
+
+Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
+``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``coef[3, nc]`` (C_D, C_M, C_L; nc = 1 or n samples),
+``rec[n, REC_*]`` (records every ``ST_REC_INTERVAL`` seconds; a zero-row buffer records nothing).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from onbottom.hydro._load_kernels import (
+    lift,
+    morison_lateral,
+    penetration_reduction_y,
+    penetration_reduction_z,
+)
+from onbottom.soil._dispatch import lateral_step
+from onbottom.soil.base import (
+    OUT_FRICTION,
+    OUT_PASSIVE,
+    OUT_R,
+    OUT_REGION,
+    OUT_SIZE,
+    OUT_TANGENT,
+    OUT_WORK,
+    OUT_Z,
+    S_Z,
+)
+
+LIFTOFF_FREE = 0
+LIFTOFF_STOP = 1
+
+# settings
+ST_DT_MAX = 0
+ST_DT_MIN = 1
+ST_DU_MAX = 2
+ST_RTOL = 3
+ST_MAX_ITER = 4
+ST_Y_LIMIT = 5
+ST_MASS = 6  # m + m_a
+ST_GAMMA = 7
+ST_BETA = 8
+ST_RHO = 9
+ST_D = 10
+ST_WS = 11
+ST_RY_CONST = 12
+ST_RZ_CONST = 13
+ST_USE_PEN = 14
+ST_LIFT_REL = 15
+ST_LIFTOFF = 16
+ST_REC_INTERVAL = 17
+ST_CURRENT = 18
+ST_DTS = 19
+ST_T_END = 20
+ST_FORCE_MODEL = 21
+N_SETTINGS = 22
+
+# dynamic state and running summary
+D_T = 0
+D_Y = 1
+D_YD = 2
+D_A = 3
+D_DT = 4
+D_N_REJECT = 5
+D_N_STEPS = 6
+D_N_ITER = 7
+D_YMAX = 8
+D_T_YMAX = 9
+D_N_LIFTOFF = 10
+D_T_LIFTOFF = 11
+D_LIFTED = 12
+D_W_HYDRO = 13
+D_W_SOIL = 14
+D_F_PREV = 15
+D_R_PREV = 16
+D_NEXT_REC = 17
+D_ZMAX = 18
+D_ZMIN = 19
+D_T_LIMIT = 20
+D_FZ_MAX = 21
+D_V_MIN = 22
+N_DYN = 23
+
+# record columns
+REC_T = 0
+REC_Y = 1
+REC_YD = 2
+REC_Z = 3
+REC_FY = 4
+REC_FZ = 5
+REC_V = 6
+REC_FF = 7
+REC_FP = 8
+REC_R = 9
+REC_W_HYDRO = 10
+REC_W_SOIL = 11
+REC_U = 12
+REC_RY = 13
+REC_RZ = 14
+REC_REGION = 15
+REC_SOIL_WORK = 16
+N_REC = 17
+
+STATUS_CHUNK = 0
+STATUS_END = 1
+STATUS_LIMIT = 2
+STATUS_LIFTOFF = 3
+STATUS_BUFFER_FULL = 4
+STATUS_STEP_FAILED = -1
+STATUS_SOIL_NAN = -2
+
+
+@njit(cache=True)
+def flow_at(t, kin_u, kin_a, dts):
+    """U, U̇ at time t by linear interpolation of the samples; index of the left sample."""
+    n = kin_u.shape[0]
+    x = t / dts
+    j = int(x)
+    if j >= n - 1:
+        return kin_u[n - 1], kin_a[n - 1], n - 1
+    if j < 0:
+        return kin_u[0], kin_a[0], 0
+    f = x - j
+    return (
+        kin_u[j] + f * (kin_u[j + 1] - kin_u[j]),
+        kin_a[j] + f * (kin_a[j + 1] - kin_a[j]),
+        j,
+    )
+
+
+@njit(cache=True)
+def hydro_forces(settings, coef, j, u, dudt, ydot, z):
+    """(F_Y, dF_Y/dẏ, F_Z, r_y, r_z) of the force model ``settings[ST_FORCE_MODEL]``.
+
+    Model 0 = Morison + lift (:class:`onbottom.hydro.force_model.MorisonLift`). Add a branch per
+    new force model.
+    """
+    nc = coef.shape[1]
+    jj = j if nc > 1 else 0
+    if jj >= nc:
+        jj = nc - 1
+    cd = coef[0, jj]
+    cm = coef[1, jj]
+    cl = coef[2, jj]
+    d = settings[ST_D]
+    rho = settings[ST_RHO]
+    vc = settings[ST_CURRENT]
+    ry = settings[ST_RY_CONST]
+    rz = settings[ST_RZ_CONST]
+    if settings[ST_USE_PEN] != 0.0:
+        ry *= penetration_reduction_y(z / d)
+        rz *= penetration_reduction_z(z / d)
+    fy, dfdyd = morison_lateral(u, dudt, vc, ydot, d, rho, cd, cm, ry)
+    if settings[ST_LIFT_REL] != 0.0:
+        fz = lift(u - ydot, vc, d, rho, cl, rz)
+    else:
+        fz = lift(u, vc, d, rho, cl, rz)
+    return fy, dfdyd, fz, ry, rz
+
+
+@njit(cache=True)
+def _eval(model_id, params, state_old, settings, coef, j, u1, a1dot, y0, dy, yd1, z, trial, out):
+    """Hydro + soil at the trial increment; returns (F_Y, dF/dẏ, F_Z, V, r_y, r_z)."""
+    fy, dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, z)
+    v = settings[ST_WS] - fz
+    lateral_step(model_id, params, state_old, y0 + dy, v, trial, out)
+    return fy, dfdyd, fz, v, ry, rz
+
+
+@njit(cache=True)
+def solve_step(model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a0, dt, trial, out):
+    """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters)."""
+    m = settings[ST_MASS]
+    gam = settings[ST_GAMMA]
+    beta = settings[ST_BETA]
+    rtol = settings[ST_RTOL]
+    max_iter = int(settings[ST_MAX_ITER])
+    z = state[S_Z]
+    c0 = m / (beta * dt * dt)
+    cv = gam / (beta * dt)
+    dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
+    yd_base = yd0 + dt * (1.0 - gam) * a0
+    scale = settings[ST_WS] + abs(m * a0) + 1.0
+    tol_r = rtol * scale
+    have_lo = False
+    have_hi = False
+    lo = 0.0
+    hi = 0.0
+    dy = dy_hat
+    eps = 4.0e-16 * (abs(y0) + abs(dy_hat) + 1e-12)
+    for it in range(max_iter):
+        yd1 = yd_base + cv * (dy - dy_hat)
+        fy, dfdyd, _fz, _v, _ry, _rz = _eval(
+            model_id, params, state, settings, coef, j, u1, a1dot, y0, dy, yd1, z, trial, out
+        )
+        big_r = out[OUT_R]
+        if not math.isfinite(big_r):
+            return dy, False, it + 1
+        r = c0 * (dy - dy_hat) + big_r - fy
+        if abs(r) <= tol_r:
+            return dy, True, it + 1
+        if r > 0.0:
+            hi = dy
+            have_hi = True
+        else:
+            lo = dy
+            have_lo = True
+        if have_lo and have_hi and (hi - lo) <= eps:
+            return dy, True, it + 1
+        cdamp = c0 - dfdyd * cv
+        jac = cdamp + out[OUT_TANGENT]
+        if jac > 0.0:
+            dy_next = dy - r / jac
+        else:
+            dy_next = dy - r / cdamp
+        if have_lo and have_hi:
+            if not (lo < dy_next < hi):
+                dy_next = 0.5 * (lo + hi)
+        elif have_hi and dy_next >= hi:
+            dy_next = dy - r / cdamp
+        elif have_lo and dy_next <= lo:
+            dy_next = dy - r / cdamp
+        if abs(dy_next - dy) <= eps:
+            yd1 = yd_base + cv * (dy_next - dy_hat)
+            _eval(
+                model_id,
+                params,
+                state,
+                settings,
+                coef,
+                j,
+                u1,
+                a1dot,
+                y0,
+                dy_next,
+                yd1,
+                z,
+                trial,
+                out,
+            )
+            return dy_next, True, it + 1
+        dy = dy_next
+    return dy, False, max_iter
+
+
+@njit(cache=True)
+def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
+    rec[n, REC_T] = t
+    rec[n, REC_Y] = y
+    rec[n, REC_YD] = yd
+    rec[n, REC_Z] = out[OUT_Z]
+    rec[n, REC_FY] = fy
+    rec[n, REC_FZ] = fz
+    rec[n, REC_V] = v
+    rec[n, REC_FF] = out[OUT_FRICTION]
+    rec[n, REC_FP] = out[OUT_PASSIVE]
+    rec[n, REC_R] = out[OUT_R]
+    rec[n, REC_W_HYDRO] = dyn[D_W_HYDRO]
+    rec[n, REC_W_SOIL] = dyn[D_W_SOIL]
+    rec[n, REC_U] = u
+    rec[n, REC_RY] = ry
+    rec[n, REC_RZ] = rz
+    rec[n, REC_REGION] = out[OUT_REGION]
+    rec[n, REC_SOIL_WORK] = out[OUT_WORK]
+
+
+@njit(cache=True)
+def initial(model_id, params, state, settings, coef, kin_u, kin_a, dyn, rec):
+    """Initial acceleration, running summary and first record (pipe at rest at y = 0)."""
+    trial = np.empty_like(state)
+    out = np.empty(OUT_SIZE)
+    dts = settings[ST_DTS]
+    u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
+    fy, _dfdyd, fz, v, ry, rz = _eval(
+        model_id,
+        params,
+        state,
+        settings,
+        coef,
+        j,
+        u0,
+        a0,
+        dyn[D_Y],
+        0.0,
+        dyn[D_YD],
+        state[S_Z],
+        trial,
+        out,
+    )
+    dyn[D_A] = (fy - out[OUT_R]) / settings[ST_MASS]
+    dyn[D_F_PREV] = fy
+    dyn[D_R_PREV] = out[OUT_R]
+    dyn[D_ZMAX] = out[OUT_Z]
+    dyn[D_ZMIN] = out[OUT_Z]
+    dyn[D_FZ_MAX] = fz
+    dyn[D_V_MIN] = v
+    dyn[D_YMAX] = abs(dyn[D_Y])
+    dyn[D_T_LIMIT] = -1.0
+    dyn[D_T_LIFTOFF] = -1.0
+    if v <= 0.0:
+        dyn[D_LIFTED] = 1.0
+        dyn[D_N_LIFTOFF] = 1.0
+        dyn[D_T_LIFTOFF] = dyn[D_T]
+    n = 0
+    if rec.shape[0] > 0:
+        _write(rec, 0, dyn[D_T], dyn[D_Y], dyn[D_YD], fy, fz, v, u0, ry, rz, dyn, out)
+        n = 1
+    dyn[D_NEXT_REC] = dyn[D_T] + settings[ST_REC_INTERVAL]
+    return n
+
+
+@njit(cache=True)
+def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop, rec, n0):
+    """Advance from dyn[D_T] to t_stop, the storm end, an event or a full record buffer.
+
+    Returns (rows written in total, status).
+    """
+    dt_max = settings[ST_DT_MAX]
+    dt_min = settings[ST_DT_MIN]
+    du_max = settings[ST_DU_MAX]
+    y_limit = settings[ST_Y_LIMIT]
+    t_end = settings[ST_T_END]
+    dts = settings[ST_DTS]
+    rec_dt = settings[ST_REC_INTERVAL]
+    stop_on_lift = settings[ST_LIFTOFF] == LIFTOFF_STOP
+    cap = rec.shape[0]
+    trial = np.empty_like(state)
+    out = np.empty(OUT_SIZE)
+    n = n0
+    while True:
+        t = dyn[D_T]
+        if t >= t_end - 1e-9 * (1.0 + t_end):
+            return n, STATUS_END
+        if t >= t_stop:
+            return n, STATUS_CHUNK
+        if cap > 0 and n >= cap:
+            return n, STATUS_BUFFER_FULL
+        y0 = dyn[D_Y]
+        yd0 = dyn[D_YD]
+        a0 = dyn[D_A]
+        dt = min(dyn[D_DT], dt_max)
+        if t + dt > t_end - 0.01 * dt_min:
+            dt = t_end - t
+        t1 = t + dt
+        u1, a1dot, j = flow_at(t1, kin_u, kin_a, dts)
+        dy, conv, iters = solve_step(
+            model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a0, dt, trial, out
+        )
+        dyn[D_N_ITER] += iters
+        if not math.isfinite(out[OUT_R]):
+            return n, STATUS_SOIL_NAN
+        ok = conv and abs(dy) <= du_max
+        if not ok:
+            if dt > dt_min * 1.000001:
+                dyn[D_DT] = max(0.5 * dt, dt_min)
+                dyn[D_N_REJECT] += 1.0
+                continue
+            if not conv:
+                return n, STATUS_STEP_FAILED
+        # ---- commit
+        gam = settings[ST_GAMMA]
+        beta = settings[ST_BETA]
+        dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
+        a1 = (dy - dy_hat) / (beta * dt * dt)
+        yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
+        fy, _dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, state[S_Z])
+        v = settings[ST_WS] - fz
+        r1 = out[OUT_R]
+        dyn[D_W_HYDRO] += 0.5 * (dyn[D_F_PREV] + fy) * dy
+        dyn[D_W_SOIL] += 0.5 * (dyn[D_R_PREV] + r1) * dy
+        dyn[D_F_PREV] = fy
+        dyn[D_R_PREV] = r1
+        for i in range(state.shape[0]):
+            state[i] = trial[i]
+        y1 = y0 + dy
+        dyn[D_T] = t1
+        dyn[D_Y] = y1
+        dyn[D_YD] = yd1
+        dyn[D_A] = a1
+        dyn[D_N_STEPS] += 1.0
+        if abs(y1) > dyn[D_YMAX]:
+            dyn[D_YMAX] = abs(y1)
+            dyn[D_T_YMAX] = t1
+        z1 = out[OUT_Z]
+        if z1 > dyn[D_ZMAX]:
+            dyn[D_ZMAX] = z1
+        if z1 < dyn[D_ZMIN]:
+            dyn[D_ZMIN] = z1
+        if fz > dyn[D_FZ_MAX]:
+            dyn[D_FZ_MAX] = fz
+        if v < dyn[D_V_MIN]:
+            dyn[D_V_MIN] = v
+        if iters <= 4 and abs(dy) < 0.5 * du_max:
+            dyn[D_DT] = min(2.0 * dt, dt_max)
+        else:
+            dyn[D_DT] = dt
+        # ---- events
+        status = STATUS_CHUNK
+        if v <= 0.0:
+            if dyn[D_LIFTED] == 0.0:
+                dyn[D_LIFTED] = 1.0
+                dyn[D_N_LIFTOFF] += 1.0
+                if dyn[D_T_LIFTOFF] < 0.0:
+                    dyn[D_T_LIFTOFF] = t1
+                if stop_on_lift:
+                    status = STATUS_LIFTOFF
+        else:
+            dyn[D_LIFTED] = 0.0
+        if abs(y1) >= y_limit and status == STATUS_CHUNK:
+            dyn[D_T_LIMIT] = t1
+            status = STATUS_LIMIT
+        last = status != STATUS_CHUNK or t1 >= t_end - 1e-9 * (1.0 + t_end)
+        if cap > 0 and (last or t1 >= dyn[D_NEXT_REC] - 1e-9):
+            _write(rec, n, t1, y1, yd1, fy, fz, v, u1, ry, rz, dyn, out)
+            n += 1
+            dyn[D_NEXT_REC] = t1 + rec_dt
+        if status != STATUS_CHUNK:
+            return n, status

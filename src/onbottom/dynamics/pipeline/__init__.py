@@ -1,0 +1,26 @@
+"""onbottom.dynamics.pipeline — whole-pipeline FE model in a short-crested storm.
+
+Planform corotational beam (axial, lateral, rotation per node), soil kernels at every node,
+Morison loads with relative velocity from short-crested kinematics, HHT-α with full Newton
+and an O(n) banded solve. Theory: docs/theory/pipeline_fe.md.
+"""
+
+from onbottom.dynamics.pipeline.model import END_CONDITIONS, PipelineModel, SoilSection
+from onbottom.dynamics.pipeline.solver import (
+    CRITERIA_OVER_D,
+    PipelineResult,
+    PipelineSettings,
+    run_identity,
+    simulate_pipeline,
+)
+
+__all__ = [
+    "CRITERIA_OVER_D",
+    "END_CONDITIONS",
+    "PipelineModel",
+    "PipelineResult",
+    "PipelineSettings",
+    "SoilSection",
+    "run_identity",
+    "simulate_pipeline",
+]

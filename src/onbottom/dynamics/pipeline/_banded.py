@@ -1,0 +1,85 @@
+"""Banded symmetric LDLᵀ factorisation and solve in numba (private), with a Python twin.
+
+The pipeline Jacobian is symmetric with half-bandwidth ``w`` (5 for 3 DOFs per node and
+2-node elements); its lower band is stored as ``ab[i, k] = A[i, i − k]`` for k = 0..w
+(entries with i − k < 0 unused). :func:`ldl_factor` overwrites ``ab`` with the unit lower
+factor L (off-diagonals) and 1/D (``ab[i, 0]``: no division left in the solve) — O(n·w²)
+work, no pivoting (the effective
+dynamic matrix M/(βΔt²) + K_T is dominated by its diagonal for the steps the solver accepts;
+a zero pivot is reported, a negative one is allowed and counted). :func:`ldl_solve` solves
+A x = b in place in O(n·w).
+
+Reference: Golub & Van Loan, *Matrix Computations*, 4th ed., §4.3 (band LDLᵀ).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from onbottom.soil._twin import pure_python
+
+
+@njit(cache=True)
+def ldl_factor(ab):
+    """Factor the symmetric band matrix held in ``ab`` (n × (w+1)) in place.
+
+    Row by row (``ab[j, 0]`` already holds 1/D_j for j < i): with t_k = L_ik·D_k (kept in a
+    work vector), L_ij·D_j = A_ij − Σ_k t_k L_jk and
+    D_i = A_ii − Σ_k t_k L_ik. Returns the number of negative pivots, or −1 if a pivot is
+    zero or not finite.
+    """
+    n = ab.shape[0]
+    w = ab.shape[1] - 1
+    t = np.empty(w + 1)
+    n_neg = 0
+    for i in range(n):
+        j0 = i - w
+        if j0 < 0:
+            j0 = 0
+        for j in range(j0, i):
+            s = ab[i, i - j]
+            for k in range(j0, j):
+                s -= t[k - j0] * ab[j, j - k]
+            t[j - j0] = s
+            ab[i, i - j] = s * ab[j, 0]
+        s = ab[i, 0]
+        for k in range(j0, i):
+            s -= t[k - j0] * ab[i, i - k]
+        if s == 0.0 or not (abs(s) < 1e300):
+            return -1
+        if s < 0.0:
+            n_neg += 1
+        ab[i, 0] = 1.0 / s
+    return n_neg
+
+
+@njit(cache=True)
+def ldl_solve(ab, b):
+    """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`."""
+    n = ab.shape[0]
+    w = ab.shape[1] - 1
+    for i in range(n):
+        j0 = i - w
+        if j0 < 0:
+            j0 = 0
+        s = b[i]
+        for k in range(j0, i):
+            s -= ab[i, i - k] * b[k]
+        b[i] = s
+    for i in range(n):
+        b[i] *= ab[i, 0]
+    for i in range(n - 1, -1, -1):
+        j1 = i + w
+        if j1 > n - 1:
+            j1 = n - 1
+        s = b[i]
+        for k in range(i + 1, j1 + 1):
+            s -= ab[k, k - i] * b[k]
+        b[i] = s
+
+
+ldl_factor_py = pure_python(ldl_factor)
+"""Plain-Python twin of :func:`ldl_factor` (same source, interpreted)."""
+ldl_solve_py = pure_python(ldl_solve)
+"""Plain-Python twin of :func:`ldl_solve`."""

@@ -1,0 +1,235 @@
+"""Corotational 2-node planform beam element in numba (private), with Python twins.
+
+Each node carries (u, v, θ): axial displacement along the initial pipe axis x [m], lateral
+displacement y [m] and rotation about the vertical [rad]. Element with nodes a, b, initial
+length L₀ (Crisfield, *Non-linear finite element analysis of solids and structures*, vol. 1,
+1991, §7.3 "a simple co-rotational element"):
+
+    current chord  Δx = L₀ + u_b − u_a, Δy = v_b − v_a, L = √(Δx² + Δy²), β = atan2(Δy, Δx)
+    local strains  u_l = L − L₀ = ((u_b − u_a)(2L₀ + u_b − u_a) + Δy²)/(L + L₀)  (no cancellation)
+                   θ₁ = θ_a − β, θ₂ = θ_b − β
+    local forces   N = N₀ + EA u_l/L₀ (tension +),  M₁ = EI(4θ₁ + 2θ₂)/L₀, M₂ = EI(2θ₁ + 4θ₂)/L₀
+    global force   f = N r + M₁(e₃ − z/L) + M₂(e₆ − z/L)
+                   r = (−c, −s, 0, c, s, 0), z = (s, −c, 0, −s, c, 0), c = cos β, s = sin β
+    tangent        K = Bᵀ D B + N z zᵀ/L + (M₁ + M₂)(r zᵀ + z rᵀ)/L²
+
+B = [r; e₃ − z/L; e₆ − z/L], D = diag(EA/L₀, EI/L₀·[[4, 2], [2, 4]]). A rigid motion leaves
+u_l, θ₁, θ₂ unchanged (no strain); lateral deflection stretches the chord (membrane tension).
+N₀ is the initial effective axial force (tension positive; pressure and temperature give
+N₀ < 0). Its potential is N₀·u_l, so the strain energy of an element is
+E = N₀ u_l + ½ EA u_l²/L₀ + ½ [θ₁ θ₂] D_b [θ₁ θ₂]ᵀ.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from onbottom.soil._twin import pure_python
+
+# element property columns
+EL_L0 = 0  # initial length L₀ [m]
+EL_EA = 1  # axial stiffness EA [N]
+EL_EI = 2  # bending stiffness EI [N·m²]
+EL_N0 = 3  # initial effective axial force N₀ [N] (tension +)
+N_EL_PROPS = 4
+
+NDOF_NODE = 3
+HALF_BAND = 5  # half-bandwidth of the assembled matrix (3 DOFs × 2 nodes − 1)
+
+
+@njit(cache=True)
+def element_local(d, e, props):
+    """Chord and local quantities of element ``e`` at nodal displacements ``d``.
+
+    Returns (L, c, s, u_l, θ₁, θ₂, N, M₁, M₂).
+    """
+    i = NDOF_NODE * e
+    l0 = props[e, EL_L0]
+    du = d[i + 3] - d[i]
+    dy = d[i + 4] - d[i + 1]
+    dx = l0 + du
+    ln = math.sqrt(dx * dx + dy * dy)
+    il = 1.0 / ln
+    c = dx * il
+    s = dy * il
+    beta = math.atan2(dy, dx)
+    ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
+    t1 = d[i + 2] - beta
+    t2 = d[i + 5] - beta
+    il0 = 1.0 / l0
+    eil = props[e, EL_EI] * il0
+    n = props[e, EL_N0] + props[e, EL_EA] * ul * il0
+    m1 = eil * (4.0 * t1 + 2.0 * t2)
+    m2 = eil * (2.0 * t1 + 4.0 * t2)
+    return ln, c, s, ul, t1, t2, n, m1, m2
+
+
+@njit(cache=True)
+def element_force_tangent(d, e, props, fe, ke, want_k):
+    """Global internal force ``fe`` (6) and, if ``want_k``, tangent ``ke`` (6×6) of element e.
+
+    Returns the local forces (N, M₁, M₂).
+    """
+    ln, c, s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
+    il = 1.0 / ln
+    msum = (m1 + m2) * il
+    # f = N r − (M₁ + M₂) z/L + M₁ e₃ + M₂ e₆ ; r = (−c, −s, 0, c, s, 0), z = (s, −c, 0, −s, c, 0)
+    fe[0] = -n * c - msum * s
+    fe[1] = -n * s + msum * c
+    fe[2] = m1
+    fe[3] = n * c + msum * s
+    fe[4] = n * s - msum * c
+    fe[5] = m2
+    if not want_k:
+        return n, m1, m2
+    l0 = props[e, EL_L0]
+    ka = props[e, EL_EA] / l0
+    kb = props[e, EL_EI] / l0
+    # With a = (c, s), b = (−s, c): r = (−a, 0, a, 0), z = (−b, 0, b, 0) on (u, v, θ) of the
+    # nodes; expanding Bᵀ D B gives 4kb(e₃e₃ᵀ + e₆e₆ᵀ) + 2kb(e₃e₆ᵀ + e₆e₃ᵀ) + 12kb/L² z zᵀ
+    # − 6kb/L [(e₃ + e₆) zᵀ + z (e₃ + e₆)ᵀ]. Translational node blocks: ±A with
+    # A = ka a aᵀ + (N/L + 12kb/L²) b bᵀ + (M₁ + M₂)/L² (a bᵀ + b aᵀ).
+    bb = n * il + 12.0 * kb * il * il
+    mm = msum * il
+    a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
+    a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
+    a01 = (ka - bb) * c * s + mm * (c * c - s * s)
+    h = 6.0 * kb * il
+    # ∂f_θ/∂(u, v) = −h z: node a (−h s, h c), node b (h s, −h c)
+    tu = -h * s
+    tv = h * c
+    for i in range(6):
+        for j in range(6):
+            ke[i, j] = 0.0
+    for i0, sgn_i in ((0, 1.0), (3, -1.0)):
+        for j0, sgn_j in ((0, 1.0), (3, -1.0)):
+            sg = sgn_i * sgn_j
+            ke[i0, j0] = sg * a00
+            ke[i0, j0 + 1] = sg * a01
+            ke[i0 + 1, j0] = sg * a01
+            ke[i0 + 1, j0 + 1] = sg * a11
+        for rot in (2, 5):
+            ke[rot, i0] = sgn_i * tu
+            ke[rot, i0 + 1] = sgn_i * tv
+            ke[i0, rot] = sgn_i * tu
+            ke[i0 + 1, rot] = sgn_i * tv
+    ke[2, 2] = 4.0 * kb
+    ke[5, 5] = 4.0 * kb
+    ke[2, 5] = 2.0 * kb
+    ke[5, 2] = 2.0 * kb
+    return n, m1, m2
+
+
+@njit(cache=True)
+def element_force_tangent_ref(d, e, props, fe, ke, want_k):
+    """Reference form of :func:`element_force_tangent` (B^T D B + geometric terms; tests)."""
+    ln, c, s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
+    r = (-c, -s, 0.0, c, s, 0.0)
+    z = (s, -c, 0.0, -s, c, 0.0)
+    il = 1.0 / ln
+    for p in range(6):
+        fe[p] = n * r[p] - (m1 + m2) * z[p] * il
+    fe[2] += m1
+    fe[5] += m2
+    if not want_k:
+        return n, m1, m2
+    l0 = props[e, EL_L0]
+    ka = props[e, EL_EA] / l0
+    kb = props[e, EL_EI] / l0
+    mm = (m1 + m2) * il * il
+    for p in range(6):
+        b1p = -z[p] * il + (1.0 if p == 2 else 0.0)
+        b2p = -z[p] * il + (1.0 if p == 5 else 0.0)
+        for q in range(6):
+            b1q = -z[q] * il + (1.0 if q == 2 else 0.0)
+            b2q = -z[q] * il + (1.0 if q == 5 else 0.0)
+            v = ka * r[p] * r[q]
+            v += kb * (4.0 * b1p * b1q + 2.0 * (b1p * b2q + b2p * b1q) + 4.0 * b2p * b2q)
+            v += n * il * z[p] * z[q]
+            v += mm * (r[p] * z[q] + z[p] * r[q])
+            ke[p, q] = v
+    return n, m1, m2
+
+
+@njit(cache=True)
+def element_energy(d, e, props):
+    """Strain energy of element e [J]: N₀u_l + ½EAu_l²/L₀ + ½θᵀD_bθ."""
+    _ln, _c, _s, ul, t1, t2, _n, m1, m2 = element_local(d, e, props)
+    l0 = props[e, EL_L0]
+    return props[e, EL_N0] * ul + 0.5 * props[e, EL_EA] * ul * ul / l0 + 0.5 * (m1 * t1 + m2 * t2)
+
+
+@njit(cache=True)
+def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
+    """Add the internal forces of all elements to ``f`` and (``want_k``) tangents to band ``ab``.
+
+    ``ab[i, k]`` holds the lower band A[i, i − k]; ``fe`` (6) and ``ke`` (6×6) are work arrays.
+    The nodal bending moment and axial force (see :func:`node_section_forces`) are written to
+    ``moment`` and ``axial`` (length n_nodes) on the way.
+    """
+    n_el = props.shape[0]
+    for i in range(moment.shape[0]):
+        moment[i] = 0.0
+        axial[i] = 0.0
+    for e in range(n_el):
+        n, m1, m2 = element_force_tangent(d, e, props, fe, ke, want_k)
+        moment[e] -= m1
+        moment[e + 1] += m2
+        axial[e] += n
+        axial[e + 1] += n
+        i0 = NDOF_NODE * e
+        for p in range(6):
+            f[i0 + p] += fe[p]
+        if want_k:
+            for p in range(6):
+                for q in range(p + 1):
+                    ab[i0 + p, p - q] += ke[p, q]
+    for i in range(1, moment.shape[0] - 1):
+        moment[i] *= 0.5
+        axial[i] *= 0.5
+
+
+@njit(cache=True)
+def strain_energy(d, props):
+    """Total strain energy of the beam [J]."""
+    s = 0.0
+    for e in range(props.shape[0]):
+        s += element_energy(d, e, props)
+    return s
+
+
+@njit(cache=True)
+def node_section_forces(d, props, moment, axial):
+    """Bending moment [N·m] and effective axial force [N] at the nodes.
+
+    Element end moments M₁ (node a) and M₂ (node b) act on the element; the internal bending
+    moment is −M₁ at a and M₂ at b (positive for curvature of positive sign, EI·v''). Interior
+    nodes take the mean of the two elements; a single element's own value at an end node.
+    With no elements, both are zero.
+    """
+    n_nodes = moment.shape[0]
+    for i in range(n_nodes):
+        moment[i] = 0.0
+        axial[i] = 0.0
+    n_el = props.shape[0]
+    if n_el == 0:
+        return
+    for e in range(n_el):
+        _ln, _c, _s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
+        moment[e] += -m1
+        moment[e + 1] += m2
+        axial[e] += n
+        axial[e + 1] += n
+    for i in range(1, n_nodes - 1):
+        moment[i] *= 0.5
+        axial[i] *= 0.5
+
+
+element_force_tangent_py = pure_python(element_force_tangent)
+"""Plain-Python twin of :func:`element_force_tangent`."""
+assemble_internal_py = pure_python(assemble_internal)
+"""Plain-Python twin of :func:`assemble_internal`."""
+strain_energy_py = pure_python(strain_energy)
+"""Plain-Python twin of :func:`strain_energy`."""

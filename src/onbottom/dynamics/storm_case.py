@@ -1,0 +1,289 @@
+"""Storm case files (TOML/JSON) for ``onbottom storm`` and ``onbottom curves``.
+
+Common layout (see CASE_LAYOUT in the docs and ``examples/storm_case.toml``): ``[pipe]``,
+``[seabed]``, ``[environment]``, ``[waves]`` (the peak sea state), ``[current]``, ``[hydro]``
+share the strict tables of :mod:`onbottom.inputs.stability_case`; this module adds the strict
+``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE
+(issue 13); it is accepted here and validated by that command.
+
+Soil model from ``[seabed].model``: ``sand`` → Verley & Sotberg silica, ``calcareous`` →
+Verley & Sotberg calcareous (Youssef & Cassidy 2014 Table 3), ``clay`` → Verley & Lund,
+``rock``/``coulomb`` → Coulomb friction. Seabed roughness z_0 (when ``[current].z0`` is absent):
+DNV-RP-F109 Table 3-1 from ``d50`` (log–log interpolation; fine sand 0.25 mm if absent), silt
+and clay for clay, gravel for rock.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from onbottom._casefile import CaseFileError, StrictModel, load_case_file
+from onbottom.dynamics.storm_section import LoadReductions, StormSolverSettings
+from onbottom.hydro.current import SEABED_ROUGHNESS
+from onbottom.hydro.force_model import MorisonLift
+from onbottom.inputs.pipe import Pipe
+from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.inputs.stability_case import (
+    CurrentTable,
+    EnvironmentTable,
+    HydroTable,
+    PipeTable,
+    SeabedTable,
+    WavesTable,
+)
+from onbottom.inputs.storm import Current, SeaState, Storm
+from onbottom.soil.base import LateralResistanceModel
+from onbottom.soil.coulomb import CoulombFriction
+from onbottom.soil.verley_lund import VerleyLund
+from onbottom.soil.verley_sotberg import VerleySotberg
+
+__all__ = ["StormCase", "StormSetup", "load_storm_case", "seabed_roughness", "soil_model"]
+
+_D50 = np.array([0.0625, 0.25, 0.5, 1.0, 4.0, 25.0, 125.0, 500.0]) * 1e-3
+_Z0 = np.array(list(SEABED_ROUGHNESS.values()))
+
+
+class StageTable(StrictModel):
+    hs: float = Field(gt=0.0, le=30.0, description="H_s [m]")
+    tp: float = Field(gt=0.0, le=40.0, description="T_p [s]")
+    duration_hours: float = Field(gt=0.0, le=100.0, description="stage duration [h]")
+    gamma: float | None = Field(None, ge=1.0, le=7.0, description="JONSWAP γ [-]")
+    spectrum: Literal["jonswap", "pierson-moskowitz"] | None = None
+    direction_deg: float | None = Field(None, ge=0.0, le=360.0, description="[deg]")
+    spreading_s: float | None = Field(None, ge=0.0, le=100.0, description="cos^s exponent [-]")
+
+
+class StormTable(StrictModel):
+    seed: int = Field(0, ge=0, description="random-phase seed of the first storm [-]")
+    build_up_hours: float | None = Field(None, ge=0.0, le=100.0, description="[h]")
+    peak_hours: float | None = Field(None, gt=0.0, le=100.0, description="[h]")
+    decay_hours: float = Field(0.0, ge=0.0, le=100.0, description="[h]")
+    transition_s: float = Field(60.0, ge=0.0, description="blend between stages [s]")
+    time_step: float = Field(0.1, gt=0.0, le=5.0, description="initial/largest step [s]")
+    sample_interval: float | None = Field(
+        None, gt=0.0, le=5.0, description="flow sample interval [s] (default T_p/50)"
+    )
+    stages: list[StageTable] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _stages_or_peak(self) -> StormTable:
+        if self.stages and self.peak_hours is not None:
+            raise ValueError(
+                "give peak_hours (one peak from [waves]) or [[storm.stages]], not both"
+            )
+        return self
+
+
+class SolverTable(StrictModel):
+    max_displacement_over_d: float = Field(
+        10.0, gt=0.0, le=1000.0, description="runaway stop |y|/D [-]"
+    )
+    liftoff: Literal["free", "stop"] = "free"
+    record_interval: float = Field(
+        0.5, ge=0.0, description="time between records [s], 0 = every step"
+    )
+    dt_min: float | None = Field(None, gt=0.0, description="smallest step [s]")
+    max_displacement_increment_over_d: float = Field(0.05, gt=0.0, le=1.0, description="[-]")
+    force_tolerance: float = Field(1e-9, gt=0.0, le=1e-3, description="relative [-]")
+    max_iterations: int = Field(60, ge=5, le=1000, description="[-]")
+    newmark_gamma: float = Field(0.5, ge=0.5, le=1.0, description="[-]")
+    newmark_beta: float = Field(0.25, ge=0.25, le=0.5, description="[-]")
+
+
+class RunTable(StrictModel):
+    seeds: int = Field(1, ge=1, le=100000, description="number of storms (seeds) [-]")
+    fractile: float = Field(0.9, gt=0.0, lt=1.0, description="fractile of max displacement [-]")
+
+
+class StormCase(StrictModel):
+    """Top level of a storm case file."""
+
+    pipe: PipeTable
+    seabed: SeabedTable
+    environment: EnvironmentTable
+    waves: WavesTable | None = None
+    current: CurrentTable = CurrentTable()
+    hydro: HydroTable = HydroTable()
+    storm: StormTable = StormTable()
+    solver: SolverTable = SolverTable()
+    run: RunTable = RunTable()
+    pipeline: dict[str, Any] | None = None
+    # accepted so that one file serves the design commands too
+    combinations: list[Any] | None = None
+    design: dict[str, Any] | None = None
+    curves: dict[str, Any] | None = None
+
+    @model_validator(mode="after")
+    def _waves(self) -> StormCase:
+        if self.waves is None and not self.storm.stages:
+            raise ValueError("give [waves] (the peak sea state) or [[storm.stages]]")
+        return self
+
+
+def seabed_roughness(seabed: Sand | Clay | Rock) -> float:
+    """z_0 [m] from DNV-RP-F109 Table 3-1 (log–log in d_50 for sand)."""
+    if isinstance(seabed, Clay):
+        return SEABED_ROUGHNESS["silt and clay"]
+    if isinstance(seabed, Rock):
+        return SEABED_ROUGHNESS["gravel"]
+    d50 = min(max(seabed.d50, _D50[0]), _D50[-1])
+    return float(np.exp(np.interp(np.log(d50), np.log(_D50), np.log(_Z0))))
+
+
+def soil_model(model: str, pipe: Pipe, seabed: Sand | Clay | Rock) -> LateralResistanceModel:
+    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s)."""
+    if model == "sand":
+        return VerleySotberg.silica(pipe, seabed)
+    if model == "calcareous":
+        return VerleySotberg.calcareous(pipe, seabed)
+    if model == "clay":
+        return VerleyLund.from_seabed(pipe, seabed)
+    return CoulombFriction.from_seabed(seabed)
+
+
+@dataclass(frozen=True)
+class StormSetup:
+    """Everything :func:`simulate_storm_section` needs, built from a case."""
+
+    pipe: Pipe
+    soil: LateralResistanceModel
+    seabed: Sand | Clay | Rock
+    storm: Storm
+    depth: float
+    current: Current
+    z0: float
+    force_model: MorisonLift
+    reductions: LoadReductions
+    settings: StormSolverSettings
+    sample_interval: float | None
+    seeds: int
+    fractile: float
+    path: str | None
+
+    def kwargs(self) -> dict[str, Any]:
+        """Keyword arguments of :func:`onbottom.dynamics.storm_section.simulate_storm_section`."""
+        return {
+            "depth": self.depth,
+            "current": self.current,
+            "z0": self.z0,
+            "sample_interval": self.sample_interval,
+            "force_model": self.force_model,
+            "reductions": self.reductions,
+            "settings": self.settings,
+        }
+
+
+def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> StormSetup:
+    """Objects of a validated :class:`StormCase`."""
+    rho = case.environment.water_density
+    section = case.pipe.section(rho)
+    pipe = section if isinstance(section, Pipe) else section.pipe(case.pipe.condition)
+    seabed = case.seabed.seabed()
+    if case.seabed.initial_penetration is not None:
+        raise CaseFileError(
+            "seabed.initial_penetration is not used by the storm solver: the soil model sets"
+            " the as-laid penetration from the submerged weight (remove the key)",
+            field="seabed.initial_penetration",
+            file=None if path is None else str(path),
+        )
+    soil = soil_model(case.seabed.model, pipe, seabed)
+    st = case.storm
+    if st.stages:
+        w = case.waves
+        stages = tuple(
+            SeaState(
+                hs=s.hs,
+                tp=s.tp,
+                gamma=s.gamma,
+                spectrum=s.spectrum or (w.spectrum if w else "jonswap"),
+                duration_s=s.duration_hours * 3600.0,
+                direction_deg=s.direction_deg
+                if s.direction_deg is not None
+                else (w.direction_deg if w else 90.0),
+                spreading_s=s.spreading_s
+                if s.spreading_s is not None
+                else (w.spreading_s if w else 0.0),
+            )
+            for s in st.stages
+        )
+        storm = Storm(
+            stages=stages,
+            seed=st.seed,
+            build_up_s=(st.build_up_hours or 0.0) * 3600.0,
+            decay_s=st.decay_hours * 3600.0,
+            transition_s=st.transition_s,
+        )
+    else:
+        w = case.waves
+        peak = SeaState(
+            hs=w.hs,
+            tp=w.tp,
+            gamma=w.gamma,
+            spectrum=w.spectrum,
+            direction_deg=w.direction_deg,
+            spreading_s=w.spreading_s,
+        )
+        storm = Storm.standard(
+            peak,
+            build_up_hours=0.5 if st.build_up_hours is None else st.build_up_hours,
+            peak_hours=3.0 if st.peak_hours is None else st.peak_hours,
+            decay_hours=st.decay_hours,
+            seed=st.seed,
+        )
+    c = case.current
+    current = Current(
+        velocity=c.velocity,
+        reference_height=c.reference_height,
+        direction_deg=c.direction_deg,
+        z0=c.z0,
+    )
+    h = case.hydro
+    fm = MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient)
+    if h.reductions:
+        red = LoadReductions(
+            permeable_seabed=case.seabed.model != "clay",
+            penetration=True,
+            trench_depth_over_d=case.seabed.trench_depth / pipe.outer_diameter,
+            trench_angle_deg=case.seabed.trench_angle_deg,
+        )
+    else:
+        red = LoadReductions(permeable_seabed=False, penetration=False)
+    sv = case.solver
+    settings = StormSolverSettings(
+        dt_max=st.time_step,
+        dt_min=sv.dt_min,
+        max_displacement_increment_over_d=sv.max_displacement_increment_over_d,
+        force_tolerance=sv.force_tolerance,
+        max_iterations=sv.max_iterations,
+        newmark_gamma=sv.newmark_gamma,
+        newmark_beta=sv.newmark_beta,
+        stop_displacement_over_d=sv.max_displacement_over_d,
+        liftoff=sv.liftoff,
+        record_interval=sv.record_interval,
+    )
+    return StormSetup(
+        pipe=pipe,
+        soil=soil,
+        seabed=seabed,
+        storm=storm,
+        depth=case.environment.water_depth,
+        current=current,
+        z0=c.z0 if c.z0 is not None else seabed_roughness(seabed),
+        force_model=fm,
+        reductions=red,
+        settings=settings,
+        sample_interval=st.sample_interval,
+        seeds=case.run.seeds,
+        fractile=case.run.fractile,
+        path=None if path is None else os.fspath(path),
+    )
+
+
+def load_storm_case(path: str | os.PathLike) -> StormSetup:
+    """Read, validate and build a storm case file (errors: :class:`CaseFileError`)."""
+    return build_setup(load_case_file(path, StormCase), path)

@@ -1,0 +1,220 @@
+"""Short-crested near-bed kinematics along a pipeline (single-summation synthesis, numpy FFT).
+
+Near-bed wave velocity normal to a straight pipe on the x axis (wave directions θ measured
+from the pipe axis, 90° = waves travelling normal to the pipe towards +y;
+shared/spec/on-bottom-stability.md, "Sea states and storms")::
+
+    u_n(x, t) = Σ_j a_j G(ω_j) sin θ_j cos(ω_j t − k_j x cos θ_j + φ_j)
+
+* a_j = √(2 S_ηη(ω_j) Δω) from the stage's JONSWAP/Pierson–Moskowitz spectrum
+  (:mod:`onbottom.hydro.spectra`, DNV-RP-C205 §3.5.5), G = ω/sinh(kd) the linear transfer to
+  the seabed (:mod:`onbottom.hydro.kinematics`, DNV-RP-F109 §3.4.3);
+* **single summation**: one direction θ_j = θ_m + δ_j per frequency component, δ_j drawn from
+  the spreading density D_w(δ) ∝ cos^s δ on |δ| < π/2 by its inverse CDF (DNV-RP-F109 (2010)
+  Eq 3.8; the exponent is that of ``SeaState.spreading_s``, cos^s as in F109 — the spec's
+  "cos^2s" is the same family with s ↔ 2s). The sea is ergodic and no spreading factor R_D
+  is applied: the variance of u_n over the components tends to R_D²·M_0 (checked by a test
+  against :func:`onbottom.hydro.spreading.spreading_factor`). s = 0 gives a long-crested sea;
+* φ_j uniform on [0, 2π) from ``numpy.random.default_rng(storm.seed)``; phases and the
+  uniform numbers behind δ_j are shared by all stages, so stage blends are coherent.
+
+The frequencies are the harmonics ω_j = jΔω of a record ≥ the storm duration (the series does
+not repeat within the storm), summed by one inverse real FFT per node and stage; nodes are
+processed in blocks and the result is kept in float32 (velocity and acceleration: 8 bytes per
+node and sample — 500 nodes × 3.5 h at 0.2 s ≈ 0.25 GB). Stage weights (build-up, blends,
+decay) are those of the section storm (:mod:`onbottom.hydro.storm_kinematics`):
+U = Σ_k w_k U_k, U̇ = Σ_k (w_k U̇_k + ẇ_k U_k).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from onbottom._validate import positive
+from onbottom.errors import InputError
+from onbottom.hydro.kinematics import seabed_transfer, wave_number
+from onbottom.hydro.spectra import jonswap
+from onbottom.hydro.storm_kinematics import _stage_weights
+from onbottom.inputs.storm import Storm
+
+__all__ = [
+    "NodeKinematics",
+    "directions_cos_s",
+    "pipeline_kinematics",
+    "regular_node_kinematics",
+]
+
+
+@dataclass(frozen=True, eq=False)
+class NodeKinematics:
+    """Near-bed wave velocity and acceleration normal to the pipe at every node.
+
+    Attributes
+    ----------
+    t0 : float
+        Time of the first sample [s].
+    dt : float
+        Sample interval [s] (the solver interpolates linearly).
+    velocity : ndarray, float32 (n_times, n_nodes)
+        U [m/s].
+    acceleration : ndarray, float32 (n_times, n_nodes)
+        dU/dt [m/s²].
+    """
+
+    t0: float
+    dt: float
+    velocity: np.ndarray
+    acceleration: np.ndarray
+
+    def __post_init__(self) -> None:
+        positive("NodeKinematics.dt", self.dt)
+        if self.velocity.shape != self.acceleration.shape or self.velocity.ndim != 2:
+            raise InputError(
+                "NodeKinematics.velocity/acceleration are invalid: need equal 2-D shapes"
+                f" (n_times, n_nodes), got {self.velocity.shape} and {self.acceleration.shape}"
+            )
+
+    @property
+    def t_end(self) -> float:
+        """Time of the last sample [s]."""
+        return self.t0 + self.dt * (self.velocity.shape[0] - 1)
+
+    @property
+    def nbytes(self) -> int:
+        """Memory held [bytes]."""
+        return int(self.velocity.nbytes + self.acceleration.nbytes)
+
+
+def directions_cos_s(uniform: np.ndarray, mean_deg: float, spreading_s: float) -> np.ndarray:
+    """Directions [rad] θ = θ_m + δ with δ from D_w(δ) ∝ cos^s δ, |δ| < π/2 (F109 Eq 3.8).
+
+    Inverse-CDF transform (4001-point grid) of the uniform numbers ``uniform`` in [0, 1);
+    ``spreading_s`` = 0 → every θ = θ_m (long-crested).
+    """
+    mean = math.radians(mean_deg)
+    u = np.asarray(uniform, dtype=float)
+    if spreading_s <= 0.0:
+        return np.full(u.shape, mean)
+    g = np.linspace(-0.5 * math.pi, 0.5 * math.pi, 4001)
+    pdf = np.cos(g) ** spreading_s
+    cdf = np.concatenate(([0.0], np.cumsum(0.5 * (pdf[1:] + pdf[:-1]) * np.diff(g))))
+    cdf /= cdf[-1]
+    return mean + np.interp(u, cdf, g)
+
+
+def pipeline_kinematics(
+    storm: Storm,
+    depth: float,
+    x: np.ndarray,
+    *,
+    sample_interval: float | None = None,
+    omega_max_factor: float = 5.0,
+    block_nodes: int = 64,
+) -> NodeKinematics:
+    """Near-bed velocity and acceleration normal to the pipe at positions ``x`` through a storm.
+
+    Parameters
+    ----------
+    storm : Storm
+        Stages (H_s, T_p, γ, direction, spreading s), envelope and seed.
+    depth : float
+        Water depth d [m], > 0.
+    x : array
+        Node positions along the pipe axis [m].
+    sample_interval : float or None
+        Δt_s [s], > 0; None → min(T_p)/50 (the solver interpolates linearly in time).
+    omega_max_factor : float
+        Highest frequency as a multiple of the highest ω_p [-], > 1.
+    block_nodes : int
+        Nodes per FFT block (size of the complex work array).
+    """
+    if not isinstance(storm, Storm):
+        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
+    positive("depth", depth)
+    if omega_max_factor <= 1.0:
+        raise InputError(f"omega_max_factor = {omega_max_factor!r} is invalid: must be > 1")
+    xx = np.asarray(x, dtype=float)
+    tp_min = min(s.tp for s in storm.stages)
+    dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
+    n_t = math.ceil(storm.duration_s / dts) + 1
+    nfft = n_t + (n_t % 2)
+    dw = 2.0 * math.pi / (nfft * dts)
+    wmax = min(omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages), math.pi / dts)
+    n_c = max(int(wmax / dw), 1)
+    w = dw * np.arange(1, n_c + 1)
+    rng = np.random.default_rng(storm.seed)
+    phase = rng.uniform(0.0, 2.0 * math.pi, n_c)
+    uni = rng.uniform(0.0, 1.0, n_c)
+    g = seabed_transfer(w, depth)
+    k = wave_number(w, depth)
+    t = dts * np.arange(n_t)
+    weights, dweights = _stage_weights(storm, t)
+    stage_amp = []
+    stage_kx = []
+    for sea in storm.stages:
+        theta = directions_cos_s(uni, sea.direction_deg, sea.spreading_s)
+        a = np.sqrt(2.0 * jonswap(w, sea.hs, sea.tp, sea.peak_enhancement) * dw)
+        stage_amp.append(a * g * np.sin(theta))
+        stage_kx.append(k * np.cos(theta))
+    vel = np.empty((n_t, xx.size), dtype=np.float32)
+    acc = np.empty((n_t, xx.size), dtype=np.float32)
+    half = nfft // 2 + 1
+    spec = np.zeros((min(block_nodes, max(xx.size, 1)), half), dtype=complex)
+    for b0 in range(0, xx.size, block_nodes):
+        xb = xx[b0 : b0 + block_nodes]
+        nb = xb.size
+        ub = np.zeros((nb, n_t))
+        ab = np.zeros((nb, n_t))
+        for kk in range(len(storm.stages)):
+            c = stage_amp[kk][None, :] * np.exp(1j * (phase[None, :] - np.outer(xb, stage_kx[kk])))
+            spec[:nb] = 0.0
+            spec[:nb, 1 : n_c + 1] = 0.5 * nfft * c
+            uk = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
+            spec[:nb, 1 : n_c + 1] *= 1j * w[None, :]
+            ak = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
+            ub += weights[kk][None, :] * uk
+            ab += weights[kk][None, :] * ak + dweights[kk][None, :] * uk
+        vel[:, b0 : b0 + nb] = ub.T
+        acc[:, b0 : b0 + nb] = ab.T
+    return NodeKinematics(t0=0.0, dt=dts, velocity=vel, acceleration=acc)
+
+
+def regular_node_kinematics(
+    n_nodes: int,
+    duration: float,
+    dt: float,
+    amplitude: float,
+    period: float,
+    *,
+    ramp: float = 0.0,
+    x: np.ndarray | None = None,
+    wavelength: float | None = None,
+) -> NodeKinematics:
+    """Regular near-bed velocity U = e(t)·U_w sin(ωt − κx) at every node (tests, examples).
+
+    ``ramp`` [s]: linear ramp of the amplitude from 0; ``wavelength`` [m] along the pipe (None:
+    in phase along the whole line, i.e. a long-crested wave normal to the pipe).
+    """
+    n_t = math.ceil(duration / dt) + 1
+    t = dt * np.arange(n_t)
+    w = 2.0 * math.pi / positive("period", period)
+    kx = 0.0 if wavelength is None else 2.0 * math.pi / wavelength
+    xx = np.zeros(n_nodes) if x is None else np.asarray(x, dtype=float)
+    arg = w * t[:, None] - kx * xx[None, :]
+    if ramp > 0.0:
+        e = np.minimum(t / ramp, 1.0)[:, None]
+        de = np.where(t < ramp, 1.0 / ramp, 0.0)[:, None]
+    else:
+        e = np.ones((n_t, 1))
+        de = np.zeros((n_t, 1))
+    u = amplitude * np.sin(arg)
+    a = amplitude * w * np.cos(arg)
+    return NodeKinematics(
+        t0=0.0,
+        dt=dt,
+        velocity=(e * u).astype(np.float32),
+        acceleration=(e * a + de * u).astype(np.float32),
+    )

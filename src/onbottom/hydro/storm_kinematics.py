@@ -1,0 +1,334 @@
+"""Seeded near-bed flow of a storm on a pipe section: U(t), U̇(t) normal to the pipe and V.
+
+For each stage of a :class:`~onbottom.inputs.storm.Storm` the JONSWAP (or Pierson–Moskowitz)
+surface spectrum (:func:`onbottom.hydro.spectra.jonswap`, DNV-RP-C205 §3.5.5) is transferred to
+the seabed with linear wave theory, S_UU = G² S_ηη, G = ω / sinh(k d) (DNV-RP-F109 §3.4.3,
+:func:`onbottom.hydro.kinematics.seabed_transfer`), and synthesised by random phases,
+
+    U(t) = R_D · Σ_j a_j cos(ω_j t + φ_j),   a_j = √(2 S_UU(ω_j) Δω),
+
+on the harmonics ω_j = j·Δω of the storm's length (Δω = 2π/T_rep, T_rep >= storm duration, so
+the series never repeats), evaluated by one inverse real FFT per stage (O(n log n) instead of
+the O(n·N) direct sum). The phases φ_j are drawn once per storm from
+``numpy.random.default_rng(seed)`` and shared by all stages, so stage blends are coherent and
+the same seed gives bitwise the same series on any machine with the same numpy.
+
+R_D is the F109 spreading reduction for a short-crested sea on a section
+(``shared/spec/dnv-reference.md`` §2.7): R_D² = ∫ D_w(θ) sin²(θ_w − θ) dθ,
+D_w(θ) = Γ(1 + s/2)/(√π Γ(½ + s/2)) cos^s θ for |θ| < π/2; for a long-crested sea R_D = |sin θ_w|.
+The sign of sin θ_w sets the direction of U (waves travelling towards −y give −U).
+
+The steady current is the mean of the log profile over the diameter (DNV-RP-F109 Eq 3.3,
+:func:`onbottom.hydro.current.mean_current_over_pipe`), times sin θ_c with its sign.
+
+Stage weights w_k(t) (linear build-up, blends, decay; see :class:`~onbottom.inputs.storm.Storm`)
+multiply each stage's series: U = Σ w_k U_k, U̇ = Σ (w_k U̇_k + ẇ_k U_k).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.fft import irfft, next_fast_len
+from scipy.special import gammaln
+
+from onbottom._validate import positive
+from onbottom.constants import GRAVITY
+from onbottom.errors import InputError
+from onbottom.hydro.current import mean_current_over_pipe
+from onbottom.hydro.kinematics import seabed_transfer
+from onbottom.hydro.spectra import jonswap, spectral_moment
+from onbottom.inputs.storm import Current, SeaState, Storm
+
+__all__ = [
+    "StormKinematics",
+    "current_normal_to_pipe",
+    "sea_state_for_velocity",
+    "seabed_velocity_parameters",
+    "spreading_factor",
+    "storm_kinematics",
+]
+
+
+def spreading_factor(direction_deg: float, spreading_s: float, n: int = 721) -> float:
+    """Spreading reduction R_D [-] of the near-bed velocity normal to the pipe (F109 §3.4.3).
+
+    Parameters
+    ----------
+    direction_deg : float
+        Mean wave direction relative to the pipe axis θ_w [deg].
+    spreading_s : float
+        cos^s spreading exponent s [-], >= 0; 0 → long-crested (R_D = |sin θ_w|).
+    n : int
+        Points of the trapezoidal integration over |θ| < π/2.
+    """
+    # R_D depends on θ_w only through the line of the waves: fold into [0°, 90°] so that
+    # mirrored directions (θ_w, 180° − θ_w, θ_w + 180°, ...) give bitwise the same value
+    folded = math.fmod(abs(direction_deg), 180.0)
+    if folded > 90.0:
+        folded = 180.0 - folded
+    tw = math.radians(folded)
+    if spreading_s < 0.0:
+        raise InputError(f"spreading_s = {spreading_s!r} is invalid: must be >= 0")
+    if spreading_s == 0.0:
+        return abs(math.sin(tw))
+    s = spreading_s
+    th = np.linspace(-0.5 * math.pi, 0.5 * math.pi, n)
+    norm = math.exp(gammaln(1.0 + 0.5 * s) - gammaln(0.5 + 0.5 * s)) / math.sqrt(math.pi)
+    dw = norm * np.cos(th) ** s
+    return float(math.sqrt(np.trapezoid(dw * np.sin(tw - th) ** 2, th)))
+
+
+def _surface_spectrum(sea: SeaState, omega: np.ndarray) -> np.ndarray:
+    return jonswap(omega, sea.hs, sea.tp, sea.peak_enhancement)
+
+
+def seabed_velocity_parameters(
+    sea: SeaState, depth: float, n: int = 4096, omega_max_factor: float = 8.0
+) -> dict[str, float]:
+    """U_s = 2√M_0 [m/s] (with R_D), T_u = 2π√(M_0/M_2) [s] and R_D [-] of a sea state.
+
+    Parameters
+    ----------
+    sea : SeaState
+    depth : float
+        Water depth d [m], > 0.
+    """
+    positive("depth", depth)
+    wp = 2.0 * math.pi / sea.tp
+    w = np.linspace(wp * 1e-3, omega_max_factor * wp, n)
+    suu = seabed_transfer(w, depth) ** 2 * _surface_spectrum(sea, w)
+    m0 = spectral_moment(w, suu, 0)
+    m2 = spectral_moment(w, suu, 2)
+    rd = spreading_factor(sea.direction_deg, sea.spreading_s)
+    return {
+        "significant_velocity": 2.0 * math.sqrt(m0) * rd,
+        "mean_period": 2.0 * math.pi * math.sqrt(m0 / m2),
+        "spreading_factor": rd,
+    }
+
+
+def current_normal_to_pipe(
+    current: Current | None, diameter: float, z0: float | None = None
+) -> float:
+    """Mean current over the pipe diameter normal to the pipe V [m/s], signed (F109 Eq 3.3).
+
+    ``current.z0`` wins over ``z0``; one of them is needed for a non-zero current.
+    """
+    if current is None or current.velocity == 0.0:
+        return 0.0
+    rough = current.z0 if current.z0 is not None else z0
+    if rough is None:
+        raise InputError(
+            "Current.z0 = None is invalid here: give the seabed roughness z0 (DNV-RP-F109"
+            " Table 3-1) in [current] or the seabed d50"
+        )
+    v = mean_current_over_pipe(current.velocity, current.reference_height, diameter, rough, 90.0)
+    return v * math.sin(math.radians(current.direction_deg))
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class StormKinematics:
+    """Sampled near-bed flow of one storm on a section.
+
+    Attributes
+    ----------
+    sample_interval : float
+        Δt_s between samples [s]; sample j is at t = j·Δt_s.
+    velocity, acceleration : numpy.ndarray
+        U(t_j) [m/s] and U̇(t_j) [m/s²] normal to the pipe (R_D and direction included).
+    current : float
+        V [m/s], signed, normal to the pipe.
+    duration : float
+        Storm duration [s] (last sample time).
+    weights : numpy.ndarray
+        Stage weights w_k(t_j), shape (n_stages, n) (for per-sea-state coefficients).
+    stage_parameters : list of dict
+        Per stage: significant_velocity U_s, mean_period T_u, spreading_factor R_D.
+    seed : int
+    """
+
+    sample_interval: float
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    current: float
+    duration: float
+    weights: np.ndarray
+    stage_parameters: list[dict[str, float]] = field(default_factory=list)
+    seed: int = 0
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times [s]."""
+        return np.arange(self.velocity.size) * self.sample_interval
+
+
+def _stage_weights(storm: Storm, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """w_k(t) and dw_k/dt for the stages (build-up/decay envelope included)."""
+    ns = len(storm.stages)
+    w = np.zeros((ns, t.size))
+    dw = np.zeros((ns, t.size))
+    starts = storm.stage_start_times
+    ends = [s + st.duration_s for s, st in zip(starts, storm.stages, strict=True)]
+    h = 0.5 * storm.transition_s
+    for k in range(ns):
+        up = np.ones(t.size)
+        dup = np.zeros(t.size)
+        if k > 0:
+            b = starts[k]
+            if h > 0.0:
+                x = (t - (b - h)) / (2.0 * h)
+                up = np.clip(x, 0.0, 1.0)
+                dup = np.where((x > 0.0) & (x < 1.0), 1.0 / (2.0 * h), 0.0)
+            else:
+                up = (t >= b).astype(float)
+        down = np.zeros(t.size)
+        ddown = np.zeros(t.size)
+        if k < ns - 1:
+            b = ends[k]
+            if h > 0.0:
+                x = (t - (b - h)) / (2.0 * h)
+                down = np.clip(x, 0.0, 1.0)
+                ddown = np.where((x > 0.0) & (x < 1.0), 1.0 / (2.0 * h), 0.0)
+            else:
+                down = (t >= b).astype(float)
+        w[k] = up - down
+        dw[k] = dup - ddown
+    # envelope: build-up and decay
+    env = np.ones(t.size)
+    denv = np.zeros(t.size)
+    if storm.build_up_s > 0.0:
+        m = t < storm.build_up_s
+        env[m] = t[m] / storm.build_up_s
+        denv[m] = 1.0 / storm.build_up_s
+    if storm.decay_s > 0.0:
+        t_dec = storm.duration_s - storm.decay_s
+        m = t > t_dec
+        env[m] = np.maximum(storm.duration_s - t[m], 0.0) / storm.decay_s
+        denv[m] = -1.0 / storm.decay_s
+    return w * env, dw * env + w * denv
+
+
+def storm_kinematics(
+    storm: Storm,
+    depth: float,
+    *,
+    diameter: float,
+    current: Current | None = None,
+    z0: float | None = None,
+    sample_interval: float | None = None,
+    omega_max_factor: float = 5.0,
+) -> StormKinematics:
+    """Synthesise the near-bed flow of a storm normal to a pipe section (module docstring).
+
+    Parameters
+    ----------
+    storm : Storm
+        Stages, envelope and seed.
+    depth : float
+        Water depth d [m], > 0.
+    diameter : float
+        Pipe outer diameter D [m], > 0 (for the current averaged over D).
+    current : Current or None
+        Steady current; None = no current.
+    z0 : float or None
+        Seabed roughness [m] used when ``current.z0`` is None.
+    sample_interval : float or None
+        Δt_s [s], > 0; None → min(T_p)/50.
+    omega_max_factor : float
+        Highest synthesised frequency as a multiple of the highest ω_p [-], > 1 (the seabed
+        transfer makes S_UU negligible beyond about 3 ω_p in water of moderate depth).
+    """
+    if not isinstance(storm, Storm):
+        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
+    positive("depth", depth)
+    d = positive("diameter", diameter)
+    if omega_max_factor <= 1.0:
+        raise InputError(f"omega_max_factor = {omega_max_factor!r} is invalid: must be > 1")
+    tp_min = min(s.tp for s in storm.stages)
+    dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
+    total = storm.duration_s
+    n = math.ceil(total / dts) + 1
+    # even length >= n with small prime factors (FFT speed): T_rep = nfft·Δt_s >= duration
+    nfft = next_fast_len(n + (n % 2), real=True)
+    while nfft % 2:
+        nfft = next_fast_len(nfft + 1, real=True)
+    dw = 2.0 * math.pi / (nfft * dts)
+    wmax = omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages)
+    nbins = nfft // 2 + 1
+    omega = dw * np.arange(nbins)
+    active = (omega > 0.0) & (omega <= wmax) & (omega < math.pi / dts)
+    rng = np.random.default_rng(storm.seed)
+    phase = rng.uniform(0.0, 2.0 * math.pi, nbins)
+    rot = np.exp(1j * phase)
+    g2 = np.zeros(nbins)
+    g2[active] = seabed_transfer(omega[active], depth) ** 2
+    t = np.arange(n) * dts
+    weights, dweights = _stage_weights(storm, t)
+    u = np.zeros(n)
+    a = np.zeros(n)
+    params = []
+    for k, sea in enumerate(storm.stages):
+        s_eta = np.zeros(nbins)
+        s_eta[active] = _surface_spectrum(sea, omega[active])
+        amp = np.sqrt(2.0 * g2 * s_eta * dw)
+        rd = spreading_factor(sea.direction_deg, sea.spreading_s)
+        sgn = math.copysign(1.0, math.sin(math.radians(sea.direction_deg)))
+        if abs(math.sin(math.radians(sea.direction_deg))) < 1e-12:
+            sgn = 1.0
+        spec = (0.5 * nfft) * amp * rot * (rd * sgn)
+        uk = irfft(spec, nfft)[:n]
+        ak = irfft(1j * omega * spec, nfft)[:n]
+        u += weights[k] * uk
+        a += weights[k] * ak + dweights[k] * uk
+        params.append(seabed_velocity_parameters(sea, depth))
+    v = current_normal_to_pipe(current, d, z0)
+    return StormKinematics(
+        sample_interval=dts,
+        velocity=u,
+        acceleration=a,
+        current=v,
+        duration=total,
+        weights=weights,
+        stage_parameters=params,
+        seed=storm.seed,
+    )
+
+
+def sea_state_for_velocity(
+    significant_velocity: float,
+    mean_period: float,
+    *,
+    tn_over_tp: float = 0.1,
+    gamma: float = 3.3,
+    duration_s: float = 10800.0,
+) -> tuple[SeaState, float]:
+    """A JONSWAP sea state and water depth giving a target U_s [m/s] and T_u [s].
+
+    For a fixed T_n/T_p (T_n = √(d/g)) and γ, T_u/T_p and U_s/H_s·(T_n) are fixed ratios of the
+    linear transfer (the F109 Figs 3-2/3-3 quantities), so T_p = T_u/(T_u/T_p),
+    d = g (T_n/T_p · T_p)² and H_s = U_s/(U_s/H_s). Used to build storms for prescribed K, N
+    (stability curves). Long-crested, normal to the pipe.
+
+    Returns
+    -------
+    (SeaState, depth [m])
+    """
+    us = positive("significant_velocity", significant_velocity)
+    tu = positive("mean_period", mean_period)
+    positive("tn_over_tp", tn_over_tp)
+    ref = SeaState(hs=1.0, tp=10.0, gamma=gamma, duration_s=duration_s)
+    d_ref = GRAVITY * (tn_over_tp * 10.0) ** 2
+    p = seabed_velocity_parameters(ref, d_ref)
+    tp = tu / (p["mean_period"] / 10.0)
+    depth = GRAVITY * (tn_over_tp * tp) ** 2
+    p2 = seabed_velocity_parameters(SeaState(hs=1.0, tp=tp, gamma=gamma), depth)
+    hs = us / p2["significant_velocity"]
+    if not 0.0 < hs <= 30.0 or not 0.0 < tp <= 40.0:
+        raise InputError(
+            f"no sea state gives U_s = {us:g} m/s, T_u = {tu:g} s within H_s <= 30 m,"
+            f" T_p <= 40 s (got H_s = {hs:.3g} m, T_p = {tp:.3g} s)"
+        )
+    return SeaState(hs=hs, tp=tp, gamma=gamma, duration_s=duration_s), depth

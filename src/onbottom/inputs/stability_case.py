@@ -1,0 +1,673 @@
+"""Case-file schema of the F109 design commands (``onbottom stability``, ``onbottom loads``).
+
+Strict TOML tables (:class:`onbottom._casefile.StrictModel`: unknown keys are errors with file,
+line and did-you-mean), laid out as in the common case layout: ``[pipe]`` (simple or
+build-up form), ``[seabed]``, ``[environment]``, ``[waves]``, ``[current]``, ``[hydro]``, plus
+
+* ``[[combinations]]`` — load combinations; each has a ``name`` and may override ``hs``,
+  ``tp``, ``gamma`` and ``current_velocity`` of ``[waves]``/``[current]`` and set the pipe
+  ``condition``. Without it the single combination ``"design"`` is ``[waves]`` + ``[current]``
+  in ``pipe.condition``.
+* ``[design]`` — safety class, region, conditions for flotation, and the design solve
+  (``solve_for = "concrete_thickness" | "submerged_weight" | "none"`` with its range).
+
+Tables used by other commands (``[storm]``, ``[solver]``, ``[run]``, ``[pipeline]``) are
+accepted here and validated by the commands that read them.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from pathlib import Path
+from typing import Any, Literal, NoReturn
+
+from pydantic import Field, model_validator
+
+from onbottom._casefile import CaseFileError, StrictModel, _find_line, load_case_file
+from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.inputs.environment import Environment, LoadCombination
+from onbottom.inputs.pipe import Layer, Pipe
+from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
+from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.inputs.storm import Current, SeaState
+
+__all__ = [
+    "StabilityCase",
+    "check_common_tables",
+    "load_stability_case",
+    "penetration_outside_validity",
+]
+
+Condition = Literal["installation", "flooded", "hydrotest", "operation"]
+
+
+class LayerTable(StrictModel):
+    name: str = Field("coating", description="label, e.g. corrosion, concrete [-]")
+    thickness: float = Field(ge=0.0, le=1.0, description="radial thickness [m]")
+    density: float = Field(ge=100.0, le=2.0e4, description="density [kg/m³]")
+
+
+class ContentsTable(StrictModel):
+    installation: float = Field(0.0, ge=0.0, le=3.0e3, description="empty as laid [kg/m³]")
+    flooded: float = Field(1025.0, ge=0.0, le=3.0e3, description="water-flooded [kg/m³]")
+    hydrotest: float = Field(1025.0, ge=0.0, le=3.0e3, description="hydrotest water [kg/m³]")
+    operation: float = Field(0.0, ge=0.0, le=3.0e3, description="product [kg/m³]")
+
+
+class PipeTable(StrictModel):
+    outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D (simple) [m]")
+    submerged_weight: float | None = Field(None, gt=0.0, description="w_s (simple) [N/m]")
+    steel_outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D_s [m]")
+    wall_thickness: float | None = Field(None, gt=0.0, description="steel wall t [m]")
+    steel_density: float = Field(7850.0, ge=2.0e3, le=2.0e4, description="[kg/m³]")
+    youngs_modulus: float = Field(207.0e9, gt=0.0, description="steel E [Pa]")
+    contents_density: float | None = Field(
+        None, ge=0.0, le=3.0e3, description="contents in every condition [kg/m³]"
+    )
+    contents: ContentsTable | None = None
+    condition: Condition = "operation"
+    layers: list[LayerTable] = Field(default_factory=list)
+    marine_growth: LayerTable | None = None
+
+    @model_validator(mode="after")
+    def _one_form(self) -> PipeTable:
+        simple = self.outer_diameter is not None or self.submerged_weight is not None
+        built = self.steel_outer_diameter is not None or self.wall_thickness is not None
+        if simple and built:
+            raise ValueError(
+                "give either outer_diameter + submerged_weight (simple form) or"
+                " steel_outer_diameter + wall_thickness (build-up form), not both"
+            )
+        if simple and (self.outer_diameter is None or self.submerged_weight is None):
+            raise ValueError("the simple form needs both outer_diameter and submerged_weight")
+        if not simple and (self.steel_outer_diameter is None or self.wall_thickness is None):
+            raise ValueError(
+                "give outer_diameter + submerged_weight, or steel_outer_diameter + wall_thickness"
+            )
+        if self.contents_density is not None and self.contents is not None:
+            raise ValueError("give contents_density or [pipe.contents], not both")
+        return self
+
+    @property
+    def is_buildup(self) -> bool:
+        return self.steel_outer_diameter is not None
+
+    def section(self, water_density: float) -> PipeBuildUp | Pipe:
+        """The :class:`PipeBuildUp` (build-up form) or :class:`Pipe` (simple form)."""
+        if not self.is_buildup:
+            return Pipe(
+                outer_diameter=self.outer_diameter,
+                submerged_weight=self.submerged_weight,
+                seawater_density=water_density,
+            )
+        if self.contents is not None:
+            contents = Contents(**self.contents.model_dump())
+        elif self.contents_density is not None:
+            contents = Contents.uniform(self.contents_density)
+        else:
+            contents = Contents()
+        return PipeBuildUp(
+            steel_outer_diameter=self.steel_outer_diameter,
+            wall_thickness=self.wall_thickness,
+            steel_density=self.steel_density,
+            youngs_modulus=self.youngs_modulus,
+            layers=tuple(Layer(**layer.model_dump()) for layer in self.layers),
+            marine_growth=None
+            if self.marine_growth is None
+            else Layer(**self.marine_growth.model_dump()),
+            contents=contents,
+            seawater_density=water_density,
+        )
+
+
+class SeabedTable(StrictModel):
+    model: Literal["sand", "calcareous", "clay", "rock", "coulomb"] = "sand"
+    submerged_unit_weight: float | None = Field(None, gt=0.0, le=2.0e4, description="γ' [N/m³]")
+    unit_weight: float | None = Field(
+        None, gt=0.0, le=3.0e4, description="clay total unit weight γ_s [N/m³]"
+    )
+    friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
+    undrained_shear_strength: float | None = Field(
+        None, ge=100.0, le=1.0e6, description="s_u [Pa] (not kPa)"
+    )
+    d50: float | None = Field(None, gt=0.0, le=1.0, description="median grain size [m]")
+    initial_penetration: float | None = Field(None, ge=0.0, description="z_p [m]")
+    trench_depth: float = Field(0.0, ge=0.0, description="z_t [m]")
+    trench_angle_deg: float = Field(45.0, ge=5.0, le=45.0, description="trench wall angle [deg]")
+
+    @model_validator(mode="after")
+    def _needs(self) -> SeabedTable:
+        if self.model in ("sand", "calcareous") and self.submerged_unit_weight is None:
+            raise ValueError(f"model = {self.model!r} needs submerged_unit_weight [N/m³]")
+        if self.model == "clay":
+            missing = [
+                k
+                for k in ("undrained_shear_strength", "submerged_unit_weight", "unit_weight")
+                if getattr(self, k) is None
+            ]
+            if missing:
+                raise ValueError(f"model = 'clay' needs {', '.join(missing)}")
+        return self
+
+    def seabed(self) -> Sand | Clay | Rock:
+        """The soil object of the F109 checks (calcareous → sand law; coulomb → rock)."""
+        mu = (
+            {}
+            if self.friction_coefficient is None
+            else {"friction_coefficient": self.friction_coefficient}
+        )
+        if self.model in ("sand", "calcareous"):
+            extra = {} if self.d50 is None else {"d50": self.d50}
+            return Sand(
+                submerged_unit_weight=self.submerged_unit_weight, kind=self.model, **mu, **extra
+            )
+        if self.model == "clay":
+            return Clay(
+                undrained_shear_strength=self.undrained_shear_strength,
+                submerged_unit_weight=self.submerged_unit_weight,
+                unit_weight=self.unit_weight,
+                **mu,
+            )
+        return Rock(**mu)
+
+
+class EnvironmentTable(StrictModel):
+    water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
+    water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
+    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
+
+
+class WavesTable(StrictModel):
+    hs: float = Field(gt=0.0, le=30.0, description="H_s [m]")
+    tp: float = Field(gt=0.0, le=40.0, description="T_p [s]")
+    gamma: float | None = Field(None, ge=1.0, le=7.0, description="JONSWAP γ [-]")
+    spectrum: Literal["jonswap", "pierson-moskowitz"] = "jonswap"
+    direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
+    spreading_s: float = Field(0.0, ge=0.0, le=100.0, description="cos^s exponent [-]")
+
+    @model_validator(mode="after")
+    def _gamma_only_for_jonswap(self) -> WavesTable:
+        if self.gamma is not None and self.spectrum != "jonswap":
+            raise ValueError("gamma applies to the JONSWAP spectrum only; remove it")
+        return self
+
+
+class CurrentTable(StrictModel):
+    velocity: float = Field(0.0, ge=0.0, le=10.0, description="V(z_r) [m/s]")
+    reference_height: float = Field(1.0, gt=0.0, description="z_r [m]")
+    direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
+    z0: float | None = Field(None, gt=0.0, le=1.0, description="roughness z_0 [m]")
+
+
+class CombinationTable(StrictModel):
+    name: str = Field(min_length=1, description="label [-]")
+    hs: float | None = Field(None, gt=0.0, le=30.0, description="H_s [m]")
+    tp: float | None = Field(None, gt=0.0, le=40.0, description="T_p [s]")
+    gamma: float | None = Field(None, ge=1.0, le=7.0, description="JONSWAP γ [-]")
+    current_velocity: float | None = Field(None, ge=0.0, le=10.0, description="V(z_r) [m/s]")
+    condition: Condition | None = None
+
+
+class HydroTable(StrictModel):
+    cd: float = Field(0.7, ge=0.0, le=10.0, description="drag coefficient C_D [-]")
+    cm: float = Field(3.29, ge=0.0, le=10.0, description="inertia coefficient C_M [-]")
+    cl: float = Field(0.9, ge=0.0, le=10.0, description="lift coefficient C_L [-]")
+    added_mass_coefficient: float = Field(2.29, ge=0.0, le=10.0, description="C_a [-]")
+    reductions: bool = True
+
+
+class DesignTable(StrictModel):
+    safety_class: Literal["low", "normal", "high"] = "normal"
+    region: Literal[
+        "north_sea_winter", "north_sea_cyclonic", "gulf_of_mexico_winter", "gulf_of_mexico_cyclonic"
+    ] = "north_sea_winter"
+    vertical_conditions: list[Condition] = Field(
+        default_factory=lambda: ["installation", "flooded", "hydrotest", "operation"]
+    )
+    vertical_safety_factor: float = Field(1.1, ge=1.0, le=2.0, description="γ_W [-]")
+    permeable: bool | None = None
+    solve_for: Literal["concrete_thickness", "submerged_weight", "none"] = "none"
+    layer: str = Field("concrete", min_length=1, description="layer sized by the solve [-]")
+    thickness_min: float = Field(0.0, ge=0.0, le=1.0, description="[m]")
+    thickness_max: float = Field(0.25, gt=0.0, le=1.0, description="[m]")
+    weight_min: float = Field(1.0, gt=0.0, description="[N/m]")
+    weight_max: float = Field(2.0e4, gt=0.0, description="[N/m]")
+
+    @model_validator(mode="after")
+    def _ranges(self) -> DesignTable:
+        if self.thickness_max <= self.thickness_min:
+            raise ValueError("thickness_max must be > thickness_min")
+        if self.weight_max <= self.weight_min:
+            raise ValueError("weight_max must be > weight_min")
+        return self
+
+
+class StabilityCase(StrictModel):
+    """Top level of a case file read by the F109 design commands."""
+
+    pipe: PipeTable
+    seabed: SeabedTable
+    environment: EnvironmentTable
+    waves: WavesTable
+    current: CurrentTable = CurrentTable()
+    hydro: HydroTable = HydroTable()
+    combinations: list[CombinationTable] = Field(default_factory=list)
+    design: DesignTable = DesignTable()
+    # tables of other commands: accepted, validated where they are used
+    storm: dict[str, Any] | None = None
+    solver: dict[str, Any] | None = None
+    run: dict[str, Any] | None = None
+    pipeline: dict[str, Any] | None = None
+
+    # ---- builders -----------------------------------------------------------------------
+    def environment_object(self) -> Environment:
+        e = self.environment
+        return Environment(
+            water_depth=e.water_depth,
+            water_density=e.water_density,
+            kinematic_viscosity=e.kinematic_viscosity,
+        )
+
+    def section(self) -> PipeBuildUp | Pipe:
+        return self.pipe.section(self.environment.water_density)
+
+    def sea_state(self, combo: CombinationTable | None = None) -> SeaState:
+        w = self.waves
+        hs = w.hs if combo is None or combo.hs is None else combo.hs
+        tp = w.tp if combo is None or combo.tp is None else combo.tp
+        gamma = w.gamma if combo is None or combo.gamma is None else combo.gamma
+        return SeaState(
+            hs=hs,
+            tp=tp,
+            gamma=gamma,
+            spectrum=w.spectrum,
+            direction_deg=w.direction_deg,
+            spreading_s=w.spreading_s,
+        )
+
+    def current_object(self, combo: CombinationTable | None = None) -> Current:
+        c = self.current
+        v = (
+            c.velocity
+            if combo is None or combo.current_velocity is None
+            else combo.current_velocity
+        )
+        return Current(
+            velocity=v, reference_height=c.reference_height, direction_deg=c.direction_deg, z0=c.z0
+        )
+
+    def load_combinations(self) -> tuple[LoadCombination, ...]:
+        if not self.combinations:
+            return (
+                LoadCombination(
+                    name="design",
+                    sea_state=self.sea_state(),
+                    current=self.current_object(),
+                    condition=self.pipe.condition,
+                ),
+            )
+        return tuple(
+            LoadCombination(
+                name=c.name,
+                sea_state=self.sea_state(c),
+                current=self.current_object(c),
+                condition=c.condition or self.pipe.condition,
+            )
+            for c in self.combinations
+        )
+
+
+# ---- checks across tables and plausibility (after the schema) -------------------------------
+MAX_WAVE_STEEPNESS = 1.0 / 7.0
+"""Limiting steepness H/L of a single wave (Miche/Stokes, deep water): a sea state with a
+larger S_p = 2π H_s/(g T_p²) cannot exist — an error (T_p in the wrong unit, H_max for H_s)."""
+
+MAX_HS_OVER_DEPTH = 0.78
+"""Depth-limited breaking H/d ≈ 0.78 (McCowan): a significant wave height above it is an error."""
+
+USUAL_HS_OVER_DEPTH = 0.5
+"""Above H_s/d = 0.5 the sea is in the surf zone: linear wave kinematics (F109 §3.2) are outside
+their usual range — a warning."""
+
+_OBJECT_TABLES = {
+    "PipeBuildUp": "pipe",
+    "Pipe": "pipe",
+    "Layer": "pipe.layers",
+    "Contents": "pipe.contents",
+    "Sand": "seabed",
+    "Clay": "seabed",
+    "Rock": "seabed",
+    "Environment": "environment",
+    "SeaState": "waves",
+    "Current": "current",
+    "LoadCombination": "combinations",
+}
+
+
+def _steepness_limit(tp: float) -> float:
+    """DNV-RP-C205 (2010) §3.5.5.4 limiting average steepness S_p of a design sea state:
+    1/15 for T_p <= 8 s, 1/25 for T_p >= 15 s, linear in between."""
+    if tp <= 8.0:
+        return 1.0 / 15.0
+    if tp >= 15.0:
+        return 1.0 / 25.0
+    return 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
+
+
+class _Checker:
+    """Raise :class:`CaseFileError` naming field, value, range, file and line; collect warnings."""
+
+    def __init__(self, file: str | os.PathLike, text: str | None) -> None:
+        self.file, self.text = str(file), text
+
+    def _line(self, field: str) -> int | None:
+        if self.text is None:
+            return None
+        loc: list[Any] = []
+        for part in field.split("."):
+            name, _, idx = part.partition("[")
+            loc.append(name)
+            if idx:
+                loc.append(int(idx.rstrip("]")))
+        return _find_line(self.text, loc)
+
+    def fail(self, field: str, message: str) -> NoReturn:
+        line = self._line(field)
+        where = f"{self.file}{f', line {line}' if line else ''}: "
+        raise CaseFileError(where + _plain(message), field=field or None, file=self.file, line=line)
+
+    def warn(self, field: str, message: str) -> None:
+        line = self._line(field)
+        where = f"{self.file}{f', line {line}' if line else ''}: "
+        warnings.warn(where + _plain(message), OutOfRangeWarning, stacklevel=3)
+
+    def rename(self, exc: InputError) -> NoReturn:
+        """Re-raise an error of an input object under the case-file key it came from."""
+        text = _plain(str(exc))
+        field = getattr(exc, "field", None)
+        head = text.split(" ", 1)[0]
+        obj, _, attr = head.partition(".")
+        if field is None and obj in _OBJECT_TABLES and attr:
+            field = f"{_OBJECT_TABLES[obj]}.{attr}"
+            text = f"{field}{text[len(head) :]}"
+        self.fail(field or "", text)
+
+
+def _plain(text: str) -> str:
+    """Messages with plain numbers (``np.float64(7.0)`` → ``7.0``)."""
+    import re
+
+    return re.sub(r"np\.(?:float|int|uint|bool_?|str_)\d*\(([^()]*)\)", r"\1", text)
+
+
+def _check_case(case: StabilityCase, chk: _Checker) -> None:
+    """Cross-table rules and engineering plausibility of a parsed case."""
+
+    # -- combinations and design against the pipe form ------------------------------------
+    if case.waves.spectrum != "jonswap":
+        for i, c in enumerate(case.combinations):
+            if c.gamma is not None:
+                chk.fail(
+                    f"combinations[{i}].gamma",
+                    f"combinations[{i}].gamma = {c.gamma!r} is invalid: γ applies to the JONSWAP"
+                    f" spectrum only (waves.spectrum = {case.waves.spectrum!r}); remove it",
+                )
+    seen: set[str] = set()
+    for i, c in enumerate(case.combinations):
+        if c.name in seen:
+            chk.fail(
+                f"combinations[{i}].name",
+                f"combinations[{i}].name = {c.name!r} is invalid: combination names must be unique",
+            )
+        seen.add(c.name)
+    d = case.design
+    names = [layer.name for layer in case.pipe.layers]
+    if d.solve_for == "concrete_thickness":
+        if not case.pipe.is_buildup:
+            chk.fail(
+                "design.solve_for",
+                "design.solve_for = 'concrete_thickness' is invalid: it needs the build-up"
+                " [pipe] form (steel_outer_diameter, wall_thickness, [[pipe.layers]])",
+            )
+        if d.layer not in names:
+            chk.fail(
+                "design.layer",
+                f"design.layer = {d.layer!r} is invalid: not one of the [[pipe.layers]] names"
+                f" ({', '.join(map(repr, names)) or 'no layers given'})",
+            )
+        i = names.index(d.layer)
+        rho = case.pipe.layers[i].density
+        if rho <= case.environment.water_density:
+            chk.fail(
+                f"pipe.layers[{i}].density",
+                f"pipe.layers[{i}].density = {rho!r} kg/m³ is invalid for the design solve: the"
+                f" layer {d.layer!r} is not heavier than the water"
+                f" ({case.environment.water_density:g} kg/m³), so more of it makes the pipe"
+                " lighter (check the unit: kg/m³)",
+            )
+    if d.solve_for == "submerged_weight" and case.pipe.is_buildup:
+        chk.fail(
+            "design.solve_for",
+            "design.solve_for = 'submerged_weight' is invalid: it needs the simple [pipe] form"
+            " (outer_diameter, submerged_weight)",
+        )
+    states = []
+    for i, c in enumerate(case.combinations):
+        key = f"combinations[{i}]"
+        states.append(
+            (
+                f"combination {c.name!r}",
+                case.waves.hs if c.hs is None else c.hs,
+                case.waves.tp if c.tp is None else c.tp,
+                key if c.hs is not None else "waves",
+                key if c.tp is not None else "waves",
+            )
+        )
+    _check_common(case, chk, states)
+
+
+def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
+    """Plausibility of the tables every on-bottom command shares ([pipe], [seabed],
+    [environment], [waves], [current]) and of extra sea states
+    ``(label, hs, tp, hs_table, tp_table)``."""
+    from onbottom.constants import GRAVITY
+
+    for i, layer in enumerate(case.pipe.layers):
+        if "concrete" in layer.name.lower() and not 1800.0 <= layer.density <= 3600.0:
+            chk.warn(
+                f"pipe.layers[{i}].density",
+                f"pipe.layers[{i}].density = {layer.density:g} kg/m³ is unusual: weight-coating"
+                " concrete lies in [1800, 3600] kg/m³",
+            )
+    if case.pipe.is_buildup and not 7000.0 <= case.pipe.steel_density <= 8100.0:
+        chk.warn(
+            "pipe.steel_density",
+            f"pipe.steel_density = {case.pipe.steel_density:g} kg/m³ is unusual: line-pipe"
+            " steels lie in [7000, 8100] kg/m³",
+        )
+
+    if not case.pipe.is_buildup:
+        buoyancy = (
+            case.environment.water_density * GRAVITY * math.pi * case.pipe.outer_diameter**2 / 4.0
+        )
+        sg = 1.0 + case.pipe.submerged_weight / buoyancy
+        if sg < 1.05:
+            chk.warn(
+                "pipe.submerged_weight",
+                f"pipe.submerged_weight = {case.pipe.submerged_weight:g} N/m is unusual: the"
+                f" specific gravity is only {sg:.4g} (check the unit: N/m, not kN/m)",
+            )
+    if case.seabed.model == "clay" and case.seabed.undrained_shear_strength is not None:
+        su = case.seabed.undrained_shear_strength
+        if not 500.0 <= su <= 2.0e5:
+            chk.warn(
+                "seabed.undrained_shear_strength",
+                f"seabed.undrained_shear_strength = {su:g} Pa is unusual: seabed clays lie in"
+                " [500, 200000] Pa (check the unit: Pa, not kPa)",
+            )
+
+    # -- sea states -------------------------------------------------------------------------
+    depth = case.environment.water_depth
+    states = [] if case.waves is None else [("", case.waves.hs, case.waves.tp, "waves", "waves")]
+    states += list(extra_states)
+    for label, hs, tp, hs_at, tp_at in states:
+        what = f" ({label})" if label else ""
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
+        if steep > MAX_WAVE_STEEPNESS:
+            chk.fail(
+                f"{tp_at}.tp",
+                f"{tp_at}.tp = {tp!r} s is invalid with H_s = {hs:g} m{what}: the steepness"
+                f" 2πH_s/(gT_p²) = {steep:.3g} exceeds the breaking limit 1/7; T_p must be >="
+                f" {math.sqrt(2.0 * math.pi * hs / (GRAVITY * MAX_WAVE_STEEPNESS)):.3g} s"
+                " (check the units: m and s)",
+            )
+        if hs > MAX_HS_OVER_DEPTH * depth:
+            chk.fail(
+                f"{hs_at}.hs",
+                f"{hs_at}.hs = {hs!r} m is invalid in water_depth = {depth:g} m{what}: waves"
+                f" break above H/d = {MAX_HS_OVER_DEPTH:g} (H_s must be <="
+                f" {MAX_HS_OVER_DEPTH * depth:.3g} m; check environment.water_depth)",
+            )
+    for label, hs, tp, hs_at, tp_at in states:  # warnings after every error
+        what = f" ({label})" if label else ""
+        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
+        if steep > _steepness_limit(tp):
+            chk.warn(
+                f"{tp_at}.tp",
+                f"{tp_at}.tp = {tp:g} s is unusual with H_s = {hs:g} m{what}: the steepness"
+                f" {steep:.3g} exceeds the DNV-RP-C205 §3.5.5.4 limit"
+                f" {_steepness_limit(tp):.3g} of a design sea state",
+            )
+        if hs > USUAL_HS_OVER_DEPTH * depth:
+            chk.warn(
+                f"{hs_at}.hs",
+                f"{hs_at}.hs = {hs:g} m is unusual in water_depth = {depth:g} m{what}: above"
+                f" H_s/d = {USUAL_HS_OVER_DEPTH:g} the sea is depth-limited (surf zone) and"
+                " linear wave kinematics lose accuracy",
+            )
+
+    # -- current ----------------------------------------------------------------------------
+    cur = case.current
+    if cur.reference_height > depth:
+        chk.fail(
+            "current.reference_height",
+            f"current.reference_height = {cur.reference_height!r} m is invalid: above the"
+            f" water depth {depth:g} m (must lie in (z_0, water_depth])",
+        )
+    z0 = cur.z0  # (z_0 from d50 is checked where F109 Table 3-1 is applied: hydro layer)
+    if z0 is not None and cur.reference_height <= z0:
+        chk.fail(
+            "current.reference_height",
+            f"current.reference_height = {cur.reference_height!r} m is invalid: not above the"
+            f" seabed roughness z_0 = {z0:g} m, where the logarithmic profile (F109 Eq 3.3)"
+            " is undefined",
+        )
+
+    # -- seabed (μ: the soil objects warn) ---------------------------------------------------
+    sb = case.seabed
+    if sb.model in ("sand", "calcareous") and sb.d50 is not None:
+        if not 6.0e-5 <= sb.d50 <= 2.0e-3:
+            chk.warn(
+                "seabed.d50",
+                f"seabed.d50 = {sb.d50:g} m is unusual for model = {sb.model!r}: sand grains"
+                " lie in [6e-05, 0.002] m (check the unit: m, not mm)",
+            )
+
+
+def check_common_tables(
+    case: Any,
+    path: str | os.PathLike,
+    *,
+    sea_states: list[tuple[str, float, float, str, str]] | None = None,
+) -> None:
+    """Engineering plausibility of the shared tables of any parsed case file.
+
+    For the case files of other commands that reuse these tables (``onbottom storm``: section
+    and pipeline): ``case`` has ``pipe``, ``seabed``, ``environment``, ``waves`` (may be None)
+    and ``current`` attributes as in :class:`StabilityCase`; ``sea_states`` adds sea states
+    ``(label, hs [m], tp [s], table of hs, table of tp)``, e.g. ``("stage 0", 3.0, 9.0,
+    "storm.stages[0]", "storm.stages[0]")``. Raises :class:`CaseFileError` (key, value, range,
+    file, line) for a sea state steeper than breaking or higher than 0.78 × depth, a current
+    reference height outside (z_0, depth], densities and strengths in the wrong unit; warns
+    (:class:`OutOfRangeWarning`) for unusual values. See :func:`load_stability_case`.
+    """
+    p = Path(path)
+    try:
+        text: str | None = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        text = None
+    _check_common(case, _Checker(p, text), list(sea_states or []))
+
+
+def _check_section(case: StabilityCase, chk: _Checker) -> None:
+    """Build every input object once (errors under their case-file keys), the cross-table and
+    plausibility rules (:func:`_check_case`), and the embedment against D."""
+    try:
+        section = case.section()
+        case.seabed.seabed()
+        case.environment_object()
+    except CaseFileError:
+        raise
+    except InputError as exc:
+        chk.rename(exc)
+    _check_case(case, chk)  # sea states and cross-table rules before the combinations
+    try:
+        case.load_combinations()
+    except InputError as exc:
+        chk.rename(exc)
+    diameter = (
+        section.properties(case.pipe.condition).outer_diameter
+        if isinstance(section, PipeBuildUp)
+        else section.outer_diameter
+    )
+    sb = case.seabed
+    for key in ("initial_penetration", "trench_depth"):
+        z = getattr(sb, key)
+        if z is not None and z > diameter:
+            chk.fail(
+                f"seabed.{key}",
+                f"seabed.{key} = {z!r} m is invalid: deeper than the pipe's outer diameter"
+                f" {diameter:.4g} m (must lie in [0, D]; F109 §3.6 covers an on-bottom pipe)",
+            )
+
+
+def penetration_outside_validity(rows: Any) -> list[str]:
+    """Rows of the absolute check whose embedment z_p exceeds D/2 (outside F109 Eqs
+    3.19–3.22 and the soil resistance models): one line per combination, empty if none."""
+    out = []
+    for r in rows:
+        det = r.details
+        if r.name != "absolute_lateral" or "penetration" not in det or "diameter" not in det:
+            continue
+        ratio = det["penetration"] / det["diameter"]
+        if ratio > 0.5:
+            out.append(
+                f"combination {r.combination!r} ({r.condition}): embedment z_p/D = {ratio:.3g}"
+                " > 0.5 lies outside the validity of F109 Eqs 3.19–3.22 (check the soil"
+                " strength and its unit)"
+            )
+    return out
+
+
+def load_stability_case(path: str | os.PathLike) -> StabilityCase:
+    """Read and validate a TOML/JSON case file.
+
+    Raises :class:`onbottom._casefile.CaseFileError` (an :class:`~onbottom.errors.InputError`)
+    naming the key, its value and allowed range, the file and the line: schema errors
+    (unknown/missing keys, wrong types, ranges), rules across tables (design layer, unique
+    combination names), and implausible inputs (a sea state steeper than the breaking limit
+    or higher than 0.78 × the depth, a current reference height outside (z_0, depth], an
+    embedment or trench deeper than D, a design layer lighter than water). Unusual inputs give
+    :class:`~onbottom.errors.OutOfRangeWarning`.
+    """
+    p = Path(path)
+    case = load_case_file(p, StabilityCase)
+    try:
+        text: str | None = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
+        text = None
+    chk = _Checker(p, text)
+    _check_section(case, chk)
+    return case

@@ -1,0 +1,113 @@
+"""Figures of a pipe section in a storm and of stability curves.
+
+* :func:`plot_storm_result` — displacement y/D and penetration z/D against time, hydrodynamic
+  load H against displacement, and the V–H path (contact force against horizontal load)
+  coloured by time; the F109 limits 0.5D and 10D are drawn where they fall in range.
+* :func:`plot_stability_curves` — L/(2 + M)² against K, one line per M (the form of the
+  DNV-RP-F109 generalized-stability tables), for L_stable and L_10.
+
+Loads in kN/m; datasets hold SI values.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg", force=False)
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+
+__all__ = ["plot_stability_curves", "plot_storm_result"]
+
+_KN = 1.0e-3
+
+
+def plot_storm_result(result: Any, *, title: str | None = None) -> Figure:
+    """Four panels of a :class:`~onbottom.dynamics.storm_section.StormSectionResult`."""
+    ds: xr.Dataset = result.data if hasattr(result, "data") else result
+    if ds is None:
+        raise ValueError("the result has no records (run with record_interval set)")
+    d = float(ds.attrs.get("diameter", getattr(result, "diameter", 1.0)))
+    t_h = ds["time"].values / 3600.0
+    fig, axes = plt.subplots(2, 2, figsize=(10.0, 7.0), layout="constrained")
+    ax = axes[0, 0]
+    ax.plot(t_h, ds["y"].values / d, lw=0.8)
+    ymax = float(np.nanmax(np.abs(ds["y"].values))) / d
+    for lim, style in ((0.5, "--"), (10.0, ":")):
+        if ymax >= 0.3 * lim:
+            ax.axhline(lim, color="r", ls=style, lw=0.8, label=f"{lim:g}D")
+            ax.axhline(-lim, color="r", ls=style, lw=0.8)
+    ax.set_xlabel("time [h]")
+    ax.set_ylabel("lateral displacement y/D [-]")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", fontsize=8)
+    ax = axes[0, 1]
+    ax.plot(t_h, ds["z"].values / d, lw=0.8, color="C1")
+    ax.set_xlabel("time [h]")
+    ax.set_ylabel("penetration z/D [-]")
+    ax = axes[1, 0]
+    ax.plot(ds["y"].values / d, ds["F_hydro"].values * _KN, lw=0.5, color="C2")
+    ax.set_xlabel("y/D [-]")
+    ax.set_ylabel("hydrodynamic load H [kN/m]")
+    ax = axes[1, 1]
+    sc = ax.scatter(
+        ds["F_hydro"].values * _KN,
+        ds["V"].values * _KN,
+        c=t_h,
+        s=1.5,
+        cmap="viridis",
+        rasterized=True,
+    )
+    ax.set_xlabel("hydrodynamic load H [kN/m]")
+    ax.set_ylabel("contact force V = w_s − F_Z [kN/m]")
+    fig.colorbar(sc, ax=ax, label="time [h]")
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Figure:
+    """L/(2 + M)² against K, one line per M, one panel per soil (rows) and criterion (columns).
+
+    ``curves`` is the dataset of :func:`onbottom.study.stability_curves.stability_curves`
+    (variables ``L_stable`` and ``L_10`` over dimensions soil, N, M, K).
+    """
+    soils = [str(s) for s in curves["soil"].values]
+    crits = [c for c in ("L_stable", "L_10") if c in curves]
+    n_values = curves["N"].values
+    fig, axes = plt.subplots(
+        len(soils),
+        len(crits),
+        figsize=(5.0 * len(crits), 3.6 * len(soils)),
+        squeeze=False,
+        layout="constrained",
+    )
+    for i, soil in enumerate(soils):
+        for j, crit in enumerate(crits):
+            ax = axes[i, j]
+            for kn, n in enumerate(n_values):
+                for km, m in enumerate(curves["M"].values):
+                    y = curves[crit].sel(soil=soil, N=n, M=m).values / (2.0 + m) ** 2
+                    label = f"M = {m:g}" + (f", N = {n:g}" if len(n_values) > 1 else "")
+                    ax.plot(
+                        curves["K"].values,
+                        y,
+                        marker="o",
+                        ms=3,
+                        color=f"C{km}",
+                        ls=("-", "--", ":", "-.")[kn % 4],
+                        label=label,
+                    )
+            ax.set_xscale("log")
+            ax.set_xlabel("K = U_s T_u / D [-]")
+            ax.set_ylabel(f"{crit} / (2 + M)² [-]")
+            ax.set_title(f"{soil}: {crit} ({'0.5D' if crit == 'L_stable' else '10D'})", fontsize=9)
+            ax.grid(True, which="both", lw=0.3)
+            ax.legend(fontsize=7)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    return fig

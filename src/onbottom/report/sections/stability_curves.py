@@ -1,0 +1,84 @@
+"""Report section: generalized-stability curves from dynamic storm runs, when committed.
+
+A curve sweep (:mod:`onbottom.study.stability_curves`, ``onbottom curves CASE``) needs of the
+order of 10⁴ storms: hours on 2 cores, too long for a report run. The report shows the sweeps
+committed as NetCDF files (written by ``onbottom curves``) in ``docs/validation/
+stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the curves. Without
+such a file the section says so. There is no pass/fail: F109's tables are DNV content and are
+not reproduced (docs/theory/storm_section.md).
+"""
+
+from __future__ import annotations
+
+from onbottom.report.content import Check, SectionContent, SectionContext, Table
+from onbottom.report.registry import section
+
+REQUIRES = ("onbottom.study.stability_curves",)
+
+FOLDER = "docs/validation/stability_curves"
+"""Where committed sweeps (NetCDF from ``onbottom curves``) are looked for."""
+
+
+@section("stability_curves", "Stability curves from dynamic runs", order=80, requires=REQUIRES)
+def build(ctx: SectionContext) -> SectionContent:
+    """Tabulate and plot every committed curve sweep."""
+    from onbottom.results import load_dataset
+    from onbottom.study.stability_curves import curves_table
+
+    folder = None if ctx.repo_root is None else ctx.repo_root / FOLDER
+    files = [] if folder is None or not folder.is_dir() else sorted(folder.glob("*.nc"))
+    if not files:
+        return SectionContent(
+            summary="No committed stability-curve sweep: a sweep takes hours on 2 cores, so the"
+            f" report shows the NetCDF files of `onbottom curves` committed in {FOLDER}/.",
+            checks=[
+                Check(
+                    name="committed sweeps",
+                    value=0,
+                    reference=None,
+                    tolerance="—",
+                    status="info",
+                )
+            ],
+        )
+    try:
+        from onbottom.plotting.storm import plot_stability_curves
+    except ImportError:
+        plot_stability_curves = None
+    tables, figures = [], []
+    for path in files:
+        ds = load_dataset(path)
+        rows = curves_table(ds)
+        cols = list(rows[0]) if rows else ["soil"]
+        tables.append(
+            Table(
+                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria",
+                columns=cols,
+                rows=[[r[c] for c in cols] for r in rows],
+                digits=3,
+            )
+        )
+        if plot_stability_curves is not None:
+            figures.append(
+                ctx.save_figure(
+                    plot_stability_curves(ds, title=path.stem),
+                    path.stem,
+                    f"{path.name}: L/(2 + M)² against K for each soil and M.",
+                )
+            )
+    return SectionContent(
+        summary="Weight parameter L = w_s/(½ρDU_s²) at which the seed-averaged largest lateral"
+        " displacement of a storm equals 0.5D (L_stable) and 10D (L_10).",
+        checks=[
+            Check(
+                name="committed sweeps",
+                value=len(files),
+                reference=None,
+                tolerance="—",
+                status="info",
+            )
+        ],
+        tables=tables,
+        figures=figures,
+        notes=["Construction of each point and the choices made: docs/theory/storm_section.md."],
+    )

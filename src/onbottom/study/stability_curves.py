@@ -1,0 +1,506 @@
+"""Generalized-stability curves from dynamic storm analyses (what F109 tabulates, recomputed).
+
+For each point (soil, N, M, K) the weight parameter L = w_s/(½ ρ_w D U_s²) is bisected (in
+log L) for the value at which the seed-averaged maximum lateral displacement of a storm
+(default 0.5 h build-up + 3 h peak) equals 0.5D (L_stable) and 10D (L_10)
+(``shared/spec/on-bottom-stability.md``, "Generalized-stability curves from dynamic runs" [I]).
+
+Construction of a point (our choices; F109 and PONDUS do not publish theirs):
+
+* K = U_s T_u/D and N = U_s/(g T_u) fix U_s = √(K N g D) and T_u = √(K D/(N g)); a JONSWAP
+  sea state (γ = 3.3, T_n/T_p = 0.1, long-crested, normal to the pipe) with these U_s, T_u is
+  built by :func:`onbottom.hydro.storm_kinematics.sea_state_for_velocity`;
+* the current V = M·U_s is uniform over the pipe (no profile: M is defined with the mean
+  current over D);
+* w_s = L·½ ρ_w D U_s², the pipe mass follows from w_s and buoyancy (s_g = 1 + 2NKL/π);
+* sand: Verley & Sotberg silica with γ'_s and μ; clay: Verley & Lund with s_u = G_c D γ_s;
+* the same seeds are used at every L (common random numbers: a smooth L ↦ mean max |y|);
+* runs stop as runaways at twice the target (at least 10D); a stopped seed counts with its
+  displacement at the stop, so the mean is a lower bound of the unstopped mean and the L found
+  can only be lower (less conservative) than with unstopped runs — by little, since the stop is
+  far above the target;
+* a bisection evaluation stops early once the seeds run so far decide which side of the target
+  the mean is on (deterministic: the decision is the one all seeds would give).
+
+Each point is one task on Dask (:mod:`onbottom.study.engine`); seeds run inside the task.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from onbottom._validate import in_range, positive
+from onbottom.constants import GRAVITY, RHO_SEAWATER
+from onbottom.dynamics.storm_section import (
+    LoadReductions,
+    StormSolverSettings,
+    simulate_storm_section,
+)
+from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.storm_kinematics import (
+    StormKinematics,
+    sea_state_for_velocity,
+    storm_kinematics,
+)
+from onbottom.inputs.pipe import Pipe
+from onbottom.inputs.soil import Clay, Sand
+from onbottom.inputs.storm import Storm
+from onbottom.results import annotate, provenance
+from onbottom.soil.base import LateralResistanceModel
+from onbottom.soil.verley_lund import VerleyLund
+from onbottom.soil.verley_sotberg import VerleySotberg
+from onbottom.study.engine import ParallelMap, SerialMap, dask_client
+
+__all__ = [
+    "CRITERIA",
+    "CurveSettings",
+    "clay_validity_limit",
+    "curves_table",
+    "find_weight_parameter",
+    "point_kinematics",
+    "stability_curves",
+]
+
+CRITERIA: dict[str, float] = {"L_stable": 0.5, "L_10": 10.0}
+"""Criterion name → target seed-averaged maximum displacement over D."""
+
+SOILS = ("sand", "clay")
+
+
+@dataclass(frozen=True, kw_only=True)
+class CurveSettings:
+    """Settings of :func:`stability_curves` (SI).
+
+    Parameters
+    ----------
+    diameter : float
+        Pipe outer diameter D [m], > 0 (results are dimensionless; D sets the scale).
+    seeds : int
+        Storms per evaluation, >= 1; seeds first_seed, first_seed + 1, ...
+    first_seed : int
+        >= 0.
+    build_up_hours, peak_hours : float
+        Storm: linear build-up and peak duration [h].
+    tolerance : float
+        Relative width of the final L bracket [-], in (0, 0.5].
+    l_min, l_max : float
+        Initial bracket of L [-]; widened (×/÷ 4, up to 6 times) if it does not bracket.
+    gamma : float
+        JONSWAP γ of the synthetic sea states [-].
+    tn_over_tp : float
+        T_n/T_p of the synthetic sea states [-] (sets the water depth).
+    time_step : float
+        Largest solver step [s].
+    sand_unit_weight : float
+        γ'_s of the sand [N/m³]; sand_friction μ [-].
+    clay_gc : float
+        G_c = s_u/(D γ_s) of the clay [-]; clay_unit_weight γ_s (total) and
+        clay_submerged_unit_weight γ' [N/m³]; clay_friction μ [-].
+    water_density : float
+        ρ_w [kg/m³].
+    force_model : MorisonLift
+        Hydrodynamic coefficients (default C_D 0.7, C_M 3.29, C_L 0.9).
+    """
+
+    diameter: float = 0.5
+    seeds: int = 5
+    first_seed: int = 0
+    build_up_hours: float = 0.5
+    peak_hours: float = 3.0
+    tolerance: float = 0.02
+    l_min: float = 1.0
+    l_max: float = 300.0
+    gamma: float = 3.3
+    tn_over_tp: float = 0.1
+    time_step: float = 0.1
+    sand_unit_weight: float = 10.0e3
+    sand_friction: float = 0.6
+    clay_gc: float = 0.222
+    clay_unit_weight: float = 18.0e3
+    clay_submerged_unit_weight: float = 8.0e3
+    clay_friction: float = 0.2
+    water_density: float = RHO_SEAWATER
+    force_model: MorisonLift = field(default_factory=MorisonLift)
+
+    def __post_init__(self) -> None:
+        positive("CurveSettings.diameter", self.diameter)
+        if int(self.seeds) < 1 or int(self.first_seed) < 0:
+            raise InputError(
+                f"CurveSettings.seeds = {self.seeds!r} / first_seed = {self.first_seed!r} are"
+                " invalid: need seeds >= 1 and first_seed >= 0"
+            )
+        in_range("CurveSettings.build_up_hours", self.build_up_hours, 0.0, 100.0)
+        in_range("CurveSettings.peak_hours", self.peak_hours, 0.0, 100.0, low_inclusive=False)
+        in_range("CurveSettings.tolerance", self.tolerance, 0.0, 0.5, low_inclusive=False)
+        positive("CurveSettings.l_min", self.l_min)
+        if not self.l_max > self.l_min:
+            raise InputError(
+                f"CurveSettings.l_max = {self.l_max!r} is invalid: must be > l_min = {self.l_min!r}"
+            )
+        positive("CurveSettings.time_step", self.time_step)
+        positive("CurveSettings.sand_unit_weight", self.sand_unit_weight)
+        positive("CurveSettings.clay_gc", self.clay_gc)
+        positive("CurveSettings.water_density", self.water_density)
+
+
+def point_kinematics(k: float, m: float, n: float, s: CurveSettings) -> list[StormKinematics]:
+    """Flow of every seed at (K, M, N): U_s = √(K N g D), T_u = √(K D/(N g)), V = M U_s."""
+    positive("K", k)
+    positive("N", n)
+    in_range("M", m, 0.0, 100.0)
+    d = s.diameter
+    us = math.sqrt(k * n * GRAVITY * d)
+    tu = math.sqrt(k * d / (n * GRAVITY))
+    sea, depth = sea_state_for_velocity(
+        us, tu, tn_over_tp=s.tn_over_tp, gamma=s.gamma, duration_s=s.peak_hours * 3600.0
+    )
+    storm = Storm(stages=(sea,), build_up_s=s.build_up_hours * 3600.0)
+    out = []
+    for i in range(int(s.seeds)):
+        kin = storm_kinematics(storm.with_seed(s.first_seed + i), depth, diameter=d)
+        out.append(replace(kin, current=m * us))
+    return out
+
+
+def clay_validity_limit(k: float, n: float, s: CurveSettings) -> float:
+    """L at which S·G_c^0.3 = 2.5, the upper validity of the Verley & Lund penetration fit.
+
+    S = w_s/(D s_u) = L ½ ρ_w U_s²/s_u (Bai, *Pipelines and Risers*, p. 107: the fit holds
+    for S·G^0.3 < 2.5 and over-predicts beyond; ``shared/spec/dnv-reference.md`` §2.4).
+    """
+    su = s.clay_gc * s.diameter * s.clay_unit_weight
+    us2 = k * n * GRAVITY * s.diameter
+    return 2.5 / s.clay_gc**0.3 * su / (0.5 * s.water_density * us2)
+
+
+def _soil(soil: str, pipe: Pipe, s: CurveSettings) -> LateralResistanceModel:
+    if soil == "sand":
+        return VerleySotberg.silica(
+            pipe,
+            Sand(submerged_unit_weight=s.sand_unit_weight, friction_coefficient=s.sand_friction),
+        )
+    clay = Clay(
+        undrained_shear_strength=s.clay_gc * s.diameter * s.clay_unit_weight,
+        submerged_unit_weight=s.clay_submerged_unit_weight,
+        unit_weight=s.clay_unit_weight,
+        friction_coefficient=s.clay_friction,
+    )
+    return VerleyLund.from_seabed(pipe, clay)
+
+
+def _mean_max(
+    soil: str,
+    weight_parameter: float,
+    kins: list[StormKinematics],
+    us: float,
+    target: float,
+    s: CurveSettings,
+) -> tuple[bool, float, int]:
+    """(mean max |y|/D >= target?, mean over the seeds run, seeds run)."""
+    d = s.diameter
+    ws = weight_parameter * 0.5 * s.water_density * d * us * us
+    pipe = Pipe(outer_diameter=d, submerged_weight=ws, seawater_density=s.water_density)
+    soil_model = _soil(soil, pipe, s)
+    stop = max(2.0 * target, 10.0)
+    settings = StormSolverSettings(
+        dt_max=s.time_step, stop_displacement_over_d=stop, record_interval=None
+    )
+    red = LoadReductions(permeable_seabed=soil != "clay")
+    n = len(kins)
+    total = 0.0
+    for i, kin in enumerate(kins):
+        r = simulate_storm_section(
+            pipe, soil_model, kin, force_model=s.force_model, reductions=red, settings=settings
+        )
+        if not r.success:
+            raise RuntimeError(f"seed {kin.seed}: {r.message}")
+        total += r.max_displacement / d
+        run = i + 1
+        # decided already? (remaining seeds add between 0 and stop each)
+        if total >= target * n:
+            return True, total / run, run
+        if total + (n - run) * (stop + 0.1) < target * n:
+            return False, total / run, run
+    return total / n >= target, total / n, n
+
+
+def find_weight_parameter(
+    soil: str, k: float, m: float, n: float, criterion: str, s: CurveSettings
+) -> dict[str, Any]:
+    """Bisect log L for the seed-averaged max |y| = target·D of ``criterion``.
+
+    Returns a dict with L, bracket, evaluations, storms, runtime, and a status message.
+    """
+    if soil not in SOILS:
+        raise InputError(f"soil = {soil!r} is invalid: must be one of {SOILS}")
+    if criterion not in CRITERIA:
+        raise InputError(f"criterion = {criterion!r} is invalid: must be one of {tuple(CRITERIA)}")
+    target = CRITERIA[criterion]
+    t0 = time.perf_counter()
+    c0 = time.process_time()
+    kins = point_kinematics(k, m, n, s)
+    us = math.sqrt(k * n * GRAVITY * s.diameter)
+    evals = 0
+    storms = 0
+    cache: dict[float, bool] = {}
+
+    def moves(lv: float) -> bool:
+        nonlocal evals, storms
+        if lv not in cache:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", OutOfRangeWarning)
+                above, _, ran = _mean_max(soil, lv, kins, us, target, s)
+            cache[lv] = above
+            evals += 1
+            storms += ran
+        return cache[lv]
+
+    lo, hi = s.l_min, s.l_max
+    cap = clay_validity_limit(k, n, s) if soil == "clay" else math.inf
+    message = "converged"
+    if hi > cap:
+        hi = cap
+        lo = min(lo, cap / 4.0)
+    for _ in range(6):
+        if moves(lo):
+            break
+        hi, lo = lo, lo / 4.0
+    else:
+        message = (
+            f"even L = {lo:.3g} stays below the target (a light pipe lifts off and"
+            " oscillates with the flow without drifting)"
+        )
+    for _ in range(6):
+        if not moves(hi):
+            break
+        if hi >= cap:
+            message = (
+                f"the target is exceeded up to L = {cap:.3g}, the Verley & Lund validity limit"
+                " S·G_c^0.3 = 2.5 (Bai, Pipelines and Risers, §5): L is beyond the soil model"
+            )
+            break
+        lo, hi = hi, min(hi * 4.0, cap)
+    else:
+        message = f"even L = {hi:.3g} exceeds the target"
+    ok = moves(lo) and not moves(hi)
+    if ok:
+        while hi / lo > 1.0 + s.tolerance:
+            mid = math.sqrt(lo * hi)
+            if moves(mid):
+                lo = mid
+            else:
+                hi = mid
+    value = math.sqrt(lo * hi) if ok else math.nan
+    return {
+        "soil": soil,
+        "K": float(k),
+        "M": float(m),
+        "N": float(n),
+        "criterion": criterion,
+        "L": value,
+        "L_low": lo,
+        "L_high": hi,
+        "evaluations": evals,
+        "storms": storms,
+        "runtime_s": time.perf_counter() - t0,
+        "cpu_s": time.process_time() - c0,
+        "success": bool(ok),
+        "error": False,
+        "message": message,
+    }
+
+
+@dataclass(frozen=True)
+class _PointJob:
+    settings: CurveSettings
+
+    def __call__(self, item: tuple[str, float, float, float, str]) -> dict[str, Any]:
+        soil, k, m, n, crit = item
+        try:
+            return find_weight_parameter(soil, k, m, n, crit, self.settings)
+        except Exception as exc:  # recorded, the sweep goes on
+            return {
+                "soil": soil,
+                "K": k,
+                "M": m,
+                "N": n,
+                "criterion": crit,
+                "L": math.nan,
+                "L_low": math.nan,
+                "L_high": math.nan,
+                "evaluations": 0,
+                "storms": 0,
+                "runtime_s": 0.0,
+                "cpu_s": 0.0,
+                "success": False,
+                "error": True,
+                "message": f"{type(exc).__name__}: {exc}",
+            }
+
+
+def stability_curves(
+    k_values: Sequence[float],
+    m_values: Sequence[float],
+    n_values: Sequence[float] = (0.003,),
+    *,
+    soils: Sequence[str] = SOILS,
+    criteria: Sequence[str] = tuple(CRITERIA),
+    settings: CurveSettings | None = None,
+    n_workers: int | None = None,
+    scheduler: str | None = None,
+    client: Any = None,
+    progress: bool = False,
+) -> xr.Dataset:
+    """L_stable and L_10 on a grid of soil × N × M × K (module docstring).
+
+    Parameters
+    ----------
+    k_values, m_values, n_values : sequences of float
+        K > 0, M >= 0, N > 0 [-].
+    soils : sequence of {"sand", "clay"}
+    criteria : sequence of {"L_stable", "L_10"}
+    settings : CurveSettings or None
+    n_workers : int or None
+        Local Dask worker processes (None → one per core; 0 → in this process).
+    scheduler : str or None
+        Address of a Dask scheduler.
+    client : distributed.Client or None
+    progress : bool
+
+    Returns
+    -------
+    xarray.Dataset
+        L_stable, L_10 (and their L/(2 + M)² forms, brackets, evaluations, storms, runtime)
+        over dimensions (soil, N, M, K); attributes: total storms, wall time, settings.
+    """
+    s = settings if settings is not None else CurveSettings()
+    for soil in soils:
+        if soil not in SOILS:
+            raise InputError(f"soils = {soil!r} is invalid: must be one of {SOILS}")
+    for c in criteria:
+        if c not in CRITERIA:
+            raise InputError(f"criteria = {c!r} is invalid: must be one of {tuple(CRITERIA)}")
+    ks = [positive("K", x) for x in k_values]
+    ms = [in_range("M", x, 0.0, 100.0) for x in m_values]
+    ns = [positive("N", x) for x in n_values]
+    if not ks or not ms or not ns or not soils or not criteria:
+        raise InputError("the grid is empty: give at least one K, M, N, soil and criterion")
+    items = [(so, k, m, n, c) for so in soils for n in ns for m in ms for k in ks for c in criteria]
+    job = _PointJob(s)
+    t0 = time.perf_counter()
+    if n_workers == 0 and scheduler is None and client is None:
+        if progress:
+            from tqdm.auto import tqdm
+
+            rows = [job(x) for x in tqdm(items, unit="point")]
+        else:
+            rows = SerialMap()(job, items)
+        workers = 1
+    else:
+        with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
+            workers = max(1, sum(c.nthreads().values()))
+            rows = ParallelMap(c, batch_size=1, progress=progress)(job, items)
+    wall = time.perf_counter() - t0
+    return _to_dataset(rows, list(soils), ns, ms, ks, list(criteria), s, wall, workers)
+
+
+def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Dataset:
+    shape = (len(soils), len(ns), len(ms), len(ks))
+    idx = {(r["soil"], r["N"], r["M"], r["K"], r["criterion"]): r for r in rows}
+    data: dict[str, Any] = {}
+    for c in criteria:
+        arrs = {
+            name: np.full(shape, np.nan)
+            for name in ("L", "L_low", "L_high", "evaluations", "storms", "runtime_s")
+        }
+        for a, so in enumerate(soils):
+            for b, n in enumerate(ns):
+                for i, m in enumerate(ms):
+                    for j, k in enumerate(ks):
+                        r = idx[(so, n, m, k, c)]
+                        for name in arrs:
+                            arrs[name][a, b, i, j] = r[name]
+        dims = ("soil", "N", "M", "K")
+        data[c] = (dims, arrs["L"])
+        data[f"{c}_over_2_plus_M_squared"] = (
+            dims,
+            arrs["L"] / (2.0 + np.asarray(ms))[None, None, :, None] ** 2,
+        )
+        data[f"{c}_bracket_low"] = (dims, arrs["L_low"])
+        data[f"{c}_bracket_high"] = (dims, arrs["L_high"])
+        data[f"{c}_evaluations"] = (dims, arrs["evaluations"])
+        data[f"{c}_storms"] = (dims, arrs["storms"])
+        data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
+    failures = [
+        {k2: r[k2] for k2 in ("soil", "K", "M", "N", "criterion", "message")}
+        for r in rows
+        if r["error"]
+    ]
+    no_crossing = [
+        {k2: r[k2] for k2 in ("soil", "K", "M", "N", "criterion", "message")}
+        for r in rows
+        if not r["success"] and not r["error"]
+    ]
+    total_storms = int(sum(r["storms"] for r in rows))
+    busy = float(sum(r["runtime_s"] for r in rows))
+    cpu = float(sum(r["cpu_s"] for r in rows))
+    ds = xr.Dataset(
+        data,
+        coords={"soil": soils, "N": ns, "M": ms, "K": ks},
+        attrs=provenance(
+            "stability_curves",
+            {
+                k2: (v if not isinstance(v, MorisonLift) else v.describe())
+                for k2, v in s.__dict__.items()
+            },
+            total_storms=total_storms,
+            wall_time_s=wall,
+            busy_time_s=busy,
+            cpu_time_s=cpu,
+            workers=workers,
+            storms_per_hour=total_storms / wall * 3600.0 if wall > 0 else math.nan,
+            failures=failures,
+            no_crossing=no_crossing,
+            method=(
+                "bisection in log L of the seed-averaged max |y| of storms"
+                " (onbottom.study.stability_curves)"
+            ),
+        ),
+    )
+    for c in criteria:
+        ds[c].attrs.update(
+            long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D",
+            units="1",
+        )
+    return annotate(ds)
+
+
+def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
+    """Rows soil, N, M, K, L_stable, L_10 and their L/(2 + M)² forms (for CSV)."""
+    rows = []
+    crits = [c for c in CRITERIA if c in ds]
+    for so in ds["soil"].values:
+        for n in ds["N"].values:
+            for m in ds["M"].values:
+                for k in ds["K"].values:
+                    row: dict[str, Any] = {
+                        "soil": str(so),
+                        "N": float(n),
+                        "M": float(m),
+                        "K": float(k),
+                    }
+                    for c in crits:
+                        v = float(ds[c].sel(soil=so, N=n, M=m, K=k))
+                        row[c] = v
+                        row[f"{c}/(2+M)^2"] = v / (2.0 + float(m)) ** 2
+                    rows.append(row)
+    return rows
