@@ -6,7 +6,7 @@ higher than the depth allows), NaN/inf/huge values, infeasible designs, missing 
 files, bad output names and options. Every case must give either a valid result or a named
 error: exit status >= 1, a JSON error object ``{"error": {"type", "message", "field"}}`` whose
 field names the key at fault, plain numbers in the message, never a traceback (exit 70), never
-NaN in the JSON. Cases tried: 112 deterministic cases
+NaN in the JSON. Cases tried: 114 deterministic cases
 and 4 fuzz tests (40 + 40 + 10 + 20 examples by default).
 """
 
@@ -156,6 +156,21 @@ ERRORS = [
         "submerged_weight = 1500.0",
         "submerged_weight = 1.5e9",
         "pipe.submerged_weight",
+    ),
+    # found by fuzzing: a zero lateral resistance divided by zero (exit 70)
+    (
+        "weight-tiny",
+        SIMPLE,
+        "submerged_weight = 1500.0",
+        "submerged_weight = 6e-161",
+        "pipe.submerged_weight",
+    ),
+    (
+        "friction-tiny",
+        SIMPLE,
+        "submerged_unit_weight = 10.0e3",
+        "submerged_unit_weight = 10.0e3\nfriction_coefficient = 1e-300",
+        "seabed.friction_coefficient",
     ),
     # signs
     (
