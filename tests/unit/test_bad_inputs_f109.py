@@ -6,8 +6,8 @@ higher than the depth allows), NaN/inf/huge values, infeasible designs, missing 
 files, bad output names and options. Every case must give either a valid result or a named
 error: exit status >= 1, a JSON error object ``{"error": {"type", "message", "field"}}`` whose
 field names the key at fault, plain numbers in the message, never a traceback (exit 70), never
-NaN in the JSON. Cases tried: 111 deterministic cases
-and 3 fuzz tests (40 + 40 + 10 examples by default).
+NaN in the JSON. Cases tried: 114 deterministic cases
+and 4 fuzz tests (40 + 40 + 10 + 20 examples by default).
 """
 
 from __future__ import annotations
@@ -156,6 +156,21 @@ ERRORS = [
         "submerged_weight = 1500.0",
         "submerged_weight = 1.5e9",
         "pipe.submerged_weight",
+    ),
+    # found by fuzzing: a zero lateral resistance divided by zero (exit 70)
+    (
+        "weight-tiny",
+        SIMPLE,
+        "submerged_weight = 1500.0",
+        "submerged_weight = 6e-161",
+        "pipe.submerged_weight",
+    ),
+    (
+        "friction-tiny",
+        SIMPLE,
+        "submerged_unit_weight = 10.0e3",
+        "submerged_unit_weight = 10.0e3\nfriction_coefficient = 1e-300",
+        "seabed.friction_coefficient",
     ),
     # signs
     (
@@ -470,6 +485,13 @@ WARNINGS = [
         "submerged_unit_weight = 10.0e3",
         "submerged_unit_weight = 10.0e3\nfriction_coefficient = 0.01",
         "friction_coefficient",
+    ),
+    (
+        "hydro-unused",
+        SIMPLE,
+        "reference_height = 2.0",
+        "reference_height = 2.0\n[hydro]\ncd = 1.2",
+        "[hydro] is not used",
     ),
 ]
 
@@ -818,3 +840,27 @@ def _fuzz_one(command, tmp_path, capsys, edits, drop, buildup=False):
         assert err["type"] in ("CaseFileError", "InputError", "SolutionError")
         assert err["field"], err  # names the key at fault
         assert "np.float" not in err["message"]
+
+
+OPTION_TEXT = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+    st.integers(min_value=-(2**70), max_value=2**70).map(str),
+    st.sampled_from(["", "1e3", "0x10", "1_000", " 2 ", "3.0", "-0", "nan", "inf", "abc"]),
+)
+
+
+@settings(FUZZ, max_examples=max(5, FUZZ.max_examples // 2))
+@given(option=st.sampled_from(["--seed", "--duration-hours"]), value=OPTION_TEXT)
+def test_fuzz_loads_numeric_options(tmp_path, capsys, option, value):
+    """Any text for a numeric option: a result, or a usage/input error naming the option."""
+    case = _write(tmp_path, SIMPLE)
+    extra = [] if option == "--duration-hours" else ["--duration-hours", "0.1"]
+    rc = main(["loads", case, option, value, *extra, "--json"])
+    out = capsys.readouterr().out
+    _no_nan(out)
+    data = json.loads(out)
+    if rc == 0:
+        assert data["success"] is True and data["combinations"][0]["n_cycles"] > 0
+    else:
+        assert rc in (1, 2), data
+        assert data["error"]["field"] == option, data

@@ -8,7 +8,7 @@ Storms are kept to seconds (72 s sea state for the section, 4 s for the pipeline
 Cases marked ``xfail(strict=True)`` are defects in files owned by other helpers
 (cli/storm.py, cli/curves.py, dynamics/storm_case.py: H12; cli/storm_pipeline.py,
 dynamics/pipeline/: H13); each reason says what to change.
-Cases tried: 80: 54 expected to pass,
+Cases tried: 81: 55 expected to pass,
 26 strict xfails (one not run).
 """
 
@@ -585,3 +585,23 @@ def test_check_common_tables_accepts_the_examples():
     for name in ("storm_case.toml", "pipeline_case.toml"):
         path = ROOT / "examples" / name
         check_common_tables(load_case_file(path, StormCase), path)
+
+
+def test_check_common_tables_names_the_stage(tmp_path):
+    from onbottom._casefile import CaseFileError, load_case_file
+    from onbottom.dynamics.storm_case import StormCase
+    from onbottom.inputs.stability_case import check_common_tables
+
+    text = _edit(SECTION, "peak_hours = 0.02", "") + (
+        "\n[[storm.stages]]\nhs = 3.0\ntp = 9.0\nduration_hours = 0.01\n"
+        "[[storm.stages]]\nhs = 3.0\ntp = 0.9\nduration_hours = 0.01\n"
+    )
+    path = _write(tmp_path, text)
+    case = load_case_file(path, StormCase)
+    stages = [
+        (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
+        for i, s in enumerate(case.storm.stages)
+    ]
+    with pytest.raises(CaseFileError, match="stage 1") as info:
+        check_common_tables(case, path, sea_states=stages)
+    assert info.value.field == "storm.stages[1].tp"

@@ -264,8 +264,9 @@ def absolute_lateral_stability(
     f_z = r_z * cz * q
     mu = seabed.friction_coefficient
     f_r = passive_resistance_f109(pipe, seabed, zp, ws - f_z)
-    u_lat = gamma_sc * (f_y + mu * f_z) / (mu * ws + f_r)
-    u_vert = gamma_sc * f_z / ws
+    resist = mu * ws + f_r
+    u_lat = gamma_sc * (f_y + mu * f_z) / resist if resist > 0.0 else math.inf
+    u_vert = gamma_sc * f_z / ws if ws > 0.0 else math.inf
     util = max(u_lat, u_vert)
     return AbsoluteStabilityResult(
         utilisation=util,

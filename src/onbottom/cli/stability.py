@@ -122,6 +122,14 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
     caught.extend(checking)
     invalid = penetration_outside_validity(rows)
     notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
+    from onbottom.inputs.stability_case import HydroTable
+
+    if case.hydro != HydroTable():
+        notes.append(
+            "[hydro] is not used by the F109 checks (their load coefficients are Tables"
+            " 3-9/3-10 and their reductions Eqs 3.17-3.22); it applies to `onbottom loads`"
+            " and `onbottom storm`"
+        )
     return {
         "case": str(case_path),
         "section": _section_summary(section, case.pipe.condition),

@@ -58,7 +58,7 @@ class ContentsTable(StrictModel):
 
 class PipeTable(StrictModel):
     outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D (simple) [m]")
-    submerged_weight: float | None = Field(None, gt=0.0, description="w_s (simple) [N/m]")
+    submerged_weight: float | None = Field(None, ge=1.0, description="w_s (simple) [N/m]")
     steel_outer_diameter: float | None = Field(None, ge=0.005, le=5.0, description="D_s [m]")
     wall_thickness: float | None = Field(None, gt=0.0, description="steel wall t [m]")
     steel_density: float = Field(7850.0, ge=2.0e3, le=2.0e4, description="[kg/m³]")
@@ -128,7 +128,7 @@ class SeabedTable(StrictModel):
     unit_weight: float | None = Field(
         None, gt=0.0, le=3.0e4, description="clay total unit weight γ_s [N/m³]"
     )
-    friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
+    friction_coefficient: float | None = Field(None, ge=0.01, le=2.0, description="μ [-]")
     undrained_shear_strength: float | None = Field(
         None, ge=100.0, le=1.0e6, description="s_u [Pa] (not kPa)"
     )
