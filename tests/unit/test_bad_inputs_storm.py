@@ -208,7 +208,7 @@ SECTION_DEFECTS = [
 @pytest.mark.parametrize(
     ("old", "new", "field"),
     [pytest.param(*c[1:], id=c[0]) for c in SECTION_ERRORS]
-    + [pytest.param(*c[1:4], id=c[0], marks=_xf(c[4])) for c in SECTION_DEFECTS],
+    + [pytest.param(*c[1:4], id=c[0]) for c in SECTION_DEFECTS],  # fixed by H18
 )
 def test_storm_section_case_errors(tmp_path, capsys, old, new, field):
     if new.startswith("\n[[storm.stages]]"):  # stages replace the peak; tables go last
@@ -247,28 +247,16 @@ def test_storm_options(tmp_path, capsys, args, field):
         pytest.param(
             ["--plot", "fig.txt"],
             "--plot",
-            marks=_xf(
-                "H12 cli/storm.py: --plot with an unsupported suffix runs the whole storm, then"
-                " matplotlib raises ValueError (exit 70); check the suffix before running"
-            ),
             id="plot-suffix",
         ),
         pytest.param(
             ["-o", "case.toml"],
             "--output",
-            marks=_xf(
-                "H12 cli/storm.py: -o CASE overwrites the case file with the NetCDF (exit 0);"
-                " refuse an output equal to the case (and require .nc)"
-            ),
             id="output-is-case",
         ),
         pytest.param(
             ["-o", "same.png", "--plot", "same.png"],
             "--output",
-            marks=_xf(
-                "H12 cli/storm.py: -o and --plot naming one file: the figure silently"
-                " overwrites the NetCDF; refuse it"
-            ),
             id="output-is-plot",
         ),
     ],

@@ -315,3 +315,40 @@ def check_output_path(path: Any, *, field: str) -> None:
         err.field = field  # type: ignore[attr-defined]
         raise err
     p.parent.mkdir(parents=True, exist_ok=True)
+
+
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def check_output_names(
+    case: Any, outputs: Sequence[tuple[str, Any, Sequence[str]]]
+) -> None:
+    """Refuse output names that would overwrite the case file or each other, or a wrong kind.
+
+    ``outputs`` holds ``(field, path or None, allowed suffixes)``, e.g. ``("--output", nc,
+    (".nc",))``; the first offending entry raises :class:`InputError` naming its field
+    (before any work is done, so a bad name never costs a run).
+    """
+    from pathlib import Path
+
+    def fail(field: str, message: str) -> None:
+        err = InputError(message)
+        err.field = field  # type: ignore[attr-defined]
+        raise err
+
+    given = [(f, Path(p), tuple(s)) for f, p, s in outputs if p is not None]
+    for field, p, suffixes in given:
+        if suffixes and p.suffix.lower() not in suffixes:
+            fail(
+                field,
+                f"{field} = {str(p)!r} is invalid: the file name must end in "
+                + " or ".join(suffixes),
+            )
+    case_path = Path(case).resolve()
+    for field, p, _ in given:
+        if p.resolve() == case_path:
+            fail(field, f"{field} = {str(p)!r} is invalid: it would overwrite the case file")
+    for i, (field, p, _) in enumerate(given):
+        for other, q, _ in given[i + 1 :]:
+            if p.resolve() == q.resolve():
+                fail(field, f"{field} = {str(p)!r} is invalid: the same file as {other}")

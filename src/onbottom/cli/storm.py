@@ -9,6 +9,7 @@ simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`) for o
 from __future__ import annotations
 
 import tomllib
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -17,12 +18,14 @@ import click
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
     Number,
+    FIGURE_SUFFIXES,
+    check_output_names,
     check_output_path,
     emit_json,
     handle_errors,
     json_option,
 )
-from onbottom.errors import InputError
+from onbottom.errors import InputError, OutOfRangeWarning
 
 
 def _has_pipeline_table(case: Path) -> bool:
@@ -102,24 +105,38 @@ def command(
     examples/storm_case.toml.
     """
     progress = not quiet and not as_json
+    check_output_names(
+        case,
+        [
+            ("--output", output if output is not None else case.with_suffix(".nc"), (".nc",)),
+            ("--plot", plot, FIGURE_SUFFIXES),
+        ],
+    )
     if _has_pipeline_table(case):
-        payload = _run_pipeline(
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", OutOfRangeWarning)
+            payload = _run_pipeline(
             case,
-            seeds=seeds,
-            scheduler=scheduler,
-            workers=workers,
-            output=output,
-            plot=plot,
-            progress=progress,
-            as_json=as_json,
-        )
+                seeds=seeds,
+                scheduler=scheduler,
+                workers=workers,
+                output=output,
+                plot=plot,
+                progress=progress,
+                as_json=as_json,
+            )
+        notes = _split_warnings(caught, as_json)
         if isinstance(payload, dict):
+            payload["warnings"] = notes
             _report(payload, as_json)
         return
 
     from onbottom.dynamics.storm_case import load_storm_case
 
-    setup = load_storm_case(case)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        setup = load_storm_case(case)
+    notes = _split_warnings(caught, as_json)
     n = setup.seeds if seeds is None else int(seeds)
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")
@@ -151,6 +168,7 @@ def command(
             "diameter_m": res.diameter,
             "netcdf": str(nc),
             "plot": None if plot is None else str(plot),
+            "warnings": notes,
         }
         _report(payload, as_json)
         if not res.success:
@@ -193,10 +211,24 @@ def command(
         "seeds": n,
         "diameter_m": d,
         "netcdf": str(nc),
+        "warnings": notes,
     }
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:
+    """Messages of the :class:`OutOfRangeWarning` s caught (echoed to stderr without --json);
+    other warnings are re-issued as usual."""
+    notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
+    for w in caught:
+        if not issubclass(w.category, OutOfRangeWarning):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    if not as_json:
+        for note in notes:
+            click.echo(f"warning: {note}", err=True)
+    return notes
 
 
 def _report(payload: dict[str, Any], as_json: bool) -> None:

@@ -16,6 +16,7 @@ and clay for clay, gravel for rock.
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -23,6 +24,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, load_case_file
+from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.dynamics.storm_section import LoadReductions, StormSolverSettings
 from onbottom.hydro.current import SEABED_ROUGHNESS
 from onbottom.hydro.force_model import MorisonLift
@@ -35,6 +37,8 @@ from onbottom.inputs.stability_case import (
     PipeTable,
     SeabedTable,
     WavesTable,
+    _Checker,
+    check_common_tables,
 )
 from onbottom.inputs.storm import Current, SeaState, Storm
 from onbottom.soil.base import LateralResistanceModel
@@ -178,12 +182,127 @@ class StormSetup:
         }
 
 
+#: Fields of the input objects built here → the case-file keys they come from.
+_FIELD_KEYS = {
+    "LoadReductions.trench_depth_over_d": "seabed.trench_depth",
+    "LoadReductions.trench_angle_deg": "seabed.trench_angle_deg",
+    "StormSolverSettings.dt_max": "storm.time_step",
+    "StormSolverSettings.dt_min": "solver.dt_min",
+    "StormSolverSettings.record_interval": "solver.record_interval",
+    "StormSolverSettings.stop_displacement_over_d": "solver.max_displacement_over_d",
+    "StormSolverSettings.max_displacement_increment_over_d": (
+        "solver.max_displacement_increment_over_d"
+    ),
+    "StormSolverSettings.force_tolerance": "solver.force_tolerance",
+    "StormSolverSettings.max_iterations": "solver.max_iterations",
+    "StormSolverSettings.newmark_gamma": "solver.newmark_gamma",
+    "StormSolverSettings.newmark_beta": "solver.newmark_beta",
+    "Storm.transition_s": "storm.transition_s",
+    "Storm.build_up_s": "storm.build_up_hours",
+    "Storm.decay_s": "storm.decay_hours",
+    "Current.reference_height": "current.reference_height",
+    "Current.velocity": "current.velocity",
+    "Current.z0": "current.z0",
+    "MorisonLift.cd": "hydro.cd",
+    "MorisonLift.cm": "hydro.cm",
+    "MorisonLift.cl": "hydro.cl",
+    "MorisonLift.added_mass": "hydro.added_mass_coefficient",
+}
+
+#: Time-step rule of the storm solver (docs/theory/storm_section.md): a largest step above
+#: T_p/20 warns (the wave is resolved by fewer than 20 steps), above T_p/4 is refused.
+TIME_STEP_WARN_FRACTION = 1.0 / 20.0
+TIME_STEP_MAX_FRACTION = 1.0 / 4.0
+
+
+class _Keys:
+    """Re-raise errors of the input objects under the case-file keys they came from."""
+
+    def __init__(self, chk: _Checker) -> None:
+        self.chk = chk
+
+    def __enter__(self) -> _Keys:
+        return self
+
+    def __exit__(self, kind: Any, exc: BaseException | None, tb: Any) -> bool:
+        if exc is None or isinstance(exc, CaseFileError) or not isinstance(exc, InputError):
+            return False
+        text = str(exc)
+        head = text.split(" ", 1)[0]
+        key = _FIELD_KEYS.get(head)
+        if key is None:
+            field = getattr(exc, "field", None)
+            key = _FIELD_KEYS.get(str(field)) if field else None
+        if key is not None:
+            self.chk.fail(key, f"{key}{text[len(head) :]}" if head in _FIELD_KEYS else text)
+        self.chk.rename(exc)
+        return False  # pragma: no cover - rename raises
+
+
+def _check_time_step(case: StormCase, chk: _Checker) -> None:
+    """The largest step against the shortest peak period of the storm (see the constants)."""
+    periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
+    if not periods and case.waves is not None:
+        periods = [(case.waves.tp, "waves.tp")]
+    if not periods:
+        return
+    tp, where = min(periods)
+    dt = case.storm.time_step
+    if dt > TIME_STEP_MAX_FRACTION * tp:
+        chk.fail(
+            "storm.time_step",
+            f"storm.time_step = {dt!r} s is invalid with T_p = {tp:g} s ({where}): it must be"
+            f" <= T_p/4 = {TIME_STEP_MAX_FRACTION * tp:.3g} s (T_p/20 ="
+            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s or less resolves the wave)",
+        )
+    if dt > TIME_STEP_WARN_FRACTION * tp:
+        chk.warn(
+            "storm.time_step",
+            f"storm.time_step = {dt:g} s is coarse for T_p = {tp:g} s ({where}): above T_p/20 ="
+            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s the result depends on the step; use"
+            " <= T_p/20",
+        )
+
+
 def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> StormSetup:
-    """Objects of a validated :class:`StormCase`."""
+    """Objects of a validated :class:`StormCase`.
+
+    Engineering plausibility first (:func:`onbottom.inputs.stability_case.check_common_tables`
+    on the shared tables and every sea state, the time-step rule, a trench no deeper than D);
+    every error is a :class:`CaseFileError` naming the case-file key, its value and range.
+    """
+    where = "<case>" if path is None else path
+    text = None
+    if path is not None:
+        try:
+            text = open(path, encoding="utf-8").read()  # noqa: SIM115 - lines for messages
+        except (OSError, UnicodeDecodeError):
+            text = None
+    chk = _Checker(where, text)
+    stages = [
+        (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
+        for i, s in enumerate(case.storm.stages)
+    ]
+    check_common_tables(case, where, sea_states=stages)
+    _check_time_step(case, chk)
     rho = case.environment.water_density
-    section = case.pipe.section(rho)
-    pipe = section if isinstance(section, Pipe) else section.pipe(case.pipe.condition)
-    seabed = case.seabed.seabed()
+    with _Keys(chk):
+        section = case.pipe.section(rho)
+        pipe = section if isinstance(section, Pipe) else section.pipe(case.pipe.condition)
+        seabed = case.seabed.seabed()
+    if case.seabed.trench_depth and case.seabed.trench_depth > pipe.outer_diameter:
+        chk.fail(
+            "seabed.trench_depth",
+            f"seabed.trench_depth = {case.seabed.trench_depth!r} m is invalid: deeper than the"
+            f" pipe's outer diameter {pipe.outer_diameter:.4g} m (must lie in [0, D])",
+        )
+    with _Keys(chk):
+        return _build_objects(case, path, pipe, seabed)
+
+
+def _build_objects(
+    case: StormCase, path: str | os.PathLike | None, pipe: Pipe, seabed: Sand | Clay | Rock
+) -> StormSetup:
     if case.seabed.initial_penetration is not None:
         raise CaseFileError(
             "seabed.initial_penetration is not used by the storm solver: the soil model sets"
