@@ -200,7 +200,17 @@ def load_case_file(path: str | os.PathLike, model: type[M]) -> M:
     return parse_case(model, doc, file=p, text=text)
 
 
+_UNION_TAG = re.compile(r"^[\w-]+\[.*\]$|^(?:int|float|str|bool|none)$")
+
+
+def _without_tags(loc: Sequence[Any]) -> tuple[Any, ...]:
+    """``loc`` without pydantic's union-member tags (``literal['a','b']``,
+    ``function-after[...]``, ``list[...]``, ``float``): they are no case-file keys."""
+    return tuple(k for k in loc if isinstance(k, int) or not _UNION_TAG.match(str(k)))
+
+
 def _dotted(loc: Sequence[Any], root: str) -> str:
+    loc = _without_tags(loc)
     parts = [root] if root else []
     for item in loc:
         if isinstance(item, int):
@@ -244,7 +254,7 @@ def _plain(value: Any) -> str:
 
 
 def _message(model: type[BaseModel], err: Mapping[str, Any], root: str) -> str:
-    loc = tuple(err.get("loc", ()))
+    loc = _without_tags(err.get("loc", ()))
     field = _dotted(loc, root)
     kind = err.get("type", "")
     if kind == "extra_forbidden":
@@ -280,7 +290,7 @@ def _case_error(
     # misspelling (with its did-you-mean) is the useful message
     errors.sort(key=lambda e: e.get("type") != "extra_forbidden")
     first = errors[0]
-    loc = tuple(first.get("loc", ()))
+    loc = _without_tags(first.get("loc", ()))
     field = _dotted(loc, root) or None
     line = _find_line(text, tuple(root.split(".")) + loc if root else loc) if text else None
     msg = _where(file, None, line) + _message(model, first, root)

@@ -136,6 +136,8 @@ SECTION_ERRORS = [
         "\n[[storm.stages]]\nhs = 3.0\ntp = 9.0\nduration_hours = 0.0",
         "storm.stages[0].duration_hours",
     ),
+    # H18: the time-step rule (docs/theory/storm_section.md): refused above T_p/4
+    ("time-step-above-tp-over-4", "time_step = 0.1", "time_step = 5.0", "storm.time_step"),
 ]
 _BUILDUP = "steel_outer_diameter = 0.2191\nwall_thickness = 0.0127\ncontents_density = 0.0\n"
 _SIMPLE_PIPE = (
@@ -226,6 +228,29 @@ def test_storm_section_valid_short_storm(tmp_path, capsys):
     assert (tmp_path / "case.nc").is_file()
 
 
+def test_storm_section_time_step_against_shortest_stage(tmp_path, capsys):
+    """H18: the time-step rule uses the shortest T_p of the stages (2 s > 6 s / 4)."""
+    text = _edit(_edit(SECTION, "peak_hours = 0.02", ""), "time_step = 0.1", "time_step = 2.0")
+    text += (
+        "\n[[storm.stages]]\nhs = 3.0\ntp = 9.0\nduration_hours = 0.05"
+        "\n[[storm.stages]]\nhs = 2.0\ntp = 6.0\nduration_hours = 0.05\n"
+    )
+    err = _expect_error(tmp_path, capsys, text, "storm.time_step")
+    assert "storm.stages[1].tp" in err["message"] and "T_p/4" in err["message"]
+
+
+def test_storm_section_coarse_time_step_warns(tmp_path, capsys):
+    """H18: a largest step above T_p/20 (but not above T_p/4) runs with a named warning in
+    the JSON ``warnings`` (T_p = 10.8 s: 0.54 s < 1.0 s < 2.7 s)."""
+    case = _write(tmp_path, _edit(SECTION, "time_step = 0.1", "time_step = 1.0"))
+    rc, data = _run(["storm", str(case), "--workers", "0"], capsys)
+    assert rc == 0, data
+    assert any("storm.time_step" in w and "T_p/20" in w for w in data["warnings"]), data
+    case = _write(tmp_path, SECTION)
+    rc, data = _run(["storm", str(case), "--workers", "0"], capsys)
+    assert rc == 0 and data["warnings"] == []
+
+
 @pytest.mark.parametrize(
     ("args", "field"),
     [
@@ -314,6 +339,31 @@ PIPELINE_ERRORS = [
         "strain_limit = 0.002\nhht_alpha = 0.5",
         "pipeline.hht_alpha",
     ),
+    # H18: plausibility of the structural inputs (ranges in the PipelineTable docs)
+    (
+        "strain-limit-percent",
+        "strain_limit = 0.002",
+        "strain_limit = 0.2",
+        "pipeline.strain_limit",
+    ),
+    (
+        "bending-stiffness-1",
+        "strain_limit = 0.002",
+        "strain_limit = 0.002\nbending_stiffness = 1.0",
+        "pipeline.bending_stiffness",
+    ),
+    (
+        "stiffness-ratio-impossible",
+        "strain_limit = 0.002",
+        "strain_limit = 0.002\nbending_stiffness = 1e10\naxial_stiffness = 1e6",
+        "pipeline.bending_stiffness",
+    ),
+    (
+        "animation-not-gif",
+        "strain_limit = 0.002",
+        'strain_limit = 0.002\nanimation = "line.mp4"',
+        "pipeline.animation",
+    ),
     (
         "end-springs-negative",
         "strain_limit = 0.002",
@@ -379,7 +429,7 @@ PIPELINE_DEFECTS = [
     [pytest.param(_edit(PIPELINE, *c[1:3]), c[3], id=c[0]) for c in PIPELINE_ERRORS]
     + [pytest.param(PIPELINE + extra, "pipeline", id=name) for name, extra in PIPELINE_APPENDED]
     + [
-        pytest.param(_edit(PIPELINE, *c[1:3]), c[3], id=c[0], marks=_xf(c[4]))
+        pytest.param(_edit(PIPELINE, *c[1:3]), c[3], id=c[0])  # fixed by H18
         for c in PIPELINE_DEFECTS
     ],
 )
@@ -387,13 +437,6 @@ def test_storm_pipeline_case_errors(tmp_path, capsys, text, field):
     _expect_error(tmp_path, capsys, text, field, extra=("-o", str(tmp_path / "out.nc")))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="H13 cli/storm_pipeline.py::_soil_for validates a route section with"
-    " type(sb).model_validate: a bad value (s_u = 5 Pa, typed in kPa) is a raw pydantic"
-    " ValidationError (exit 70); use onbottom._casefile.parse_case with root"
-    " 'pipeline.sections[i]' (and s_u >= 100 Pa in RouteSectionTable)",
-)
 def test_storm_pipeline_section_su_in_kpa(tmp_path, capsys):
     extra = (
         _SECTIONS.format(a=0.0, b=200.0)
@@ -409,12 +452,6 @@ def test_storm_pipeline_section_su_in_kpa(tmp_path, capsys):
     )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="H13 cli/storm_pipeline.py: [pipeline] animation = 'case.toml' runs the storm, then"
-    " fails with ValueError 'unknown file extension' (exit 70); check the name (.gif) and that"
-    " it is not the case file before running",
-)
 def test_storm_pipeline_animation_name(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     text = _edit(PIPELINE, "strain_limit = 0.002", 'strain_limit = 0.002\nanimation = "case.toml"')
@@ -422,12 +459,6 @@ def test_storm_pipeline_animation_name(tmp_path, capsys, monkeypatch):
     assert (tmp_path / "case.toml").read_text(encoding="utf-8") == text
 
 
-@pytest.mark.xfail(
-    strict=True,
-    run=False,  # it would build 2e5 elements and run for minutes
-    reason="H13: element_length = 0.001 m on a 200 m line (2e5 elements) is accepted and runs"
-    " for minutes; refuse a mesh whose memory/time estimate is excessive, with the estimate",
-)
 def test_storm_pipeline_mesh_refused_up_front(tmp_path, capsys):
     text = _edit(PIPELINE, "element_length = 4.0", "element_length = 0.001")
     _expect_error(tmp_path, capsys, text, "pipeline.element_length")

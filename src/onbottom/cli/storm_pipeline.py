@@ -41,8 +41,10 @@ class RouteSectionTable(StrictModel):
     model: Literal["sand", "calcareous", "clay", "rock", "coulomb"] | None = None
     submerged_unit_weight: float | None = Field(None, gt=0.0, le=2.0e4, description="[N/m³]")
     unit_weight: float | None = Field(None, gt=0.0, le=3.0e4, description="[N/m³]")
-    friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="μ [-]")
-    undrained_shear_strength: float | None = Field(None, gt=0.0, description="s_u [Pa]")
+    friction_coefficient: float | None = Field(None, ge=0.01, le=2.0, description="μ [-]")
+    undrained_shear_strength: float | None = Field(
+        None, ge=100.0, le=1.0e6, description="s_u [Pa] (not kPa), as [seabed]"
+    )
     axial_friction_coefficient: float | None = Field(
         None, gt=0.0, le=2.0, description="μ_ax [-] (default: μ)"
     )
@@ -64,16 +66,31 @@ class PipelineTable(StrictModel):
         default_factory=lambda: [0.0, 0.0, 0.0],
         description="axial [N/m], lateral [N/m], rotational [N·m/rad] springs at 'spring' ends",
     )
-    effective_axial_force: float = Field(0.0, description="initial N₀ [N], tension +")
-    bending_stiffness: float | None = Field(None, gt=0.0, description="EI [N·m²]")
-    axial_stiffness: float | None = Field(None, gt=0.0, description="EA [N]")
+    effective_axial_force: float = Field(
+        0.0,
+        description="initial N₀ [N], tension +; |N₀| <= 2 % of EA (an axial strain far beyond"
+        " the yield of line-pipe steel), a warning above 0.3 %",
+    )
+    bending_stiffness: float | None = Field(
+        None, ge=1.0e2, le=1.0e11, description="EI [N·m²], in [1e2, 1e11]"
+    )
+    axial_stiffness: float | None = Field(
+        None, ge=1.0e5, le=1.0e12, description="EA [N], in [1e5, 1e12]"
+    )
     mass: float | None = Field(
         None, gt=0.0, description="structural mass incl. contents [kg/m] (simple pipe form)"
     )
     axial_friction_coefficient: float | None = Field(None, gt=0.0, le=2.0, description="[-]")
     axial_mobilisation: float = Field(5.0e-3, gt=0.0, le=1.0, description="δ_ax [m]")
-    strain_limit: float | None = Field(None, gt=0.0, le=1.0, description="user limit [-]")
-    strain_fibre_distance: float | None = Field(None, gt=0.0, description="c [m]")
+    strain_limit: float | None = Field(
+        None,
+        gt=0.0,
+        le=0.05,
+        description="user limit [-] (a fraction, not %), in (0, 0.05]; a warning above 0.01",
+    )
+    strain_fibre_distance: float | None = Field(
+        None, gt=0.0, description="c [m], in (0, D/2] (outer diameter D)"
+    )
     hht_alpha: float = Field(-0.1, ge=-1.0 / 3.0, le=0.0, description="HHT-α [-]")
     force_tolerance: float = Field(1.0e-6, gt=0.0, le=1.0e-2, description="relative [-]")
     max_iterations: int = Field(8, ge=3, le=200, description="Newton iterations [-]")
@@ -97,10 +114,19 @@ class PipelineTable(StrictModel):
         return self
 
 
-def _soil_for(section: RouteSectionTable | None, case: Any, pipe: Any):
+def _soil_for(
+    section: RouteSectionTable | None,
+    case: Any,
+    pipe: Any,
+    *,
+    index: int = 0,
+    file: str | os.PathLike | None = None,
+    text: str | None = None,
+):
     from onbottom.dynamics.storm_case import soil_model
 
     sb = case.seabed
+    root = f"pipeline.sections[{index}]"
     if section is not None:
         upd = {
             k: getattr(section, k)
@@ -113,8 +139,158 @@ def _soil_for(section: RouteSectionTable | None, case: Any, pipe: Any):
             )
             if getattr(section, k) is not None
         }
-        sb = type(sb).model_validate({**sb.model_dump(), **upd})
-    return soil_model(sb.model, pipe, sb.seabed())
+        sb = parse_case(
+            type(sb),
+            {**sb.model_dump(exclude_defaults=True), **upd},
+            file=file,
+            text=text,
+            root=root,
+        )
+    try:
+        return soil_model(sb.model, pipe, sb.seabed())
+    except InputError as exc:
+        if section is None:
+            raise
+        raise CaseFileError(
+            f"{file}: {root} is invalid: {exc}", field=root, file=None if file is None else str(file)
+        ) from None
+
+
+#: Cost figures of the pipeline FE used to refuse a mesh up front (benchmarks/pipeline_fe.py,
+#: H13: about 1 µs per node and time step; the storm kinematics hold about 0.5 MB per node and
+#: hour of storm).
+SECONDS_PER_NODE_STEP = 1.0e-6
+BYTES_PER_NODE_HOUR = 0.5e6
+MAX_KINEMATICS_BYTES = 4 * 1024**3
+MAX_RUN_SECONDS = 24 * 3600.0
+
+
+def _fail(p: Path, text: str | None, field: str, message: str) -> None:
+    from onbottom.inputs.stability_case import _Checker
+
+    _Checker(p, text).fail(field, message)
+
+
+def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
+    """Refuse a mesh whose memory or run time is excessive, with the estimate."""
+    nodes = round(table.length / table.element_length) + 1
+    storm_s = float(setup.storm.duration_s)
+    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    steps = run_s / setup.settings.dt_max
+    mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
+    cpu = SECONDS_PER_NODE_STEP * nodes * steps
+    if mem > MAX_KINEMATICS_BYTES or cpu > MAX_RUN_SECONDS:
+        _fail(
+            p,
+            text,
+            "pipeline.element_length",
+            f"pipeline.element_length = {table.element_length!r} m is invalid: {nodes} nodes"
+            f" on {table.length:g} m need about {mem / 1e9:.3g} GB of storm kinematics"
+            f" ({storm_s / 3600:.3g} h storm, ~0.5 MB per node-hour) and about"
+            f" {cpu / 3600:.3g} h of computing ({steps:.3g} steps, ~1 µs per node-step);"
+            f" the limits are {MAX_KINEMATICS_BYTES / 1e9:.3g} GB and"
+            f" {MAX_RUN_SECONDS / 3600:.3g} h (use a longer element, a few per D-scale"
+            " wavelength)",
+        )
+
+
+def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any) -> None:
+    """Plausibility of the stiffnesses, axial force and strain inputs against the section."""
+    import warnings
+
+    from onbottom.errors import OutOfRangeWarning
+
+    d = float(model.pipe.outer_diameter)
+    ea, ei = model.ea, model.ei
+    c = table.strain_fibre_distance
+    if c is not None and c > 0.5 * d:
+        _fail(
+            p,
+            text,
+            "pipeline.strain_fibre_distance",
+            f"pipeline.strain_fibre_distance = {c!r} m is invalid: it must lie in (0, D/2] ="
+            f" (0, {0.5 * d:.4g}] m for the outer diameter D = {d:.4g} m (check the unit: m,"
+            " not mm)",
+        )
+    n0 = table.effective_axial_force
+    if ea > 0.0:
+        r2 = ei / ea  # radius of gyration² of the section: D²/16 (bar) to D²/8 (thin tube)
+        if r2 > 0.25 * d * d:
+            key = (
+                "pipeline.bending_stiffness"
+                if table.bending_stiffness is not None
+                else "pipeline.axial_stiffness"
+            )
+            _fail(
+                p,
+                text,
+                key,
+                f"{key} is invalid: EI/EA = {r2:.4g} m² (EI = {ei:.4g} N·m², EA = {ea:.4g} N)"
+                f" exceeds D²/4 = {0.25 * d * d:.4g} m²; no section of outer diameter"
+                f" {d:.4g} m has a radius of gyration above D/2",
+            )
+        if r2 < d * d / 1.0e4:
+            key = (
+                "pipeline.bending_stiffness"
+                if table.bending_stiffness is not None
+                else "pipeline.axial_stiffness"
+            )
+            _fail(
+                p,
+                text,
+                key,
+                f"{key} is invalid: EI/EA = {r2:.4g} m² (EI = {ei:.4g} N·m², EA = {ea:.4g} N)"
+                f" is below D²/10⁴ = {d * d / 1.0e4:.4g} m²: the radius of gyration of a pipe"
+                f" wall lies between D/4 and D/√8 (check the units: N·m² and N)",
+            )
+        eps = abs(n0) / ea
+        if eps > 0.02:
+            _fail(
+                p,
+                text,
+                "pipeline.effective_axial_force",
+                f"pipeline.effective_axial_force = {n0!r} N is invalid: |N₀|/EA = {eps:.3g} is"
+                f" an axial strain far beyond yield; |N₀| must be <= 0.02 EA = {0.02 * ea:.4g}"
+                f" N (EA = {ea:.4g} N)",
+            )
+        if eps > 0.003:
+            warnings.warn(
+                f"{p}: pipeline.effective_axial_force = {n0:g} N is unusual: |N₀|/EA ="
+                f" {eps:.3g} exceeds 0.3 % (about the yield strain of line-pipe steel)",
+                OutOfRangeWarning,
+                stacklevel=3,
+            )
+    if table.strain_limit is not None and table.strain_limit > 0.01:
+        warnings.warn(
+            f"{p}: pipeline.strain_limit = {table.strain_limit:g} is unusual: a strain (a"
+            " fraction, not %) above 1 %",
+            OutOfRangeWarning,
+            stacklevel=3,
+        )
+
+
+def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
+    if table.animation is None:
+        return
+    ap = Path(table.animation)
+    if not ap.is_absolute():
+        ap = p.parent / ap
+    if ap.suffix.lower() != ".gif":
+        _fail(
+            p,
+            text,
+            "pipeline.animation",
+            f"pipeline.animation = {table.animation!r} is invalid: the file name must end in"
+            " .gif",
+        )
+    if ap.resolve() == p.resolve():
+        _fail(
+            p,
+            text,
+            "pipeline.animation",
+            f"pipeline.animation = {table.animation!r} is invalid: it would overwrite the case"
+            " file",
+        )
 
 
 def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
@@ -129,6 +305,8 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     doc, text = read_toml(p)
     table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
     setup = build_setup(case, p)
+    _check_mesh(p, text, table, setup)
+    _check_animation(p, text, table)
     pipe = setup.pipe
     if table.mass is not None:
         from dataclasses import replace
@@ -147,11 +325,11 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
             SoilSection(
                 start=s.start,
                 end=s.end,
-                model=_soil_for(s, case, pipe),
+                model=_soil_for(s, case, pipe, index=i, file=p, text=text),
                 axial_friction_coefficient=s.axial_friction_coefficient
                 or table.axial_friction_coefficient,
             )
-            for s in table.sections
+            for i, s in enumerate(table.sections)
         )
     elif table.axial_friction_coefficient is not None:
         soil = (
@@ -194,6 +372,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
         raise CaseFileError(
             f"{p}: [pipeline] is invalid: {exc}", field="pipeline", file=str(p)
         ) from None
+    _check_structure(p, text, table, model)
     sv = case.solver
     settings = PipelineSettings(
         alpha=table.hht_alpha,
