@@ -320,9 +320,7 @@ def check_output_path(path: Any, *, field: str) -> None:
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg")
 
 
-def check_output_names(
-    case: Any, outputs: Sequence[tuple[str, Any, Sequence[str]]]
-) -> None:
+def check_output_names(case: Any, outputs: Sequence[tuple[str, Any, Sequence[str]]]) -> None:
     """Refuse output names that would overwrite the case file or each other, or a wrong kind.
 
     ``outputs`` holds ``(field, path or None, allowed suffixes)``, e.g. ``("--output", nc,

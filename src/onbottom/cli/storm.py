@@ -17,8 +17,8 @@ import click
 
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
-    Number,
     FIGURE_SUFFIXES,
+    Number,
     check_output_names,
     check_output_path,
     emit_json,
@@ -116,7 +116,7 @@ def command(
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", OutOfRangeWarning)
             payload = _run_pipeline(
-            case,
+                case,
                 seeds=seeds,
                 scheduler=scheduler,
                 workers=workers,

@@ -152,7 +152,9 @@ def _soil_for(
         if section is None:
             raise
         raise CaseFileError(
-            f"{file}: {root} is invalid: {exc}", field=root, file=None if file is None else str(file)
+            f"{file}: {root} is invalid: {exc}",
+            field=root,
+            file=None if file is None else str(file),
         ) from None
 
 
@@ -280,8 +282,7 @@ def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
             p,
             text,
             "pipeline.animation",
-            f"pipeline.animation = {table.animation!r} is invalid: the file name must end in"
-            " .gif",
+            f"pipeline.animation = {table.animation!r} is invalid: the file name must end in .gif",
         )
     if ap.resolve() == p.resolve():
         _fail(

@@ -16,16 +16,16 @@ and clay for clay, gravel for rock.
 from __future__ import annotations
 
 import os
-import warnings
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, load_case_file
-from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.dynamics.storm_section import LoadReductions, StormSolverSettings
+from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
 from onbottom.hydro.force_model import MorisonLift
 from onbottom.inputs.pipe import Pipe
@@ -275,7 +275,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     text = None
     if path is not None:
         try:
-            text = open(path, encoding="utf-8").read()  # noqa: SIM115 - lines for messages
+            text = Path(path).read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError):
             text = None
     chk = _Checker(where, text)
