@@ -5,11 +5,10 @@ every case gives a valid result or a named error (exit status >= 1, JSON error o
 the key at fault), never a traceback (exit 70), never a case file overwritten by a result.
 Storms are kept to seconds (72 s sea state for the section, 4 s for the pipeline).
 
-Cases marked ``xfail(strict=True)`` are defects in files owned by other helpers
-(cli/storm.py, cli/curves.py, dynamics/storm_case.py: H12; cli/storm_pipeline.py,
-dynamics/pipeline/: H13); each reason says what to change.
-Cases tried: 81: 55 expected to pass,
-26 strict xfails (one not run).
+The 26 defects H17 found (once strict xfails: the ``*_DEFECTS`` tables and the output-name,
+route-section, animation and mesh cases) were fixed by H18 and pass; H18 added cases for the
+time-step rule, structural plausibility of ``[pipeline]`` and the curve grid.
+Cases tried: 92, all expected to pass.
 """
 
 from __future__ import annotations
@@ -491,6 +490,16 @@ CURVES_ERRORS = [
     ("soil-unknown", 'soils = ["sand"]', 'soils = ["rock"]', "curves.soils[0]"),
     ("misspelled-key", "seeds = 1", "seeds = 1\nseed = 2", "curves.seed"),
     ("no-curves-table", CURVES, "[hydro]\ncd = 0.7\n", "curves"),
+    # H18: repeated grid values, weights in kN/m³, K no storm can represent
+    ("M-repeated", "M = [0.0]", "M = [0.0, 0.4, 0.0]", "curves.M"),
+    (
+        "clay-unit-weight-kN",
+        "diameter = 0.5",
+        "diameter = 0.5\nclay_unit_weight = 18.0",
+        "curves.clay_unit_weight",
+    ),
+    ("K-no-storm", "K = [5.0]", "K = [900.0]", "curves.K[0]"),
+    ("L-bracket-reversed-key", "diameter = 0.5", "diameter = 0.5\nl_max = 0.5", "curves.l_max"),
 ]
 CURVES_DEFECTS = [
     (
@@ -531,7 +540,7 @@ CURVES_DEFECTS = [
 @pytest.mark.parametrize(
     ("old", "new", "field"),
     [pytest.param(*c[1:], id=c[0]) for c in CURVES_ERRORS]
-    + [pytest.param(*c[1:4], id=c[0], marks=_xf(c[4])) for c in CURVES_DEFECTS],
+    + [pytest.param(*c[1:4], id=c[0]) for c in CURVES_DEFECTS],  # fixed by H18
 )
 def test_curves_case_errors(tmp_path, capsys, old, new, field):
     text = new if old == CURVES else _edit(CURVES, old, new)
@@ -548,18 +557,10 @@ def test_curves_case_errors(tmp_path, capsys, old, new, field):
     [
         pytest.param(
             ["-o", "case.toml"],
-            marks=_xf(
-                "H12 cli/curves.py: -o CASE overwrites the case file with the NetCDF (exit 0);"
-                " refuse an output equal to the case and require .nc"
-            ),
             id="output-is-case",
         ),
         pytest.param(
             ["-o", "out.png"],
-            marks=_xf(
-                "H12 cli/curves.py: -o out.png writes the NetCDF to out.png, then the figure"
-                " (nc.with_suffix('.png')) overwrites it silently; require .nc"
-            ),
             id="output-overwritten-by-figure",
         ),
     ],

@@ -20,15 +20,16 @@ from __future__ import annotations
 import csv
 import time
 from pathlib import Path
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 import click
-from pydantic import Field
+from pydantic import Field, field_validator
 
-from onbottom._casefile import StrictModel, load_case_file
+from onbottom._casefile import StrictModel, load_case_file, read_toml
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
     Number,
+    check_output_names,
     check_output_path,
     emit_json,
     handle_errors,
@@ -36,11 +37,26 @@ from onbottom.cli._common import (
 )
 from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
 
+#: Grid ranges [I]: F109's generalized-stability tables span K from 5 to 160 (DNV-RP-F109
+#: Tables 3-9/3-10); K up to 1000 and M up to 100 are accepted for exploration, and every
+#: (K, N) must give a sea state with H_s <= 30 m and T_p <= 40 s (checked before running).
+KValue = Annotated[float, Field(gt=0.0, le=1000.0)]
+MValue = Annotated[float, Field(ge=0.0, le=100.0)]
+NValue = Annotated[float, Field(gt=0.0, le=0.2)]
+
 
 class CurvesTable(StrictModel):
-    K: list[float] = Field(min_length=1, description="Keulegan–Carpenter numbers K [-]")
-    M: list[float] = Field(min_length=1, description="current ratios M = V/U_s [-]")
-    N: list[float] = Field(default_factory=lambda: [0.003], min_length=1, description="N [-]")
+    K: list[KValue] = Field(
+        min_length=1, description="Keulegan–Carpenter numbers K [-], each in (0, 1000], distinct"
+    )
+    M: list[MValue] = Field(
+        min_length=1, description="current ratios M = V/U_s [-], each in [0, 100], distinct"
+    )
+    N: list[NValue] = Field(
+        default_factory=lambda: [0.003],
+        min_length=1,
+        description="N = U_s/(g T_u) [-], each in (0, 0.2], distinct",
+    )
     soils: list[Literal["sand", "clay"]] = Field(default_factory=lambda: ["sand", "clay"])
     criteria: list[Literal["L_stable", "L_10"]] = Field(
         default_factory=lambda: ["L_stable", "L_10"]
@@ -56,12 +72,28 @@ class CurvesTable(StrictModel):
     time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest step [s]")
     gamma: float = Field(3.3, ge=1.0, le=7.0, description="JONSWAP γ [-]")
     tn_over_tp: float = Field(0.1, gt=0.0, le=1.0, description="T_n/T_p [-]")
-    sand_unit_weight: float = Field(10.0e3, gt=0.0, le=2.0e4, description="γ'_s [N/m³]")
+    sand_unit_weight: float = Field(
+        10.0e3, ge=1.0e3, le=2.0e4, description="γ'_s [N/m³] (not kN/m³), in [1000, 20000]"
+    )
     sand_friction: float = Field(0.6, gt=0.0, le=2.0, description="μ [-]")
     clay_gc: float = Field(0.222, gt=0.0, le=10.0, description="G_c = s_u/(D γ_s) [-]")
-    clay_unit_weight: float = Field(18.0e3, gt=0.0, le=3.0e4, description="γ_s [N/m³]")
-    clay_submerged_unit_weight: float = Field(8.0e3, gt=0.0, le=2.0e4, description="[N/m³]")
+    clay_unit_weight: float = Field(
+        18.0e3, ge=1.0e4, le=3.0e4, description="γ_s [N/m³] (not kN/m³), in [10000, 30000]"
+    )
+    clay_submerged_unit_weight: float = Field(
+        8.0e3, ge=1.0e3, le=2.0e4, description="γ' [N/m³] (not kN/m³), in [1000, 20000]"
+    )
     clay_friction: float = Field(0.2, gt=0.0, le=2.0, description="μ [-]")
+
+    @field_validator("K", "M", "N", "soils", "criteria")
+    @classmethod
+    def _distinct(cls, values: list[Any]) -> list[Any]:
+        seen: set[Any] = set()
+        for v in values:
+            if v in seen:
+                raise ValueError(f"the value {v!r} is repeated: give each value once")
+            seen.add(v)
+        return values
 
 
 class CurvesCase(StrictModel):
@@ -114,35 +146,18 @@ def command(
     seed-averaged maximum displacement of a storm is 0.5D and 10D; writes NetCDF, CSV and a
     figure of L/(2 + M)² against K (the form of DNV-RP-F109's tables).
     """
-    from onbottom.hydro.force_model import MorisonLift
     from onbottom.results import save_dataset
-    from onbottom.study.stability_curves import CurveSettings, curves_table, stability_curves
+    from onbottom.study.stability_curves import curves_table, stability_curves
 
+    nc = output if output is not None else case.with_suffix(".nc")
+    check_output_names(case, [("--output", nc, (".nc",))])
+    check_output_names(  # the CSV and the figure go beside the NetCDF
+        case,
+        [("--output", nc.with_suffix(".csv"), ()), ("--output", nc.with_suffix(".png"), ())],
+    )
     cfg = load_case_file(case, CurvesCase)
     c = cfg.curves
-    h = cfg.hydro
-    settings = CurveSettings(
-        diameter=c.diameter,
-        seeds=c.seeds,
-        first_seed=c.first_seed,
-        build_up_hours=c.build_up_hours,
-        peak_hours=c.peak_hours,
-        tolerance=c.tolerance,
-        l_min=c.l_min,
-        l_max=c.l_max,
-        gamma=c.gamma,
-        tn_over_tp=c.tn_over_tp,
-        time_step=c.time_step,
-        sand_unit_weight=c.sand_unit_weight,
-        sand_friction=c.sand_friction,
-        clay_gc=c.clay_gc,
-        clay_unit_weight=c.clay_unit_weight,
-        clay_submerged_unit_weight=c.clay_submerged_unit_weight,
-        clay_friction=c.clay_friction,
-        water_density=cfg.environment.water_density if cfg.environment else 1025.0,
-        force_model=MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient),
-    )
-    nc = output if output is not None else case.with_suffix(".nc")
+    settings = _settings(case, cfg)
     check_output_path(nc, field="--output")
     t0 = time.perf_counter()
     ds = stability_curves(
@@ -209,3 +224,68 @@ def command(
         )
     if failures:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _settings(case: Path, cfg: CurvesCase) -> Any:
+    """:class:`CurveSettings` of a parsed case, every (K, N) checked for a representable sea
+    state up front; errors name the case-file key (``curves.K[i]``, ``curves.l_max``)."""
+    import math
+
+    from onbottom.constants import GRAVITY
+    from onbottom.errors import InputError
+    from onbottom.hydro.force_model import MorisonLift
+    from onbottom.hydro.storm_kinematics import sea_state_for_velocity
+    from onbottom.inputs.stability_case import _Checker
+    from onbottom.study.stability_curves import CurveSettings
+
+    _, text = read_toml(case)
+    chk = _Checker(case, text)
+    c = cfg.curves
+    h = cfg.hydro
+    try:
+        settings = CurveSettings(
+            diameter=c.diameter,
+            seeds=c.seeds,
+            first_seed=c.first_seed,
+            build_up_hours=c.build_up_hours,
+            peak_hours=c.peak_hours,
+            tolerance=c.tolerance,
+            l_min=c.l_min,
+            l_max=c.l_max,
+            gamma=c.gamma,
+            tn_over_tp=c.tn_over_tp,
+            time_step=c.time_step,
+            sand_unit_weight=c.sand_unit_weight,
+            sand_friction=c.sand_friction,
+            clay_gc=c.clay_gc,
+            clay_unit_weight=c.clay_unit_weight,
+            clay_submerged_unit_weight=c.clay_submerged_unit_weight,
+            clay_friction=c.clay_friction,
+            water_density=cfg.environment.water_density if cfg.environment else 1025.0,
+            force_model=MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient),
+        )
+    except InputError as exc:
+        msg = str(exc)
+        head = msg.split(" ", 1)[0]
+        obj, _, attr = head.partition(".")
+        if obj == "CurveSettings" and attr:
+            key = "environment.water_density" if attr == "water_density" else f"curves.{attr}"
+            chk.fail(key, key + msg[len(head) :])
+        chk.fail("hydro", f"[hydro] is invalid: {msg}")
+    d = c.diameter
+    for i, k in enumerate(c.K):
+        for n in c.N:
+            try:
+                sea_state_for_velocity(
+                    math.sqrt(k * n * GRAVITY * d),
+                    math.sqrt(k * d / (n * GRAVITY)),
+                    tn_over_tp=c.tn_over_tp,
+                    gamma=c.gamma,
+                )
+            except InputError as exc:
+                chk.fail(
+                    f"curves.K[{i}]",
+                    f"curves.K[{i}] = {k!r} is invalid with N = {n:g}, D = {d:g} m: no storm"
+                    f" represents it (needs H_s <= 30 m and T_p <= 40 s; {exc})",
+                )
+    return settings

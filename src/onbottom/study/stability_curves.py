@@ -394,6 +394,13 @@ def stability_curves(
     ns = [positive("N", x) for x in n_values]
     if not ks or not ms or not ns or not soils or not criteria:
         raise InputError("the grid is empty: give at least one K, M, N, soil and criterion")
+    for name, vals in (("K", ks), ("M", ms), ("N", ns), ("soils", soils), ("criteria", criteria)):
+        if len(set(vals)) != len(list(vals)):
+            err = InputError(
+                f"{name} = {list(vals)!r} is invalid: a value is repeated (give each value once)"
+            )
+            err.field = name  # type: ignore[attr-defined]
+            raise err
     items = [(so, k, m, n, c) for so in soils for n in ns for m in ms for k in ks for c in criteria]
     job = _PointJob(s)
     t0 = time.perf_counter()
