@@ -158,9 +158,11 @@ def _soil_for(
         ) from None
 
 
-#: Cost figures of the pipeline FE used to refuse a mesh up front (benchmarks/pipeline_fe.py,
-#: H13: about 1 µs per node and time step; the storm kinematics hold about 0.5 MB per node and
-#: hour of storm).
+#: Cost figures of the pipeline FE used to refuse a mesh up front: about 1 µs per node and
+#: time step (H13's benchmark); 0.5 MB per node and hour of storm for the kinematics, a
+#: conservative figure (H18 measured 0.13 MB per node-hour in the final arrays of
+#: examples/pipeline_case.toml at the default sample interval T_p/50; synthesis needs
+#: working copies on top).
 SECONDS_PER_NODE_STEP = 1.0e-6
 BYTES_PER_NODE_HOUR = 0.5e6
 MAX_KINEMATICS_BYTES = 4 * 1024**3
@@ -182,6 +184,11 @@ def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> 
     mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
     cpu = SECONDS_PER_NODE_STEP * nodes * steps
     if mem > MAX_KINEMATICS_BYTES or cpu > MAX_RUN_SECONDS:
+        max_nodes = min(
+            MAX_KINEMATICS_BYTES / (BYTES_PER_NODE_HOUR * storm_s / 3600.0),
+            MAX_RUN_SECONDS / (SECONDS_PER_NODE_STEP * steps),
+        )
+        shortest = table.length / max(max_nodes - 1.0, 1.0)
         _fail(
             p,
             text,
@@ -191,8 +198,8 @@ def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> 
             f" ({storm_s / 3600:.3g} h storm, ~0.5 MB per node-hour) and about"
             f" {cpu / 3600:.3g} h of computing ({steps:.3g} steps, ~1 µs per node-step);"
             f" the limits are {MAX_KINEMATICS_BYTES / 1e9:.3g} GB and"
-            f" {MAX_RUN_SECONDS / 3600:.3g} h (use a longer element, a few per D-scale"
-            " wavelength)",
+            f" {MAX_RUN_SECONDS / 3600:.3g} h: element_length must be >= {shortest:.3g} m"
+            " for this storm",
         )
 
 

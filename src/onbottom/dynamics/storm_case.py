@@ -16,6 +16,7 @@ and clay for clay, gravel for rock.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
@@ -234,7 +235,8 @@ class _Keys:
             field = getattr(exc, "field", None)
             key = _FIELD_KEYS.get(str(field)) if field else None
         if key is not None:
-            self.chk.fail(key, f"{key}{text[len(head) :]}" if head in _FIELD_KEYS else text)
+            body = f"{key}{text[len(head) :]}" if head in _FIELD_KEYS else text
+            self.chk.fail(key, re.sub(r"\bdt_max\b", "storm.time_step", body))
         self.chk.rename(exc)
         return False  # pragma: no cover - rename raises
 
