@@ -8,7 +8,7 @@ Storms are kept to seconds (72 s sea state for the section, 4 s for the pipeline
 The 26 defects H17 found (once strict xfails: the ``*_DEFECTS`` tables and the output-name,
 route-section, animation and mesh cases) were fixed by H18 and pass; H18 added cases for the
 time-step rule, structural plausibility of ``[pipeline]`` and the curve grid.
-Cases tried: 92, all expected to pass.
+Cases tried: 93, all expected to pass.
 """
 
 from __future__ import annotations
@@ -500,6 +500,12 @@ CURVES_ERRORS = [
     ),
     ("K-no-storm", "K = [5.0]", "K = [900.0]", "curves.K[0]"),
     ("L-bracket-reversed-key", "diameter = 0.5", "diameter = 0.5\nl_max = 0.5", "curves.l_max"),
+    (
+        "time-step-above-tp-over-4",
+        "diameter = 0.5",
+        "diameter = 0.5\ntime_step = 5.0",
+        "curves.time_step",
+    ),
 ]
 CURVES_DEFECTS = [
     (

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import csv
 import time
+import warnings
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -35,6 +36,7 @@ from onbottom.cli._common import (
     handle_errors,
     json_option,
 )
+from onbottom.errors import OutOfRangeWarning
 from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
 
 #: Grid ranges [I]: F109's generalized-stability tables span K from 5 to 160 (DNV-RP-F109
@@ -157,7 +159,13 @@ def command(
     )
     cfg = load_case_file(case, CurvesCase)
     c = cfg.curves
-    settings = _settings(case, cfg)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        settings = _settings(case, cfg)
+    notes_in = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
+    if not as_json:
+        for note in notes_in:
+            click.echo(f"warning: {note}", err=True)
     check_output_path(nc, field="--output")
     t0 = time.perf_counter()
     ds = stability_curves(
@@ -204,6 +212,7 @@ def command(
         "netcdf": str(nc),
         "csv": str(csv_path),
         "figure": str(png),
+        "warnings": notes_in,
     }
     if as_json:
         emit_json(payload)
@@ -232,6 +241,7 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     import math
 
     from onbottom.constants import GRAVITY
+    from onbottom.dynamics.storm_case import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.errors import InputError
     from onbottom.hydro.force_model import MorisonLift
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
@@ -273,10 +283,11 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
             chk.fail(key, key + msg[len(head) :])
         chk.fail("hydro", f"[hydro] is invalid: {msg}")
     d = c.diameter
+    tps: list[tuple[float, float, float]] = []
     for i, k in enumerate(c.K):
         for n in c.N:
             try:
-                sea_state_for_velocity(
+                sea, _ = sea_state_for_velocity(
                     math.sqrt(k * n * GRAVITY * d),
                     math.sqrt(k * d / (n * GRAVITY)),
                     tn_over_tp=c.tn_over_tp,
@@ -288,4 +299,21 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
                     f"curves.K[{i}] = {k!r} is invalid with N = {n:g}, D = {d:g} m: no storm"
                     f" represents it (needs H_s <= 30 m and T_p <= 40 s; {exc})",
                 )
+            tps.append((sea.tp, k, n))
+    # the time-step rule of `onbottom storm` (docs/theory/storm_section.md)
+    tp, k, n = min(tps)
+    if c.time_step > TIME_STEP_MAX_FRACTION * tp:
+        chk.fail(
+            "curves.time_step",
+            f"curves.time_step = {c.time_step!r} s is invalid: the storm of K = {k:g}, N ="
+            f" {n:g} has T_p = {tp:.3g} s and the step must be <= T_p/4 ="
+            f" {TIME_STEP_MAX_FRACTION * tp:.3g} s",
+        )
+    if c.time_step > TIME_STEP_WARN_FRACTION * tp:
+        chk.warn(
+            "curves.time_step",
+            f"curves.time_step = {c.time_step:g} s is coarse: the storm of K = {k:g}, N ="
+            f" {n:g} has T_p = {tp:.3g} s; above T_p/20 = {TIME_STEP_WARN_FRACTION * tp:.3g} s"
+            " the result depends on the step",
+        )
     return settings
