@@ -79,3 +79,20 @@ def test_dem_bad_preset_is_reported():
     r = CliRunner().invoke(cli, ["dem", "prepare", "--preset", "XX", "--out", "x.nc"])
     assert r.exit_code != 0
     assert "XX" in r.output
+
+
+def test_dem_prepare_not_at_rest_exits_3(tmp_path):
+    """A specimen whose N g equilibrium stops at its time cap is written but is no valid result."""
+    cfg = tmp_path / "unsettled.json"
+    unsettled = TINY.replace(preparation=Preparation(n_layers=2, max_settle_time=1e-4))
+    cfg.write_text(unsettled.to_json())
+    sample = tmp_path / "s.nc"
+    r = CliRunner().invoke(
+        cli, ["dem", "prepare", "--config", str(cfg), "--out", str(sample), "--json"]
+    )
+    assert r.exit_code == 3, r.output
+    payload = json.loads(r.output)
+    assert payload["success"] is False
+    assert payload["equilibrium_Ng_converged"] is False
+    assert "not at rest" in payload["message"]
+    assert sample.exists()  # kept for inspection

@@ -215,7 +215,11 @@ def test_cli_prepare_refuses_a_foreign_or_corrupt_checkpoint_and_restart_starts_
     r = runner.invoke(cli, args)
     assert r.exit_code == 1 and "cannot be read" in json.loads(r.output)["error"]["message"]
     r = runner.invoke(cli, [*args, "--restart"])
-    assert r.exit_code == 0, r.output
+    # MINI is too small a specimen to reach the N g criterion within its time cap: the run
+    # completes, writes the specimen and says it is not at rest (exit 3) — consistently
+    payload = json.loads(r.output)
+    assert r.exit_code == (0 if payload["equilibrium_Ng_converged"] else 3), r.output
+    assert payload["success"] is bool(payload["equilibrium_Ng_converged"])
     assert out.exists() and not ck.exists()
     assert json.loads(r.output)["run_fingerprint"] == fingerprint(
         run_identity(MINI.replace(seed=7), "preparation")

@@ -20,7 +20,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from onbottom.cli._common import Number, emit_json, handle_errors, json_option
+from onbottom.cli._common import EXIT_INVALID_RESULT, Number, emit_json, handle_errors, json_option
 from onbottom.dem.config import PRESETS, DEMConfig, get_preset
 from onbottom.errors import InputError
 
@@ -260,11 +260,25 @@ def prepare_cmd(
         "run_fingerprint": sample.attrs.get("run_fingerprint"),
         "wall_time_s": wall,
     }
+    # a specimen whose final (N g) equilibrium stopped at its time cap is written (it can be
+    # inspected) but is not a valid result: exit 3, never 0. The 1 g stage is intermediate:
+    # its state is recorded in the file's attributes.
+    settled = sample.attrs.get("equilibrium_Ng_converged")
+    unsettled = settled is not None and not bool(settled)
+    summary["success"] = not unsettled
+    summary["message"] = (
+        "the N g equilibrium did not reach the unbalanced-force criterion within"
+        " preparation.max_settle_time: the specimen is not at rest"
+        if unsettled
+        else "specimen at N g equilibrium"
+    )
     if as_json:
         emit_json(summary)
     else:
         for k, v in summary.items():
             click.echo(f"{k:>26}: {v}")
+    if unsettled:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
 
 
 @command.command("penetrate")
