@@ -176,3 +176,28 @@ def spring_work(x_old, x_new, x_trial, k):
     if k <= 0.0:
         return 0.0
     return (x_new * x_new - x_old * x_old) / (2.0 * k) + x_new * (x_trial - x_new) / k
+
+
+@njit(cache=True)
+def elastoplastic_soil_work(f_old, f_new, p_old, p_new, s_new, mag, k_u, du, v_load, mu, delta):
+    """Work done on the soil over one increment by the friction and passive springs [N·m/m].
+
+    Each spring's work along its own return-mapped increment (:func:`spring_work`), from the
+    start force of its elastic predictor: the friction spring (stiffness μV/δ) from ``f_old``
+    returned into ±μV, the push-only passive spring (unloading stiffness ``k_u``) from
+    :func:`push_only_start`. ``f_new``/``p_new``: the committed friction and passive forces [N/m];
+    ``s_new``, ``mag``: side and magnitude passed to :func:`push_only_start`; ``du``: increment
+    [m]; ``v_load``: vertical load [N/m] (no spring works when lifted off, V <= 0). Shared by
+    the Verley & Sotberg and Verley & Lund kernels (``passive_rule="elastoplastic"``).
+    """
+    k_fr = 0.0
+    f0 = 0.0
+    if v_load > 0.0:
+        cap = mu * v_load
+        k_fr = cap / delta
+        f0 = min(max(f_old, -cap), cap)
+    w = spring_work(f0, f_new, f0 + k_fr * du, k_fr)
+    if v_load > 0.0:
+        p0 = push_only_start(p_old, s_new, mag)
+        w += spring_work(p0, p_new, p0 + k_u * du, k_u)
+    return w

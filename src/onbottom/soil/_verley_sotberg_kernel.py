@@ -21,15 +21,14 @@ from onbottom.soil._trough import (
     PHASE_OUT,
     PHASE_TROUGH,
     RULE_LEGACY_ELASTIC,
+    elastoplastic_soil_work,
     envelope,
     envelope_energy,
     friction_energy,
     overlap,
     push_only_passive,
-    push_only_start,
     region_of,
     sign,
-    spring_work,
 )
 from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
@@ -268,18 +267,9 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         soil_work = state_old[S_SOIL_WORK] + 0.5 * (f_old + state_old[S_PASSIVE] + r_new) * du
     else:
         # each spring: work along its return-mapped increment, from its start force
-        k_fr = 0.0
-        f0 = 0.0
-        if v_load > 0.0:
-            cap = params[P_MU] * v_load
-            k_fr = cap / params[P_DELTA]
-            f0 = min(max(f_old, -cap), cap)
-        w_f = spring_work(f0, f, f0 + k_fr * du, k_fr)
-        w_p = 0.0
-        if v_load > 0.0:
-            p0 = push_only_start(p_old, s_new, mag)
-            w_p = spring_work(p0, passive, p0 + k_u * du, k_u)
-        soil_work = state_old[S_SOIL_WORK] + w_f + w_p
+        soil_work = state_old[S_SOIL_WORK] + elastoplastic_soil_work(
+            f_old, f, p_old, passive, s_new, mag, k_u, du, v_load, params[P_MU], params[P_DELTA]
+        )
     stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
 
     region = region_of(a_new, y1, y2, y3)
