@@ -4,7 +4,9 @@ For each seed the specimen is prepared once (plain engine) and penetrated twice,
 with the lever (``--lever subcycle``: wall/pipe contacts sub-cycled at the soil time step;
 ``--lever sort``: disks renumbered in cell order), so the paired difference isolates the
 lever. With ``--lever fire`` (or ``subcycle-prep``) the *preparation* changes, so each seed is
-prepared twice and the specimens (void ratios, steps) are compared as well.
+prepared twice and the specimens (void ratios, steps) are compared as well;
+``--lever subcycle-all`` sub-cycles both the preparation and the penetration (the whole case
+as the presets run it).
 
 Printed per bin of w/D (prototype V, kN/m): the mean over seeds of both runs, the seed
 scatter (standard deviation across seeds of the plain runs) and the mean paired difference;
@@ -40,7 +42,7 @@ EDGES = np.arange(0.0, 0.5001, 0.05)
 
 def lever(cfg: DEMConfig, name: str) -> DEMConfig:
     """``cfg`` with one lever on."""
-    if name in ("subcycle", "subcycle-prep"):
+    if name in ("subcycle", "subcycle-prep", "subcycle-all"):
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, subcycle=True))
     if name == "sort":
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, sort_disks=True))
@@ -62,7 +64,7 @@ def main() -> None:
     ap.add_argument("--preset", default="SM-reduced", choices=sorted(PRESETS))
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument(
-        "--lever", default="subcycle", choices=("subcycle", "subcycle-prep", "sort", "fire")
+        "--lever", default="subcycle", choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire")
     )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
@@ -74,7 +76,7 @@ def main() -> None:
     if cache is not None:
         cache.mkdir(parents=True, exist_ok=True)
     base = PRESETS[args.preset]
-    prep_changes = args.lever in ("fire", "subcycle-prep")
+    prep_changes = args.lever in ("fire", "subcycle-prep", "subcycle-all")
     rows = []
     for seed in args.seeds:
         cfg = base.replace(seed=seed)
@@ -109,7 +111,8 @@ def main() -> None:
             if cpath is not None:
                 cpath.write_text(json.dumps([plain_curve, ta, plain_steps]))
         t0 = time.perf_counter()
-        b = penetrate(lcfg if not prep_changes else cfg, lsample, snapshots=())
+        pen_cfg = cfg if args.lever in ("fire", "subcycle-prep") else lcfg
+        b = penetrate(pen_cfg, lsample, snapshots=())
         tb = time.perf_counter() - t0
         row = {
             "seed": seed,

@@ -345,14 +345,14 @@ class Numerics:
     record_every
         Record the pipe force every this many steps [-].
     subcycle
-        Sub-cycle the stiff contacts: the time step follows the soil–soil stiffness
-        (``dt_safety``·√(m_min/k_soil)) and the disks within reach of a wall or the pipe take
-        ⌈√(k_stiff/k_soil)⌉ sub-steps per step for those contacts, their soil force applied
-        as one impulse per step (r-RESPA; ``docs/theory/dem.md``, "Speed levers"). Applies
-        to the penetration only (the preparation's equilibrium stages stall with it: a
-        known defect). *Experimental:* the sub-cycled penetration fails the V–w
-        equivalence check on SM-reduced (``docs/validation/dem_penetration.md``).
-        ``False`` (default): one time step for all, set by the stiffest contact.
+        Zonal sub-cycling: the time step follows the soil–soil stiffness
+        (``dt_safety``·√(m_min/k_soil)) and the disks within half a skin of a wall, the lid or
+        the pipe take n_sub = ⌈√(k_stiff/k_soil)⌉ sub-steps per step for *all* their forces
+        (nodal-partition sub-cycling, Belytschko, Yen & Mullen 1979; ``docs/theory/dem.md``,
+        "Speed levers"), in the preparation and the penetration. Same contact law and
+        damping; the V–w equivalence check on reduced presets is in
+        ``docs/validation/dem/levers/``. ``False``: one time step for all, set by the
+        stiffest contact. Not with ``Preparation.relaxation = "fire"``.
     sort_disks
         Renumber the prepared specimen in cell order (rows of cells 2·d_max high, then x)
         for memory locality [-]; the physics is unchanged (round-off only).
@@ -397,6 +397,11 @@ class DEMConfig:
     def __post_init__(self) -> None:
         if not isinstance(self.seed, int) or self.seed < 0:
             raise InputError(f"seed = {self.seed!r} is invalid: must be an integer >= 0")
+        if self.numerics.subcycle and self.preparation.relaxation == "fire":
+            raise InputError(
+                "preparation.relaxation = 'fire' is invalid with numerics.subcycle = true: "
+                "the sub-cycled disks are locally damped; use relaxation = 'damped'"
+            )
         if self.psd.d_max >= 0.5 * self.geometry.pipe_diameter:
             raise InputError(
                 f"psd.d_max = {self.psd.d_max!r} is invalid: must be < pipe_diameter/2"

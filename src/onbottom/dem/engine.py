@@ -107,8 +107,8 @@ class Simulation:
         Numba threads for the kernels; ``None`` → 1 below :data:`PARALLEL_MIN_DISKS` disks
         (thread start-up dominates on small systems and on a loaded machine), else all.
     nsub
-        Sub-steps of the wall, lid and pipe contacts per time step [-] (multiple time
-        stepping for the disks within half a skin of them, see :func:`step_sizes`); 1: none.
+        Sub-steps per time step [-] of the disks within half a skin of a wall, the lid or
+        the pipe (zonal sub-cycling, :func:`step_sizes`, ``_kernels.fine_substeps``); 1: none.
     """
 
     def __init__(
@@ -131,8 +131,6 @@ class Simulation:
             raise InputError(f"nsub = {nsub!r} is invalid: must be an integer >= 1")
         self.nsub = nsub
         self.fire = np.zeros(K.N_FIRE)
-        self.vsub = np.zeros((sample.n, 6))
-        self.subflag = np.zeros(sample.n, np.uint8)
         v.in_range("damping", damping, 0.0, 1.0, high_inclusive=False)
         self.contacts = contacts
         self.density = float(density)
@@ -218,6 +216,11 @@ class Simulation:
         only to reach static equilibrium (preparation), never for the penetration.
         """
         v.one_of("relaxation", method, ("damped", "fire"))
+        if method == "fire" and self.nsub > 1:
+            raise InputError(
+                "relaxation = 'fire' is invalid with sub-cycling (nsub > 1): the sub-cycled "
+                "disks are locally damped; use relaxation = 'damped' or subcycle = false"
+            )
         f = self.fire
         f[:] = 0.0
         if method == "fire":
@@ -375,7 +378,7 @@ class Simulation:
             int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
             self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
-            self.nsub, self.fire, self.vsub, self.subflag,
+            self.nsub, self.fire,
         )  # fmt: skip
 
     # -------------------------------------------------------------- diagnostics

@@ -306,9 +306,10 @@ def prepare_sample(
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
     w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    # never sub-cycled: with sub-cycled walls the equilibrium stages stall (known defect of
-    # the sub-cycling with local damping, docs/theory/dem.md "Speed levers")
-    dt, nsub = step_sizes(config.contacts, m_min, config.numerics.dt_safety, False)
+    # zonal sub-cycling of the disks next to the walls and the lid (Numerics.subcycle)
+    dt, nsub = step_sizes(
+        config.contacts, m_min, config.numerics.dt_safety, config.numerics.subcycle
+    )
 
     def new_sim(sample: Sample) -> Simulation:
         s = Simulation(
