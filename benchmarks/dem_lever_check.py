@@ -64,7 +64,9 @@ def main() -> None:
     ap.add_argument("--preset", default="SM-reduced", choices=sorted(PRESETS))
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     ap.add_argument(
-        "--lever", default="subcycle", choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire")
+        "--lever",
+        default="subcycle",
+        choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire"),
     )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")

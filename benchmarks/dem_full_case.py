@@ -1,0 +1,161 @@
+"""One full DEM case from a fresh start: preparation + penetration, timed per stage.
+
+The issue-#15 measurement: a full-size case (``--preset SM``, ``SD`` or ``SM-Dr48``) prepared
+from nothing and penetrated to 0.5D, with the wall-clock time, steps and particle-steps per
+second of every stage and the 1-minute load average around it (the machine is shared: a load
+above the number of cores makes a figure not comparable with a quiet one). Unlike
+``dem_stages.py`` it keeps what it makes: the specimen (``<out>/<name>_sample.nc``), the run
+(``<out>/<name>_run.nc``, the input of ``onbottom dem summarize``), the stage figures
+(``<out>/<name>_stages.json``) and a copy of every penetration checkpoint
+(``<out>/checkpoints/``), from which any stretch of the run can be replayed bitwise (for
+instance to take field snapshots at w/D values only known afterwards).
+
+``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
+second reads the specimen and the first's figures); the total is the sum of the two.
+
+Run::
+
+    python benchmarks/dem_full_case.py --preset SM-Dr48 --out /tmp/smdr48
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import dataclasses
+
+import numba
+
+from onbottom.dem.config import PRESETS
+from onbottom.dem.experiment import penetrate
+from onbottom.dem.preparation import prepare_sample
+from onbottom.dem.sample import Sample
+from onbottom.results import save_dataset
+
+STAGES = ("generation", "compaction", "1g", "ramp", "Ng")
+
+
+def load() -> float:
+    """1-minute load average."""
+    return os.getloadavg()[0]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--preset", default="SM-Dr48", choices=sorted(PRESETS))
+    ap.add_argument("--seed", type=int, default=None)
+    ap.add_argument("--out", required=True, help="folder for the specimen, run and figures")
+    ap.add_argument("--checkpoint-every", type=int, default=50_000)
+    ap.add_argument("--stage", default="both", choices=("both", "prepare", "penetrate"))
+    ap.add_argument(
+        "--subcycle", default=None, choices=("on", "off"), help="override Numerics.subcycle"
+    )
+    args = ap.parse_args()
+    cfg = PRESETS[args.preset]
+    if args.seed is not None:
+        cfg = cfg.replace(seed=args.seed)
+    if args.subcycle is not None:
+        num = dataclasses.replace(cfg.numerics, subcycle=args.subcycle == "on")
+        cfg = cfg.replace(numerics=num)
+    out = Path(args.out)
+    (out / "checkpoints").mkdir(parents=True, exist_ok=True)
+    name = f"{cfg.name}_seed{cfg.seed}"
+    figfile = out / f"{name}_stages.json"
+    if args.stage == "penetrate":
+        fig = json.loads(figfile.read_text())
+        sample = Sample.load(out / f"{name}_sample.nc")
+        fig["load_start_penetration"] = load()
+        penetration(cfg, sample, out, name, fig, args.checkpoint_every)
+        return
+    fig: dict = {
+        "preset": cfg.name,
+        "seed": cfg.seed,
+        "subcycle": cfg.numerics.subcycle,
+        "threads": numba.config.NUMBA_NUM_THREADS,
+        "cores": os.cpu_count(),
+        "load_start": load(),
+    }
+    print(json.dumps(fig), flush=True)
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    last = [0.0]
+
+    def prep_progress(stage: str, frac: float) -> None:
+        now = time.perf_counter()
+        if now - last[0] > 60.0:
+            last[0] = now
+            print(f"  prep {stage} {frac:.2f} t={now - t0:.0f}s load={load():.2f}", flush=True)
+
+    sample = prepare_sample(
+        cfg, progress=prep_progress, checkpoint=out / f"{name}_prep.checkpoint.nc",
+        timings=timings,
+    )  # fmt: skip
+    prep_wall = time.perf_counter() - t0
+    sample.save(out / f"{name}_sample.nc")
+    stages = {}
+    for st in STAGES:
+        if f"{st}_wall" in timings:
+            w = timings[f"{st}_wall"]
+            stages[st] = {
+                "wall_s": w,
+                "steps": int(timings[f"{st}_steps"]),
+                "disks": int(timings[f"{st}_disks"]),
+                "particle_steps_per_s": timings[f"{st}_disk_steps"] / w if w else 0.0,
+            }
+    fig["preparation"] = {"wall_s": prep_wall, "stages": stages, "load_end": load()}
+    fig["sample"] = {
+        k: (float(v) if isinstance(v, (int, float)) else str(v))
+        for k, v in sample.attrs.items()
+        if k.startswith(("void_ratio", "equilibrium", "ratio", "n_"))
+    }
+    print(json.dumps(fig["preparation"]), flush=True)
+    figfile.write_text(json.dumps(fig, indent=1, default=float))
+    if args.stage == "both":
+        penetration(cfg, sample, out, name, fig, args.checkpoint_every)
+
+
+def penetration(cfg, sample, out: Path, name: str, fig: dict, checkpoint_every: int) -> None:
+    """Penetrate ``sample`` to the final embedment; add the figures to ``fig`` and save."""
+    ck = out / f"{name}_run.checkpoint.nc"
+    seen = [0.0]
+    t1 = time.perf_counter()
+
+    def pen_progress(frac: float) -> None:
+        if ck.exists() and ck.stat().st_mtime != seen[0]:
+            seen[0] = ck.stat().st_mtime
+            shutil.copy2(ck, out / "checkpoints" / f"{name}_{frac:.4f}.nc")
+            print(f"  pen {frac:.3f} t={time.perf_counter() - t1:.0f}s load={load():.2f}",
+                  flush=True)  # fmt: skip
+
+    ds = penetrate(
+        cfg, sample, checkpoint=ck, checkpoint_every=checkpoint_every, progress=pen_progress
+    )
+    pen_wall = time.perf_counter() - t1
+    save_dataset(ds, out / f"{name}_run.nc")
+    steps = int(ds.attrs["steps"])
+    fig["penetration"] = {
+        "wall_s": pen_wall,
+        "steps": steps,
+        "disks": sample.n,
+        "particle_steps_per_s": sample.n * steps / pen_wall,
+        "dt": float(ds.attrs["dt"]),
+        "inertial_number": float(ds.attrs["inertial_number"]),
+        "load_end": load(),
+    }
+    prep_wall = fig["preparation"]["wall_s"]
+    fig["total_wall_s"] = prep_wall + pen_wall
+    (out / f"{name}_stages.json").write_text(json.dumps(fig, indent=1, default=float))
+    print(json.dumps(fig["penetration"]), flush=True)
+    print(f"total {fig['total_wall_s'] / 60:.1f} min (preparation {prep_wall / 60:.1f}, "
+          f"penetration {pen_wall / 60:.1f})", flush=True)  # fmt: skip
+
+
+if __name__ == "__main__":
+    main()
