@@ -5,8 +5,9 @@ with the lever (``--lever subcycle``: wall/pipe contacts sub-cycled at the soil 
 ``--lever sort``: disks renumbered in cell order), so the paired difference isolates the
 lever. With ``--lever fire`` (or ``subcycle-prep``) the *preparation* changes, so each seed is
 prepared twice and the specimens (void ratios, steps) are compared as well;
-``--lever subcycle-all`` sub-cycles both the preparation and the penetration (the whole case
-as the presets run it).
+``--lever subcycle-all`` sub-cycles both the preparation (its 1 g, ramp and N g stages) and
+the penetration: the whole case as the presets run it. The baseline is always the plain engine
+(``Numerics.subcycle = False``), whatever the preset's default.
 
 Printed per bin of w/D (prototype V, kN/m): the mean over seeds of both runs, the seed
 scatter (standard deviation across seeds of the plain runs) and the mean paired difference;
@@ -77,7 +78,9 @@ def main() -> None:
     cache = Path(args.cache) if args.cache else None
     if cache is not None:
         cache.mkdir(parents=True, exist_ok=True)
-    base = PRESETS[args.preset]
+    # the baseline is the plain engine (one time step for all, Numerics.subcycle = False)
+    preset = PRESETS[args.preset]
+    base = preset.replace(numerics=dataclasses.replace(preset.numerics, subcycle=False))
     prep_changes = args.lever in ("fire", "subcycle-prep", "subcycle-all")
     rows = []
     for seed in args.seeds:

@@ -66,7 +66,9 @@ def test_dem_prepare_penetrate_resume_plot(tmp_path):
     assert header == (
         "w_over_D,V_prototype_mean_kN_per_m,V_prototype_min_kN_per_m,V_prototype_max_kN_per_m"
     )
-    assert (summ / "tiny_summary.nc").stat().st_size < out.stat().st_size
+    # kB-sized, whatever the run's size (a full-size run file is ~40 MB; this tiny run, with
+    # no field snapshot reached and few records, is smaller than its summary)
+    assert (summ / "tiny_summary.nc").stat().st_size < 200_000
     r = runner.invoke(
         cli, ["dem", "plot", str(summ / "tiny_summary.nc"), "--outdir", str(summ), "--json"]
     )
