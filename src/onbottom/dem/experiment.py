@@ -496,19 +496,13 @@ def penetrate(
     if events is not None:
         ds.attrs.update(
             event_snapshots=1,
-            event_drop_fraction=float(events.det.drop_fraction),
-            event_step_w_over_D=float(events.det.step),
-            max_event_snapshots=int(events.cap),
+            event_settings=(
+                f"step={events.det.step:g} w/D, drop_fraction={events.det.drop_fraction:g},"
+                f" max={events.cap} (rule: onbottom.dem.events)"
+            ),
             event_episodes_found=len(events.det.episodes) + int(events.det.confirmed),
             event_episodes_skipped=int(events.skipped),
             event_snapshots_capped=int(events.skipped > 0),
-            event_rule=(
-                "softening episode = bin mean of V (bins of event_step_w_over_D) more than"
-                " event_drop_fraction below its running peak until it climbs back above it;"
-                " snapshots at the peak bin and at the lowest bin (taken at the first record"
-                " past the bin centre); peak stored when the drop is confirmed, trough when"
-                " the episode ends or the run does"
-            ),
         )
         if events.skipped:
             ds.attrs["event_snapshots_note"] = (

@@ -336,8 +336,8 @@ def summarize_run(
         surfaces and smoothed heave on ``x_over_D``; ``softening_*`` (w/D and prototype V of
         each episode's peak and trough) on ``episode``; ``band_*`` (the run's event episodes:
         w/D of peak and trough snapshots, drop %, reaches_surface 0/1, outcrop x/D, cluster
-        size) on ``band_episode`` when the run has event snapshots; ``initial_*`` circle
-        profiles when present;
+        size) on ``band_episode`` when the run has event snapshots of one episode or more;
+        ``initial_*`` circle profiles when present;
         attributes: the run's provenance, ``V_prototype_at_<r>D`` [N/m], heave metrics,
         softening episodes (JSON-like strings) and the stated averaging rules.
     """
@@ -398,12 +398,16 @@ def summarize_run(
         )
     bands = band_episodes(ds, threshold_deg=band_threshold_deg)
     for key, unit, ln in (
-        ("w_peak", "1", "w/D of the peak snapshot"),
-        ("w_trough", "1", "w/D of the trough snapshot"),
-        ("drop_percent", "%", "drop of the bin-mean V, peak to trough"),
-        ("reaches_surface", "1", "1 if a band of rotated disks joins pipe and surface"),
-        ("outcrop_x_over_D", "1", "signed distance of the band's outcrop from the axis / D"),
-        ("cluster_size", "1", "disks in the largest rotated cluster touching the pipe"),
+        ()
+        if not bands
+        else (
+            ("w_peak", "1", "w/D of the peak snapshot"),
+            ("w_trough", "1", "w/D of the trough snapshot"),
+            ("drop_percent", "%", "drop of the bin-mean V, peak to trough"),
+            ("reaches_surface", "1", "1 if a band of rotated disks joins pipe and surface"),
+            ("outcrop_x_over_D", "1", "signed distance of the band's outcrop from the axis / D"),
+            ("cluster_size", "1", "disks in the largest rotated cluster touching the pipe"),
+        )
     ):
         vals = [b[key] for b in bands]
         arr = np.array(vals, int if key in ("reaches_surface", "cluster_size") else float)
@@ -430,16 +434,6 @@ def summarize_run(
             heave_extent_over_D=heave["extent_over_D"],
             heave_mean_over_D=heave["mean_over_D"],
             softening_episodes=len(eps),
-            band_threshold_deg=band_threshold_deg,
-            band_rule=(
-                "band episodes: event snapshots at each softening peak and trough (run attrs"
-                " event_*); disks whose rotation peak->trough exceeds band_threshold_deg,"
-                " clustered when centres are closer than 1.1(r_i+r_j); reaches the surface"
-                " when one cluster holds a disk touching the pipe and a disk whose top is"
-                " within 2 d50 of the surface at least 0.75D from the axis"
-            ),
-            band_episodes=len(bands),
-            band_episodes_reaching_surface=sum(b["reaches_surface"] for b in bands),
             softening=";".join(
                 f"{e.w_peak:.3f}-{e.w_trough:.3f}D:{e.v_peak * N / 1e3:.1f}->"
                 f"{e.v_trough * N / 1e3:.1f}kN/m"
@@ -453,5 +447,12 @@ def summarize_run(
         ks = [i for i in (k, k + 1) if 0 <= i < len(mean) and np.isfinite(mean[i])]
         val = float(np.mean(mean[ks]) * N) if ks and r <= np.nanmax(w) + 1e-12 else float("nan")
         attrs[f"V_prototype_at_{r:g}D"] = val
+    if bands:
+        attrs.update(
+            band_threshold_deg=band_threshold_deg,
+            band_rule="onbottom.dem.summary.band_episodes",
+            band_episodes=len(bands),
+            band_episodes_reaching_surface=sum(b["reaches_surface"] for b in bands),
+        )
     out.attrs.update(attrs)
     return out
