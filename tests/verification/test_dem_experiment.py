@@ -320,3 +320,22 @@ def test_event_snapshot_settings_are_validated(tiny_sample, kwargs, field):
 
     with pytest.raises(InputError, match=field):
         penetrate(TINY, tiny_sample, max_steps=0, **kwargs)
+
+
+def test_checkpoint_without_event_state_resumes_with_events_off(tmp_path, tiny_sample, deeper_run):
+    """A checkpoint written without event snapshots (or by an older version) resumes; the run
+    then says that it has none instead of storing a partial set."""
+    ck = tmp_path / "ck.nc"
+    penetrate(
+        DEEPER,
+        tiny_sample,
+        checkpoint=ck,
+        max_steps=20_000,
+        snapshots=(0.1,),
+        event_snapshots=False,
+    )
+    rest = penetrate(DEEPER, tiny_sample, checkpoint=ck, snapshots=(0.1,))
+    assert rest.attrs["event_snapshots"] == 0
+    assert "without event-snapshot state" in rest.attrs["event_snapshots_note"]
+    assert list(rest["snapshot_kind"].values) == ["fixed"]
+    np.testing.assert_array_equal(rest["V"].values, deeper_run["V"].values)
