@@ -7,8 +7,12 @@ The soil force on the pipe is the sum of its contact forces (``V`` = vertical co
 positive = soil pushes the pipe up, N per metre of pipe at model scale). Prototype values:
 lengths × N, force per metre × N.
 
-Checkpoints: the whole state (disks, contact history, engine parameters, records, snapshots)
-is written atomically every ``checkpoint_every`` steps; ``penetrate(..., checkpoint=path)``
+Field snapshots are stored at fixed w/D (``snapshots``) and, by default, at the peak and at the
+trough of every softening episode found online (:mod:`onbottom.dem.events`).
+
+Checkpoints: the whole state (disks, contact history, engine parameters, records, snapshots,
+the softening detector and its pending candidate snapshots) is written atomically every
+``checkpoint_every`` steps; ``penetrate(..., checkpoint=path)``
 resumes from it. Pair forces are gathered in a fixed order and the neighbour list only adds
 exact zeros, so a resumed run reproduces the uninterrupted one bitwise (tested).
 """
