@@ -98,3 +98,41 @@ def test_dem_prepare_not_at_rest_exits_3(tmp_path):
     assert payload["equilibrium_Ng_converged"] is False
     assert "not at rest" in payload["message"]
     assert sample.exists()  # kept for inspection
+
+
+def test_dem_event_snapshots_cli(tmp_path):
+    """Event snapshots on by default, off with --no-event-snapshots; bands CSV and figures."""
+    import dataclasses
+
+    import xarray as xr
+
+    runner = CliRunner()
+    cfg = tmp_path / "deeper.json"
+    deeper = TINY.replace(loading=dataclasses.replace(TINY.loading, final_embedment_ratio=0.2))
+    cfg.write_text(deeper.to_json())
+    sample = tmp_path / "s.nc"
+    base = ["dem", "penetrate", "--config", str(cfg), "--sample", str(sample), "--json"]
+    r = runner.invoke(cli, [*base, "--out", str(tmp_path / "on.nc")])
+    assert r.exit_code == 0, r.output
+    on = json.loads(r.output)
+    assert on["event_snapshots"] >= 2 and not on["event_snapshots_capped"]
+    r = runner.invoke(cli, [*base, "--out", str(tmp_path / "off.nc"), "--no-event-snapshots"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.output)["event_snapshots"] == 0
+    with xr.open_dataset(tmp_path / "off.nc", engine="h5netcdf") as ds:
+        assert set(ds["snapshot_kind"].values.astype(str)) == {"fixed"}
+    summ = tmp_path / "summ"
+    r = runner.invoke(cli, ["dem", "summarize", str(tmp_path / "on.nc"), "--outdir", str(summ)])
+    assert r.exit_code == 0, r.output
+    rows = (summ / "tiny_bands.csv").read_text().splitlines()
+    assert rows[0] == (
+        "band_episode,w_peak,w_trough,drop_percent,reaches_surface,outcrop_x_over_D,cluster_size"
+    )
+    assert len(rows) == 1 + on["event_snapshots"] // 2
+    r = runner.invoke(
+        cli, ["dem", "plot", str(tmp_path / "on.nc"), "--outdir", str(tmp_path / "f"), "--json"]
+    )
+    assert r.exit_code == 0, r.output
+    names = {Path(f).name for f in json.loads(r.output)["figures"]}
+    assert "dem_band_tiny_episode0.png" in names
+    assert not any(n.startswith("dem_rotation_tiny_0.0") for n in names)  # fixed ones only

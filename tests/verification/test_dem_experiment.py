@@ -16,6 +16,7 @@ from onbottom.dem.config import (
     Preparation,
 )
 from onbottom.dem.experiment import initial_state, penetrate
+from onbottom.dem.identity import CheckpointMismatchError
 from onbottom.dem.preparation import prepare_sample
 
 pytestmark = pytest.mark.verification
@@ -219,3 +220,122 @@ def test_snapshot_info_of_an_old_checkpoint_is_rebuilt():
     _restore_snapshot_info([kept, lost], (0.1, 0.2), surf0=0.1, D=0.02)
     np.testing.assert_array_equal(kept["info"].values, [0.1, 0.0021, 0.5])  # untouched
     np.testing.assert_allclose(lost["info"].values, [0.2, 0.004, 0.1 + 0.01 - 0.004])
+
+
+# ---- event snapshots at softening peaks and troughs (tiny SD-reduced, to 0.2D: 2 episodes) --
+DEEPER = TINY.replace(loading=dataclasses.replace(TINY.loading, final_embedment_ratio=0.2))
+_SNAP_VARS = (
+    "snapshot",
+    "snapshot_w",
+    "snapshot_kind",
+    "snapshot_episode",
+    "snapshot_V",
+    "snapshot_V_bin",
+    "x",
+    "y",
+    "vx",
+    "rotation",
+    "chain_fn",
+    "chain_snapshot",
+)
+
+
+@pytest.fixture(scope="module")
+def deeper_run(tiny_sample):
+    return penetrate(DEEPER, tiny_sample, snapshots=(0.1,))
+
+
+def test_event_snapshots_at_each_softening_peak_and_trough(deeper_run):
+    """Peaks and troughs come in pairs, one pair per episode of the summary's rule."""
+    from onbottom.dem.summary import summarize_run
+
+    ds = deeper_run
+    kinds = ds["snapshot_kind"].values.astype(str)
+    assert kinds[0] == "fixed" and ds["snapshot"].values[0] == 0.1
+    ev = kinds != "fixed"
+    assert ev.sum() >= 2 and list(kinds[ev]) == ["peak", "trough"] * (ev.sum() // 2)
+    episode = ds["snapshot_episode"].values[ev]
+    np.testing.assert_array_equal(episode, np.repeat(np.arange(ev.sum() // 2), 2))
+    D = DEEPER.geometry.pipe_diameter
+    w = ds["snapshot_w"].values[ev] / D
+    v = ds["snapshot_V_bin"].values[ev]
+    assert np.all(np.diff(w) > 0)  # peak before trough, episodes in order
+    assert np.all(v[1::2] < 0.95 * v[0::2])  # each a drop of more than 5 % (bin means)
+    # the same episodes as the summary finds on the finished record (one bin = 0.005D)
+    small = summarize_run(ds)
+    assert ds.attrs["event_episodes_found"] == small.sizes["episode"] == ev.sum() // 2
+    np.testing.assert_allclose(w[0::2], small["softening_w_peak"].values, atol=0.0026)
+    np.testing.assert_allclose(w[1::2], small["softening_w_trough"].values, atol=0.0026)
+    assert small.sizes["band_episode"] == ev.sum() // 2
+    assert not ds.attrs["event_snapshots_capped"]
+
+
+@pytest.mark.parametrize(
+    ("stop_after", "stored"),
+    [(20_000, []), (22_000, ["peak"]), (33_000, ["fixed", "peak", "trough", "peak"])],
+    ids=["peak-pending", "trough-pending", "second-trough-pending"],
+)
+def test_event_snapshots_resume_bitwise(tmp_path, tiny_sample, deeper_run, stop_after, stored):
+    """Stopped with candidates pending (a peak not yet confirmed, a trough not yet final) and
+    resumed: the same events, bitwise."""
+    ck = tmp_path / "ck.nc"
+    part = penetrate(DEEPER, tiny_sample, checkpoint=ck, max_steps=stop_after, snapshots=(0.1,))
+    assert not part.attrs["complete"]
+    kinds = part["snapshot_kind"].values.tolist() if "snapshot_kind" in part else []
+    assert kinds == stored
+    rest = penetrate(DEEPER, tiny_sample, checkpoint=ck, checkpoint_every=10**9, snapshots=(0.1,))
+    assert rest.attrs["complete"]
+    for name in _SNAP_VARS:
+        np.testing.assert_array_equal(rest[name].values, deeper_run[name].values, err_msg=name)
+    with pytest.raises(CheckpointMismatchError, match="event_drop_fraction"):
+        penetrate(DEEPER, tiny_sample, checkpoint=ck, max_steps=1, event_drop_fraction=0.1)
+
+
+def test_event_snapshot_cap_and_switch(tiny_sample, deeper_run):
+    capped = penetrate(DEEPER, tiny_sample, snapshots=(0.1,), max_event_snapshots=2)
+    kinds = capped["snapshot_kind"].values.astype(str)
+    assert list(kinds) == ["fixed", "peak", "trough"]
+    assert capped.attrs["event_snapshots_capped"] == 1
+    assert capped.attrs["event_episodes_skipped"] == deeper_run.attrs["event_episodes_found"] - 1
+    assert "cap of 2" in capped.attrs["event_snapshots_note"]
+    off = penetrate(DEEPER, tiny_sample, snapshots=(0.1,), event_snapshots=False)
+    assert list(off["snapshot_kind"].values) == ["fixed"] and off.attrs["event_snapshots"] == 0
+    np.testing.assert_array_equal(off["V"].values, deeper_run["V"].values)  # fields untouched
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"event_snapshots": "yes"}, "event_snapshots"),
+        ({"event_drop_fraction": 0.0}, "event_drop_fraction"),
+        ({"event_drop_fraction": 1.5}, "event_drop_fraction"),
+        ({"event_step": -0.005}, "event_step"),
+        ({"max_event_snapshots": 1}, "max_event_snapshots"),
+        ({"max_event_snapshots": 2.5}, "max_event_snapshots"),
+        ({"max_event_snapshots": True}, "max_event_snapshots"),
+    ],
+)
+def test_event_snapshot_settings_are_validated(tiny_sample, kwargs, field):
+    from onbottom.errors import InputError
+
+    with pytest.raises(InputError, match=field):
+        penetrate(TINY, tiny_sample, max_steps=0, **kwargs)
+
+
+def test_checkpoint_without_event_state_resumes_with_events_off(tmp_path, tiny_sample, deeper_run):
+    """A checkpoint written without event snapshots (or by an older version) resumes; the run
+    then says that it has none instead of storing a partial set."""
+    ck = tmp_path / "ck.nc"
+    penetrate(
+        DEEPER,
+        tiny_sample,
+        checkpoint=ck,
+        max_steps=20_000,
+        snapshots=(0.1,),
+        event_snapshots=False,
+    )
+    rest = penetrate(DEEPER, tiny_sample, checkpoint=ck, snapshots=(0.1,))
+    assert rest.attrs["event_snapshots"] == 0
+    assert "without event-snapshot state" in rest.attrs["event_snapshots_note"]
+    assert list(rest["snapshot_kind"].values) == ["fixed"]
+    np.testing.assert_array_equal(rest["V"].values, deeper_run["V"].values)

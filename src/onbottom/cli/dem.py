@@ -318,6 +318,27 @@ def prepare_cmd(
     default=None,
     help="Stop after this many steps (resumable).",
 )
+@click.option(
+    "--event-snapshots/--no-event-snapshots",
+    default=True,
+    show_default=True,
+    help="Also store field snapshots at the peak and trough of each softening episode.",
+)
+@click.option(
+    "--event-drop-fraction",
+    type=Number(float, min=0.0, max=1.0, min_open=True, max_open=True),
+    default=0.05,
+    show_default=True,
+    help="Drop of the bin-mean V below its running peak that makes an episode [-] (as "
+    "'dem summarize --drop-fraction').",
+)
+@click.option(
+    "--max-event-snapshots",
+    type=Number(int, min=2, max=10_000),
+    default=64,
+    show_default=True,
+    help="Cap on the event snapshots (about 2.5 MB each at full size).",
+)
 @restart_option
 @threads_option
 @progress_option
@@ -333,12 +354,19 @@ def penetrate_cmd(
     checkpoint_every: int,
     resume: bool,
     max_steps: int | None,
+    event_snapshots: bool,
+    event_drop_fraction: float,
+    max_event_snapshots: int,
     restart: bool,
     threads: int | None,
     progress: bool,
     as_json: bool,
 ) -> None:
     """Push the pipe to the final embedment; write the V–w record and field snapshots.
+
+    Field snapshots (positions, velocities, rotations, force chains) are stored at w/D = 0.1,
+    0.2, … 0.5 and, unless --no-event-snapshots, at the peak and at the trough of each
+    softening episode found while the pipe goes down (the episode rule of 'dem summarize').
 
     Resumable: rerunning the same command continues from the checkpoint, if it belongs to the
     same run (configuration, seed, velocity, specimen, engine); otherwise the command stops
@@ -378,6 +406,9 @@ def penetrate_cmd(
             max_steps=max_steps,
             progress=bar,
             restart=restart,
+            event_snapshots=event_snapshots,
+            event_drop_fraction=event_drop_fraction,
+            max_event_snapshots=max_event_snapshots,
         )
     finally:
         bar.close()
@@ -404,6 +435,10 @@ def penetrate_cmd(
         "quasi_static": bool(ds.attrs["quasi_static"]),
         "run_fingerprint": ds.attrs.get("run_fingerprint"),
         **_key_figures(small),
+        "event_snapshots": int(
+            np.count_nonzero(ds["snapshot_kind"].values != "fixed") if "snapshot_kind" in ds else 0
+        ),
+        "event_snapshots_capped": bool(ds.attrs.get("event_snapshots_capped", 0)),
         "wall_time_s": wall,
     }
     if as_json:
@@ -458,6 +493,10 @@ def _key_figures(small) -> dict[str, object]:
         "heave_extent_over_D": round(float(a["heave_extent_over_D"]), 3),
         "softening": a["softening"] or "none",
     }
+    if int(a.get("band_episodes", 0)):
+        out["bands_reaching_surface"] = (
+            f"{int(a['band_episodes_reaching_surface'])} of {int(a['band_episodes'])} episodes"
+        )
     return out
 
 
@@ -492,6 +531,14 @@ def _f114_unit_weight(ds, gamma_kn: float | None) -> float | None:
     help="Rotation highlight [deg].",
 )
 @click.option(
+    "--band-threshold-deg",
+    "band_threshold",
+    type=Number(float, min=0.0, max=180.0, min_open=True, unit="deg"),
+    default=10.0,
+    show_default=True,
+    help="Rotation peak→trough marking a shear band in the band figures [deg].",
+)
+@click.option(
     "--gamma-kn",
     type=Number(float, min=1.0, max=25.0, unit="kN/m³"),
     default=None,
@@ -519,12 +566,17 @@ def plot_cmd(
     outdir: Path,
     chain_threshold: float,
     rotation_threshold: float,
+    band_threshold: float,
     gamma_kn: float | None,
     phi_lower_deg: float,
     phi_upper_deg: float,
     as_json: bool,
 ) -> None:
     """Plot V–w, initial profiles, heave, velocity, rotation and force-chain fields.
+
+    Runs with event snapshots also get one figure per softening episode: the incremental
+    rotation of every disk from the episode's peak to its trough, the band that joins the
+    pipe to the surface (if any) outlined.
 
     RESULTS are run files or summaries (``dem summarize``; V–w, heave and initial profiles
     only). The full-size SM and SD presets carry the paper's centrifuge points as markers.
@@ -588,13 +640,25 @@ def plot_cmd(
         name = str(ds.attrs.get("preset", "run"))
         if "snapshot" not in ds.coords:
             continue
-        for r in ds["snapshot"].values:
+        kinds = (
+            ds["snapshot_kind"].values.astype(str)
+            if "snapshot_kind" in ds
+            else np.full(ds.sizes["snapshot"], "fixed")
+        )
+        fixed = ds["snapshot"].values[kinds == "fixed"]
+        for r in fixed:
             tag = f"{name}_{r:.1f}D"
             save(P.plot_rotation_field(ds, r, rotation_threshold), f"dem_rotation_{tag}.png")
             save(P.plot_force_chains(ds, r, chain_threshold), f"dem_chains_{tag}.png")
-        save(
-            P.plot_velocity_field(ds, float(ds["snapshot"].values[-1])), f"dem_velocity_{name}.png"
-        )
+        if fixed.size:
+            save(P.plot_velocity_field(ds, float(fixed[-1])), f"dem_velocity_{name}.png")
+        from onbottom.dem.summary import band_episodes
+
+        for band in band_episodes(ds, threshold_deg=band_threshold):
+            save(
+                P.plot_rotation_increment(ds, band, band_threshold),
+                f"dem_band_{name}_episode{band['episode']}.png",
+            )
     if as_json:
         emit_json({"figures": written})
     else:
@@ -619,17 +683,31 @@ def plot_cmd(
     show_default=True,
     help="Smallest drop below the running peak counted as softening [-].",
 )
+@click.option(
+    "--band-threshold-deg",
+    type=Number(float, min=0.0, max=180.0, min_open=True, unit="deg"),
+    default=10.0,
+    show_default=True,
+    help="Rotation peak→trough above which a disk belongs to a shear band [deg].",
+)
 @json_option
 @handle_errors
 def summarize_cmd(
-    results: tuple[Path, ...], outdir: Path, step: float, drop_fraction: float, as_json: bool
+    results: tuple[Path, ...],
+    outdir: Path,
+    step: float,
+    drop_fraction: float,
+    band_threshold_deg: float,
+    as_json: bool,
 ) -> None:
     """Write small summaries of penetration runs: binned V–w, surfaces, heave, softening.
 
     For each RESULT: OUTDIR/<preset>_summary.nc (NetCDF, all of it), <preset>_V_w.csv
     (w/D, prototype V mean/min/max in kN/m) and <preset>_surface.csv (x/D, surfaces and
     smoothed heave in mm, model scale) — kilobytes, fit to commit, where a run file holds
-    every disk.
+    every disk. A run with event snapshots also gets <preset>_bands.csv: per softening
+    episode the w/D of its peak and trough snapshots, the drop, whether a band of disks
+    rotated by more than --band-threshold-deg joins the pipe to the surface, and where.
     """
     from onbottom.dem.summary import summarize_run
     from onbottom.results import save_dataset, write_text_atomic
@@ -642,7 +720,9 @@ def summarize_cmd(
     outdir.mkdir(parents=True, exist_ok=True)
     report = []
     for path, ds, name in zip(results, runs, names, strict=True):
-        small = summarize_run(ds, step=step, drop_fraction=drop_fraction)
+        small = summarize_run(
+            ds, step=step, drop_fraction=drop_fraction, band_threshold_deg=band_threshold_deg
+        )
         small.attrs["source_file"] = str(Path(path).resolve())
         save_dataset(small, outdir / f"{name}_summary.nc")
         curve = small[["V_prototype_mean", "V_prototype_min", "V_prototype_max"]] / 1e3
@@ -657,6 +737,15 @@ def summarize_cmd(
             outdir / f"{name}_surface.csv",
             surf.to_dataframe().rename(columns=lambda c: c + "_mm").to_csv(float_format="%.4f"),
         )
+        bands = [k for k in small.data_vars if str(k).startswith("band_")]
+        if small.sizes.get("band_episode", 0):
+            write_text_atomic(
+                outdir / f"{name}_bands.csv",
+                small[bands]
+                .to_dataframe()
+                .rename(columns=lambda c: c[5:])
+                .to_csv(float_format="%.4f"),
+            )
         report.append(
             {
                 "preset": str(ds.attrs.get("preset", "")),

@@ -13,10 +13,12 @@ import xarray as xr
 from onbottom.constants import GRAVITY
 
 __all__ = [
+    "band_to_surface",
     "band_void_ratio",
     "circle_disk_overlap_area",
     "inertial_number",
     "measuring_circles",
+    "rotated_clusters",
     "surface_profile",
 ]
 
@@ -197,3 +199,124 @@ def inertial_number(
     m = density * math.pi * d50 * d50 / 4.0
     p = density * (1.0 - porosity) * gravity_factor * g * height
     return velocity / height * math.sqrt(m / (p * d50))
+
+
+def rotated_clusters(
+    x: np.ndarray,
+    y: np.ndarray,
+    radius: np.ndarray,
+    rotation: np.ndarray,
+    threshold: float,
+    neighbour_factor: float = 1.1,
+) -> np.ndarray:
+    """Clusters of the disks whose |rotation| exceeds ``threshold`` [rad].
+
+    Two such disks are neighbours when their centres are closer than
+    ``neighbour_factor``·(r_i + r_j) (touching, or nearly: a contact may open for an instant
+    in a shear band). Returns a label per disk: the cluster index (0, 1, …), −1 for a disk
+    that did not rotate enough.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    labels = np.full(len(x), -1, int)
+    sel = np.nonzero(np.abs(np.asarray(rotation, float)) > threshold)[0]
+    if sel.size == 0:
+        return labels
+    pts = np.column_stack([np.asarray(x, float)[sel], np.asarray(y, float)[sel]])
+    r = np.asarray(radius, float)[sel]
+    pairs = cKDTree(pts).query_pairs(2.0 * neighbour_factor * float(r.max()), output_type="ndarray")
+    if pairs.size:
+        d = np.hypot(*(pts[pairs[:, 0]] - pts[pairs[:, 1]]).T)
+        pairs = pairs[d < neighbour_factor * (r[pairs[:, 0]] + r[pairs[:, 1]])]
+    n = sel.size
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, lab = connected_components(graph, directed=False)
+    labels[sel] = lab
+    return labels
+
+
+def band_to_surface(
+    x: np.ndarray,
+    y: np.ndarray,
+    radius: np.ndarray,
+    rotation_increment: np.ndarray,
+    pipe_x: float,
+    pipe_y: float,
+    pipe_radius: float,
+    d50: float,
+    *,
+    threshold_deg: float = 10.0,
+    neighbour_factor: float = 1.1,
+    surface_depth: float = 2.0,
+    footprint_ratio: float = 0.75,
+) -> dict[str, object]:
+    """Does a band of rotating disks join the pipe to the soil surface?
+
+    The disks whose incremental rotation (e.g. between the peak and the trough of a softening
+    episode) exceeds ``threshold_deg`` form clusters (:func:`rotated_clusters`). The episode
+    *reaches the surface* when one cluster holds
+
+    * a disk in the pipe's contact zone: its gap to the pipe below
+      ``(neighbour_factor − 1)``·2·r_i (the neighbour rule's tolerance), and
+    * a disk at the soil surface away from the pipe: its top within ``surface_depth``·d50 of
+      the surface profile (highest disk top in bins of 2·d50, of the same state) and its centre
+      at least ``footprint_ratio``·D from the pipe axis (closer, the surface is the pipe's
+      own berm, which any cluster touching the pipe at shallow embedment would reach).
+
+    Parameters
+    ----------
+    x, y, radius : array
+        Disk centres and radii [m] (one state, e.g. the trough's).
+    rotation_increment : array
+        Rotation of each disk over the interval [rad].
+    pipe_x, pipe_y, pipe_radius : float
+        Pipe centre and radius [m] in the same state.
+    d50 : float
+        Median grain diameter [m].
+
+    Returns
+    -------
+    dict
+        ``reaches_surface`` (bool), ``outcrop_x_over_D`` (signed distance from the axis of the
+        connecting cluster's surface disk farthest from the pipe, / D; NaN if none),
+        ``n_rotated`` (disks above the threshold), ``band_size`` (disks in the largest
+        cluster touching the pipe, 0 if none), ``labels`` (cluster label per disk, −1 = not
+        rotated) and ``band`` (boolean mask of the connecting cluster(s)).
+    """
+    x = np.asarray(x, float)
+    y = np.asarray(y, float)
+    r = np.asarray(radius, float)
+    D = 2.0 * pipe_radius
+    labels = rotated_clusters(
+        x, y, r, rotation_increment, np.radians(threshold_deg), neighbour_factor
+    )
+    gap = np.hypot(x - pipe_x, y - pipe_y) - pipe_radius - r
+    at_pipe = gap < (neighbour_factor - 1.0) * 2.0 * r
+    bin_w = 2.0 * d50
+    x0 = float(np.min(x - r))
+    box = (x0, float(np.max(x + r)) + 1e-12)
+    xs, top = surface_profile(np.column_stack([x, y]), r, box, bin_w)
+    idx = np.clip(((x - box[0]) / (box[1] - box[0]) * len(xs)).astype(int), 0, len(xs) - 1)
+    at_surface = (y + r >= top[idx] - surface_depth * d50) & (
+        np.abs(x - pipe_x) >= footprint_ratio * D
+    )
+    pipe_clusters = set(np.unique(labels[at_pipe & (labels >= 0)]).tolist())
+    surf_clusters = set(np.unique(labels[at_surface & (labels >= 0)]).tolist())
+    joined = sorted(pipe_clusters & surf_clusters)
+    band = np.isin(labels, joined) if joined else np.zeros(len(x), bool)
+    outcrop = np.nan
+    if joined:
+        out = band & at_surface
+        k = int(np.argmax(np.abs(x[out] - pipe_x)))
+        outcrop = float((x[out][k] - pipe_x) / D)
+    sizes = [int(np.count_nonzero(labels == c)) for c in pipe_clusters]
+    return {
+        "reaches_surface": bool(joined),
+        "outcrop_x_over_D": outcrop,
+        "n_rotated": int(np.count_nonzero(labels >= 0)),
+        "band_size": max(sizes) if sizes else 0,
+        "labels": labels,
+        "band": band,
+    }

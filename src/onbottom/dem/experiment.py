@@ -7,8 +7,12 @@ The soil force on the pipe is the sum of its contact forces (``V`` = vertical co
 positive = soil pushes the pipe up, N per metre of pipe at model scale). Prototype values:
 lengths × N, force per metre × N.
 
-Checkpoints: the whole state (disks, contact history, engine parameters, records, snapshots)
-is written atomically every ``checkpoint_every`` steps; ``penetrate(..., checkpoint=path)``
+Field snapshots are stored at fixed w/D (``snapshots``) and, by default, at the peak and at the
+trough of every softening episode found online (:mod:`onbottom.dem.events`).
+
+Checkpoints: the whole state (disks, contact history, engine parameters, records, snapshots,
+the softening detector and its pending candidate snapshots) is written atomically every
+``checkpoint_every`` steps; ``penetrate(..., checkpoint=path)``
 resumes from it. Pair forces are gathered in a fixed order and the neighbour list only adds
 exact zeros, so a resumed run reproduces the uninterrupted one bitwise (tested).
 """
@@ -29,14 +33,25 @@ from onbottom.dem import _kernels as K
 from onbottom.dem.analysis import inertial_number, measuring_circles, surface_profile
 from onbottom.dem.config import DEMConfig
 from onbottom.dem.engine import PipeState, Simulation, step_sizes
+from onbottom.dem.events import (
+    CONFIRM,
+    DEFAULT_EVENT_STEP,
+    DEFAULT_MAX_EVENT_SNAPSHOTS,
+    END,
+    NEW_PEAK,
+    NEW_TROUGH,
+    SofteningDetector,
+)
 from onbottom.dem.identity import (
     RESTART_ADVICE,
     CheckpointError,
+    CheckpointMismatchError,
     check_identity,
     fingerprint,
     run_identity,
 )
 from onbottom.dem.sample import Sample
+from onbottom.errors import InputError
 from onbottom.results import load_dataset, provenance, save_dataset
 
 __all__ = ["DEFAULT_SNAPSHOTS", "initial_state", "make_simulation", "penetrate"]
@@ -120,6 +135,100 @@ def _state_dataset(sim: Simulation) -> xr.Dataset:
     return s.to_dataset()
 
 
+def _store_snapshot(ds: xr.Dataset, pre: str, snap: xr.Dataset) -> None:
+    # snap.variables, not snap.data_vars: "info" lies on its own dimension (a coordinate)
+    for name, var in snap.variables.items():
+        ds[f"{pre}{name}"] = ([f"{pre}{d}" for d in var.dims], var.values)
+
+
+def _read_snapshot(ds: xr.Dataset, pre: str) -> xr.Dataset:
+    # ds.variables, not ds.data_vars: "<pre>info" lies on its own dimension, so xarray reads it
+    # back as a coordinate
+    vars_ = {
+        str(k)[len(pre) :]: ([str(d)[len(pre) :] for d in var.dims], var.values)
+        for k, var in ds.variables.items()
+        if str(k).startswith(pre)
+    }
+    return xr.Dataset(vars_)
+
+
+class _Events:
+    """Event snapshots of a run: the detector, the candidates and the committed snapshots."""
+
+    def __init__(self, detector: SofteningDetector, cap: int) -> None:
+        self.det = detector
+        self.cap = cap
+        self.stored: list[xr.Dataset] = []
+        self.cand: dict[str, xr.Dataset] = {}  # "bin", "peak", "trough"
+        self.cand_bin = -1  # bin of cand["bin"]
+        self.skipped = 0  # episodes found after the cap was reached
+        self.peak_stored = False  # the current episode's peak snapshot is stored
+
+    def meta(self) -> dict:
+        return {
+            "detector": self.det.state(),
+            "cap": self.cap,
+            "n_events": len(self.stored),
+            "candidates": sorted(self.cand),
+            "cand_bin": self.cand_bin,
+            "skipped": self.skipped,
+            "peak_stored": self.peak_stored,
+        }
+
+    @classmethod
+    def from_meta(cls, meta: dict, ds: xr.Dataset) -> _Events:
+        ev = cls(SofteningDetector.from_state(meta["detector"]), int(meta["cap"]))
+        ev.stored = [_read_snapshot(ds, f"event{q}_") for q in range(int(meta["n_events"]))]
+        ev.cand = {name: _read_snapshot(ds, f"cand_{name}_") for name in meta["candidates"]}
+        ev.cand_bin = int(meta["cand_bin"])
+        ev.skipped = int(meta["skipped"])
+        ev.peak_stored = bool(meta["peak_stored"])
+        return ev
+
+    def _commit(self, kind: int, snap: xr.Dataset | None) -> bool:
+        episode = len(self.det.episodes) if kind == 1 else len(self.det.episodes) - 1
+        if snap is None:  # no candidate (records sparser than the bins): nothing to store
+            return False
+        tagged = snap.copy()
+        tagged["event"] = ("event", np.array([kind, episode], float))
+        self.stored.append(tagged)
+        return True
+
+    def record(self, sim: Simulation, theta0: np.ndarray, w: float, D: float) -> None:
+        """Process the record just made at embedment ``w`` (V already in the detector)."""
+        wd = w / D
+        k = self.det.bin_of(wd)
+        if wd >= 0.0 and k != self.cand_bin and wd >= self.det.centre(k):
+            self.cand["bin"] = _snapshot(sim, theta0, wd, w)
+            self.cand_bin = k
+
+    def act(self, actions: list[tuple[str, int]]) -> None:
+        """Move or commit candidates on the detector's actions for a closed bin."""
+        for name, k in actions:
+            snap = self.cand.get("bin") if k == self.cand_bin else None
+            if name == NEW_PEAK:
+                self._set("peak", snap)
+                self.peak_stored = False
+            elif name == NEW_TROUGH:
+                self._set("trough", snap)
+            elif name == CONFIRM:
+                if len(self.stored) + 2 <= self.cap:
+                    self.peak_stored = self._commit(1, self.cand.get("peak"))
+                else:
+                    self.skipped += 1
+            elif name == END:
+                if self.peak_stored:
+                    self._commit(2, self.cand.get("trough"))
+                self.peak_stored = False
+                self.cand.pop("trough", None)
+
+    def _set(self, slot: str, snap: xr.Dataset | None) -> None:
+        if snap is None:
+            self.cand.pop(slot, None)
+        else:
+            self.cand[slot] = snap
+
+
 def _save_checkpoint(
     path: Path,
     sim: Simulation,
@@ -127,19 +236,24 @@ def _save_checkpoint(
     snaps: list[xr.Dataset],
     meta: dict,
     theta0: np.ndarray,
+    events: _Events | None = None,
 ) -> None:
     ds = _state_dataset(sim)
     ds["engine_prm"] = ("prm", sim.prm.copy())
     ds["theta0"] = ("particle", theta0)
     for k, vals in records.items():
         ds[f"rec_{k}"] = ("record", np.asarray(vals, float))
+    extra = {"events": events.meta()} if events is not None else {}
     ds.attrs["checkpoint_meta"] = json.dumps(
-        {**meta, "step_count": sim.step_count, "n_snapshots": len(snaps)}
+        {**meta, **extra, "step_count": sim.step_count, "n_snapshots": len(snaps)}
     )
     for q, snap in enumerate(snaps):
-        # snap.variables, not snap.data_vars: "info" lies on its own dimension (a coordinate)
-        for name, var in snap.variables.items():
-            ds[f"snap{q}_{name}"] = ([f"snap{q}_{d}" for d in var.dims], var.values)
+        _store_snapshot(ds, f"snap{q}_", snap)
+    if events is not None:
+        for q, snap in enumerate(events.stored):
+            _store_snapshot(ds, f"event{q}_", snap)
+        for name, snap in events.cand.items():
+            _store_snapshot(ds, f"cand_{name}_", snap)
     save_dataset(ds, path)
 
 
@@ -164,18 +278,17 @@ def _load_checkpoint(
     sim.prm[:] = ds["engine_prm"].values
     sim.step_count = int(meta["step_count"])
     records = {str(k)[4:]: list(ds[k].values) for k in ds.data_vars if str(k).startswith("rec_")}
-    snaps = []
-    for q in range(int(meta["n_snapshots"])):
-        pre = f"snap{q}_"
-        # ds.variables, not ds.data_vars: "snap<q>_info" lies on its own dimension, so xarray
-        # reads it back as a coordinate
-        vars_ = {
-            str(k)[len(pre) :]: ([str(d)[len(pre) :] for d in var.dims], var.values)
-            for k, var in ds.variables.items()
-            if str(k).startswith(pre)
-        }
-        snaps.append(xr.Dataset(vars_))
-    return sim, records, snaps, meta, ds["theta0"].values
+    snaps = [_read_snapshot(ds, f"snap{q}_") for q in range(int(meta["n_snapshots"]))]
+    events = None
+    if "events" in meta:
+        try:
+            events = _Events.from_meta(meta["events"], ds)
+        except Exception as exc:
+            raise CheckpointError(
+                f"penetration checkpoint {path} holds unreadable event-snapshot state"
+                f" ({type(exc).__name__}: {exc}); {RESTART_ADVICE}"
+            ) from None
+    return sim, records, snaps, meta, ds["theta0"].values, events
 
 
 def _restore_snapshot_info(
@@ -223,6 +336,10 @@ def penetrate(
     max_steps: int | None = None,
     progress: Progress | None = None,
     restart: bool = False,
+    event_snapshots: bool = True,
+    event_drop_fraction: float = 0.05,
+    event_step: float = DEFAULT_EVENT_STEP,
+    max_event_snapshots: int = DEFAULT_MAX_EVENT_SNAPSHOTS,
 ) -> xr.Dataset:
     """Push the pipe into ``sample`` and return the V–w record and the field snapshots.
 
@@ -252,14 +369,32 @@ def penetrate(
         Callback receiving the fraction of the final embedment reached.
     restart
         Delete an existing checkpoint and start afresh.
+    event_snapshots
+        Also store a field snapshot at the peak and at the trough of every softening episode
+        found while the pipe goes down (:mod:`onbottom.dem.events`: the summary's episode
+        definition applied online to bin means of V).
+    event_drop_fraction
+        Smallest drop below the running peak that makes an episode [-], in (0, 1) (the
+        summary's ``drop_fraction``).
+    event_step
+        Bin width of the detector's V averaging in w/D [-] (the summary's ``step``); one
+        candidate snapshot per bin.
+    max_event_snapshots
+        Cap on the stored event snapshots (peak and trough in pairs) [-], >= 2; episodes found
+        after it is reached are counted in ``attrs["event_episodes_skipped"]``.
 
     Returns
     -------
     xarray.Dataset
         Variables on ``record``: time, w, w_over_D, V, H, prototype values, unbalanced ratio;
-        snapshot fields on ``snapshot`` × ``particle``; force chains flattened on ``chain``
-        with ``chain_snapshot``; initial/final surface profiles; attributes with the inertial
-        number, the time step and ``complete`` (False when stopped by ``max_steps``).
+        snapshot fields on ``snapshot`` × ``particle`` (the fixed ones first, then the event
+        snapshots in the order stored; ``snapshot_kind`` "fixed"/"peak"/"trough",
+        ``snapshot_w``, ``snapshot_V`` (V of the record the fields belong to),
+        ``snapshot_V_bin`` (bin mean of V there), ``snapshot_episode`` (-1 for fixed));
+        force chains flattened on ``chain`` with ``chain_snapshot``; initial/final surface
+        profiles; attributes with the inertial number, the time step, ``complete`` (False
+        when stopped by ``max_steps``) and the event-snapshot settings and counts
+        (``event_*``; ``event_snapshots_capped`` = 1 when the cap was hit).
     """
     D = config.geometry.pipe_diameter
     N = config.loading.gravity_factor
@@ -275,14 +410,42 @@ def penetrate(
         raise CheckpointError(
             f"max_steps = {max_steps!r} is invalid: must be >= 0", field="max_steps"
         )
+    if not isinstance(event_snapshots, bool | np.bool_):
+        raise InputError(f"event_snapshots = {event_snapshots!r} is invalid: must be True or False")
+    if (
+        isinstance(max_event_snapshots, bool)
+        or not isinstance(max_event_snapshots, int | np.integer)
+        or max_event_snapshots < 2
+    ):
+        raise InputError(
+            f"max_event_snapshots = {max_event_snapshots!r} is invalid: must be an integer >= 2"
+            " (peak and trough are stored in pairs)"
+        )
+    # validates event_step and event_drop_fraction (named InputErrors)
+    fresh_events = _Events(
+        SofteningDetector(step=event_step, drop_fraction=event_drop_fraction),
+        int(max_event_snapshots),
+    )
     identity = run_identity(config, "penetration", sample=sample)
     ck = Path(checkpoint) if checkpoint is not None else None
     if ck is not None and restart:
         ck.unlink(missing_ok=True)
+    events: _Events | None = fresh_events if event_snapshots else None
+    events_note = ""
     if ck is not None and resume and ck.exists():
-        sim, records, snaps, meta, theta0 = _load_checkpoint(ck, config, threads, identity)
+        sim, records, snaps, meta, theta0, ck_events = _load_checkpoint(
+            ck, config, threads, identity
+        )
         log.info("resumed from %s at step %d", ck, sim.step_count)
         _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
+        meta.pop("events", None)
+        if event_snapshots and ck_events is None:
+            events = None
+            events_note = "checkpoint without event-snapshot state: event snapshots off"
+            log.warning("resumed %s has no event-snapshot state: event snapshots off", ck)
+        elif event_snapshots and ck_events is not None:
+            _check_event_settings(ck_events, fresh_events, ck)
+            events = ck_events
     else:
         sim = make_simulation(config, sample, threads)
         xc = 0.5 * (sample.box[0] + sample.box[1])
@@ -312,20 +475,48 @@ def penetrate(
         sim.run(n)
         done_here += n
         fx, fy = sim.pipe_force()
+        w_now = surf0 - (sim.pipe.y - 0.5 * D)
         records["time"].append(sim.time)
-        records["w"].append(surf0 - (sim.pipe.y - 0.5 * D))
+        records["w"].append(w_now)
         records["V"].append(fy)
         records["H"].append(fx)
         records["unbalanced_ratio"].append(sim.unbalanced_ratio())
+        if events is not None:
+            events.act(events.det.push(w_now / D, fy))
+            events.record(sim, theta0, w_now, D)
         if progress is not None:
             progress(min(1.0, sim.step_count / steps_total))
         if ck is not None and sim.step_count >= next_ck:
-            _save_checkpoint(ck, sim, records, snaps, meta, theta0)
+            _save_checkpoint(ck, sim, records, snaps, meta, theta0, events)
             next_ck += checkpoint_every
     complete = sim.step_count >= steps_total
     if ck is not None and not complete:
-        _save_checkpoint(ck, sim, records, snaps, meta, theta0)
-    ds = _assemble(config, sample, sim, records, snaps, surf0, complete, N)
+        _save_checkpoint(ck, sim, records, snaps, meta, theta0, events)
+    if events is not None and complete:
+        # the record ends: the open bin closes, a drop still under way ends there
+        events.act(events.det.close_bin())
+        events.act([(a, events.det.bin) for a in events.det.finish()])
+    ds = _assemble(config, sample, sim, records, snaps, surf0, complete, N, events)
+    if events is not None:
+        ds.attrs.update(
+            event_snapshots=1,
+            event_settings=(
+                f"step={events.det.step:g} w/D, drop_fraction={events.det.drop_fraction:g},"
+                f" max={events.cap} (rule: onbottom.dem.events)"
+            ),
+            event_episodes_found=len(events.det.episodes) + int(events.det.confirmed),
+            event_episodes_skipped=int(events.skipped),
+            event_snapshots_capped=int(events.skipped > 0),
+        )
+        if events.skipped:
+            ds.attrs["event_snapshots_note"] = (
+                f"cap of {events.cap} event snapshots reached: {events.skipped} later episodes"
+                " have no snapshots"
+            )
+    else:
+        ds.attrs["event_snapshots"] = 0
+        if events_note:
+            ds.attrs["event_snapshots_note"] = events_note
     # the configuration itself is in attrs["config"]; the rest of the identity here
     ds.attrs["run_identity"] = json.dumps(
         {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
@@ -333,6 +524,44 @@ def penetrate(
     ds.attrs["run_fingerprint"] = fingerprint(identity)
     ds.attrs["sample_fingerprint"] = identity["sample"]
     return ds
+
+
+def _check_event_settings(found: _Events, asked: _Events, path: Path) -> None:
+    """Refuse to resume event detection under other settings than it was started with."""
+    diff = [
+        f"{name}: checkpoint {a!r}, asked {b!r}"
+        for name, a, b in (
+            ("event_step", found.det.step, asked.det.step),
+            ("event_drop_fraction", found.det.drop_fraction, asked.det.drop_fraction),
+            ("max_event_snapshots", found.cap, asked.cap),
+        )
+        if a != b
+    ]
+    if diff:
+        raise CheckpointMismatchError(
+            f"penetration checkpoint {path} detects softening episodes with other settings"
+            f" ({'; '.join(diff)}); resume with the same settings or {RESTART_ADVICE}",
+            [d.split(":")[0] for d in diff],
+            field=diff[0].split(":")[0],
+        )
+
+
+def _record_at(w: np.ndarray, V: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """V of the record nearest to each embedment ``at`` (NaN without records)."""
+    if w.size == 0:
+        return np.full(at.shape, np.nan)
+    return V[np.argmin(np.abs(w[None, :] - at[:, None]), axis=1)]
+
+
+def _bin_mean_at(wd: np.ndarray, V: np.ndarray, at: np.ndarray, step: float) -> np.ndarray:
+    """Mean V of the records in the bin of w/D (width ``step``) holding each ``at``."""
+    out = np.full(at.shape, np.nan)
+    kr = np.floor(wd / step)
+    for q, a in enumerate(at):
+        sel = (kr == np.floor(a / step)) & np.isfinite(V) & (wd >= 0.0)
+        if np.any(sel):
+            out[q] = float(np.mean(V[sel]))
+    return out
 
 
 def _assemble(
@@ -344,6 +573,7 @@ def _assemble(
     surf0: float,
     complete: bool,
     N: float,
+    events: _Events | None = None,
 ) -> xr.Dataset:
     D = config.geometry.pipe_diameter
     w = np.asarray(records["w"], float)
@@ -364,6 +594,14 @@ def _assemble(
         "surface": ("x_bin", top1),
         "radius": ("particle", sim.rad.copy()),
     }
+    kinds = ["fixed"] * len(snaps)
+    episode = [-1] * len(snaps)
+    if events is not None and events.stored:
+        for ev in events.stored:
+            kind, ep = (int(v) for v in ev["event"].values)
+            kinds.append("peak" if kind == 1 else "trough")
+            episode.append(ep)
+        snaps = [*snaps, *events.stored]
     if snaps:
         for name in ("x", "y", "vx", "vy", "rotation"):
             data[name] = (("snapshot", "particle"), np.stack([s[name].values for s in snaps]))
@@ -374,7 +612,13 @@ def _assemble(
             "chain",
             np.concatenate([np.full(s.sizes["chain"], q) for q, s in enumerate(snaps)]),
         )
-        data["snapshot_w"] = ("snapshot", np.array([float(s["info"].values[1]) for s in snaps]))
+        sw = np.array([float(s["info"].values[1]) for s in snaps])
+        data["snapshot_w"] = ("snapshot", sw)
+        data["snapshot_kind"] = ("snapshot", np.array(kinds, dtype=str))
+        data["snapshot_episode"] = ("snapshot", np.array(episode, int))
+        data["snapshot_V"] = ("snapshot", _record_at(w, V, sw))
+        step = events.det.step if events is not None else DEFAULT_EVENT_STEP
+        data["snapshot_V_bin"] = ("snapshot", _bin_mean_at(w / D, V, sw / D, step))
     coords = {"x_bin": ("x_bin", xs)}
     if snaps:
         coords["snapshot"] = ("snapshot", np.array([float(s["info"].values[0]) for s in snaps]))
@@ -407,6 +651,7 @@ def _assemble(
             gravity_factor=float(N),
             pipe_diameter=float(D),
             surface0_at_pipe=float(surf0),
+            pipe_x=float(sim.pipe.x) if sim.pipe is not None else float("nan"),
             initial_void_ratio=float(sample.void_ratio()),
             seed=int(config.seed),
             engine_prm_layout="see onbottom.dem._kernels P_* indices",

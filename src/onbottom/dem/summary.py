@@ -11,7 +11,10 @@ and the comparison with the paper need is far smaller:
 * the soil surface before and after, smoothed, and the heave next to the pipe: its peak (outside
   the pipe's footprint) and its extent;
 * the initial measuring-circle profiles when the run carries them (``initial_*`` variables, as
-  written by ``onbottom dem penetrate``).
+  written by ``onbottom dem penetrate``);
+* for a run with event snapshots (peak and trough of each softening episode, found online by
+  :mod:`onbottom.dem.events`), whether each episode's shear band reaches the soil surface
+  (:func:`band_episodes`, :func:`onbottom.dem.analysis.band_to_surface`).
 
 Nothing here depends on the soil models: the comparison with DNVGL-RP-F114 is drawn in
 ``onbottom.plotting.dem_f114``.
@@ -25,10 +28,13 @@ import numpy as np
 import xarray as xr
 
 from onbottom import _validate as _v
+from onbottom.dem.analysis import band_to_surface
 from onbottom.results import provenance
 
 __all__ = [
+    "BAND_THRESHOLD_DEG",
     "SofteningEpisode",
+    "band_episodes",
     "binned_resistance",
     "heave_metrics",
     "softening_episodes",
@@ -143,6 +149,85 @@ def softening_episodes(
     return out
 
 
+BAND_THRESHOLD_DEG = 10.0
+"""Incremental rotation peak → trough above which a disk belongs to a band [deg]."""
+
+
+def _d50(ds: xr.Dataset) -> float:
+    import json
+
+    return float(json.loads(ds.attrs["config"])["psd"]["d50"])
+
+
+def band_episodes(
+    ds: xr.Dataset, *, threshold_deg: float = BAND_THRESHOLD_DEG
+) -> list[dict[str, object]]:
+    """Per softening episode with both event snapshots: does its band reach the surface?
+
+    For each peak → trough pair of ``ds`` (a run of :func:`onbottom.dem.experiment.penetrate`
+    with event snapshots) the incremental rotation of every disk between the two snapshots goes
+    to :func:`onbottom.dem.analysis.band_to_surface` (disks rotated by more than
+    ``threshold_deg``, clustered by the 1.1·(r_i + r_j) neighbour rule; the band reaches the
+    surface when one cluster joins the pipe's contact zone to the surface within 2·d50, at
+    least 0.75D from the axis), in the trough's positions.
+
+    Returns
+    -------
+    list of dict
+        ``episode``, ``w_peak``, ``w_trough`` (w/D of the snapshots [-]), ``drop_percent``
+        (100·(1 − V_trough/V_peak), bin means), ``reaches_surface``, ``outcrop_x_over_D``,
+        ``cluster_size`` (disks in the largest rotated cluster touching the pipe),
+        ``n_rotated``, ``peak``/``trough`` (snapshot indices) and ``band``
+        (mask of the connecting cluster).
+    """
+    _v.in_range("threshold_deg", threshold_deg, 0.0, 180.0, low_inclusive=False)
+    if "snapshot_kind" not in ds:
+        return []
+    D = float(ds.attrs["pipe_diameter"])
+    kinds = ds["snapshot_kind"].values.astype(str)
+    episode = ds["snapshot_episode"].values
+    surf0 = float(ds.attrs["surface0_at_pipe"])
+    x_bin = ds["x_bin"].values
+    pipe_x = float(ds.attrs.get("pipe_x", 0.5 * (float(x_bin.min()) + float(x_bin.max()))))
+    d50 = _d50(ds)
+    out = []
+    for e in sorted({int(v) for v in episode if v >= 0}):
+        peaks = np.nonzero((episode == e) & (kinds == "peak"))[0]
+        troughs = np.nonzero((episode == e) & (kinds == "trough"))[0]
+        if not (peaks.size and troughs.size):
+            continue
+        p, t = int(peaks[0]), int(troughs[0])
+        w_t = float(ds["snapshot_w"].values[t])
+        res = band_to_surface(
+            ds["x"].values[t],
+            ds["y"].values[t],
+            ds["radius"].values,
+            ds["rotation"].values[t] - ds["rotation"].values[p],
+            pipe_x,
+            surf0 + 0.5 * D - w_t,
+            0.5 * D,
+            d50,
+            threshold_deg=threshold_deg,
+        )
+        vp, vt = (float(ds["snapshot_V_bin"].values[k]) for k in (p, t))
+        out.append(
+            {
+                "episode": e,
+                "w_peak": float(ds["snapshot_w"].values[p]) / D,
+                "w_trough": w_t / D,
+                "drop_percent": 100.0 * (1.0 - vt / vp),
+                "reaches_surface": bool(res["reaches_surface"]),
+                "outcrop_x_over_D": float(res["outcrop_x_over_D"]),
+                "cluster_size": int(res["band_size"]),
+                "n_rotated": int(res["n_rotated"]),
+                "peak": p,
+                "trough": t,
+                "band": res["band"],
+            }
+        )
+    return out
+
+
 def heave_metrics(
     x: np.ndarray,
     surface0: np.ndarray,
@@ -227,6 +312,7 @@ def summarize_run(
     step: float = 0.005,
     drop_fraction: float = 0.05,
     report_at: tuple[float, ...] = (0.05, 0.1, 0.2, 0.3, 0.4, 0.5),
+    band_threshold_deg: float = BAND_THRESHOLD_DEG,
 ) -> xr.Dataset:
     """The small summary of a penetration result (see the module docstring).
 
@@ -240,13 +326,18 @@ def summarize_run(
         Smallest drop counted as softening [-] (see :func:`softening_episodes`).
     report_at : tuple of float
         Embedment ratios w/D at which the bin-mean prototype V is reported in the attributes.
+    band_threshold_deg : float
+        Rotation threshold of the band-to-surface test [deg] (see :func:`band_episodes`).
 
     Returns
     -------
     xarray.Dataset
         ``V_mean/V_min/V_max`` (model, N/m) and ``V_prototype_mean`` etc. on ``w_over_D``;
         surfaces and smoothed heave on ``x_over_D``; ``softening_*`` (w/D and prototype V of
-        each episode's peak and trough) on ``episode``; ``initial_*`` circle profiles when present;
+        each episode's peak and trough) on ``episode``; ``band_*`` (the run's event episodes:
+        w/D of peak and trough snapshots, drop %, reaches_surface 0/1, outcrop x/D, cluster
+        size) on ``band_episode`` when the run has event snapshots of one episode or more;
+        ``initial_*`` circle profiles when present;
         attributes: the run's provenance, ``V_prototype_at_<r>D`` [N/m], heave metrics,
         softening episodes (JSON-like strings) and the stated averaging rules.
     """
@@ -305,6 +396,22 @@ def summarize_run(
             np.array([getattr(e, attr) * scale for e in eps], float),
             {"long_name": f"softening episode {key.replace('_', ' ')}", "units": unit},
         )
+    bands = band_episodes(ds, threshold_deg=band_threshold_deg)
+    for key, unit, ln in (
+        ()
+        if not bands
+        else (
+            ("w_peak", "1", "w/D of the peak snapshot"),
+            ("w_trough", "1", "w/D of the trough snapshot"),
+            ("drop_percent", "%", "drop of the bin-mean V, peak to trough"),
+            ("reaches_surface", "1", "1 if a band of rotated disks joins pipe and surface"),
+            ("outcrop_x_over_D", "1", "signed distance of the band's outcrop from the axis / D"),
+            ("cluster_size", "1", "disks in the largest rotated cluster touching the pipe"),
+        )
+    ):
+        vals = [b[key] for b in bands]
+        arr = np.array(vals, int if key in ("reaches_surface", "cluster_size") else float)
+        out[f"band_{key}"] = ("band_episode", arr, {"long_name": ln, "units": unit})
     for name in ds.data_vars:
         if str(name).startswith("initial_"):
             out[name] = ds[name]
@@ -340,5 +447,12 @@ def summarize_run(
         ks = [i for i in (k, k + 1) if 0 <= i < len(mean) and np.isfinite(mean[i])]
         val = float(np.mean(mean[ks]) * N) if ks and r <= np.nanmax(w) + 1e-12 else float("nan")
         attrs[f"V_prototype_at_{r:g}D"] = val
+    if bands:
+        attrs.update(
+            band_threshold_deg=band_threshold_deg,
+            band_rule="onbottom.dem.summary.band_episodes",
+            band_episodes=len(bands),
+            band_episodes_reaching_surface=sum(b["reaches_surface"] for b in bands),
+        )
     out.attrs.update(attrs)
     return out

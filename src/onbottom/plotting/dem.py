@@ -25,6 +25,7 @@ __all__ = [
     "plot_resistance",
     "plot_resistance_with_bounds",
     "plot_rotation_field",
+    "plot_rotation_increment",
     "plot_surface",
     "plot_velocity_field",
 ]
@@ -234,4 +235,35 @@ def plot_force_chains(ds: xr.Dataset, ratio: float = 0.5, threshold: float = 200
     ax.add_collection(LineCollection(segs, linewidths=0.3 + 2.5 * fn / fmax, colors="k"))
     ax.text(0.01, 0.02, f"{sel.sum()} contacts > {threshold:g} N", transform=ax.transAxes)
     _frame(ax, ds, k)
+    return fig
+
+
+def plot_rotation_increment(ds: xr.Dataset, band: dict, threshold_deg: float = 10.0) -> Figure:
+    """Incremental rotation of every disk from a softening peak to its trough.
+
+    ``band`` is one entry of :func:`onbottom.dem.summary.band_episodes` (snapshot indices,
+    w/D, drop, the connecting cluster's mask). Disks drawn at the trough: rotation increment
+    in colour (clipped at ±3·threshold), those above ``threshold_deg`` outlined; the cluster
+    joining the pipe to the surface (if any) in black.
+    """
+    p, t = int(band["peak"]), int(band["trough"])
+    fig, ax = plt.subplots(figsize=(9, 4))
+    x, y = ds["x"].values[t], ds["y"].values[t]
+    inc = np.degrees(ds["rotation"].values[t] - ds["rotation"].values[p])
+    lim = 3.0 * threshold_deg
+    sc = ax.scatter(x, y, s=2, c=np.clip(inc, -lim, lim), cmap="coolwarm", vmin=-lim, vmax=lim)
+    big = np.abs(inc) > threshold_deg
+    ax.scatter(x[big], y[big], s=6, facecolors="none", edgecolors="0.3", lw=0.4)
+    mask = np.asarray(band.get("band", np.zeros(x.size, bool)), bool)
+    if mask.any():
+        ax.scatter(x[mask], y[mask], s=6, c="k", label="band reaching the surface")
+        ax.legend(loc="lower right", fontsize=8)
+    fig.colorbar(sc, ax=ax, label="rotation peak→trough [deg] (ccw +)")
+    _frame(ax, ds, t)
+    verdict = "reaches the surface" if band["reaches_surface"] else "does not reach the surface"
+    ax.set_title(
+        f"{_label(ds)}  w/D {band['w_peak']:.3f}→{band['w_trough']:.3f}, drop"
+        f" {band['drop_percent']:.1f} %: band {verdict} (|Δθ| > {threshold_deg:g}°)",
+        fontsize=9,
+    )
     return fig
