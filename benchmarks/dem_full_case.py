@@ -6,9 +6,9 @@ second of every stage and the 1-minute load average around it (the machine is sh
 above the number of cores makes a figure not comparable with a quiet one). Unlike
 ``dem_stages.py`` it keeps what it makes: the specimen (``<out>/<name>_sample.nc``), the run
 (``<out>/<name>_run.nc``, the input of ``onbottom dem summarize``), the stage figures
-(``<out>/<name>_stages.json``) and a copy of every penetration checkpoint
-(``<out>/checkpoints/``), from which any stretch of the run can be replayed bitwise (for
-instance to take field snapshots at w/D values only known afterwards).
+(``<out>/<name>_stages.json``) and, with ``--keep-checkpoints``, a copy of every penetration
+checkpoint (``<out>/checkpoints/``), from which any stretch of the run can be replayed
+bitwise (for instance to take field snapshots at w/D values only known afterwards).
 
 ``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
 second reads the specimen and the first's figures); the total is the sum of the two.
@@ -52,7 +52,10 @@ def main() -> None:
     ap.add_argument("--preset", default="SM-Dr48", choices=sorted(PRESETS))
     ap.add_argument("--seed", type=int, default=None)
     ap.add_argument("--out", required=True, help="folder for the specimen, run and figures")
-    ap.add_argument("--checkpoint-every", type=int, default=50_000)
+    ap.add_argument("--checkpoint-every", type=int, default=100_000)
+    ap.add_argument(
+        "--keep-checkpoints", action="store_true", help="copy every penetration checkpoint"
+    )
     ap.add_argument("--stage", default="both", choices=("both", "prepare", "penetrate"))
     ap.add_argument(
         "--subcycle", default=None, choices=("on", "off"), help="override Numerics.subcycle"
@@ -72,7 +75,7 @@ def main() -> None:
         fig = json.loads(figfile.read_text())
         sample = Sample.load(out / f"{name}_sample.nc")
         fig["load_start_penetration"] = load()
-        penetration(cfg, sample, out, name, fig, args.checkpoint_every)
+        penetration(cfg, sample, out, name, fig, args.checkpoint_every, args.keep_checkpoints)
         return
     fig: dict = {
         "preset": cfg.name,
@@ -118,10 +121,12 @@ def main() -> None:
     print(json.dumps(fig["preparation"]), flush=True)
     figfile.write_text(json.dumps(fig, indent=1, default=float))
     if args.stage == "both":
-        penetration(cfg, sample, out, name, fig, args.checkpoint_every)
+        penetration(cfg, sample, out, name, fig, args.checkpoint_every, args.keep_checkpoints)
 
 
-def penetration(cfg, sample, out: Path, name: str, fig: dict, checkpoint_every: int) -> None:
+def penetration(
+    cfg, sample, out: Path, name: str, fig: dict, checkpoint_every: int, keep: bool
+) -> None:
     """Penetrate ``sample`` to the final embedment; add the figures to ``fig`` and save."""
     ck = out / f"{name}_run.checkpoint.nc"
     seen = [0.0]
@@ -130,7 +135,8 @@ def penetration(cfg, sample, out: Path, name: str, fig: dict, checkpoint_every: 
     def pen_progress(frac: float) -> None:
         if ck.exists() and ck.stat().st_mtime != seen[0]:
             seen[0] = ck.stat().st_mtime
-            shutil.copy2(ck, out / "checkpoints" / f"{name}_{frac:.4f}.nc")
+            if keep:
+                shutil.copy2(ck, out / "checkpoints" / f"{name}_{frac:.4f}.nc")
             print(f"  pen {frac:.3f} t={time.perf_counter() - t1:.0f}s load={load():.2f}",
                   flush=True)  # fmt: skip
 
