@@ -83,16 +83,19 @@ def test_preparation_resumes_inside_an_equilibrium_stage(tmp_path, tiny_sample, 
 
 
 @pytest.mark.parametrize(
-    ("snaps", "stop_after", "snaps_before"),
-    [((0.02, 0.04), 3000, 0), ((0.01, 0.04), 9000, 1)],
+    ("snaps", "stop_w", "snaps_before"),
+    [((0.02, 0.04), 0.01, 0), ((0.01, 0.04), 0.03, 1)],
     ids=["before-snapshots", "between-snapshots"],
 )
-def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample, snaps, stop_after, snaps_before):
+def test_resume_from_checkpoint_is_bitwise(tmp_path, tiny_sample, snaps, stop_w, snaps_before):
     """Stop, resume from the checkpoint: the same record and fields as an uninterrupted run.
 
-    The second case stops after a field snapshot, which the checkpoint must carry.
+    The run stops at about ``stop_w``·D (the steps it takes at the run's Δt); the second case
+    stops after a field snapshot, which the checkpoint must carry.
     """
     full = penetrate(TINY, tiny_sample, snapshots=snaps)
+    v = TINY.loading.pipe_velocity
+    stop_after = int(stop_w * TINY.geometry.pipe_diameter / (v * float(full.attrs["dt"])))
     ck = tmp_path / "ck.nc"
     part = penetrate(TINY, tiny_sample, checkpoint=ck, max_steps=stop_after, snapshots=snaps)
     assert not part.attrs["complete"]
@@ -223,7 +226,12 @@ def test_snapshot_info_of_an_old_checkpoint_is_rebuilt():
 
 
 # ---- event snapshots at softening peaks and troughs (tiny SD-reduced, to 0.2D: 2 episodes) --
-DEEPER = TINY.replace(loading=dataclasses.replace(TINY.loading, final_embedment_ratio=0.2))
+# the plain engine: the stop points of the event resume test below are step counts chosen on
+# its record (the sub-cycled engine's bitwise resume is tested with TINY above)
+DEEPER = TINY.replace(
+    loading=dataclasses.replace(TINY.loading, final_embedment_ratio=0.2),
+    numerics=dataclasses.replace(TINY.numerics, subcycle=False),
+)
 _SNAP_VARS = (
     "snapshot",
     "snapshot_w",
@@ -241,8 +249,14 @@ _SNAP_VARS = (
 
 
 @pytest.fixture(scope="module")
-def deeper_run(tiny_sample):
-    return penetrate(DEEPER, tiny_sample, snapshots=(0.1,))
+def plain_sample():
+    """The TINY specimen prepared by the plain engine (for DEEPER's step-indexed stops)."""
+    return prepare_sample(DEEPER)
+
+
+@pytest.fixture(scope="module")
+def deeper_run(plain_sample):
+    return penetrate(DEEPER, plain_sample, snapshots=(0.1,))
 
 
 def test_event_snapshots_at_each_softening_peak_and_trough(deeper_run):
@@ -275,30 +289,30 @@ def test_event_snapshots_at_each_softening_peak_and_trough(deeper_run):
     [(20_000, []), (22_000, ["peak"]), (33_000, ["fixed", "peak", "trough", "peak"])],
     ids=["peak-pending", "trough-pending", "second-trough-pending"],
 )
-def test_event_snapshots_resume_bitwise(tmp_path, tiny_sample, deeper_run, stop_after, stored):
+def test_event_snapshots_resume_bitwise(tmp_path, plain_sample, deeper_run, stop_after, stored):
     """Stopped with candidates pending (a peak not yet confirmed, a trough not yet final) and
     resumed: the same events, bitwise."""
     ck = tmp_path / "ck.nc"
-    part = penetrate(DEEPER, tiny_sample, checkpoint=ck, max_steps=stop_after, snapshots=(0.1,))
+    part = penetrate(DEEPER, plain_sample, checkpoint=ck, max_steps=stop_after, snapshots=(0.1,))
     assert not part.attrs["complete"]
     kinds = part["snapshot_kind"].values.tolist() if "snapshot_kind" in part else []
     assert kinds == stored
-    rest = penetrate(DEEPER, tiny_sample, checkpoint=ck, checkpoint_every=10**9, snapshots=(0.1,))
+    rest = penetrate(DEEPER, plain_sample, checkpoint=ck, checkpoint_every=10**9, snapshots=(0.1,))
     assert rest.attrs["complete"]
     for name in _SNAP_VARS:
         np.testing.assert_array_equal(rest[name].values, deeper_run[name].values, err_msg=name)
     with pytest.raises(CheckpointMismatchError, match="event_drop_fraction"):
-        penetrate(DEEPER, tiny_sample, checkpoint=ck, max_steps=1, event_drop_fraction=0.1)
+        penetrate(DEEPER, plain_sample, checkpoint=ck, max_steps=1, event_drop_fraction=0.1)
 
 
-def test_event_snapshot_cap_and_switch(tiny_sample, deeper_run):
-    capped = penetrate(DEEPER, tiny_sample, snapshots=(0.1,), max_event_snapshots=2)
+def test_event_snapshot_cap_and_switch(plain_sample, deeper_run):
+    capped = penetrate(DEEPER, plain_sample, snapshots=(0.1,), max_event_snapshots=2)
     kinds = capped["snapshot_kind"].values.astype(str)
     assert list(kinds) == ["fixed", "peak", "trough"]
     assert capped.attrs["event_snapshots_capped"] == 1
     assert capped.attrs["event_episodes_skipped"] == deeper_run.attrs["event_episodes_found"] - 1
     assert "cap of 2" in capped.attrs["event_snapshots_note"]
-    off = penetrate(DEEPER, tiny_sample, snapshots=(0.1,), event_snapshots=False)
+    off = penetrate(DEEPER, plain_sample, snapshots=(0.1,), event_snapshots=False)
     assert list(off["snapshot_kind"].values) == ["fixed"] and off.attrs["event_snapshots"] == 0
     np.testing.assert_array_equal(off["V"].values, deeper_run["V"].values)  # fields untouched
 
@@ -322,19 +336,19 @@ def test_event_snapshot_settings_are_validated(tiny_sample, kwargs, field):
         penetrate(TINY, tiny_sample, max_steps=0, **kwargs)
 
 
-def test_checkpoint_without_event_state_resumes_with_events_off(tmp_path, tiny_sample, deeper_run):
+def test_checkpoint_without_event_state_resumes_with_events_off(tmp_path, plain_sample, deeper_run):
     """A checkpoint written without event snapshots (or by an older version) resumes; the run
     then says that it has none instead of storing a partial set."""
     ck = tmp_path / "ck.nc"
     penetrate(
         DEEPER,
-        tiny_sample,
+        plain_sample,
         checkpoint=ck,
         max_steps=20_000,
         snapshots=(0.1,),
         event_snapshots=False,
     )
-    rest = penetrate(DEEPER, tiny_sample, checkpoint=ck, snapshots=(0.1,))
+    rest = penetrate(DEEPER, plain_sample, checkpoint=ck, snapshots=(0.1,))
     assert rest.attrs["event_snapshots"] == 0
     assert "without event-snapshot state" in rest.attrs["event_snapshots_note"]
     assert list(rest["snapshot_kind"].values) == ["fixed"]

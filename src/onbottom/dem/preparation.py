@@ -483,13 +483,13 @@ def prepare_sample(
         snap = sim.to_sample()
         order = snap.cell_order()
         if not np.array_equal(order, np.arange(snap.n)):
-            t_now = sim.time
+            t_now, steps = sim.time, sim.step_count
             sim = new_sim(snap.permuted(order), equilibrium_stage=sim.nsub > 1)
-            sim.time = t_now
+            sim.time, sim.step_count = t_now, steps
     if sim.nsub != nsub_sub:  # from the compaction's plain step to the equilibrium stages'
-        t_now = sim.time
+        t_now, steps = sim.time, sim.step_count
         sim = new_sim(sim.to_sample(), equilibrium_stage=True)
-        sim.time = t_now
+        sim.time, sim.step_count = t_now, steps
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
