@@ -262,16 +262,66 @@ def _stiff_contact(vx, vy, w, ri, nx, ny, overlap, vbx, vby, fs, mr, kn, ks, mu,
     return -fn * nx + fsn * tx, -fn * ny + fsn * ty, ri * fsn + mrn, fsn, mrn
 
 
-@njit(cache=True, parallel=True, boundscheck=False, error_model="numpy")
-def mark_fine(prm, pos, rad, fixed, fine):
-    """Flag the disks within half a skin of a wall, the lid or the pipe (``fine[i]`` = 1).
+@njit(cache=True, inline="always", error_model="numpy")
+def _stiff_gap(xi, yi, ri, x0, x1, y0, lid_on, lid_y, pipe_on, px, py, pr):
+    """Smallest gap [m] between a disk and the walls, the lid (if on) and the pipe (if on)."""
+    gap = min(xi - x0, x1 - xi, yi - y0) - ri
+    if lid_on:
+        gap = min(gap, lid_y - yi - ri)
+    if pipe_on:
+        dx = px - xi
+        dy = py - yi
+        gap = min(gap, np.sqrt(dx * dx + dy * dy) - pr - ri)
+    return gap
+
+
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def fine_candidates(prm, pos, rad, fixed, reach, cand):
+    """The disks (not fixed) within ``reach`` of a wall, the lid or the pipe, into ``cand``.
+
+    Zonal sub-cycling flags a disk when its gap is below half a skin at the start of a step
+    (:func:`collect_fine`); only these candidates are tested at every step. :func:`run_steps`
+    refreshes them at every list rebuild and whenever the pipe or the lid has moved half a
+    skin since the last refresh, with ``reach`` = 2 skins: until the next refresh a disk moves
+    less than a skin from where it was (half a skin from its list-build position, on either
+    side) and a stiff body less than half a skin, so a disk outside ``reach`` cannot come
+    within half a skin of one. Returns the number of candidates.
+    """
+    n = rad.shape[0]
+    x0 = prm[P_X0]
+    x1 = prm[P_X1]
+    y0 = prm[P_Y0]
+    lid_on = prm[P_LID_ON] > 0.5
+    lid_y = prm[P_LID_Y]
+    pipe_on = prm[P_PIPE_ON] > 0.5
+    px = prm[P_PIPE_X]
+    py = prm[P_PIPE_Y]
+    pr = prm[P_PIPE_R]
+    nc = 0
+    for i in range(n):
+        gap = _stiff_gap(pos[i, 0], pos[i, 1], rad[i], x0, x1, y0, lid_on, lid_y, pipe_on, px,
+                         py, pr)  # fmt: skip
+        if gap < reach and not fixed[i]:
+            cand[nc] = i
+            nc += 1
+    return nc
+
+
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def collect_fine(
+    prm, pos, rad, cand, ncand, fine, start, rstart, ridx, owner, flist, floc, plist, fs, mr,
+    hfs, hmr,
+):  # fmt: skip
+    """Flag the candidates within half a skin of a wall, the lid or the pipe (``fine[i]`` = 1)
+    and list them (``flist``, ``floc[i]`` = position in it; −1 for every other disk), then
+    the list entries with at least one flagged disk (``plist``, each pair once), with their
+    history copied to ``hfs``/``hmr`` before the pair pass overwrites it.
 
     Zonal sub-cycling (:func:`fine_substeps`): the flagged disks take ``nsub`` sub-steps per
     step for *all* their contacts; the others (never closer than half a skin to a stiff body
     at the start of a step, so never touching one within the step) take the plain step.
-    Fixed disks are never flagged.
+    Returns (number of flagged disks, number of entries).
     """
-    n = rad.shape[0]
     margin = 0.5 * prm[P_SKIN]
     x0 = prm[P_X0]
     x1 = prm[P_X1]
@@ -282,37 +332,18 @@ def mark_fine(prm, pos, rad, fixed, fine):
     px = prm[P_PIPE_X]
     py = prm[P_PIPE_Y]
     pr = prm[P_PIPE_R]
-    for i in prange(n):
-        xi = pos[i, 0]
-        yi = pos[i, 1]
-        ri = rad[i]
-        gap = min(xi - x0, x1 - xi, yi - y0) - ri
-        if lid_on:
-            gap = min(gap, lid_y - yi - ri)
-        if pipe_on:
-            dx = px - xi
-            dy = py - yi
-            gap = min(gap, np.sqrt(dx * dx + dy * dy) - pr - ri)
-        fine[i] = 1 if (gap < margin and not fixed[i]) else 0
-
-
-@njit(cache=True, boundscheck=False)
-def collect_fine(fine, start, rstart, ridx, owner, flist, floc, plist, fs, mr, hfs, hmr):
-    """Lists of the flagged disks (``flist``, ``floc[i]`` = position in it or −1) and of the
-    list entries with at least one flagged disk (``plist``, each pair once), with their
-    history copied to ``hfs``/``hmr`` before the pair pass overwrites it.
-
-    Returns (number of flagged disks, number of entries).
-    """
-    n = fine.shape[0]
     nf = 0
-    for i in range(n):
-        if fine[i]:
+    for c in range(ncand):
+        i = cand[c]
+        gap = _stiff_gap(pos[i, 0], pos[i, 1], rad[i], x0, x1, y0, lid_on, lid_y, pipe_on, px,
+                         py, pr)  # fmt: skip
+        if gap < margin:
+            fine[i] = 1
             flist[nf] = i
             floc[i] = nf
             nf += 1
         else:
-            floc[i] = -1
+            fine[i] = 0
     npair = 0
     for ll in range(nf):
         i = flist[ll]
@@ -602,6 +633,8 @@ def fine_substeps(
             pos[i, 1] = yi + h * vy
             th[i] += h * w
     inv = 1.0 / nsub
+    for c in range(ncp):  # back to "plain, not a partner" for the next step
+        floc[cplist[c]] = -1
     dmax = 0.0
     for ll in range(nf):
         i = flist[ll]
@@ -615,6 +648,7 @@ def fine_substeps(
         ex = pos[i, 0] - ref[i, 0]
         ey = pos[i, 1] - ref[i, 1]
         dmax = max(dmax, ex * ex + ey * ey)
+        floc[i] = -1
     return dmax
 
 
@@ -1162,7 +1196,8 @@ def run_steps(
 
     Moves the pipe and the lid (``prm`` is updated in place, as is the time ``prm[P_TIME]``).
     ``nsub`` > 1: zonal sub-cycling, the disks within half a skin of a wall, the lid or the
-    pipe take ``nsub`` sub-steps per step (:func:`mark_fine`, :func:`fine_substeps`).
+    pipe take ``nsub`` sub-steps per step (:func:`fine_candidates`, :func:`collect_fine`,
+    :func:`fine_substeps`).
     ``fire``: FIRE state (``F_*`` indices), updated in place after every step when on.
     Returns the (possibly new) list arrays and the number of rebuilds.
     """
@@ -1188,7 +1223,12 @@ def run_steps(
     mz = m if zonal else 0
     fine = np.zeros(n, np.uint8)
     flist = np.empty(nz, np.int64)
-    floc = np.empty(nz, np.int64)
+    floc = np.full(nz, -1, np.int64)
+    cand = np.empty(nz, np.int64)
+    ncand = 0
+    cand_stale = True
+    cand_pipe_y = 0.0
+    cand_lid_y = 0.0
     dacc = np.empty((nz, 9))
     cplist = np.empty(nz, np.int64)
     cpv = np.empty((nz, 3))
@@ -1202,6 +1242,7 @@ def run_steps(
             start, nbr, fs, mr, rstart, ridx = build_list(pos, rad, skin, start, nbr, fs, mr)
             ref[:, :] = pos
             nreb += 1
+            cand_stale = True
             m = nbr.shape[0]
             owner = list_owner(start, m)
             cfx = np.empty(m)
@@ -1214,10 +1255,18 @@ def run_steps(
         nf = 0
         npair = 0
         if zonal:
-            mark_fine(prm, pos, rad, fixed, fine)
+            moved = max(abs(prm[P_PIPE_Y] - cand_pipe_y), abs(prm[P_LID_Y] - cand_lid_y))
+            if cand_stale or moved > 0.5 * skin:
+                for c in range(ncand):
+                    fine[cand[c]] = 0
+                ncand = fine_candidates(prm, pos, rad, fixed, 2.0 * skin, cand)
+                cand_pipe_y = prm[P_PIPE_Y]
+                cand_lid_y = prm[P_LID_Y]
+                cand_stale = False
             nf, npair = collect_fine(
-                fine, start, rstart, ridx, owner, flist, floc, plist, fs, mr, hfs, hmr
-            )
+                prm, pos, rad, cand, ncand, fine, start, rstart, ridx, owner, flist, floc, plist,
+                fs, mr, hfs, hmr,
+            )  # fmt: skip
         pair_forces(
             prm, pos, vel, om, rad, start, owner, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa
         )  # fmt: skip
