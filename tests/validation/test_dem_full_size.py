@@ -80,6 +80,16 @@ def test_medium_dense_hardens():
     assert _episodes_after(ds, 0.1, 0.15) == []
 
 
+_SM48_SOFTENS = (
+    "at the paper's density too (SM-Dr48, interior e = 0.2248 at 25 g, D_r 50 %) the full-size "
+    "medium-dense run rises overall (44.6 / 125.4 / 161.1 kN/m at 0.1 / 0.3 / 0.5D) but "
+    "saw-tooths: drops of 21 % at 0.14-0.17D, 28 % at 0.19-0.20D, 34 % at 0.27-0.28D and 47 % at "
+    "0.31-0.41D (131 -> 70 kN/m), none with a band of rotated disks reaching the surface (local "
+    "shear under the pipe, as the paper describes for SM); see docs/validation/dem_penetration.md"
+)
+
+
+@pytest.mark.xfail(strict=True, reason=_SM48_SOFTENS)
 def test_medium_dense_at_the_paper_density_hardens():
     """The paper's SM criterion on the specimen at the paper's density (SM-Dr48)."""
     ds = _summary("SM-Dr48")
