@@ -132,7 +132,11 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
     axis (``heave_metrics(...)["mean_over_D"]``, unsmoothed): at the reduced scale a surface
     bin is 0.3D wide and a grain 0.1D, so the largest single-bin rise is a one-grain statistic
     (SM 0.149D vs SD 0.147D in one preparation), while the mean over the ~12 bins beside the
-    pipe measures the heaved volume the paper compares.
+    pipe measures the heaved volume the paper compares. The initial response likewise is the
+    mean V over 0.02–0.1D, not a 0.02D window: at 0.04–0.06D one grain decides (plain engine
+    SD 4454 against SM 3756 N/m, sub-cycled SD 3431 against SM 3790, the same specimens within
+    round-off), while over 0.02–0.1D SD is 1.41× (plain) and 1.30× (sub-cycled) stiffer, and
+    over 0–0.25D 1.66× and 1.65×.
     """
     from onbottom.dem.summary import heave_metrics
 
@@ -143,9 +147,9 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
         V = ds["V"].values
         assert ds.attrs["complete"]
         assert ds.attrs["inertial_number"] > 0.0
-        # secant stiffness over the first 0.05D (mean V over 0.04–0.06D divided by 0.05D)
-        sel = (w > 0.04 * D) & (w < 0.06 * D)
-        k_ini = V[sel].mean() / (0.05 * D)
+        # initial response: mean V over 0.02–0.1D (after the first contact)
+        sel = (w > 0.02 * D) & (w < 0.1 * D)
+        k_ini = V[sel].mean()
         xs = ds["x_bin"].values
         x_pipe = 0.5 * (xs.min() + xs.max())
         h = heave_metrics(xs, ds["surface0"].values, ds["surface"].values, x_pipe, D, smooth_bins=1)
