@@ -1,7 +1,7 @@
 """Validation of the full-size DEM runs against the penetration paper (§4.2–4.3, Figs. 5, 8).
 
-A full-size case (≈ 60k disks, 3.6e6 steps) takes 1.5–2.5 h on 2 cores, so it is not rerun here:
-the tests read the committed summaries in ``docs/validation/dem/`` (written by
+A full-size case (≈ 60k disks) takes 1.3 h on 2 cores (sub-cycled; 2.5 h plain), so it is not
+rerun here: the tests read the committed summaries in ``docs/validation/dem/`` (written by
 ``onbottom dem summarize`` from the runs; how they were produced, on which commit and machine,
 is in ``docs/validation/dem_penetration.md``) and skip a case whose summary is not there yet.
 
