@@ -224,12 +224,12 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
     n0 = table.effective_axial_force
     if ea > 0.0:
         r2 = ei / ea  # radius of gyration² of the section: D²/16 (bar) to D²/8 (thin tube)
+        key = (
+            "pipeline.bending_stiffness"
+            if table.bending_stiffness is not None
+            else "pipeline.axial_stiffness"
+        )
         if r2 > 0.25 * d * d:
-            key = (
-                "pipeline.bending_stiffness"
-                if table.bending_stiffness is not None
-                else "pipeline.axial_stiffness"
-            )
             _fail(
                 p,
                 text,
@@ -239,11 +239,6 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
                 f" {d:.4g} m has a radius of gyration above D/2",
             )
         if r2 < d * d / 1.0e4:
-            key = (
-                "pipeline.bending_stiffness"
-                if table.bending_stiffness is not None
-                else "pipeline.axial_stiffness"
-            )
             _fail(
                 p,
                 text,
