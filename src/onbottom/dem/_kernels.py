@@ -263,6 +263,20 @@ def _stiff_contact(vx, vy, w, ri, nx, ny, overlap, vbx, vby, fs, mr, kn, ks, mu,
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _add_stiff(i, k, vx, vy, w, ri, nx, ny, ov, vby, fsw, mrw, kn, ks, mu, mur, dt, f, diag):
+    """Add disk i's contact k with a wall, the lid or the pipe (:func:`_stiff_contact`, its
+    history in ``fsw``/``mrw`` updated) to ``f`` = (F_x, F_y, torque, applied magnitude; the
+    last summed only with ``diag``); returns the new ``f`` and the contact force (x, y)."""
+    cx, cy, ct_, fsn, mrn = _stiff_contact(
+        vx, vy, w, ri, nx, ny, ov, 0.0, vby, fsw[i, k], mrw[i, k], kn, ks, mu, mur, dt
+    )
+    fsw[i, k] = fsn
+    mrw[i, k] = mrn
+    a = f[3] + np.sqrt(cx * cx + cy * cy) if diag else f[3]
+    return (f[0] + cx, f[1] + cy, f[2] + ct_, a), cx, cy
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _stiff_gap(xi, yi, ri, x0, x1, y0, lid_on, lid_y, pipe_on, px, py, pr):
     """Smallest gap [m] between a disk and the walls, the lid (if on) and the pipe (if on)."""
     gap = min(xi - x0, x1 - xi, yi - y0) - ri
@@ -552,47 +566,25 @@ def fine_substeps(
             fy = dacc[ll, 1]
             tq = dacc[ll, 2]
             a = dacc[ll, 3]
-            cx, cy, ct_, fsn, mrn = _stiff_contact(
-                vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, fsw[i, 0], mrw[i, 0], knw,
-                ksw, muw, murw, h,
+            f = (fx, fy, tq, a)
+            f, _, _ = _add_stiff(
+                i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw,
+                murw, h, f, True,
             )  # fmt: skip
-            fsw[i, 0] = fsn
-            mrw[i, 0] = mrn
-            fx += cx
-            fy += cy
-            tq += ct_
-            a += np.sqrt(cx * cx + cy * cy)
-            cx, cy, ct_, fsn, mrn = _stiff_contact(
-                vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, fsw[i, 1], mrw[i, 1], knw,
-                ksw, muw, murw, h,
+            f, _, _ = _add_stiff(
+                i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw,
+                murw, h, f, True,
             )  # fmt: skip
-            fsw[i, 1] = fsn
-            mrw[i, 1] = mrn
-            fx += cx
-            fy += cy
-            tq += ct_
-            a += np.sqrt(cx * cx + cy * cy)
-            cx, cy, ct_, fsn, mrn = _stiff_contact(
-                vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, fsw[i, 2], mrw[i, 2], knw,
-                ksw, muw, murw, h,
+            f, _, _ = _add_stiff(
+                i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw,
+                murw, h, f, True,
             )  # fmt: skip
-            fsw[i, 2] = fsn
-            mrw[i, 2] = mrn
-            fx += cx
-            fy += cy
-            tq += ct_
-            a += np.sqrt(cx * cx + cy * cy)
             if lid_on:
-                cx, cy, ct_, fsn, mrn = _stiff_contact(
-                    vx, vy, w, ri, 0.0, 1.0, ri - (ly - yi), 0.0, lid_v, fsw[i, 3], mrw[i, 3],
-                    knw, ksw, muw, murw, h,
+                f, _, _ = _add_stiff(
+                    i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (ly - yi), lid_v, fsw, mrw, knw, ksw,
+                    muw, murw, h, f, True,
                 )  # fmt: skip
-                fsw[i, 3] = fsn
-                mrw[i, 3] = mrn
-                fx += cx
-                fy += cy
-                tq += ct_
-                a += np.sqrt(cx * cx + cy * cy)
+            fx, fy, tq, a = f
             if pipe_on:
                 dx = px - xi
                 dy = pyq - yi
@@ -778,43 +770,28 @@ def _gather_integrate_block(
         xi = pos[i, 0]
         yi = pos[i, 1]
         # walls: left, right, bottom, lid
-        wx, wy, wt = wall_contact(
-            i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        vx = vel[i, 0]
+        vy = vel[i, 1]
+        w = om[i]
+        f = (fx, fy, tq, a)
+        f, _, _ = _add_stiff(
+            i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
-        wx, wy, wt = wall_contact(
-            i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        f, _, _ = _add_stiff(
+            i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
-        wx, wy, wt = wall_contact(
-            i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        f, _, _ = _add_stiff(
+            i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
         if lid_on:
-            wx, wy, wt = wall_contact(
-                i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
-                knw, ksw, muw, murw, dt,
+            f, _, _ = _add_stiff(
+                i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (lid_y - yi), lid_v, fsw, mrw, knw, ksw,
+                muw, murw, dt, f, diag,
             )  # fmt: skip
-            fx += wx
-            fy += wy
-            tq += wt
-            if diag:
-                a += np.sqrt(wx * wx + wy * wy)
+        fx, fy, tq, a = f
         pfx[i] = 0.0
         pfy[i] = 0.0
         if pipe_on:
@@ -911,43 +888,28 @@ def _gather_integrate_block_fire(
                 a += cmag[ridx[q]]
         xi = pos[i, 0]
         yi = pos[i, 1]
-        wx, wy, wt = wall_contact(
-            i, 0, -1.0, 0.0, ri - (xi - x0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        vx = vel[i, 0]
+        vy = vel[i, 1]
+        w = om[i]
+        f = (fx, fy, tq, a)
+        f, _, _ = _add_stiff(
+            i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
-        wx, wy, wt = wall_contact(
-            i, 1, 1.0, 0.0, ri - (x1 - xi), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        f, _, _ = _add_stiff(
+            i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
-        wx, wy, wt = wall_contact(
-            i, 2, 0.0, -1.0, ri - (yi - y0), 0.0, 0.0, pos, vel, om, rad, fsw, mrw, knw, ksw,
-            muw, murw, dt,
+        f, _, _ = _add_stiff(
+            i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw, murw,
+            dt, f, diag,
         )  # fmt: skip
-        fx += wx
-        fy += wy
-        tq += wt
-        if diag:
-            a += np.sqrt(wx * wx + wy * wy)
         if lid_on:
-            wx, wy, wt = wall_contact(
-                i, 3, 0.0, 1.0, ri - (lid_y - yi), 0.0, lid_v, pos, vel, om, rad, fsw, mrw,
-                knw, ksw, muw, murw, dt,
+            f, _, _ = _add_stiff(
+                i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (lid_y - yi), lid_v, fsw, mrw, knw, ksw,
+                muw, murw, dt, f, diag,
             )  # fmt: skip
-            fx += wx
-            fy += wy
-            tq += wt
-            if diag:
-                a += np.sqrt(wx * wx + wy * wy)
+        fx, fy, tq, a = f
         pfx[i] = 0.0
         pfy[i] = 0.0
         if pipe_on:
