@@ -277,6 +277,32 @@ def _add_stiff(i, k, vx, vy, w, ri, nx, ny, ov, vby, fsw, mrw, kn, ks, mu, mur, 
 
 
 @njit(cache=True, inline="always", error_model="numpy")
+def _add_walls_lid(
+    i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, ly, lid_v, fsw, mrw, kn, ks, mu, mur, dt, f,
+    diag,
+):  # fmt: skip
+    """Add disk i's contacts with the left, right and bottom walls and (when on) the lid at
+    height ``ly`` to ``f`` (:func:`_add_stiff`, in that order); returns the new ``f``."""
+    f, _, _ = _add_stiff(
+        i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, kn, ks, mu, mur, dt, f,
+        diag,
+    )  # fmt: skip
+    f, _, _ = _add_stiff(
+        i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, kn, ks, mu, mur, dt, f, diag
+    )
+    f, _, _ = _add_stiff(
+        i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, kn, ks, mu, mur, dt, f,
+        diag,
+    )  # fmt: skip
+    if lid_on:
+        f, _, _ = _add_stiff(
+            i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (ly - yi), lid_v, fsw, mrw, kn, ks, mu, mur, dt,
+            f, diag,
+        )  # fmt: skip
+    return f
+
+
+@njit(cache=True, inline="always", error_model="numpy")
 def _stiff_gap(xi, yi, ri, x0, x1, y0, lid_on, lid_y, pipe_on, px, py, pr):
     """Smallest gap [m] between a disk and the walls, the lid (if on) and the pipe (if on)."""
     gap = min(xi - x0, x1 - xi, yi - y0) - ri
@@ -566,25 +592,10 @@ def fine_substeps(
             fy = dacc[ll, 1]
             tq = dacc[ll, 2]
             a = dacc[ll, 3]
-            f = (fx, fy, tq, a)
-            f, _, _ = _add_stiff(
-                i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw,
-                murw, h, f, True,
+            fx, fy, tq, a = _add_walls_lid(
+                i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, ly, lid_v, fsw, mrw, knw, ksw, muw,
+                murw, h, (fx, fy, tq, a), True,
             )  # fmt: skip
-            f, _, _ = _add_stiff(
-                i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw,
-                murw, h, f, True,
-            )  # fmt: skip
-            f, _, _ = _add_stiff(
-                i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw,
-                murw, h, f, True,
-            )  # fmt: skip
-            if lid_on:
-                f, _, _ = _add_stiff(
-                    i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (ly - yi), lid_v, fsw, mrw, knw, ksw,
-                    muw, murw, h, f, True,
-                )  # fmt: skip
-            fx, fy, tq, a = f
             if pipe_on:
                 dx = px - xi
                 dy = pyq - yi
@@ -773,25 +784,10 @@ def _gather_integrate_block(
         vx = vel[i, 0]
         vy = vel[i, 1]
         w = om[i]
-        f = (fx, fy, tq, a)
-        f, _, _ = _add_stiff(
-            i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
+        fx, fy, tq, a = _add_walls_lid(
+            i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw, muw,
+            murw, dt, (fx, fy, tq, a), diag,
         )  # fmt: skip
-        f, _, _ = _add_stiff(
-            i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
-        )  # fmt: skip
-        f, _, _ = _add_stiff(
-            i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
-        )  # fmt: skip
-        if lid_on:
-            f, _, _ = _add_stiff(
-                i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (lid_y - yi), lid_v, fsw, mrw, knw, ksw,
-                muw, murw, dt, f, diag,
-            )  # fmt: skip
-        fx, fy, tq, a = f
         pfx[i] = 0.0
         pfy[i] = 0.0
         if pipe_on:
@@ -891,25 +887,10 @@ def _gather_integrate_block_fire(
         vx = vel[i, 0]
         vy = vel[i, 1]
         w = om[i]
-        f = (fx, fy, tq, a)
-        f, _, _ = _add_stiff(
-            i, 0, vx, vy, w, ri, -1.0, 0.0, ri - (xi - x0), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
+        fx, fy, tq, a = _add_walls_lid(
+            i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw, muw,
+            murw, dt, (fx, fy, tq, a), diag,
         )  # fmt: skip
-        f, _, _ = _add_stiff(
-            i, 1, vx, vy, w, ri, 1.0, 0.0, ri - (x1 - xi), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
-        )  # fmt: skip
-        f, _, _ = _add_stiff(
-            i, 2, vx, vy, w, ri, 0.0, -1.0, ri - (yi - y0), 0.0, fsw, mrw, knw, ksw, muw, murw,
-            dt, f, diag,
-        )  # fmt: skip
-        if lid_on:
-            f, _, _ = _add_stiff(
-                i, 3, vx, vy, w, ri, 0.0, 1.0, ri - (lid_y - yi), lid_v, fsw, mrw, knw, ksw,
-                muw, murw, dt, f, diag,
-            )  # fmt: skip
-        fx, fy, tq, a = f
         pfx[i] = 0.0
         pfy[i] = 0.0
         if pipe_on:
