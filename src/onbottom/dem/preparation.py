@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from onbottom.constants import GRAVITY
+from onbottom.dem._generation import rsa_positions
 from onbottom.dem.config import ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
@@ -117,6 +118,37 @@ def _lattice(
     x = x0 + (col + 0.5) * s_x + slack_x * (2.0 * rng.random(n) - 1.0)
     y = y_base + (row + 0.5) * s + slack_y * (2.0 * rng.random(n) - 1.0)
     return np.stack([x, y], axis=1)
+
+
+LOOSE_POROSITY = 0.45
+"""Porosity of a freshly generated ``"random"`` layer [-]. Random sequential addition,
+largest disks first, still places every disk of the SM grading within 2,000 tries at 0.38;
+at 0.45 a layer of 6,000 disks takes about 0.01 s."""
+
+
+def _random_layer(
+    diam: np.ndarray, x0: float, width: float, y_base: float, rng: np.random.Generator
+) -> np.ndarray:
+    """Loose, non-overlapping, statistically isotropic positions above ``y_base``.
+
+    Random sequential addition (largest disks first, each at uniform random centres until it
+    overlaps none placed before) into a band ``width`` wide whose height gives the porosity
+    :data:`LOOSE_POROSITY`; the band grows by 10 % and the layer is redrawn in the rare case
+    a disk finds no place in 2,000 tries. For the SM grading the layer starts 2.6 times
+    less far above its target than on the square lattice of :func:`_lattice`.
+    """
+    order = np.argsort(-diam, kind="stable")
+    d = np.ascontiguousarray(diam[order])
+    height = float(np.sum(np.pi * d**2 / 4.0)) / ((1.0 - LOOSE_POROSITY) * width)
+    while True:
+        u = rng.random((200 * len(d) + 10_000, 2))
+        pos, _ = rsa_positions(d, x0, width, y_base, height, u, 2000)
+        if not np.isnan(pos).any():
+            break
+        height *= 1.1
+    out = np.empty_like(pos)
+    out[order] = pos
+    return out
 
 
 def settle(
@@ -364,7 +396,8 @@ def prepare_sample(
         if li < first_layer:
             continue
         y_base = float(np.max(pos[:, 1] + rad)) if len(rad) else 0.0
-        new_pos = _lattice(diam[ix], 0.0, g.width, y_base, rng)
+        generate = _random_layer if prep.layer_generation == "random" else _lattice
+        new_pos = generate(diam[ix], 0.0, g.width, y_base, rng)
         pos = np.concatenate([pos, new_pos])
         rad = np.concatenate([rad, diam[ix] / 2.0])
         vel = np.concatenate([vel, np.zeros((len(ix), 2))])
