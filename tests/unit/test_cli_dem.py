@@ -136,3 +136,16 @@ def test_dem_event_snapshots_cli(tmp_path):
     names = {Path(f).name for f in json.loads(r.output)["figures"]}
     assert "dem_band_tiny_episode0.png" in names
     assert not any(n.startswith("dem_rotation_tiny_0.0") for n in names)  # fixed ones only
+    # two runs of one preset plotted together: one set of per-run figures each, by file stem
+    r = runner.invoke(
+        cli,
+        [
+            "dem", "plot", str(tmp_path / "on.nc"), str(tmp_path / "off.nc"),
+            "--outdir", str(tmp_path / "two"), "--json",
+        ],
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    names = {Path(f).name for f in json.loads(r.output)["figures"]}
+    assert "dem_band_tiny_on_episode0.png" in names
+    assert not any(n.startswith("dem_band_tiny_off") for n in names)  # no events in "off"
+    assert not any(n.startswith("dem_band_tiny_episode") for n in names)

@@ -580,6 +580,8 @@ def plot_cmd(
 
     RESULTS are run files or summaries (``dem summarize``; V–w, heave and initial profiles
     only). The full-size SM and SD presets carry the paper's centrifuge points as markers.
+    Per-run figures are named after the preset, or ``<preset>_<file stem>`` when two runs of
+    one preset are plotted together.
     """
     import matplotlib.pyplot as plt
     import xarray as xr
@@ -636,8 +638,10 @@ def plot_cmd(
             P.plot_initial_state(inis, float(runs[0].attrs["pipe_diameter"])),
             "dem_initial_state.png",
         )
-    for ds in runs:
-        name = str(ds.attrs.get("preset", "run"))
+    base = [str(ds.attrs.get("preset", "")) or "run" for ds in runs]
+    for path, ds, name in zip(results, runs, base, strict=True):
+        if base.count(name) > 1:  # two runs of one preset (seeds): one set of figures each
+            name = f"{name}_{Path(path).stem}"
         if "snapshot" not in ds.coords:
             continue
         kinds = (
