@@ -10,7 +10,7 @@ the penetration: the whole case as the presets run it. The baseline is always th
 (``Numerics.subcycle = False``), whatever the preset's default, except for ``--lever random``:
 there the baseline is the whole case as the presets ran it before that lever (sub-cycled
 engine, layers laid out on the square lattice, ``Preparation.layer_generation = "lattice"``)
-and the lever lays the layers out by random sequential addition (the default now), prepared
+and the lever lays the layers out by random sequential addition (opt-in), prepared
 and penetrated sub-cycled.
 
 Run (in a worktree prefix ``PYTHONPATH=src``)::

@@ -13,6 +13,7 @@ from onbottom.dem.config import (
     DEMConfig,
     Geometry,
     Loading,
+    Numerics,
     Preparation,
 )
 from onbottom.dem.experiment import initial_state, penetrate
@@ -21,11 +22,14 @@ from onbottom.dem.preparation import prepare_sample
 
 pytestmark = pytest.mark.verification
 
+# zonally sub-cycled (SD-reduced itself is plain, see Numerics.subcycle): the resume tests
+# below then cover the sub-cycled preparation and penetration
 TINY = SD_REDUCED.replace(
     name="tiny",
     geometry=Geometry(width=0.06, height=0.02, pipe_diameter=0.02),
     preparation=Preparation(n_layers=2, max_settle_time=0.05),
     loading=Loading(gravity_factor=25.0, pipe_velocity=0.1, final_embedment_ratio=0.05),
+    numerics=Numerics(subcycle=True),
 )
 
 
