@@ -1,6 +1,6 @@
 """Validation of the full-size DEM runs against the penetration paper (§4.2–4.3, Figs. 5, 8).
 
-A full-size case (≈ 60k disks) takes 1.3 h on 2 cores (sub-cycled; 2.5 h plain), so it is not
+A full-size case (≈ 60k disks) takes 1.3–1.6 h on 2 cores (sub-cycled; 2.5 h plain), so it is not
 rerun here: the tests read the committed summaries in ``docs/validation/dem/`` (written by
 ``onbottom dem summarize`` from the runs; how they were produced, on which commit and machine,
 is in ``docs/validation/dem_penetration.md``) and skip a case whose summary is not there yet.
@@ -85,12 +85,22 @@ _SM48_SOFTENS = (
 )
 
 
+_SM48_SEED4_SOFTENS = (
+    "the second SM-Dr48 seed (seed 4, interior e = 0.2241, D_r 51 %) rises overall too (42.7 / "
+    "89.2 / 104.0 kN/m at 0.1 / 0.3 / 0.5D) and saw-tooths: drops of 42 % at 0.20-0.21D, 24 % "
+    "at 0.34-0.36D and 32 % at 0.42-0.43D (131 -> 90 kN/m), none with a band reaching the "
+    "surface (0 of 5); see docs/validation/dem_penetration.md"
+)
+
+
 @pytest.mark.parametrize(
     "name",
     [
         pytest.param("SM", marks=pytest.mark.xfail(strict=True, reason=_SM_SOFTENS)),
         pytest.param("SM-Dr48", marks=pytest.mark.xfail(strict=True, reason=_SM48_SOFTENS)),
-        "SM-Dr48-seed4",
+        pytest.param(
+            "SM-Dr48-seed4", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED4_SOFTENS)
+        ),
     ],
 )
 def test_medium_dense_hardens(name):
