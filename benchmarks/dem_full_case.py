@@ -81,6 +81,7 @@ def main() -> None:
         "preset": cfg.name,
         "seed": cfg.seed,
         "subcycle": cfg.numerics.subcycle,
+        "numerics": dataclasses.asdict(cfg.numerics),
         "threads": numba.config.NUMBA_NUM_THREADS,
         "cores": os.cpu_count(),
         "load_start": load(),
@@ -153,6 +154,7 @@ def penetration(
         "particle_steps_per_s": sample.n * steps / pen_wall,
         "dt": float(ds.attrs["dt"]),
         "inertial_number": float(ds.attrs["inertial_number"]),
+        "numerics": dataclasses.asdict(cfg.numerics),
         "load_end": load(),
     }
     prep_wall = fig["preparation"]["wall_s"]

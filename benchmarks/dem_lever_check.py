@@ -11,7 +11,9 @@ the penetration: the whole case as the presets run it. The baseline is always th
 there the baseline is the whole case as the presets ran it before that lever (sub-cycled
 engine, layers laid out on the square lattice, ``Preparation.layer_generation = "lattice"``)
 and the lever lays the layers out by random sequential addition (opt-in), prepared
-and penetrated sub-cycled.
+and penetrated sub-cycled. ``--lever step --dt-safety F`` penetrates each plain specimen with
+the plain engine at another time step (``Numerics.dt_safety``): the step's own effect, the
+control for a lever whose error shrinks with the step.
 
 Run (in a worktree prefix ``PYTHONPATH=src``)::
 
@@ -41,12 +43,17 @@ EDGES = np.arange(0.0, 0.5001, 0.05)
 
 def lever(cfg: DEMConfig, name: str) -> DEMConfig:
     """``cfg`` with one lever on."""
-    if name in ("subcycle", "subcycle-prep", "subcycle-all"):
+    if name == "subcycle":  # the penetration (the specimens are the plain ones)
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, subcycle=True))
+    if name in ("subcycle-prep", "subcycle-all"):
+        num = dataclasses.replace(cfg.numerics, subcycle=True, subcycle_preparation=True)
+        return cfg.replace(numerics=num)
     if name == "sort":
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, sort_disks=True))
     if name == "fire":
         return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation="fire"))
+    if name == "step":  # the time step comes from --dt-safety
+        return cfg
     if name == "random":
         return cfg.replace(
             preparation=dataclasses.replace(cfg.preparation, layer_generation="random")
@@ -69,7 +76,7 @@ def main() -> None:
     ap.add_argument(
         "--lever",
         default="subcycle",
-        choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire", "random"),
+        choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire", "random", "step"),
     )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
@@ -77,6 +84,8 @@ def main() -> None:
         "--cache", default=None, help="folder keeping the specimens and plain curves between calls"
     )
     args = ap.parse_args()
+    if args.lever == "step" and args.dt_safety is None:
+        ap.error("--lever step needs --dt-safety")
     cache = Path(args.cache) if args.cache else None
     if cache is not None:
         cache.mkdir(parents=True, exist_ok=True)
@@ -95,7 +104,9 @@ def main() -> None:
         lcfg = lever(cfg, args.lever)
         if args.dt_safety is not None:
             lcfg = lcfg.replace(
-                numerics=dataclasses.replace(lcfg.numerics, dt_safety=args.dt_safety)
+                numerics=dataclasses.replace(
+                    lcfg.numerics, dt_safety=args.dt_safety, subcycle_dt_safety=None
+                )
             )
         t0 = time.perf_counter()
         spath = cache / f"{cfg.name}_seed{seed}.nc" if cache is not None else None

@@ -131,3 +131,44 @@ def test_sample_netcdf_roundtrip(tmp_path):
     assert t.box == s.box
     with pytest.raises(InputError, match="positions"):
         Sample(np.zeros((3, 3)), np.ones(3), (0, 1, 0, 1))
+
+
+def test_sd_presets_subcycle_the_penetration_only_at_half_the_step():
+    """SD: plain step in the preparation, sub-cycled penetration at subcycle_dt_safety 0.25."""
+    import dataclasses
+
+    from onbottom.dem.config import PRESETS, Numerics
+    from onbottom.dem.experiment import make_simulation
+
+    sd = PRESETS["SD-reduced"]
+    assert sd.numerics.subcycle and not sd.numerics.prep_subcycles
+    assert sd.numerics.subcycled_dt_safety == 0.25
+    assert PRESETS["SM-Dr48"].numerics.prep_subcycles
+    assert PRESETS["SM"].numerics.subcycled_dt_safety == 0.5
+    rng = np.random.default_rng(0)
+    radii = np.full(4, 1e-3)
+    sample = Sample(rng.random((4, 2)) * 0.1, radii, (0.0, 0.14, 0.0, 0.06))
+    m_min = sd.material.density * math.pi * 1e-6
+    sim = make_simulation(sd, sample, threads=1)
+    assert sim.dt == pytest.approx(0.25 * critical_time_step(m_min, 7.5e7))
+    assert sim.nsub == 4  # ceil(sqrt(1e9 / 7.5e7))
+    plain = sd.replace(numerics=dataclasses.replace(sd.numerics, subcycle=False))
+    sim = make_simulation(plain, sample, threads=1)
+    assert sim.dt == pytest.approx(0.5 * critical_time_step(m_min, 1e9))
+    assert sim.nsub == 1
+    with pytest.raises(InputError, match="subcycle_dt_safety"):
+        Numerics(subcycle_dt_safety=0.0)
+
+
+def test_a_field_added_later_with_its_old_default_is_no_difference():
+    from onbottom.dem.identity import differences
+
+    saved = {"config": {"numerics": {"subcycle": True}}}
+    now = {"config": {"numerics": {"subcycle": True, "subcycle_preparation": True}}}
+    assert differences(saved, now) == []
+    now["config"]["numerics"]["subcycle_preparation"] = False
+    assert differences(saved, now) == [
+        "config.numerics.subcycle_preparation: '(absent)' in the file, False now"
+    ]
+    now = {"config": {"numerics": {"subcycle": True, "subcycle_dt_safety": None}}}
+    assert differences(saved, now) == []

@@ -113,10 +113,34 @@ def test_sub_cycling_fails_on_sd_reduced_beyond_round_off(record, fails):
     plain ones at 0.35–0.45D (whole case 1.69, penetration alone on the same specimens 2.83
     standard deviations at 0.4–0.45D; curve mean −18.9 ± 7.7 and −16.9 ± 9.3 kN/m), while
     round-off alone (the same specimens renumbered) stays at 0.51. That is why the SD presets
-    keep the plain step (``Numerics.subcycle`` is off by default and on in the SM presets)."""
+    prepare with the plain step and sub-cycle their penetration only at half the step (the
+    next test)."""
     plain, lever = _lever_rows(record)
     assert plain.shape == lever.shape == (8, 10)
     scatter = plain.std(axis=0, ddof=1)
     ratio = np.abs(lever.mean(axis=0) - plain.mean(axis=0)) / scatter
     assert bool(ratio.max() > 1.0) == fails, ratio
     assert ratio[:4].max() < 0.25  # identical to 0.2D whatever the engine
+
+
+def _ratio_to(reference: np.ndarray, run: np.ndarray) -> np.ndarray:
+    return np.abs(run.mean(axis=0) - reference.mean(axis=0)) / reference.std(axis=0, ddof=1)
+
+
+def test_sd_penetration_sub_cycled_at_half_the_step_matches_the_step_converged_reference():
+    """SD-reduced, the same 8 plain specimens: the plain engine's own step moves the deep bins
+    (plain at dt_safety 0.25 against 0.5: 1.12 at 0.4–0.45D), so the reference is the plain
+    engine at 0.125. Against it the penetration sub-cycled at 0.25 (the SD presets) stays
+    within the seed scatter (0.49; round-off alone 0.51) and closer than the plain engine at
+    the default 0.5 (0.97); sub-cycled at 0.5 it does not (1.55)."""
+    p05, p0125 = _lever_rows("SD-reduced_plain_dt0125_8seeds.json")
+    p05b, p025 = _lever_rows("SD-reduced_plain_dt025_8seeds.json")
+    _, s025 = _lever_rows("SD-reduced_subcycle_pen_dt025_8seeds.json")
+    p05c, s05 = _lever_rows("SD-reduced_subcycle_pen_8seeds.json")
+    np.testing.assert_array_equal(p05, p05b)  # the same specimens and plain curves
+    np.testing.assert_array_equal(p05, p05c)
+    assert _ratio_to(p05, p025).max() > 1.0  # the plain step is not converged in the deep bins
+    r_sub025 = _ratio_to(p0125, s025).max()
+    assert r_sub025 < 1.0
+    assert r_sub025 < _ratio_to(p0125, p05).max()
+    assert _ratio_to(p0125, s05).max() > 1.0

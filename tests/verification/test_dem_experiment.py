@@ -22,7 +22,8 @@ from onbottom.dem.preparation import prepare_sample
 
 pytestmark = pytest.mark.verification
 
-# zonally sub-cycled (SD-reduced itself is plain, see Numerics.subcycle): the resume tests
+# zonally sub-cycled in every stage (SD-reduced sub-cycles its penetration only, see
+# Numerics.subcycle_preparation): the resume tests
 # below then cover the sub-cycled preparation and penetration
 TINY = SD_REDUCED.replace(
     name="tiny",
@@ -361,3 +362,15 @@ def test_checkpoint_without_event_state_resumes_with_events_off(tmp_path, plain_
     assert "without event-snapshot state" in rest.attrs["event_snapshots_note"]
     assert list(rest["snapshot_kind"].values) == ["fixed"]
     np.testing.assert_array_equal(rest["V"].values, deeper_run["V"].values)
+
+
+def test_penetration_only_subcycling_prepares_the_plain_specimen():
+    """``subcycle_preparation = False`` (the SD presets): the preparation is the plain one."""
+    plain = TINY.replace(numerics=Numerics(subcycle=False))
+    pen_only = TINY.replace(
+        numerics=Numerics(subcycle=True, subcycle_preparation=False, subcycle_dt_safety=0.25)
+    )
+    a = prepare_sample(plain)
+    b = prepare_sample(pen_only)
+    np.testing.assert_array_equal(a.positions, b.positions)
+    np.testing.assert_array_equal(a.contacts["fs"], b.contacts["fs"])

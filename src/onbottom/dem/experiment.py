@@ -88,7 +88,9 @@ def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = Non
     """A :class:`Simulation` of ``sample`` with the design contacts at N g (no pipe yet)."""
     c = config.contacts
     m_min = config.material.density * math.pi * float(sample.radii.min()) ** 2
-    dt, nsub = step_sizes(c, m_min, config.numerics.dt_safety, config.numerics.subcycle)
+    num = config.numerics
+    safety = num.subcycled_dt_safety if num.subcycle else num.dt_safety
+    dt, nsub = step_sizes(c, m_min, safety, num.subcycle)
     return Simulation(
         sample,
         c,

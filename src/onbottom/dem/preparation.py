@@ -338,13 +338,16 @@ def prepare_sample(
     n_g = config.loading.gravity_factor
     m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
     w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    # the compaction always takes the plain step; with Numerics.subcycle the 1 g and N g
-    # stages are zonally sub-cycled (a sub-cycled compaction gave stiffer specimens, see
-    # docs/theory/dem.md, "Speed levers")
+    # the compaction always takes the plain step; with Numerics.subcycle (and
+    # subcycle_preparation) the 1 g and N g stages are zonally sub-cycled (a sub-cycled
+    # compaction gave stiffer specimens, see docs/theory/dem.md, "Speed levers")
     dt_plain, _ = step_sizes(config.contacts, m_min, config.numerics.dt_safety, False)
-    dt_sub, nsub_sub = step_sizes(
-        config.contacts, m_min, config.numerics.dt_safety, config.numerics.subcycle
-    )
+    if config.numerics.prep_subcycles:
+        dt_sub, nsub_sub = step_sizes(
+            config.contacts, m_min, config.numerics.subcycled_dt_safety, True
+        )
+    else:
+        dt_sub, nsub_sub = dt_plain, 1
 
     def new_sim(sample: Sample, equilibrium_stage: bool = False) -> Simulation:
         s = Simulation(
