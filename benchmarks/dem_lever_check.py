@@ -7,13 +7,16 @@ lever. With ``--lever fire`` (or ``subcycle-prep``) the *preparation* changes, s
 prepared twice and the specimens (void ratios, steps) are compared as well;
 ``--lever subcycle-all`` sub-cycles both the preparation (its 1 g, ramp and N g stages) and
 the penetration: the whole case as the presets run it. The baseline is always the plain engine
-(``Numerics.subcycle = False``), whatever the preset's default, except for ``--lever random``:
-there the baseline is the whole case as the presets ran it before that lever (sub-cycled
-engine, layers laid out on the square lattice, ``Preparation.layer_generation = "lattice"``)
-and the lever lays the layers out by random sequential addition (opt-in), prepared
-and penetrated sub-cycled. ``--lever step --dt-safety F`` penetrates each plain specimen with
-the plain engine at another time step (``Numerics.dt_safety``): the step's own effect, the
-control for a lever whose error shrinks with the step.
+(``Numerics.subcycle = False``), whatever the preset's default, except for ``--lever
+lidpause`` (the whole case as the preset runs it, against the same with the lid's pressure
+pauses ended as soon as the pressure falls, ``Preparation.lid_pause = "adaptive"``) and for
+``--lever random``: there the baseline is the whole case as the presets ran it before that
+lever (sub-cycled engine, layers laid out on the square lattice,
+``Preparation.layer_generation = "lattice"``) and the lever lays the layers out by random
+sequential addition (opt-in), prepared and penetrated sub-cycled. ``--lever step
+--dt-safety F`` penetrates each plain specimen with the plain engine at another time step
+(``Numerics.dt_safety``): the step's own effect, the control for a lever whose error shrinks
+with the step.
 
 Run (in a worktree prefix ``PYTHONPATH=src``)::
 
@@ -54,6 +57,10 @@ def lever(cfg: DEMConfig, name: str) -> DEMConfig:
         return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation="fire"))
     if name == "step":  # the time step comes from --dt-safety
         return cfg
+    if name == "lidspeed":  # the speed comes from --lid-speed
+        return cfg
+    if name == "lidpause":
+        return cfg.replace(preparation=dataclasses.replace(cfg.preparation, lid_pause="adaptive"))
     if name == "random":
         return cfg.replace(
             preparation=dataclasses.replace(cfg.preparation, layer_generation="random")
@@ -76,7 +83,25 @@ def main() -> None:
     ap.add_argument(
         "--lever",
         default="subcycle",
-        choices=("subcycle", "subcycle-prep", "subcycle-all", "sort", "fire", "random", "step"),
+        choices=(
+            "subcycle",
+            "subcycle-prep",
+            "subcycle-all",
+            "sort",
+            "fire",
+            "random",
+            "step",
+            "lidpause",
+            "lidspeed",
+        ),
+    )
+    ap.add_argument(
+        "--preset-engine",
+        action="store_true",
+        help="baseline: the preset as it is (its own engine) instead of the plain engine",
+    )
+    ap.add_argument(
+        "--lid-speed", type=float, default=1.0, help="lid speed of --lever lidspeed [m/s]"
     )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
@@ -97,11 +122,23 @@ def main() -> None:
             numerics=dataclasses.replace(preset.numerics, subcycle=True),
             preparation=dataclasses.replace(preset.preparation, layer_generation="lattice"),
         )
-    prep_changes = args.lever in ("fire", "subcycle-prep", "subcycle-all", "random")
+    if args.lever in ("lidpause", "lidspeed") or args.preset_engine:  # the preset as it is
+        base = preset
+    prep_changes = args.lever in (
+        "fire",
+        "subcycle-prep",
+        "subcycle-all",
+        "random",
+        "lidpause",
+        "lidspeed",
+    )
     rows = []
     for seed in args.seeds:
         cfg = base.replace(seed=seed)
         lcfg = lever(cfg, args.lever)
+        if args.lever == "lidspeed":
+            prep = dataclasses.replace(cfg.preparation, lid_speed=args.lid_speed)
+            lcfg = lcfg.replace(preparation=prep)
         if args.dt_safety is not None:
             lcfg = lcfg.replace(
                 numerics=dataclasses.replace(

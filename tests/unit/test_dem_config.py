@@ -172,3 +172,15 @@ def test_a_field_added_later_with_its_old_default_is_no_difference():
     ]
     now = {"config": {"numerics": {"subcycle": True, "subcycle_dt_safety": None}}}
     assert differences(saved, now) == []
+
+
+def test_lid_pause_is_validated_and_defaults_to_the_committed_runs():
+    from onbottom.dem.config import Preparation
+    from onbottom.dem.identity import differences
+
+    assert Preparation().lid_pause == "fixed"
+    with pytest.raises(InputError, match="lid_pause"):
+        Preparation(lid_pause="sometimes")
+    saved = {"config": {"preparation": {"n_layers": 4}}}
+    now = {"config": {"preparation": {"n_layers": 4, "lid_pause": "fixed"}}}
+    assert differences(saved, now) == []

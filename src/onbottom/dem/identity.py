@@ -118,6 +118,7 @@ def _flatten(d: Any, prefix: str = "") -> dict[str, Any]:
 _ADDED_WITH_DEFAULT: dict[str, Any] = {
     "config.numerics.subcycle_preparation": True,
     "config.numerics.subcycle_dt_safety": None,
+    "config.preparation.lid_pause": "fixed",
 }
 
 

@@ -41,7 +41,7 @@ import numpy as np
 
 from onbottom.constants import GRAVITY
 from onbottom.dem._generation import rsa_positions
-from onbottom.dem.config import ContactParameters, DEMConfig
+from onbottom.dem.config import LID_PAUSE_CHECK, LID_PAUSE_STEPS, ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
 from onbottom.dem.sample import Sample
@@ -420,7 +420,13 @@ def prepare_sample(
                 # pause and let the layer relax: a fast lid hitting loose disks also gives
                 # large transient forces; only a force that persists means a jammed layer
                 sim.set_lid(sim.lid, 0.0)
-                sim.run(2000)
+                if prep.lid_pause == "adaptive":
+                    for _ in range(LID_PAUSE_STEPS // LID_PAUSE_CHECK):
+                        sim.run(LID_PAUSE_CHECK)
+                        if sim.lid_force() <= p_cap * g.width:
+                            break
+                else:
+                    sim.run(LID_PAUSE_STEPS)
                 if sim.lid_force() > p_cap * g.width:
                     capped = True
                     break
