@@ -163,8 +163,12 @@ def measuring_circles(
             "sigma_v": ("depth", sv, {"long_name": "vertical stress", "units": "Pa"}),
             "K0": (
                 "depth",
-                sh / sv,
-                {"long_name": "lateral earth pressure coefficient", "units": "1"},
+                np.divide(sh, sv, out=np.full_like(sh, np.nan), where=sv != 0.0),
+                {
+                    "long_name": "lateral earth pressure coefficient",
+                    "units": "1",
+                    "comment": "NaN where the circles carry no vertical stress (undefined)",
+                },
             ),
             "particles_per_circle": (
                 "depth",
