@@ -162,3 +162,12 @@ def test_sd_preparation_levers_stay_within_the_seed_scatter(record):
     rows = json.loads((LEVERS / record).read_text())["rows"]
     e = np.array([r["e_Ng"] for r in rows], float)
     assert np.abs(e[:, 1] - e[:, 0]).max() < 0.0035
+
+
+def test_a_faster_lid_was_rejected_on_its_record():
+    """The lid at 1.0 m/s instead of 0.5 (the compaction of a full-size SM bed is mostly lid
+    travel) fails on SM-reduced, 8 seeds, whole cases: 2.63 standard deviations at 0.35–0.4D
+    and 0.98 at 0–0.05D, so the presets keep 0.5 m/s."""
+    plain, lever = _lever_rows("SM-reduced_lidspeed1_whole_case_8seeds.json")
+    assert plain.shape == lever.shape == (8, 10)
+    assert _ratio_to(plain, lever).max() > 1.0
