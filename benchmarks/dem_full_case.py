@@ -60,8 +60,17 @@ def main() -> None:
     ap.add_argument(
         "--subcycle", default=None, choices=("on", "off"), help="override Numerics.subcycle"
     )
+    ap.add_argument(
+        "--sort-disks",
+        default=None,
+        choices=("on", "off"),
+        help="override Numerics.sort_disks (off: resume a run started before it was on)",
+    )
     args = ap.parse_args()
     cfg = PRESETS[args.preset]
+    if args.sort_disks is not None:
+        num = dataclasses.replace(cfg.numerics, sort_disks=args.sort_disks == "on")
+        cfg = cfg.replace(numerics=num)
     if args.seed is not None:
         cfg = cfg.replace(seed=args.seed)
     if args.subcycle is not None:
