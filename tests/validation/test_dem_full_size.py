@@ -25,8 +25,10 @@ interior void ratio at 25 g within 0.227 ± 0.004 (D_r 44–52 %, the paper 48 %
 ``SM-Dr48_*``): the same checks as SM-Dr48, added on 2026-11-23 while its preparation ran,
 before its penetration.
 
-``SD-seed5`` (the dense preset, second seed 5, plain engine, summary files renamed from
-``SD_*``; written on 2026-11-23 while its preparation ran, before its penetration): the SD
+``SD-seed5`` (the dense preset, second seed 5, summary files renamed from ``SD_*``; written
+on 2026-11-23 before its run, which then started over with the SD preset of that evening —
+FIRE preparation, penetration sub-cycled at ``subcycle_dt_safety`` 0.25 — the tolerances
+unchanged): the SD
 checks (complete/quasi-static, periodic softening, heave, resistance at 0.4D and 0.5D, heaves
 more than SM) plus its interior void ratio at 25 g within 0.197 ± 0.004 (D_r 74–82 %, the paper
 78 %; seed 2 came out at 0.1941), and the paper's reading of its Figs 8, 10 and 11 — the dense
