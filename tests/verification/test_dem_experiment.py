@@ -141,7 +141,13 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
     mean V over 0.02–0.1D, not a 0.02D window: at 0.04–0.06D one grain decides (plain engine
     SD 4454 against SM 3756 N/m, sub-cycled SD 3431 against SM 3790, the same specimens within
     round-off), while over 0.02–0.1D SD is 1.41× (plain) and 1.30× (sub-cycled) stiffer, and
-    over 0–0.25D 1.66× and 1.65×.
+    over 0–0.25D 1.66× and 1.65×. With the SD presets of 2026-11-23 (FIRE preparation, cell
+    order) this pair of seeds (SD 2, SM 1) came out the other way over 0.02–0.1D (3602
+    against 3906 N/m), so the window is the run's whole 0.02–0.25D: on the committed 8-seed
+    records (``levers/SD-reduced_fire_whole_case_8seeds.json`` and the SM-reduced baseline of
+    ``levers/SM-reduced_lidspeed1_whole_case_8seeds.json``) SD is stiffer than SM in 59 of the
+    64 seed pairs over 0–0.1D and in all 64 over 0–0.25D — the early window is a single-seed
+    coin toss one time in twelve, the longer one is the paper's claim.
     """
     from onbottom.dem.summary import heave_metrics
 
@@ -152,8 +158,8 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
         V = ds["V"].values
         assert ds.attrs["complete"]
         assert ds.attrs["inertial_number"] > 0.0
-        # initial response: mean V over 0.02–0.1D (after the first contact)
-        sel = (w > 0.02 * D) & (w < 0.1 * D)
+        # initial response: mean V over 0.02–0.25D (after the first contact)
+        sel = (w > 0.02 * D) & (w < 0.25 * D)
         k_ini = V[sel].mean()
         xs = ds["x_bin"].values
         x_pipe = 0.5 * (xs.min() + xs.max())
