@@ -64,6 +64,39 @@ def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
     assert not ck.exists()
 
 
+def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(
+    tmp_path, monkeypatch
+):
+    """``sort_disks``: cell order before each compacted layer and before 1 g; a run stopped
+    after the first layer resumes to the same specimen."""
+    from onbottom.dem.sample import Sample
+
+    cfg = TINY.replace(numerics=dataclasses.replace(TINY.numerics, sort_disks=True))
+    calls = []
+    original = Sample.cell_order
+
+    def counted(self, cell=None):
+        calls.append(self.n)
+        return original(self, cell)
+
+    monkeypatch.setattr(Sample, "cell_order", counted)
+    whole = prepare_sample(cfg)
+    n_l = cfg.preparation.n_layers
+    assert len(calls) == n_l + 1
+    assert calls[0] < calls[1] == calls[-1] == whole.n  # the first layer alone, then all
+    ck = tmp_path / "prep.nc"
+
+    def stop_after_first_layer(stage, fraction):
+        if stage == "compaction" and ck.exists():
+            raise _Interrupt
+
+    with pytest.raises(_Interrupt):
+        prepare_sample(cfg, progress=stop_after_first_layer, checkpoint=ck)
+    resumed = prepare_sample(cfg, checkpoint=ck)
+    np.testing.assert_array_equal(resumed.positions, whole.positions)
+    np.testing.assert_array_equal(resumed.radii, whole.radii)
+
+
 @pytest.mark.parametrize("stage", ["1g", "Ng"])
 def test_preparation_resumes_inside_an_equilibrium_stage(tmp_path, tiny_sample, stage):
     ck = tmp_path / "prep.nc"

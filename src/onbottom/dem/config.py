@@ -403,8 +403,10 @@ class Numerics:
         (1.55), so the SD presets sub-cycle their penetration at 0.25
         (``docs/validation/dem_penetration.md``).
     sort_disks
-        Renumber the compacted specimen in cell order (rows of cells 2·d_max high, then x)
-        for memory locality, before the 1 g stage [-]; the physics is unchanged (round-off
+        Renumber the specimen in cell order (rows of cells 2·d_max high, then x) for memory
+        locality, before each compacted layer and before the 1 g stage [-] (before each layer
+        since 2026-11-23: compaction mixes each layer over its height; a run made before
+        renumbered after the compaction only); the physics is unchanged (round-off
         only: on SD-reduced, 8 seeds, the renumbered penetrations stay at 0.51 seed standard
         deviations of the plain ones). On in the presets: a compacted full-size specimen is
         only roughly row-ordered, and in cell order its step costs 15–33 % less CPU time

@@ -406,6 +406,10 @@ def prepare_sample(
         vel = np.concatenate([vel, np.zeros((len(ix), 2))])
         om = np.concatenate([om, np.zeros(len(ix))])
         sample = Sample(pos, rad, box, velocities=vel, omega=om, contacts=history)
+        if config.numerics.sort_disks:
+            # compaction mixes each layer over its height: renumber the specimen in cell
+            # order before each layer as well (round-off only)
+            sample = sample.permuted(sample.cell_order())
         t_prev = sim.time if sim is not None else 0.0
         sim = new_sim(sample)
         sim.time = t_prev
