@@ -64,9 +64,7 @@ def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
     assert not ck.exists()
 
 
-def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(
-    tmp_path, monkeypatch
-):
+def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(tmp_path, monkeypatch):
     """``sort_disks``: cell order before each compacted layer and before 1 g; a run stopped
     after the first layer resumes to the same specimen."""
     from onbottom.dem.sample import Sample
