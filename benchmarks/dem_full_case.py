@@ -11,7 +11,9 @@ checkpoint (``<out>/checkpoints/``), from which any stretch of the run can be re
 bitwise (for instance to take field snapshots at w/D values only known afterwards).
 
 ``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
-second reads the specimen and the first's figures); the total is the sum of the two.
+second reads the specimen and the first's figures); the total is the sum of the two. A
+penetration resumed from its checkpoint reports this call's wall time, ``steps_this_call``
+and the rate over those steps (``steps`` is the run's total).
 
 Run::
 
@@ -32,6 +34,7 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 import dataclasses
 
 import numba
+import xarray as xr
 
 from onbottom.dem.config import PRESETS
 from onbottom.dem.experiment import penetrate
@@ -139,6 +142,10 @@ def penetration(
 ) -> None:
     """Penetrate ``sample`` to the final embedment; add the figures to ``fig`` and save."""
     ck = out / f"{name}_run.checkpoint.nc"
+    steps_before = 0  # steps a checkpoint this call resumes from had already taken
+    if ck.exists():
+        with xr.open_dataset(ck) as saved:
+            steps_before = int(json.loads(saved.attrs["checkpoint_meta"])["step_count"])
     seen = [0.0]
     t1 = time.perf_counter()
 
@@ -159,8 +166,9 @@ def penetration(
     fig["penetration"] = {
         "wall_s": pen_wall,
         "steps": steps,
+        "steps_this_call": steps - steps_before,
         "disks": sample.n,
-        "particle_steps_per_s": sample.n * steps / pen_wall,
+        "particle_steps_per_s": sample.n * (steps - steps_before) / pen_wall,
         "dt": float(ds.attrs["dt"]),
         "inertial_number": float(ds.attrs["inertial_number"]),
         "numerics": dataclasses.asdict(cfg.numerics),

