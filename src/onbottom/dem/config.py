@@ -409,8 +409,9 @@ class Numerics:
         renumbered after the compaction only); the physics is unchanged (round-off
         only: on SD-reduced, 8 seeds, the renumbered penetrations stay at 0.51 seed standard
         deviations of the plain ones). On in the presets: a compacted full-size specimen is
-        only roughly row-ordered, and in cell order its step costs 15–33 % less CPU time
-        (measured on the SD and SM-Dr48 specimens, ``benchmarks/bench_dem.py --cell-order``).
+        only roughly row-ordered; in cell order its step is 2–4 % faster on 2 threads and
+        10 % on one on an idle machine (``benchmarks/bench_dem_cell_order.py``,
+        ``bench_dem.py --cell-order``), 15–33 % beside another run sharing the cores.
     """
 
     dt_safety: float = 0.5
