@@ -49,19 +49,23 @@ class _Interrupt(Exception):
     pass
 
 
-def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
-    ck = tmp_path / "prep.nc"
+def _assert_resumes_after_first_layer(config, ck, whole):
+    """Stop ``config``'s preparation once its first layer is checkpointed, resume: ``whole``."""
 
     def stop_after_first_layer(stage, fraction):
         if stage == "compaction" and ck.exists():
             raise _Interrupt
 
     with pytest.raises(_Interrupt):
-        prepare_sample(TINY, progress=stop_after_first_layer, checkpoint=ck)
-    resumed = prepare_sample(TINY, checkpoint=ck)
-    np.testing.assert_array_equal(resumed.positions, tiny_sample.positions)
-    np.testing.assert_array_equal(resumed.radii, tiny_sample.radii)
+        prepare_sample(config, progress=stop_after_first_layer, checkpoint=ck)
+    resumed = prepare_sample(config, checkpoint=ck)
+    np.testing.assert_array_equal(resumed.positions, whole.positions)
+    np.testing.assert_array_equal(resumed.radii, whole.radii)
     assert not ck.exists()
+
+
+def test_preparation_resumes_from_layer_checkpoint(tmp_path, tiny_sample):
+    _assert_resumes_after_first_layer(TINY, tmp_path / "prep.nc", tiny_sample)
 
 
 def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(tmp_path, monkeypatch):
@@ -82,17 +86,7 @@ def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(tmp_
     n_l = cfg.preparation.n_layers
     assert len(calls) == n_l + 1
     assert calls[0] < calls[1] == calls[-1] == whole.n  # the first layer alone, then all
-    ck = tmp_path / "prep.nc"
-
-    def stop_after_first_layer(stage, fraction):
-        if stage == "compaction" and ck.exists():
-            raise _Interrupt
-
-    with pytest.raises(_Interrupt):
-        prepare_sample(cfg, progress=stop_after_first_layer, checkpoint=ck)
-    resumed = prepare_sample(cfg, checkpoint=ck)
-    np.testing.assert_array_equal(resumed.positions, whole.positions)
-    np.testing.assert_array_equal(resumed.radii, whole.radii)
+    _assert_resumes_after_first_layer(cfg, tmp_path / "prep.nc", whole)
 
 
 @pytest.mark.parametrize("stage", ["1g", "Ng"])
