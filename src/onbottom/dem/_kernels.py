@@ -689,6 +689,7 @@ def gather_integrate(
     fine,
     fire,
     bsum,
+    stiff,
 ):
     """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update.
 
@@ -736,14 +737,14 @@ def gather_integrate(
                 i0, i1, dt, gx, gy, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
                 y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
                 mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
-                pfx, pfy, unb, app, fixed, ref, fa, ctr, crot, restart, bsum, b,
+                pfx, pfy, unb, app, fixed, ref, fa, ctr, crot, restart, bsum, b, stiff,
             )  # fmt: skip
         else:
             dmax[b] = _gather_integrate_block(
                 i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
                 y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
                 mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
-                pfx, pfy, unb, app, fixed, ref, zonal, fine,
+                pfx, pfy, unb, app, fixed, ref, zonal, fine, stiff,
             )  # fmt: skip
 
 
@@ -752,7 +753,7 @@ def _gather_integrate_block(
     i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
     lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart,
     ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
-    zonal, fine,
+    zonal, fine, stiff,
 ):  # fmt: skip
     """Disks i0..i1−1 of :func:`gather_integrate`; returns their largest squared displacement
     since the last list build (new positions vs ``ref``)."""
@@ -760,6 +761,7 @@ def _gather_integrate_block(
     for ii in range(i0, i1):
         i = np.uint64(ii)  # unsigned: no negative-index wrap-around code
         if zonal and fine[i]:  # moved by fine_substeps
+            stiff[i] = 1  # its wall and pipe histories are fine_substeps' business
             ex = pos[i, 0] - ref[i, 0]
             ey = pos[i, 1] - ref[i, 1]
             dmax = max(dmax, ex * ex + ey * ey)
@@ -784,12 +786,17 @@ def _gather_integrate_block(
         vx = vel[i, 0]
         vy = vel[i, 1]
         w = om[i]
-        fx, fy, tq, a = _add_walls_lid(
-            i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw, muw,
-            murw, dt, (fx, fy, tq, a), diag,
-        )  # fmt: skip
-        pfx[i] = 0.0
-        pfy[i] = 0.0
+        # stiff[i] = 0: the disk's wall, lid and pipe histories are zero, and for a disk
+        # clear of them their contact laws add zeros and write zeros (skipped: same bits)
+        near = (xi - x0 < ri) | (x1 - xi < ri) | (yi - y0 < ri) | (lid_on & (lid_y - yi < ri))
+        if near or stiff[i]:
+            fx, fy, tq, a = _add_walls_lid(
+                i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw,
+                muw, murw, dt, (fx, fy, tq, a), diag,
+            )  # fmt: skip
+        if stiff[i]:  # else already zero
+            pfx[i] = 0.0
+            pfy[i] = 0.0
         if pipe_on:
             dx = px - xi
             dy = py - yi
@@ -806,9 +813,11 @@ def _gather_integrate_block(
                     a += np.sqrt(wx * wx + wy * wy)
                 pfx[i] = wx
                 pfy[i] = wy
-            else:
+                near = True
+            elif stiff[i]:
                 fsw[i, PIPE] = 0.0
                 mrw[i, PIPE] = 0.0
+        stiff[i] = near
         m = mass[i]
         fx += m * gx
         fy += m * gy
@@ -856,7 +865,7 @@ def _gather_integrate_block_fire(
     i0, i1, dt, gx, gy, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on, lid_y,
     lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx,
     cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, fa, ctr,
-    crot, restart, bsum, b,
+    crot, restart, bsum, b, stiff,
 ):  # fmt: skip
     """:func:`_gather_integrate_block` with FIRE mixing instead of local damping: the
     velocities are mixed (FIRE), and the block's FIRE sums are stored in ``bsum[b]``."""
@@ -887,12 +896,17 @@ def _gather_integrate_block_fire(
         vx = vel[i, 0]
         vy = vel[i, 1]
         w = om[i]
-        fx, fy, tq, a = _add_walls_lid(
-            i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw, muw,
-            murw, dt, (fx, fy, tq, a), diag,
-        )  # fmt: skip
-        pfx[i] = 0.0
-        pfy[i] = 0.0
+        # stiff[i] = 0: the disk's wall, lid and pipe histories are zero, and for a disk
+        # clear of them their contact laws add zeros and write zeros (skipped: same bits)
+        near = (xi - x0 < ri) | (x1 - xi < ri) | (yi - y0 < ri) | (lid_on & (lid_y - yi < ri))
+        if near or stiff[i]:
+            fx, fy, tq, a = _add_walls_lid(
+                i, vx, vy, w, ri, xi, yi, x0, x1, y0, lid_on, lid_y, lid_v, fsw, mrw, knw, ksw,
+                muw, murw, dt, (fx, fy, tq, a), diag,
+            )  # fmt: skip
+        if stiff[i]:  # else already zero
+            pfx[i] = 0.0
+            pfy[i] = 0.0
         if pipe_on:
             dx = px - xi
             dy = py - yi
@@ -909,9 +923,11 @@ def _gather_integrate_block_fire(
                     a += np.sqrt(wx * wx + wy * wy)
                 pfx[i] = wx
                 pfy[i] = wy
-            else:
+                near = True
+            elif stiff[i]:
                 fsw[i, PIPE] = 0.0
                 mrw[i, PIPE] = 0.0
+        stiff[i] = near
         m = mass[i]
         fx += m * gx
         fy += m * gy
@@ -1165,6 +1181,7 @@ def run_steps(
     nz = n if zonal else 0
     mz = m if zonal else 0
     fine = np.zeros(n, np.uint8)
+    stiff = np.ones(n, np.uint8)  # 0: the disk's wall, lid and pipe histories are zero
     flist = np.empty(nz, np.int64)
     floc = np.full(nz, -1, np.int64)
     cand = np.empty(nz, np.int64)
@@ -1223,6 +1240,7 @@ def run_steps(
         gather_integrate(
             prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx,
             sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, zonal, fine, fire, bsum,
+            stiff,
         )  # fmt: skip
         if zonal:
             for p in range(npair):  # the pair histories advanced by the sub-steps
