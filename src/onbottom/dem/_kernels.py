@@ -30,7 +30,7 @@ rolling histories are per particle: ``fsw[i, w]``, ``mrw[i, w]``, w = 0..3, 4 = 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange
 
 # indices into the parameter vector ``prm``
 P_DT = 0
@@ -81,6 +81,9 @@ N_FIRE = 10
 N_BSUM = 5  # FIRE sums per block: F·v, |v|², |F|², ω², T²
 
 BLOCK = 512  # disks per block of the parallel loops (one displacement maximum each)
+# cost of one contact or disk sub-step of fine_substeps against one disk of the plain pass
+# (gather_integrate_zonal's split; measured on the full-size SM-Dr48 bed: ≈ 32 ns vs 21 ns)
+FINE_ITEM_COST = 1.5
 N_WALL = 5  # 4 walls + pipe in the per-particle history arrays
 PIPE = 4
 
@@ -403,10 +406,66 @@ def collect_fine(
 
 
 @njit(cache=True, boundscheck=False, error_model="numpy")
+def fine_partners(
+    prm, pos, vel, om, rad, mass, inert, fixed, plist, npair, owner, nbr, rstart, ridx, fs, mr,
+    cfx, cfy, sfx, sfy, stq, floc, cplist, cpv,
+):  # fmt: skip
+    """The plain partners of the flagged disks for :func:`fine_substeps`, before the plain
+    pass moves them: ``floc[c]`` = −2 − their index in ``cplist``, and ``cpv[·]`` their
+    velocity over the step (vx, vy, ω; the plain step's, from their force at the start of the
+    step with gravity and local damping, as :func:`_gather_integrate_block` computes it) and
+    their position at the start (x, y). Returns the number of partners.
+    """
+    dt = prm[P_DT]
+    gx = prm[P_GX]
+    gy = prm[P_GY]
+    alpha = prm[P_ALPHA]
+    ncp = 0
+    for p in range(npair):
+        k = plist[p]
+        for side in range(2):
+            c = owner[k] if side == 0 else nbr[k]
+            if floc[c] != -1:
+                continue
+            floc[c] = -2 - ncp
+            cplist[ncp] = c
+            cpv[ncp, 3] = pos[c, 0]
+            cpv[ncp, 4] = pos[c, 1]
+            if fixed[c]:
+                cpv[ncp, 0] = 0.0
+                cpv[ncp, 1] = 0.0
+                cpv[ncp, 2] = 0.0
+            else:
+                rc = rad[c]
+                fx = sfx[c]
+                fy = sfy[c]
+                tq = stq[c]
+                for qq in range(rstart[c], rstart[c + 1]):
+                    kk = ridx[qq]
+                    fx -= cfx[kk]
+                    fy -= cfy[kk]
+                    tq += rc * fs[kk] - mr[kk]
+                mc = mass[c]
+                fx += mc * gx
+                fy += mc * gy
+                vx = vel[c, 0]
+                vy = vel[c, 1]
+                w = om[c]
+                if alpha > 0.0:
+                    fx -= alpha * abs(fx) * _sign(vx)
+                    fy -= alpha * abs(fy) * _sign(vy)
+                    tq -= alpha * abs(tq) * _sign(w)
+                cpv[ncp, 0] = vx + dt * fx / mc
+                cpv[ncp, 1] = vy + dt * fy / mc
+                cpv[ncp, 2] = w + dt * tq / inert[c]
+            ncp += 1
+    return ncp
+
+
+@njit(cache=True, boundscheck=False, error_model="numpy")
 def fine_substeps(
-    prm, nsub, pos, vel, om, th, rad, mass, inert, fixed, ref, flist, nf, floc, plist, npair,
-    owner, nbr, rstart, ridx, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy,
-    unb, app, hfs, hmr, dacc, cplist, cpv,
+    prm, nsub, pos, vel, om, th, rad, mass, inert, ref, flist, nf, floc, plist, npair, owner,
+    nbr, fsw, mrw, pfx, pfy, unb, app, hfs, hmr, dacc, cplist, ncp, cpv,
 ):  # fmt: skip
     """Zonal sub-cycling: the flagged disks take ``nsub`` leapfrog sub-steps of Δt/nsub.
 
@@ -418,17 +477,20 @@ def fine_substeps(
     sub-step, against the other disk of a contact at its current sub-step position when it
     is flagged too, else at its position on its plain step, x + q·h·v, with v the velocity
     the plain step will give it (its force at the start of the step with gravity and local
-    damping, computed here before the plain pass moves it: exact). A disk at rest stays at
-    rest (the earlier r-RESPA impulse form made resting disks swing within a step, and local
-    damping of that swing held them with a net force). The two partitions exchange the same
-    force at the start of a step but not over it, so momentum is conserved to O(Δt) while
-    the contact force changes (exactly at rest); giving the plain disks the mean of the
-    sub-step forces instead is momentum-exact but lags them by 3Δt/8, a viscous drag that
-    dissipated 0.5 % of the energy of a disk gas in 20,000 steps (this form: no drift).
+    damping: exact), both from :func:`fine_partners` (``cpv``, ``ncp`` partners), which runs
+    before the plain pass, so that this pass may run beside it (:func:`gather_integrate_zonal`).
+    A disk at rest stays at rest (the earlier r-RESPA impulse form made resting disks swing
+    within a step, and local damping of that swing held them with a net force). The two
+    partitions exchange the same force at the start of a step but not over it, so momentum is
+    conserved to O(Δt) while the contact force changes (exactly at rest); giving the plain disks
+    the mean of the sub-step forces instead is momentum-exact but lags them by 3Δt/8, a viscous
+    drag that dissipated 0.5 % of the energy of a disk gas in 20,000 steps (this form: no
+    drift).
     Pair histories advance by the sub-steps (``hfs``/``hmr``, written back by
     :func:`run_steps` after the plain pass). Stores the mean pipe force over the sub-steps,
-    and the mean unbalanced and applied force, of each flagged disk. Returns the flagged
-    disks' largest squared displacement since the last list build.
+    and the mean unbalanced and applied force, of each flagged disk. Touches only the flagged
+    disks, the pair histories ``hfs``/``hmr`` and its work arrays. Returns the flagged disks'
+    largest squared displacement since the last list build.
     """
     dt = prm[P_DT]
     h = dt / nsub
@@ -461,45 +523,6 @@ def fine_substeps(
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
     gmag = np.sqrt(gx * gx + gy * gy)
-    # the plain partners of flagged disks (floc = −2 − their index in cplist) and their
-    # velocity over the step (cpv: vx, vy, ω), predicted from the force at the start
-    ncp = 0
-    for p in range(npair):
-        k = plist[p]
-        for side in range(2):
-            c = owner[k] if side == 0 else nbr[k]
-            if floc[c] != -1:
-                continue
-            floc[c] = -2 - ncp
-            cplist[ncp] = c
-            if fixed[c]:
-                cpv[ncp, 0] = 0.0
-                cpv[ncp, 1] = 0.0
-                cpv[ncp, 2] = 0.0
-            else:
-                rc = rad[c]
-                fx = sfx[c]
-                fy = sfy[c]
-                tq = stq[c]
-                for qq in range(rstart[c], rstart[c + 1]):
-                    kk = ridx[qq]
-                    fx -= cfx[kk]
-                    fy -= cfy[kk]
-                    tq += rc * fs[kk] - mr[kk]
-                mc = mass[c]
-                fx += mc * gx
-                fy += mc * gy
-                vx = vel[c, 0]
-                vy = vel[c, 1]
-                w = om[c]
-                if alpha > 0.0:
-                    fx -= alpha * abs(fx) * _sign(vx)
-                    fy -= alpha * abs(fy) * _sign(vy)
-                    tq -= alpha * abs(tq) * _sign(w)
-                cpv[ncp, 0] = vx + dt * fx / mc
-                cpv[ncp, 1] = vy + dt * fy / mc
-                cpv[ncp, 2] = w + dt * tq / inert[c]
-            ncp += 1
     # dacc per flagged disk: 0-2 force/torque of the sub-step, 3 applied magnitude,
     # 4-5 pipe force sum, 6-7 unbalanced force sum, 8 applied magnitude sum
     for ll in range(nf):
@@ -526,8 +549,8 @@ def fine_substeps(
                 vxi = cpv[-2 - li, 0]
                 vyi = cpv[-2 - li, 1]
                 wi = cpv[-2 - li, 2]
-                xi = pos[i, 0] + tq_ * vxi
-                yi = pos[i, 1] + tq_ * vyi
+                xi = cpv[-2 - li, 3] + tq_ * vxi
+                yi = cpv[-2 - li, 4] + tq_ * vyi
             if lj >= 0:
                 vxj = vel[j, 0]
                 vyj = vel[j, 1]
@@ -538,8 +561,8 @@ def fine_substeps(
                 vxj = cpv[-2 - lj, 0]
                 vyj = cpv[-2 - lj, 1]
                 wj = cpv[-2 - lj, 2]
-                xj = pos[j, 0] + tq_ * vxj
-                yj = pos[j, 1] + tq_ * vyj
+                xj = cpv[-2 - lj, 3] + tq_ * vxj
+                yj = cpv[-2 - lj, 4] + tq_ * vyj
             ri = rad[i]
             rj = rad[j]
             rsum = ri + rj
@@ -693,8 +716,8 @@ def gather_integrate(
 ):
     """Sum contact, wall, pipe and body forces per disk; local damping; leapfrog update.
 
-    ``zonal``: the flagged disks (``fine[i]``) were already moved by :func:`fine_substeps`
-    and are skipped (their displacement still counts for the list rebuild).
+    ``zonal``: the flagged disks (``fine[i]``) are moved by :func:`fine_substeps`, which
+    returns their displacement for the list rebuild, and are skipped.
     ``fire[F_ON]`` > 0.5: FIRE mixing instead of local damping, with the coefficients in
     ``fire``; per-block FIRE sums go to ``bsum[b, :]`` (never with ``zonal``).
     """
@@ -748,6 +771,74 @@ def gather_integrate(
             )  # fmt: skip
 
 
+@njit(cache=True, parallel=True, boundscheck=False, error_model="numpy")
+def gather_integrate_zonal(
+    prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy,
+    stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, fine, stiff, nsub, flist, nf,
+    floc, plist, npair, owner, nbr, hfs, hmr, dacc, cplist, ncp, cpv, dfine,
+):  # fmt: skip
+    """:func:`gather_integrate` (zonal, damped) with :func:`fine_substeps` run beside it.
+
+    The serial sub-step pass touches only the flagged disks, which the plain pass skips, and
+    reads the plain partners from :func:`fine_partners`' copy, so the two passes share no
+    memory that either writes: worker 0 takes the sub-step pass (its displacement maximum
+    into ``dfine[0]``) and the first blocks, the other workers the remaining blocks in equal
+    shares, sized from :data:`FINE_ITEM_COST` so that the workers end together. Which worker
+    moves a disk never changes what it computes: the bits do not depend on the split or on
+    the number of threads.
+    """
+    n = rad.shape[0]
+    dt = prm[P_DT]
+    gx = prm[P_GX]
+    gy = prm[P_GY]
+    alpha = prm[P_ALPHA]
+    knw = prm[P_KN_W]
+    ksw = prm[P_KS_W]
+    muw = prm[P_MU_W]
+    murw = prm[P_MUR_W]
+    knp = prm[P_KN_P]
+    ksp = prm[P_KS_P]
+    mup = prm[P_MU_P]
+    murp = prm[P_MUR_P]
+    x0 = prm[P_X0]
+    x1 = prm[P_X1]
+    y0 = prm[P_Y0]
+    lid_on = prm[P_LID_ON] > 0.5
+    lid_y = prm[P_LID_Y]
+    lid_v = prm[P_LID_V]
+    pipe_on = prm[P_PIPE_ON] > 0.5
+    px = prm[P_PIPE_X]
+    py = prm[P_PIPE_Y]
+    pr = prm[P_PIPE_R]
+    pv = prm[P_PIPE_V]
+    diag = prm[P_DIAG] > 0.5
+    nblock = (n + BLOCK - 1) // BLOCK
+    nw = get_num_threads()
+    fine_blocks = FINE_ITEM_COST * nsub * (npair + nf) / BLOCK  # the sub-step pass, in blocks
+    first = int(min(float(nblock), max(0.0, (nblock + fine_blocks) / nw - fine_blocks)) + 0.5)
+    for t in prange(nw):
+        if t == 0:
+            dfine[0] = fine_substeps(
+                prm, nsub, pos, vel, om, th, rad, mass, inert, ref, flist, nf, floc, plist,
+                npair, owner, nbr, fsw, mrw, pfx, pfy, unb, app, hfs, hmr, dacc, cplist, ncp,
+                cpv,
+            )  # fmt: skip
+            b0 = 0
+            b1 = first
+        else:
+            b0 = first + (t - 1) * (nblock - first) // (nw - 1)
+            b1 = first + t * (nblock - first) // (nw - 1)
+        for b in range(b0, b1):
+            i0 = b * BLOCK
+            i1 = min(n, (b + 1) * BLOCK)
+            dmax[b] = _gather_integrate_block(
+                i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
+                y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
+                mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
+                pfx, pfy, unb, app, fixed, ref, True, fine, stiff,
+            )  # fmt: skip
+
+
 @njit(cache=True, boundscheck=False, error_model="numpy")
 def _gather_integrate_block(
     i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
@@ -760,11 +851,8 @@ def _gather_integrate_block(
     dmax = 0.0
     for ii in range(i0, i1):
         i = np.uint64(ii)  # unsigned: no negative-index wrap-around code
-        if zonal and fine[i]:  # moved by fine_substeps
+        if zonal and fine[i]:  # moved (and its displacement taken) by fine_substeps
             stiff[i] = 1  # its wall and pipe histories are fine_substeps' business
-            ex = pos[i, 0] - ref[i, 0]
-            ey = pos[i, 1] - ref[i, 1]
-            dmax = max(dmax, ex * ex + ey * ey)
             continue
         ri = rad[i]
         fx = sfx[i]
@@ -1191,7 +1279,8 @@ def run_steps(
     cand_lid_y = 0.0
     dacc = np.empty((nz, 9))
     cplist = np.empty(nz, np.int64)
-    cpv = np.empty((nz, 3))
+    cpv = np.empty((nz, 5))
+    dfine = np.zeros(1)
     plist = np.empty(mz, np.int64)
     hfs = np.empty(mz)
     hmr = np.empty(mz)
@@ -1230,25 +1319,31 @@ def run_steps(
         pair_forces(
             prm, pos, vel, om, rad, start, owner, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa
         )  # fmt: skip
-        dfine = 0.0
+        dfine[0] = 0.0
         if zonal:
-            dfine = fine_substeps(
-                prm, nsub, pos, vel, om, th, rad, mass, inert, fixed, ref, flist, nf, floc,
-                plist, npair, owner, nbr, rstart, ridx, fs, mr, cfx, cfy, cmag, sfx, sfy, stq,
-                sa, fsw, mrw, pfx, pfy, unb, app, hfs, hmr, dacc, cplist, cpv,
+            ncp = fine_partners(
+                prm, pos, vel, om, rad, mass, inert, fixed, plist, npair, owner, nbr, rstart,
+                ridx, fs, mr, cfx, cfy, sfx, sfy, stq, floc, cplist, cpv,
             )  # fmt: skip
-        gather_integrate(
-            prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx,
-            sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, zonal, fine, fire, bsum,
-            stiff,
-        )  # fmt: skip
+            gather_integrate_zonal(
+                prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr,
+                sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, fine, stiff,
+                nsub, flist, nf, floc, plist, npair, owner, nbr, hfs, hmr, dacc, cplist, ncp,
+                cpv, dfine,
+            )  # fmt: skip
+        else:
+            gather_integrate(
+                prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr,
+                sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, False, fine,
+                fire, bsum, stiff,
+            )  # fmt: skip
         if zonal:
             for p in range(npair):  # the pair histories advanced by the sub-steps
                 fs[plist[p]] = hfs[p]
                 mr[plist[p]] = hmr[p]
         if fire[F_ON] > 0.5:
             fire_update(fire, bsum)
-        disp2 = dfine
+        disp2 = dfine[0]
         for b in range(dmax.shape[0]):
             if dmax[b] > disp2:
                 disp2 = dmax[b]
