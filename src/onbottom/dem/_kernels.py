@@ -30,7 +30,7 @@ rolling histories are per particle: ``fsw[i, w]``, ``mrw[i, w]``, w = 0..3, 4 = 
 from __future__ import annotations
 
 import numpy as np
-from numba import get_num_threads, njit, prange
+from numba import njit, prange
 
 # indices into the parameter vector ``prm``
 P_DT = 0
@@ -775,17 +775,17 @@ def gather_integrate(
 def gather_integrate_zonal(
     prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy,
     stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, fine, stiff, nsub, flist, nf,
-    floc, plist, npair, owner, nbr, hfs, hmr, dacc, cplist, ncp, cpv, dfine,
+    floc, plist, npair, owner, nbr, hfs, hmr, dacc, cplist, ncp, cpv, dfine, nw,
 ):  # fmt: skip
     """:func:`gather_integrate` (zonal, damped) with :func:`fine_substeps` run beside it.
 
     The serial sub-step pass touches only the flagged disks, which the plain pass skips, and
-    reads the plain partners from :func:`fine_partners`' copy, so the two passes share no
-    memory that either writes: worker 0 takes the sub-step pass (its displacement maximum
-    into ``dfine[0]``) and the first blocks, the other workers the remaining blocks in equal
-    shares, sized from :data:`FINE_ITEM_COST` so that the workers end together. Which worker
-    moves a disk never changes what it computes: the bits do not depend on the split or on
-    the number of threads.
+    reads the plain partners from :func:`fine_partners`' copy, so the two passes share no memory
+    that either writes: of the ``nw`` workers (one per thread), worker 0 takes the sub-step pass
+    (its displacement maximum into ``dfine[0]``) and the first blocks, the other workers the
+    remaining blocks in equal shares, sized from :data:`FINE_ITEM_COST` so that the workers end
+    together. Which worker moves a disk never changes what it computes: the bits do not depend
+    on the split or on the number of threads.
     """
     n = rad.shape[0]
     dt = prm[P_DT]
@@ -813,7 +813,6 @@ def gather_integrate_zonal(
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
     nblock = (n + BLOCK - 1) // BLOCK
-    nw = get_num_threads()
     fine_blocks = FINE_ITEM_COST * nsub * (npair + nf) / BLOCK  # the sub-step pass, in blocks
     first = int(min(float(nblock), max(0.0, (nblock + fine_blocks) / nw - fine_blocks)) + 0.5)
     for t in prange(nw):
@@ -1238,6 +1237,7 @@ def run_steps(
     app,
     nsub,
     fire,
+    nthreads,
 ):
     """Advance ``nsteps`` steps; rebuild the list when a disk moved more than skin/2.
 
@@ -1246,6 +1246,7 @@ def run_steps(
     pipe take ``nsub`` sub-steps per step (:func:`fine_candidates`, :func:`collect_fine`,
     :func:`fine_substeps`).
     ``fire``: FIRE state (``F_*`` indices), updated in place after every step when on.
+    ``nthreads``: numba's thread count for the call (the workers of the zonal pass).
     Returns the (possibly new) list arrays and the number of rebuilds.
     """
     skin = prm[P_SKIN]
@@ -1329,7 +1330,7 @@ def run_steps(
                 prm, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr,
                 sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, dmax, fine, stiff,
                 nsub, flist, nf, floc, plist, npair, owner, nbr, hfs, hmr, dacc, cplist, ncp,
-                cpv, dfine,
+                cpv, dfine, nthreads,
             )  # fmt: skip
         else:
             gather_integrate(

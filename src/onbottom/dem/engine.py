@@ -382,7 +382,7 @@ class Simulation:
             int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
             self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
-            self.nsub, self.fire,
+            self.nsub, self.fire, numba.get_num_threads(),
         )  # fmt: skip
 
     # -------------------------------------------------------------- diagnostics
