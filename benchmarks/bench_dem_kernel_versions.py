@@ -35,7 +35,7 @@ _CHILD = r"""
 import json, math, sys, time
 import numpy as np
 from onbottom.dem import _kernels as K
-from onbottom.dem.config import PRESETS
+from onbottom.dem.config import PRESETS, ContactParameters
 from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.sample import Sample
 a = json.loads(sys.argv[1])
@@ -56,6 +56,8 @@ else:
                      damping=cfg.material.damping, dt=dt,
                      skin=num.skin_ratio * 2.0 * float(s.radii.min()), gravity=(0.0, 0.0),
                      threads=a["threads"])
+    soil = cfg.contacts.soil  # the compaction's contacts: the preparation's friction, no rolling
+    sim.set_soil_contact(ContactParameters(soil.k_n, soil.k_s, cfg.preparation.prep_friction, 0.0))
     top = float(np.max(s.positions[:, 1] + s.radii))
     sim.set_lid(top + 1e-5, -0.5, stop=top - 3e-4)
 sim.run(50)

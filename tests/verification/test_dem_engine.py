@@ -324,6 +324,44 @@ def test_branch_free_pair_law_equals_contact_update_bitwise():
     assert closed > m // 3 and capped > 0
 
 
+def test_frictionless_pair_law_equals_the_full_law_at_zero_friction():
+    """The compaction's normal-only law (μ = μ_r = 0) gives the full law's forces and zero
+    histories from any start (equal as numbers: a ±0 shear term can only flip a zero's sign).
+    """
+    rng = np.random.default_rng(5)
+    m = 4000
+    r = 1e-3 * (0.8 + 0.4 * rng.random(2 * m))
+    pos = np.zeros((2 * m, 2))
+    gap = (r[:m] + r[m:]) * (1.0 + 0.02 * rng.standard_normal(m))
+    ang = 2 * np.pi * rng.random(m)
+    pos[m:, 0] = gap * np.cos(ang)
+    pos[m:, 1] = gap * np.sin(ang)
+    pos[m : m + 50, 0] = 0.0  # exactly vertical pairs: a zero force component
+    vel = 0.1 * rng.standard_normal((2 * m, 2))
+    om = 100.0 * rng.standard_normal(2 * m)
+    owner = np.arange(m, dtype=np.uint32)
+    nbr = np.arange(m, 2 * m, dtype=np.uint32)
+    fs0 = 2.0 * rng.standard_normal(m)
+    mr0 = 2e-3 * rng.standard_normal(m)
+    dt, kn, ks = 1e-6, 7.5e7, 5e7
+    out = {}
+    for name in ("full", "normal"):
+        fs, mr = fs0.copy(), mr0.copy()
+        cfx, cfy, cmag = np.empty(m), np.empty(m), np.empty(m)
+        if name == "full":
+            K._pair_entries(0, m, owner, nbr, pos, vel, om, r, fs, mr, cfx, cfy, cmag, True, dt,
+                            kn, ks, 0.0, 0.0)  # fmt: skip
+        else:
+            K._pair_entries_frictionless(0, m, owner, nbr, pos, r, fs, mr, cfx, cfy, cmag, True, kn)
+        out[name] = (fs, mr, cfx, cfy, cmag)
+    for a, b in zip(out["full"], out["normal"], strict=True):
+        np.testing.assert_array_equal(a, b)
+    fs, mr, cfx, cfy, cmag = out["normal"]
+    closed = cmag > 0.0
+    assert closed.sum() > m // 3 and not fs.any() and not mr.any()
+    np.testing.assert_allclose(np.hypot(cfx, cfy)[closed], cmag[closed], rtol=1e-15)
+
+
 @pytest.mark.parametrize("nsub", [1, 4])
 def test_boundary_skip_gives_the_bits_of_the_full_boundary_pass(nsub):
     """Disks clear of the walls, lid and pipe skip their contact laws (``stiff`` flag).

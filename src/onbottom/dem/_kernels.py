@@ -169,6 +169,36 @@ def _pair_entries(k0, k1, owner, nbr, pos, vel, om, rad, fs, mr, cfx, cfy, cmag,
         cmag[k] = np.sqrt(fn * fn + f * f) if touch and diag else 0.0
 
 
+@njit(cache=True, boundscheck=False, error_model="numpy")
+def _pair_entries_frictionless(k0, k1, owner, nbr, pos, rad, fs, mr, cfx, cfy, cmag, diag, kn):
+    """:func:`_pair_entries` for μ = μ_r = 0 (the compaction's contacts): normal force only.
+
+    With μ = 0 the shear cap is ±0, so the law's shear force and rolling moment are ±0 and the
+    contact force is the normal one, −F_n·n (the same value; a ±0 shear term can change only
+    the sign of a zero component). The shear and rolling histories are written as zeros, as
+    the full law leaves them. Skips the velocity and spin loads of both disks, r̄'s division
+    and the caps.
+    """
+    for kk in range(k0, k1):
+        k = np.uint64(kk)
+        i = owner[k]
+        j = nbr[k]
+        dx = pos[j, 0] - pos[i, 0]
+        dy = pos[j, 1] - pos[i, 1]
+        rsum = rad[i] + rad[j]
+        d2 = dx * dx + dy * dy
+        touch = d2 < rsum * rsum
+        d = np.sqrt(d2)
+        fn = kn * (rsum - d)
+        cx = -fn * (dx / d)
+        cy = -fn * (dy / d)
+        fs[k] = 0.0
+        mr[k] = 0.0
+        cfx[k] = cx if touch else 0.0
+        cfy[k] = cy if touch else 0.0
+        cmag[k] = np.sqrt(fn * fn) if touch and diag else 0.0
+
+
 @njit(cache=True, parallel=True, boundscheck=False)
 def pair_forces(
     prm, pos, vel, om, rad, start, owner, nbr, fs, mr, cfx, cfy, cmag, sfx, sfy, stq, sa
@@ -188,14 +218,20 @@ def pair_forces(
     mu = prm[P_MU]
     mur = prm[P_MUR]
     diag = prm[P_DIAG] > 0.5
+    frictionless = mu == 0.0 and mur == 0.0
     nblock = (n + BLOCK - 1) // BLOCK
     for b in prange(nblock):
         i0 = b * BLOCK
         i1 = min(n, i0 + BLOCK)
-        _pair_entries(
-            start[i0], start[i1], owner, nbr, pos, vel, om, rad, fs, mr, cfx, cfy, cmag, diag,
-            dt, kn, ks, mu, mur,
-        )  # fmt: skip
+        if frictionless:
+            _pair_entries_frictionless(
+                start[i0], start[i1], owner, nbr, pos, rad, fs, mr, cfx, cfy, cmag, diag, kn
+            )  # fmt: skip
+        else:
+            _pair_entries(
+                start[i0], start[i1], owner, nbr, pos, vel, om, rad, fs, mr, cfx, cfy, cmag,
+                diag, dt, kn, ks, mu, mur,
+            )  # fmt: skip
         for i in range(i0, i1):
             ri = rad[i]
             fx = 0.0
@@ -206,7 +242,8 @@ def pair_forces(
                 k = np.uint64(kk)
                 fx += cfx[k]
                 fy += cfy[k]
-                tq += ri * fs[k] + mr[k]
+                if not frictionless:  # else ±0 terms: tq stays +0.0
+                    tq += ri * fs[k] + mr[k]
                 if diag:
                     a += cmag[k]
             sfx[i] = fx
@@ -751,6 +788,7 @@ def gather_integrate(
     ctr = fire[F_CTR]
     crot = fire[F_CROT]
     restart = fire[F_RESTART] > 0.5
+    frictionless = prm[P_MU] == 0.0 and prm[P_MUR] == 0.0  # soil–soil: no torques
     nblock = (n + BLOCK - 1) // BLOCK
     for b in prange(nblock):
         i0 = b * BLOCK
@@ -761,13 +799,14 @@ def gather_integrate(
                 y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
                 mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
                 pfx, pfy, unb, app, fixed, ref, fa, ctr, crot, restart, bsum, b, stiff,
+                frictionless,
             )  # fmt: skip
         else:
             dmax[b] = _gather_integrate_block(
                 i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
                 y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
                 mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
-                pfx, pfy, unb, app, fixed, ref, zonal, fine, stiff,
+                pfx, pfy, unb, app, fixed, ref, zonal, fine, stiff, frictionless,
             )  # fmt: skip
 
 
@@ -812,6 +851,7 @@ def gather_integrate_zonal(
     pr = prm[P_PIPE_R]
     pv = prm[P_PIPE_V]
     diag = prm[P_DIAG] > 0.5
+    frictionless = prm[P_MU] == 0.0 and prm[P_MUR] == 0.0
     nblock = (n + BLOCK - 1) // BLOCK
     fine_blocks = FINE_ITEM_COST * nsub * (npair + nf) / BLOCK  # the sub-step pass, in blocks
     first = int(min(float(nblock), max(0.0, (nblock + fine_blocks) / nw - fine_blocks)) + 0.5)
@@ -834,7 +874,7 @@ def gather_integrate_zonal(
                 i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1,
                 y0, lid_on, lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad,
                 mass, inert, rstart, ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw,
-                pfx, pfy, unb, app, fixed, ref, True, fine, stiff,
+                pfx, pfy, unb, app, fixed, ref, True, fine, stiff, frictionless,
             )  # fmt: skip
 
 
@@ -843,7 +883,7 @@ def _gather_integrate_block(
     i0, i1, dt, gx, gy, alpha, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on,
     lid_y, lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart,
     ridx, cfx, cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref,
-    zonal, fine, stiff,
+    zonal, fine, stiff, frictionless,
 ):  # fmt: skip
     """Disks i0..i1−1 of :func:`gather_integrate`; returns their largest squared displacement
     since the last list build (new positions vs ``ref``)."""
@@ -861,7 +901,8 @@ def _gather_integrate_block(
             k = ridx[np.uint64(q)]
             fx -= cfx[k]
             fy -= cfy[k]
-            tq += ri * fs[k] - mr[k]
+            if not frictionless:  # else ±0 terms: tq keeps its value (+0.0)
+                tq += ri * fs[k] - mr[k]
         a = 0.0
         if diag:
             a = sa[i]
@@ -952,7 +993,7 @@ def _gather_integrate_block_fire(
     i0, i1, dt, gx, gy, knw, ksw, muw, murw, knp, ksp, mup, murp, x0, x1, y0, lid_on, lid_y,
     lid_v, pipe_on, px, py, pr, pv, diag, pos, vel, om, th, rad, mass, inert, rstart, ridx, cfx,
     cfy, cmag, fs, mr, sfx, sfy, stq, sa, fsw, mrw, pfx, pfy, unb, app, fixed, ref, fa, ctr,
-    crot, restart, bsum, b, stiff,
+    crot, restart, bsum, b, stiff, frictionless,
 ):  # fmt: skip
     """:func:`_gather_integrate_block` with FIRE mixing instead of local damping: the
     velocities are mixed (FIRE), and the block's FIRE sums are stored in ``bsum[b]``."""
@@ -972,7 +1013,8 @@ def _gather_integrate_block_fire(
             k = ridx[np.uint64(q)]
             fx -= cfx[k]
             fy -= cfy[k]
-            tq += ri * fs[k] - mr[k]
+            if not frictionless:  # else ±0 terms: tq keeps its value (+0.0)
+                tq += ri * fs[k] - mr[k]
         a = 0.0
         if diag:
             a = sa[i]
