@@ -10,6 +10,14 @@ above the number of cores makes a figure not comparable with a quiet one). Unlik
 checkpoint (``<out>/checkpoints/``), from which any stretch of the run can be replayed
 bitwise (for instance to take field snapshots at w/D values only known afterwards).
 
+``--from-compaction CHECKPOINT STAGES`` starts a lever that acts after the compaction
+(``--relaxation fire-1g``) from another run's compacted specimen: CHECKPOINT is that run's
+preparation checkpoint written after its last layer (copy it before its 1 g stage overwrites
+it), STAGES its ``_stages.json``. The compaction is the same for both configurations (checked:
+the identities may differ only in ``preparation.relaxation``, and both relax the layers
+alike), so the checkpoint is re-labelled with this run's identity and resumed; the
+compaction's wall time and steps are taken from STAGES and added to the total.
+
 ``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
 second reads the specimen and the first's figures); the total is the sum of the two. A
 penetration resumed from its checkpoint reports this call's wall time, ``steps_this_call``
@@ -36,8 +44,9 @@ import dataclasses
 import numba
 import xarray as xr
 
-from onbottom.dem.config import PRESETS
+from onbottom.dem.config import PRESETS, RELAXATIONS, DEMConfig
 from onbottom.dem.experiment import penetrate
+from onbottom.dem.identity import differences, run_identity
 from onbottom.dem.preparation import prepare_sample
 from onbottom.dem.sample import Sample
 from onbottom.results import save_dataset
@@ -48,6 +57,31 @@ STAGES = ("generation", "compaction", "1g", "ramp", "Ng")
 def load() -> float:
     """1-minute load average."""
     return os.getloadavg()[0]
+
+
+def adopt_compaction(cfg: DEMConfig, source: Path, target: Path) -> None:
+    """Copy the compacted specimen in ``source`` to ``target`` under ``cfg``'s identity."""
+    saved = Sample.load(source)
+    meta = saved.attrs["_checkpoint"]
+    if meta["layers_done"] != cfg.preparation.n_layers or meta.get("stage", "compaction") != (
+        "compaction"
+    ):
+        raise SystemExit(
+            f"{source}: not a checkpoint of a finished compaction (layers_done"
+            f" {meta['layers_done']}, stage {meta.get('stage')})"
+        )
+    ident = run_identity(cfg, "preparation")
+    diff = differences(meta["identity"], ident)
+    if any(not d.startswith("config.preparation.relaxation:") for d in diff):
+        raise SystemExit(f"{source}: another case, not only another relaxation: {diff}")
+    old = cfg.preparation.__class__(
+        **{**dataclasses.asdict(cfg.preparation), **meta["identity"]["config"]["preparation"]}
+    )
+    if old.stage_relaxation("layer") != cfg.preparation.stage_relaxation("layer"):
+        raise SystemExit(f"{source}: its layers were relaxed otherwise ({diff})")
+    meta["identity"] = ident
+    saved.attrs["_checkpoint"] = meta
+    saved.save(target)
 
 
 def main() -> None:
@@ -69,8 +103,25 @@ def main() -> None:
         choices=("on", "off"),
         help="override Numerics.sort_disks (off: resume a run started before it was on)",
     )
+    ap.add_argument(
+        "--relaxation",
+        default=None,
+        choices=RELAXATIONS,
+        help="override Preparation.relaxation (fire-1g: FIRE for the 1 g stage only)",
+    )
+    ap.add_argument(
+        "--from-compaction",
+        nargs=2,
+        metavar=("CHECKPOINT", "STAGES"),
+        default=None,
+        help="start from another run's compacted specimen (see the module docstring)",
+    )
     args = ap.parse_args()
     cfg = PRESETS[args.preset]
+    if args.relaxation is not None:
+        cfg = cfg.replace(
+            preparation=dataclasses.replace(cfg.preparation, relaxation=args.relaxation)
+        )
     if args.sort_disks is not None:
         num = dataclasses.replace(cfg.numerics, sort_disks=args.sort_disks == "on")
         cfg = cfg.replace(numerics=num)
@@ -94,10 +145,19 @@ def main() -> None:
         "seed": cfg.seed,
         "subcycle": cfg.numerics.subcycle,
         "numerics": dataclasses.asdict(cfg.numerics),
+        "relaxation": cfg.preparation.relaxation,
         "threads": numba.config.NUMBA_NUM_THREADS,
         "cores": os.cpu_count(),
         "load_start": load(),
     }
+    if args.from_compaction is not None:
+        ck_src, stages_src = (Path(p) for p in args.from_compaction)
+        adopt_compaction(cfg, ck_src, out / f"{name}_prep.checkpoint.nc")
+        src_fig = json.loads(stages_src.read_text())
+        fig["compaction_from"] = {
+            "stages_file": str(stages_src),
+            "compaction": src_fig["preparation"]["stages"]["compaction"],
+        }
     print(json.dumps(fig), flush=True)
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
@@ -114,6 +174,8 @@ def main() -> None:
         timings=timings,
     )  # fmt: skip
     prep_wall = time.perf_counter() - t0
+    if "compaction_from" in fig:  # the adopted compaction's time belongs to this case
+        prep_wall += fig["compaction_from"]["compaction"]["wall_s"]
     sample.save(out / f"{name}_sample.nc")
     stages = {}
     for st in STAGES:

@@ -10,6 +10,8 @@ the penetration: the whole case as the presets run it. The baseline is always th
 (``Numerics.subcycle = False``), whatever the preset's default, except for ``--lever
 lidpause`` (the whole case as the preset runs it, against the same with the lid's pressure
 pauses ended as soon as the pressure falls, ``Preparation.lid_pause = "adaptive"``) and for
+``--lever fire-1g`` (the whole case as the preset runs it, against the same with its 1 g stage
+relaxed by FIRE at the plain step, ``Preparation.relaxation = "fire-1g"``) and for
 ``--lever random``: there the baseline is the whole case as the presets ran it before that
 lever (sub-cycled engine, layers laid out on the square lattice,
 ``Preparation.layer_generation = "lattice"``) and the lever lays the layers out by random
@@ -53,8 +55,8 @@ def lever(cfg: DEMConfig, name: str) -> DEMConfig:
         return cfg.replace(numerics=num)
     if name == "sort":
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, sort_disks=True))
-    if name == "fire":
-        return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation="fire"))
+    if name in ("fire", "fire-1g"):
+        return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation=name))
     if name == "step":  # the time step comes from --dt-safety
         return cfg
     if name == "lidspeed":  # the speed comes from --lid-speed
@@ -89,6 +91,7 @@ def main() -> None:
             "subcycle-all",
             "sort",
             "fire",
+            "fire-1g",
             "random",
             "step",
             "lidpause",
@@ -122,10 +125,13 @@ def main() -> None:
             numerics=dataclasses.replace(preset.numerics, subcycle=True),
             preparation=dataclasses.replace(preset.preparation, layer_generation="lattice"),
         )
-    if args.lever in ("lidpause", "lidspeed") or args.preset_engine:  # the preset as it is
+    if (
+        args.lever in ("lidpause", "lidspeed", "fire-1g") or args.preset_engine
+    ):  # the preset as it is
         base = preset
     prep_changes = args.lever in (
         "fire",
+        "fire-1g",
         "subcycle-prep",
         "subcycle-all",
         "random",

@@ -184,3 +184,24 @@ def test_lid_pause_is_validated_and_defaults_to_the_committed_runs():
     saved = {"config": {"preparation": {"n_layers": 4}}}
     now = {"config": {"preparation": {"n_layers": 4, "lid_pause": "fixed"}}}
     assert differences(saved, now) == []
+
+
+def test_fire_1g_relaxes_only_the_1g_stage_and_is_allowed_with_subcycling():
+    """``relaxation = "fire-1g"``: FIRE in the 1 g stage only (at the plain step), so unlike
+    ``"fire"`` it goes with a sub-cycled preparation; the values are validated by name."""
+    import dataclasses
+
+    from onbottom.dem.config import RELAXATIONS, Preparation
+
+    p = Preparation(relaxation="fire-1g")
+    assert [p.stage_relaxation(s) for s in ("layer", "1g", "Ng")] == ["damped", "fire", "damped"]
+    f = Preparation(relaxation="fire")
+    assert [f.stage_relaxation(s) for s in ("layer", "1g", "Ng")] == ["fire"] * 3
+    assert "fire-1g" in RELAXATIONS
+    assert PRESETS["SM-Dr48"].numerics.prep_subcycles
+    ok = SM.replace(preparation=dataclasses.replace(SM.preparation, relaxation="fire-1g"))
+    assert ok.preparation.relaxation == "fire-1g"
+    with pytest.raises(InputError, match="relaxation"):
+        SM.replace(preparation=dataclasses.replace(SM.preparation, relaxation="fire"))
+    with pytest.raises(InputError, match="relaxation.*fire-2g"):
+        Preparation(relaxation="fire-2g")

@@ -252,6 +252,10 @@ LID_PAUSE_CHECK = 100
 """With ``Preparation.lid_pause = "adaptive"``: steps between pressure tests in a pause."""
 
 
+RELAXATIONS = ("damped", "fire", "fire-1g")
+"""Values of :attr:`Preparation.relaxation`."""
+
+
 @dataclass(frozen=True)
 class Preparation:
     """Multi-layer under-compaction (Jiang, Konrad & Leroueil 2003, Comput. Geotech. 30:579).
@@ -283,7 +287,11 @@ class Preparation:
         How the 1 g and N g equilibrium stages are cycled: ``"damped"`` (the paper's local
         damping α, the default) or ``"fire"`` (FIRE, Bitzek et al. 2006, Phys. Rev. Lett.
         97:170201, with the same contact law and the same unbalanced-force criterion; see
-        ``docs/theory/dem.md``, "Speed levers").
+        ``docs/theory/dem.md``, "Speed levers"); ``"fire-1g"``: FIRE for the 1 g stage
+        only, at the plain step even when the preparation sub-cycles, then the gravity ramp
+        and the N g stage as ``"damped"`` (sub-cycled with ``Numerics.subcycle``). The 1 g
+        stage is a slow consolidation under the bed's own weight that local damping
+        (α = 0.7 caps a falling disk at 0.3 g) drags out; the N g stage after it is short.
     layer_generation
         How each loose layer is laid out before the lid compresses it: ``"lattice"``
         (default: a jittered square lattice of pitch 1.05·d_max, porosity ≈ 0.64 for the SM
@@ -315,6 +323,12 @@ class Preparation:
     layer_generation: str = "lattice"
     lid_pause: str = "fixed"
 
+    def stage_relaxation(self, stage: str) -> str:
+        """How the equilibrium stage ``stage`` (``"layer"``, ``"1g"``, ``"Ng"``) is cycled."""
+        if self.relaxation == "fire-1g":
+            return "fire" if stage == "1g" else "damped"
+        return self.relaxation
+
     def __post_init__(self) -> None:
         if not isinstance(self.n_layers, int) or self.n_layers < 1:
             raise InputError(f"n_layers = {self.n_layers!r} is invalid: must be an integer >= 1")
@@ -325,7 +339,7 @@ class Preparation:
         v.positive("max_settle_time", self.max_settle_time)
         if self.lid_pressure_limit is not None:
             v.positive("lid_pressure_limit", self.lid_pressure_limit)
-        v.one_of("relaxation", self.relaxation, ("damped", "fire"))
+        v.one_of("relaxation", self.relaxation, RELAXATIONS)
         v.one_of("layer_generation", self.layer_generation, ("random", "lattice"))
         v.one_of("lid_pause", self.lid_pause, ("fixed", "adaptive"))
 

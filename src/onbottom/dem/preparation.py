@@ -349,19 +349,35 @@ def prepare_sample(
     else:
         dt_sub, nsub_sub = dt_plain, 1
 
-    def new_sim(sample: Sample, equilibrium_stage: bool = False) -> Simulation:
+    def subcycled(stage: str) -> bool:
+        """Whether ``stage`` takes the sub-cycled step (FIRE needs the plain one)."""
+        if stage == "compaction":
+            return False
+        return prep.stage_relaxation(stage) != "fire" and nsub_sub > 1
+
+    def new_sim(sample: Sample, sub: bool = False) -> Simulation:
         s = Simulation(
             sample,
             config.contacts,
             density=config.material.density,
             damping=config.material.damping,
-            dt=dt_sub if equilibrium_stage else dt_plain,
+            dt=dt_sub if sub else dt_plain,
             skin=config.numerics.skin_ratio * float(diam.min()),
             gravity=(0.0, 0.0),
-            nsub=nsub_sub if equilibrium_stage else 1,
+            nsub=nsub_sub if sub else 1,
         )
         s.set_soil_contact(prep_soil)
         return s
+
+    def step_of(stage: str) -> None:
+        """Rebuild ``sim`` with the step of ``stage`` if it has another (same state)."""
+        nonlocal sim
+        assert sim is not None
+        sub = subcycled(stage)
+        if sim.nsub != (nsub_sub if sub else 1):
+            t_now, steps = sim.time, sim.step_count
+            sim = new_sim(sim.to_sample(), sub)
+            sim.time, sim.step_count = t_now, steps
 
     first_layer = 0
     stage = "compaction"
@@ -380,7 +396,7 @@ def prepare_sample(
             saved.omega,
             saved.contacts,
         )
-        sim = new_sim(saved, equilibrium_stage=stage != "compaction")
+        sim = new_sim(saved, subcycled(stage))
         sim.time = float(meta["time"])
         if meta["lid"] is not None:
             sim.set_lid(float(meta["lid"]), 0.0)
@@ -444,7 +460,7 @@ def prepare_sample(
             prep.max_settle_time / 5.0,
             min_time=2e-3,
             force_floor=STRESS_FREE_FRACTION * w_mean,
-            relaxation=prep.relaxation,
+            relaxation=prep.stage_relaxation("layer"),
         )
         log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
         clock.lap("compaction", sim.step_count, sim.n)
@@ -512,7 +528,7 @@ def prepare_sample(
             min_time=5e-3,
             start_time=stage_values[f"t0_{name}"],
             on_check=on_check(name),
-            relaxation=prep.relaxation,
+            relaxation=prep.stage_relaxation(name),
         )
         if progress is not None:
             progress(name, 1.0)
@@ -530,12 +546,9 @@ def prepare_sample(
         order = snap.cell_order()
         if not np.array_equal(order, np.arange(snap.n)):
             t_now, steps = sim.time, sim.step_count
-            sim = new_sim(snap.permuted(order), equilibrium_stage=sim.nsub > 1)
+            sim = new_sim(snap.permuted(order), sim.nsub > 1)
             sim.time, sim.step_count = t_now, steps
-    if sim.nsub != nsub_sub:  # from the compaction's plain step to the equilibrium stages'
-        t_now, steps = sim.time, sim.step_count
-        sim = new_sim(sim.to_sample(), equilibrium_stage=True)
-        sim.time, sim.step_count = t_now, steps
+    step_of(stage)  # from the compaction's plain step to the equilibrium stage's
     sim.set_soil_contact(soil)
     if stage == "1g":
         sim.set_gravity(0.0, -GRAVITY)
@@ -543,6 +556,10 @@ def prepare_sample(
         ok1, r1 = equilibrium("1g")
         clock.lap("1g", sim.step_count, sim.n)
         stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
+        if subcycled("Ng") != subcycled("1g"):  # "fire-1g": the ramp takes the N g step
+            step_of("Ng")
+            sim.set_soil_contact(soil)
+            sim.set_gravity(0.0, -GRAVITY)
         # ramp to N g, then equilibrium
         ramp = config.loading.gravity_ramp_time
         if ramp > 0:
