@@ -29,6 +29,15 @@ before its penetration.
 the timed whole case with cell order before each compacted layer): the same checks as
 SM-Dr48, added on 2026-11-23 before its preparation started.
 
+``SM-Dr48-seed6-fire1g`` (seed 6 again, with ``Preparation.relaxation = "fire-1g"``: FIRE in
+the 1 g stage only, started from seed 6's own compacted specimen; written on 2026-11-25
+before its run): the same checks as SM-Dr48, and the lever's full-size equivalence with the
+damped seed 6 — interior e at 25 g within 0.002 of seed 6's (the same compacted specimen:
+the 3D-wide trial of FIRE in every equilibrium stage moved it by 0.0012), the bin means of
+0–0.05D and 0.05–0.1D within 10 % of seed 6's (before the curves decorrelate; on SM-reduced
+the first bins differ by 0.05 seed standard deviations), and the mean V over 0–0.5D within two
+standard deviations of the three damped seeds' (3, 4, 6).
+
 ``SD-seed5`` (the dense preset, second seed 5, summary files renamed from ``SD_*``; written
 on 2026-11-23 before its run, which then started over with the SD preset of that evening —
 FIRE preparation, penetration sub-cycled at ``subcycle_dt_safety`` 0.25 — the tolerances
@@ -43,6 +52,7 @@ the surface, and there is at least one such episode.
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import pytest
@@ -77,7 +87,8 @@ def _episodes_after(ds, w_min: float, drop: float) -> list[tuple[float, float]]:
 
 
 @pytest.mark.parametrize(
-    "name", ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SD-seed5"]
+    "name",
+    ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g", "SD-seed5"],
 )
 def test_run_is_complete_and_quasi_static(name):
     ds = _summary(name)
@@ -132,6 +143,7 @@ _SM48_SEED6_SOFTENS = (
         pytest.param(
             "SM-Dr48-seed6", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED6_SOFTENS)
         ),
+        "SM-Dr48-seed6-fire1g",
     ],
 )
 def test_medium_dense_hardens(name):
@@ -142,7 +154,9 @@ def test_medium_dense_hardens(name):
     assert _episodes_after(ds, 0.1, 0.15) == []
 
 
-@pytest.mark.parametrize("name", ["SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6"])
+@pytest.mark.parametrize(
+    "name", ["SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g"]
+)
 def test_medium_dense_at_the_paper_density_has_its_void_ratio(name):
     ds = _summary(name)
     assert abs(float(ds.attrs["initial_void_ratio"]) - 0.227) <= 0.004
@@ -182,7 +196,8 @@ def test_dense_drops_are_bands_reaching_the_surface():
 
 
 @pytest.mark.parametrize(
-    "name", ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SD-seed5"]
+    "name",
+    ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g", "SD-seed5"],
 )
 def test_heave_height(name):
     ds = _summary(name)
@@ -217,6 +232,8 @@ _SD_PEAK_AT_0_4D = (
         ("SM-Dr48-seed4", 0.5),
         ("SM-Dr48-seed6", 0.4),
         ("SM-Dr48-seed6", 0.5),
+        ("SM-Dr48-seed6-fire1g", 0.4),
+        ("SM-Dr48-seed6-fire1g", 0.5),
         pytest.param("SD", 0.4, marks=pytest.mark.xfail(strict=True, reason=_SD_PEAK_AT_0_4D)),
         ("SD", 0.5),
         ("SD-seed5", 0.4),
@@ -228,3 +245,29 @@ def test_resistance_within_factor_1_5_of_centrifuge(name, ratio):
     dem = float(ds.attrs[f"V_prototype_at_{ratio:g}D"])
     paper = PUBLISHED[_paper(name)].resistance[ratio]
     assert paper / 1.5 <= dem <= 1.5 * paper, (dem, paper)
+
+
+def _bin_means(name: str, edges) -> list[float]:
+    """Mean prototype V [kN/m] of the summary's 0.005D bins within each of ``edges``."""
+    ds = _summary(name)
+    w = ds["w_over_D"].values
+    v = ds["V_prototype_mean"].values / 1e3
+    return [float(v[(w > a) & (w < b)].mean()) for a, b in itertools.pairwise(edges)]
+
+
+def test_fire_1g_at_full_size_is_the_damped_case_within_the_seed_scatter():
+    """The ``fire-1g`` lever on the full-size SM-Dr48 seed 6 (the same compacted specimen)
+    against the damped seed 6 and the three damped seeds (tolerances in the module
+    docstring, fixed before the run)."""
+    lever, damped = _summary("SM-Dr48-seed6-fire1g"), _summary("SM-Dr48-seed6")
+    de = float(lever.attrs["initial_void_ratio"]) - float(damped.attrs["initial_void_ratio"])
+    assert abs(de) <= 0.002, de
+    early = (0.0, 0.05, 0.1)
+    for a, b in zip(_bin_means("SM-Dr48-seed6-fire1g", early), _bin_means("SM-Dr48-seed6", early),
+                    strict=True):  # fmt: skip
+        assert abs(a - b) <= 0.1 * b, (a, b)
+    whole = (0.0, 0.5)
+    seeds = [_bin_means(n, whole)[0] for n in ("SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6")]
+    mean = sum(seeds) / 3
+    sd = (sum((x - mean) ** 2 for x in seeds) / 2) ** 0.5
+    assert abs(_bin_means("SM-Dr48-seed6-fire1g", whole)[0] - mean) <= 2 * sd, (seeds, sd)
