@@ -3,8 +3,9 @@
 For a kernel change that must not change the results (issue #15's bitwise levers): the same
 full-size states are stepped by the engine of this checkout and by the one of another source
 tree (``--other-src``, for instance a ``git worktree`` of the commit before the change), in
-separate processes, alternated ``--repeat`` times so that a change of the machine's rate hits
-both, and the end states are compared bit for bit. Each state is one of
+separate processes, alternated ``--repeat`` times in ABBA order (use an even count) so that a
+drift of the machine's rate hits both alike, and the end states are compared bit for bit.
+Each state is one of
 
 - ``compaction``: a compacted specimen stepped as in a compaction (gravity off, the lid moving
   down, the preset's preparation contacts, plain step);
@@ -106,7 +107,11 @@ def main() -> None:
         for threads in (int(t) for t in args.threads.split(",")):
             best: dict[str, float] = {}
             for rep in range(args.repeat):
-                for name, src in versions.items():
+                # ABBA: the first version of a pair runs at another moment of a drifting
+                # machine rate than the second; swapping the order every repeat cancels a
+                # linear drift (on 2026-11-25 the rate rose 20 % over six runs of a series)
+                order = list(versions.items())[:: -1 if rep % 2 else 1]
+                for name, src in order:
                     out = args.tmp / f"{state}_{threads}_{name}.npy"
                     job = dict(
                         preset=args.preset, state=state, path=str(path), threads=threads,

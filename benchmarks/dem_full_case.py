@@ -19,7 +19,11 @@ alike), so the checkpoint is re-labelled with this run's identity and resumed; t
 compaction's wall time and steps are taken from STAGES and added to the total.
 
 ``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
-second reads the specimen and the first's figures); the total is the sum of the two. A
+second reads the specimen and the first's figures); the total is the sum of the two.
+Before and after the case (and before a separate penetration) it records the machine's own
+rate, ``machine_rate.reference()`` (a frozen reference workload, ns per disk-step on 2 and 1
+threads), so that cases timed on different days can be told apart from a machine that ran
+faster or slower. A
 penetration resumed from its checkpoint reports this call's wall time, ``steps_this_call``
 and the rate over those steps (``steps`` is the run's total).
 
@@ -41,6 +45,7 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 import dataclasses
 
+import machine_rate
 import numba
 import xarray as xr
 
@@ -138,6 +143,7 @@ def main() -> None:
         fig = json.loads(figfile.read_text())
         sample = Sample.load(out / f"{name}_sample.nc")
         fig["load_start_penetration"] = load()
+        fig["machine_reference_penetration_start"] = machine_rate.reference()
         penetration(cfg, sample, out, name, fig, args.checkpoint_every, args.keep_checkpoints)
         return
     fig: dict = {
@@ -149,6 +155,7 @@ def main() -> None:
         "threads": numba.config.NUMBA_NUM_THREADS,
         "cores": os.cpu_count(),
         "load_start": load(),
+        "machine_reference_start": machine_rate.reference(),
     }
     if args.from_compaction is not None:
         ck_src, stages_src = (Path(p) for p in args.from_compaction)
@@ -236,6 +243,7 @@ def penetration(
         "numerics": dataclasses.asdict(cfg.numerics),
         "load_end": load(),
     }
+    fig["machine_reference_end"] = machine_rate.reference()
     prep_wall = fig["preparation"]["wall_s"]
     fig["total_wall_s"] = prep_wall + pen_wall
     (out / f"{name}_stages.json").write_text(json.dumps(fig, indent=1, default=float))

@@ -36,7 +36,10 @@ damped seed 6 — interior e at 25 g within 0.002 of seed 6's (the same compacte
 the 3D-wide trial of FIRE in every equilibrium stage moved it by 0.0012), the bin means of
 0–0.05D and 0.05–0.1D within 10 % of seed 6's (before the curves decorrelate; on SM-reduced
 the first bins differ by 0.05 seed standard deviations), and the mean V over 0–0.5D within two
-standard deviations of the three damped seeds' (3, 4, 6).
+standard deviations of the three damped seeds' (3, 4, 6). *Outcome:* its specimen came out
+0.0047 denser (interior e 0.2189 at 25 g), failing the first check and the 0.227 ± 0.004 band;
+the penetration was not run, so the other checks were not made (strict xfail on the
+preparation record, ``docs/validation/dem/levers/``).
 
 ``SD-seed5`` (the dense preset, second seed 5, summary files renamed from ``SD_*``; written
 on 2026-11-23 before its run, which then started over with the SD preset of that evening —
@@ -52,7 +55,7 @@ the surface, and there is at least one such episode.
 
 from __future__ import annotations
 
-import itertools
+import json
 from pathlib import Path
 
 import pytest
@@ -87,8 +90,7 @@ def _episodes_after(ds, w_min: float, drop: float) -> list[tuple[float, float]]:
 
 
 @pytest.mark.parametrize(
-    "name",
-    ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g", "SD-seed5"],
+    "name", ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SD-seed5"]
 )
 def test_run_is_complete_and_quasi_static(name):
     ds = _summary(name)
@@ -143,7 +145,6 @@ _SM48_SEED6_SOFTENS = (
         pytest.param(
             "SM-Dr48-seed6", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED6_SOFTENS)
         ),
-        "SM-Dr48-seed6-fire1g",
     ],
 )
 def test_medium_dense_hardens(name):
@@ -154,9 +155,7 @@ def test_medium_dense_hardens(name):
     assert _episodes_after(ds, 0.1, 0.15) == []
 
 
-@pytest.mark.parametrize(
-    "name", ["SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g"]
-)
+@pytest.mark.parametrize("name", ["SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6"])
 def test_medium_dense_at_the_paper_density_has_its_void_ratio(name):
     ds = _summary(name)
     assert abs(float(ds.attrs["initial_void_ratio"]) - 0.227) <= 0.004
@@ -196,8 +195,7 @@ def test_dense_drops_are_bands_reaching_the_surface():
 
 
 @pytest.mark.parametrize(
-    "name",
-    ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SM-Dr48-seed6-fire1g", "SD-seed5"],
+    "name", ["SM", "SD", "SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6", "SD-seed5"]
 )
 def test_heave_height(name):
     ds = _summary(name)
@@ -232,8 +230,6 @@ _SD_PEAK_AT_0_4D = (
         ("SM-Dr48-seed4", 0.5),
         ("SM-Dr48-seed6", 0.4),
         ("SM-Dr48-seed6", 0.5),
-        ("SM-Dr48-seed6-fire1g", 0.4),
-        ("SM-Dr48-seed6-fire1g", 0.5),
         pytest.param("SD", 0.4, marks=pytest.mark.xfail(strict=True, reason=_SD_PEAK_AT_0_4D)),
         ("SD", 0.5),
         ("SD-seed5", 0.4),
@@ -247,27 +243,39 @@ def test_resistance_within_factor_1_5_of_centrifuge(name, ratio):
     assert paper / 1.5 <= dem <= 1.5 * paper, (dem, paper)
 
 
-def _bin_means(name: str, edges) -> list[float]:
-    """Mean prototype V [kN/m] of the summary's 0.005D bins within each of ``edges``."""
-    ds = _summary(name)
-    w = ds["w_over_D"].values
-    v = ds["V_prototype_mean"].values / 1e3
-    return [float(v[(w > a) & (w < b)].mean()) for a, b in itertools.pairwise(edges)]
+LEVERS = HERE / "levers"
+
+_FIRE1G_DENSER = (
+    "FIRE in the 1 g stage consolidates the full-size bed further than local damping: from the "
+    "same compacted specimen (e 0.2338), 1 g 0.2205 against 0.2260 and 25 g 0.2189 against "
+    "0.2236 (interior), 0.0047 denser, outside both the 0.002 of the lever check and the paper's "
+    "0.227 +- 0.004 (SM-reduced, 12 seeds: within 0.0008; its 1 g stage is short). The damped "
+    "stage meets the 1e-3 ratio while the bed still creeps. The penetration was not run; see "
+    "docs/validation/dem_penetration.md"
+)
 
 
-def test_fire_1g_at_full_size_is_the_damped_case_within_the_seed_scatter():
-    """The ``fire-1g`` lever on the full-size SM-Dr48 seed 6 (the same compacted specimen)
-    against the damped seed 6 and the three damped seeds (tolerances in the module
-    docstring, fixed before the run)."""
-    lever, damped = _summary("SM-Dr48-seed6-fire1g"), _summary("SM-Dr48-seed6")
-    de = float(lever.attrs["initial_void_ratio"]) - float(damped.attrs["initial_void_ratio"])
-    assert abs(de) <= 0.002, de
-    early = (0.0, 0.05, 0.1)
-    for a, b in zip(_bin_means("SM-Dr48-seed6-fire1g", early), _bin_means("SM-Dr48-seed6", early),
-                    strict=True):  # fmt: skip
-        assert abs(a - b) <= 0.1 * b, (a, b)
-    whole = (0.0, 0.5)
-    seeds = [_bin_means(n, whole)[0] for n in ("SM-Dr48", "SM-Dr48-seed4", "SM-Dr48-seed6")]
-    mean = sum(seeds) / 3
-    sd = (sum((x - mean) ** 2 for x in seeds) / 2) ** 0.5
-    assert abs(_bin_means("SM-Dr48-seed6-fire1g", whole)[0] - mean) <= 2 * sd, (seeds, sd)
+def _stages(name: str) -> dict:
+    return json.loads((LEVERS / name).read_text())
+
+
+def test_fire_1g_at_full_size_starts_from_the_same_compaction_and_halves_the_1g_steps():
+    """The lever's record: the compacted specimen is the damped run's (bitwise: same void
+    ratio), and its 1 g stage took 190,000 plain steps against 374,500 sub-cycled ones."""
+    lever = _stages("full_case_SM-Dr48_seed6_fire1g_preparation.json")
+    damped = _stages("full_case_SM-Dr48_seed6_frictionless_stages.json")
+    assert lever["relaxation"] == "fire-1g"
+    assert lever["sample"]["void_ratio_compacted"] == damped["sample"]["void_ratio_compacted"]
+    assert lever["compaction_from"]["compaction"] == damped["preparation"]["stages"]["compaction"]
+    assert lever["preparation"]["stages"]["1g"]["steps"] == 190_000
+    assert damped["preparation"]["stages"]["1g"]["steps"] == 374_500
+    assert lever["sample"]["equilibrium_1g_converged"] == 1.0
+
+
+@pytest.mark.xfail(strict=True, reason=_FIRE1G_DENSER)
+def test_fire_1g_at_full_size_keeps_the_specimen():
+    """The void-ratio checks fixed before the run (module docstring)."""
+    e_lever = _stages("full_case_SM-Dr48_seed6_fire1g_preparation.json")["sample"]["void_ratio_Ng"]
+    e_damped = float(_summary("SM-Dr48-seed6").attrs["initial_void_ratio"])
+    assert abs(e_lever - e_damped) <= 0.002, (e_lever, e_damped)
+    assert abs(e_lever - 0.227) <= 0.004, e_lever

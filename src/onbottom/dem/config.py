@@ -292,6 +292,12 @@ class Preparation:
         and the N g stage as ``"damped"`` (sub-cycled with ``Numerics.subcycle``). The 1 g
         stage is a slow consolidation under the bed's own weight that local damping
         (α = 0.7 caps a falling disk at 0.3 g) drags out; the N g stage after it is short.
+        ``"fire-1g"`` is *not* equivalent at full size: on SM-Dr48 (seed 6, the same
+        compacted specimen) it halved the 1 g steps but left the specimen 0.0047 denser
+        (interior e 0.2189 against 0.2236 at 25 g), FIRE consolidating the bed further than
+        the damped stage, which meets the ratio while the bed still creeps (on SM-reduced,
+        12 seeds, the two agree within the seed scatter); opt in only for quick,
+        approximate specimens.
     layer_generation
         How each loose layer is laid out before the lid compresses it: ``"lattice"``
         (default: a jittered square lattice of pitch 1.05·d_max, porosity ≈ 0.64 for the SM
