@@ -14,9 +14,10 @@ bitwise (for instance to take field snapshots at w/D values only known afterward
 (``--relaxation fire-1g``) from another run's compacted specimen: CHECKPOINT is that run's
 preparation checkpoint written after its last layer (copy it before its 1 g stage overwrites
 it), STAGES its ``_stages.json``. The compaction is the same for both configurations (checked:
-the identities may differ only in ``preparation.relaxation``, and both relax the layers
-alike), so the checkpoint is re-labelled with this run's identity and resumed; the
-compaction's wall time and steps are taken from STAGES and added to the total.
+the identities may differ only in ``preparation.relaxation`` and the inertial mass floors
+of the later stages, and both relax the layers alike), so the checkpoint is re-labelled with
+this run's identity and resumed; the compaction's wall time and steps are taken from STAGES
+and added to the total.
 
 ``--stage prepare`` and ``--stage penetrate`` run the two halves in separate calls (the
 second reads the specimen and the first's figures); the total is the sum of the two.
@@ -77,8 +78,15 @@ def adopt_compaction(cfg: DEMConfig, source: Path, target: Path) -> None:
         )
     ident = run_identity(cfg, "preparation")
     diff = differences(meta["identity"], ident)
-    if any(not d.startswith("config.preparation.relaxation:") for d in diff):
-        raise SystemExit(f"{source}: another case, not only another relaxation: {diff}")
+    after_compaction = (
+        "config.preparation.relaxation:",
+        "config.numerics.equilibrium_mass_floor:",
+        "config.numerics.penetration_mass_floor:",
+    )
+    if any(not d.startswith(after_compaction) for d in diff):
+        raise SystemExit(
+            f"{source}: another case, not only a lever that acts after the compaction: {diff}"
+        )
     old = cfg.preparation.__class__(
         **{**dataclasses.asdict(cfg.preparation), **meta["identity"]["config"]["preparation"]}
     )
@@ -115,6 +123,18 @@ def main() -> None:
         help="override Preparation.relaxation (fire-1g: FIRE for the 1 g stage only)",
     )
     ap.add_argument(
+        "--penetration-mass-floor",
+        type=float,
+        default=None,
+        help="override Numerics.penetration_mass_floor (inertial mass scaling, penetration)",
+    )
+    ap.add_argument(
+        "--equilibrium-mass-floor",
+        type=float,
+        default=None,
+        help="override Numerics.equilibrium_mass_floor (the same in the 1 g, ramp, N g stages)",
+    )
+    ap.add_argument(
         "--from-compaction",
         nargs=2,
         metavar=("CHECKPOINT", "STAGES"),
@@ -130,6 +150,10 @@ def main() -> None:
     if args.sort_disks is not None:
         num = dataclasses.replace(cfg.numerics, sort_disks=args.sort_disks == "on")
         cfg = cfg.replace(numerics=num)
+    for fld in ("penetration_mass_floor", "equilibrium_mass_floor"):
+        if getattr(args, fld) is not None:
+            num = dataclasses.replace(cfg.numerics, **{fld: getattr(args, fld)})
+            cfg = cfg.replace(numerics=num)
     if args.seed is not None:
         cfg = cfg.replace(seed=args.seed)
     if args.subcycle is not None:
@@ -240,6 +264,7 @@ def penetration(
         "particle_steps_per_s": sample.n * (steps - steps_before) / pen_wall,
         "dt": float(ds.attrs["dt"]),
         "inertial_number": float(ds.attrs["inertial_number"]),
+        "inertial_number_scaled": float(ds.attrs["inertial_number_scaled"]),
         "numerics": dataclasses.asdict(cfg.numerics),
         "load_end": load(),
     }

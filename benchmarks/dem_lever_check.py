@@ -12,6 +12,9 @@ lidpause`` (the whole case as the preset runs it, against the same with the lid'
 pauses ended as soon as the pressure falls, ``Preparation.lid_pause = "adaptive"``) and for
 ``--lever fire-1g`` (the whole case as the preset runs it, against the same with its 1 g stage
 relaxed by FIRE at the plain step, ``Preparation.relaxation = "fire-1g"``) and for
+``--lever mass`` (each specimen of the preset, penetrated as the preset runs it and again
+with inertial mass scaling, ``Numerics.penetration_mass_floor`` = ``--mass-floor``, default
+1.0: every disk as heavy as the largest in inertia, its weight its own) and for
 ``--lever random``: there the baseline is the whole case as the presets ran it before that
 lever (sub-cycled engine, layers laid out on the square lattice,
 ``Preparation.layer_generation = "lattice"``) and the lever lays the layers out by random
@@ -57,6 +60,8 @@ def lever(cfg: DEMConfig, name: str) -> DEMConfig:
         return cfg.replace(numerics=dataclasses.replace(cfg.numerics, sort_disks=True))
     if name in ("fire", "fire-1g"):
         return cfg.replace(preparation=dataclasses.replace(cfg.preparation, relaxation=name))
+    if name == "mass":  # the floor comes from --mass-floor
+        return cfg
     if name == "step":  # the time step comes from --dt-safety
         return cfg
     if name == "lidspeed":  # the speed comes from --lid-speed
@@ -96,6 +101,7 @@ def main() -> None:
             "step",
             "lidpause",
             "lidspeed",
+            "mass",
         ),
     )
     ap.add_argument(
@@ -105,6 +111,19 @@ def main() -> None:
     )
     ap.add_argument(
         "--lid-speed", type=float, default=1.0, help="lid speed of --lever lidspeed [m/s]"
+    )
+    ap.add_argument(
+        "--mass-floor",
+        type=float,
+        default=1.0,
+        help="Numerics.penetration_mass_floor of --lever mass (fraction of the largest mass)",
+    )
+    ap.add_argument(
+        "--pipe-velocity",
+        type=float,
+        default=None,
+        help="override Loading.pipe_velocity of both runs [m/s] (for instance to match the"
+        " full-size inertial number on a reduced preset)",
     )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
@@ -126,7 +145,7 @@ def main() -> None:
             preparation=dataclasses.replace(preset.preparation, layer_generation="lattice"),
         )
     if (
-        args.lever in ("lidpause", "lidspeed", "fire-1g") or args.preset_engine
+        args.lever in ("lidpause", "lidspeed", "fire-1g", "mass") or args.preset_engine
     ):  # the preset as it is
         base = preset
     prep_changes = args.lever in (
@@ -138,6 +157,11 @@ def main() -> None:
         "lidpause",
         "lidspeed",
     )
+    if args.pipe_velocity is not None:
+        base = base.replace(
+            loading=dataclasses.replace(base.loading, pipe_velocity=args.pipe_velocity)
+        )
+    vtag = "" if args.pipe_velocity is None else f"_v{args.pipe_velocity:g}"
     rows = []
     for seed in args.seeds:
         cfg = base.replace(seed=seed)
@@ -145,6 +169,9 @@ def main() -> None:
         if args.lever == "lidspeed":
             prep = dataclasses.replace(cfg.preparation, lid_speed=args.lid_speed)
             lcfg = lcfg.replace(preparation=prep)
+        if args.lever == "mass":
+            num = dataclasses.replace(cfg.numerics, penetration_mass_floor=args.mass_floor)
+            lcfg = lcfg.replace(numerics=num)
         if args.dt_safety is not None:
             lcfg = lcfg.replace(
                 numerics=dataclasses.replace(
@@ -167,7 +194,7 @@ def main() -> None:
             lsample = prepare_sample(lcfg)
             tpl = time.perf_counter() - t0
         t0 = time.perf_counter()
-        cpath = cache / f"{cfg.name}_seed{seed}_plain.json" if cache is not None else None
+        cpath = cache / f"{cfg.name}_seed{seed}{vtag}_plain.json" if cache is not None else None
         if cpath is not None and cpath.exists():
             plain_curve, ta, plain_steps = json.loads(cpath.read_text())
         else:
@@ -188,6 +215,10 @@ def main() -> None:
             "wall_pen": (ta, tb),
             "e_Ng": (sample.attrs["void_ratio_Ng"], lsample.attrs["void_ratio_Ng"]),
             "steps": (plain_steps, int(b.attrs["steps"])),
+            "inertial_number": (
+                float(b.attrs["inertial_number"]),
+                float(b.attrs["inertial_number_scaled"]),
+            ),
             "load": os.getloadavg()[0],
         }
         rows.append(row)

@@ -482,9 +482,9 @@ def fine_partners(
                     fx -= cfx[kk]
                     fy -= cfy[kk]
                     tq += rc * fs[kk] - mr[kk]
-                mc = mass[c]
-                fx += mc * gx
-                fy += mc * gy
+                mc = mass[c, 0]
+                fx += mass[c, 1] * gx
+                fy += mass[c, 1] * gy
                 vx = vel[c, 0]
                 vy = vel[c, 1]
                 w = om[c]
@@ -676,12 +676,13 @@ def fine_substeps(
                 else:
                     fsw[i, PIPE] = 0.0
                     mrw[i, PIPE] = 0.0
-            m = mass[i]
-            fx += m * gx
-            fy += m * gy
+            m = mass[i, 0]
+            mg = mass[i, 1]
+            fx += mg * gx
+            fy += mg * gy
             dacc[ll, 6] += fx
             dacc[ll, 7] += fy
-            dacc[ll, 8] += a + m * gmag
+            dacc[ll, 8] += a + mg * gmag
             if alpha > 0.0:
                 fx -= alpha * abs(fx) * _sign(vx)
                 fy -= alpha * abs(fy) * _sign(vy)
@@ -946,11 +947,12 @@ def _gather_integrate_block(
                 fsw[i, PIPE] = 0.0
                 mrw[i, PIPE] = 0.0
         stiff[i] = near
-        m = mass[i]
-        fx += m * gx
-        fy += m * gy
+        m = mass[i, 0]
+        mg = mass[i, 1]
+        fx += mg * gx
+        fy += mg * gy
         if diag:
-            a += m * np.sqrt(gx * gx + gy * gy)
+            a += mg * np.sqrt(gx * gx + gy * gy)
             unb[i] = np.sqrt(fx * fx + fy * fy)
             app[i] = a
         if fixed[i]:
@@ -1057,11 +1059,12 @@ def _gather_integrate_block_fire(
                 fsw[i, PIPE] = 0.0
                 mrw[i, PIPE] = 0.0
         stiff[i] = near
-        m = mass[i]
-        fx += m * gx
-        fy += m * gy
+        m = mass[i, 0]
+        mg = mass[i, 1]
+        fx += mg * gx
+        fy += mg * gy
         if diag:
-            a += m * np.sqrt(gx * gx + gy * gy)
+            a += mg * np.sqrt(gx * gx + gy * gy)
             unb[i] = np.sqrt(fx * fx + fy * fy)
             app[i] = a
         if fixed[i]:
@@ -1289,6 +1292,9 @@ def run_steps(
     :func:`fine_substeps`).
     ``fire``: FIRE state (``F_*`` indices), updated in place after every step when on.
     ``nthreads``: numba's thread count for the call (the workers of the zonal pass).
+    ``mass`` (n, 2): each disk's inertial mass (column 0: divides the force) and its
+    gravitational mass (column 1: its weight is ``mass[:, 1]·g``); equal columns but for
+    inertial mass scaling (``Simulation(inertial_mass_floor=…)``).
     Returns the (possibly new) list arrays and the number of rebuilds.
     """
     skin = prm[P_SKIN]

@@ -28,14 +28,15 @@ def _law(overlap, vt, dw, rbar, kn, ks, mu, mur, fs, mr, dt):
 class ReferenceSystem:
     """Disks + walls + pipe advanced by the plain-Python leapfrog step."""
 
-    def __init__(self, prm, pos, vel, om, rad, mass, inert):
+    def __init__(self, prm, pos, vel, om, rad, mass, inert, inertial_mass=None):
         self.prm = np.array(prm, float)
         self.pos = np.array(pos, float)
         self.vel = np.array(vel, float)
         self.om = np.array(om, float)
         self.th = np.zeros(len(rad))
         self.rad = np.array(rad, float)
-        self.mass = np.array(mass, float)
+        self.mass = np.array(mass, float)  # weight m·g
+        self.inertial_mass = np.array(mass if inertial_mass is None else inertial_mass, float)
         self.inert = np.array(inert, float)
         self.pairs: dict[tuple[int, int], list[float]] = {}
         self.walls: dict[tuple[int, int], list[float]] = {}
@@ -111,7 +112,7 @@ class ReferenceSystem:
         a = p[K.P_ALPHA]
         F = F - a * np.abs(F) * np.sign(self.vel)
         T = T - a * np.abs(T) * np.sign(self.om)
-        self.vel += dt * F / self.mass[:, None]
+        self.vel += dt * F / self.inertial_mass[:, None]
         self.om += dt * T / self.inert
         self.pos += dt * self.vel
         self.th += dt * self.om

@@ -432,6 +432,26 @@ class Numerics:
         only roughly row-ordered; in cell order its step is 2–4 % faster on 2 threads and
         10 % on one on an idle machine (``benchmarks/bench_dem_cell_order.py``,
         ``bench_dem.py --cell-order``), 15–33 % beside another run sharing the cores.
+    penetration_mass_floor
+        Inertial mass scaling in the penetration stage [-]: no disk's inertial mass (and
+        moment of inertia ½·m·r²) falls below this fraction of the largest disk's mass, while
+        every disk's weight stays its own; the time step follows the lightest inertial mass,
+        so 1.0 (every disk as heavy as the largest, in inertia only) lengthens it by
+        d_max/d_min (2.55 for the paper's grading). 0 (default): the true masses, as the
+        paper. The inertial number computed with the scaled d50 mass is recorded with the run
+        (``inertial_number_scaled``); the penetration stays quasi-static while it is below
+        1e-3. The preparation is never scaled (its compaction is a dynamic process).
+        **Not equivalent** (2026-11-25): at 1.0, on the same 8 SM-reduced specimens, the
+        curves came out stiffer at the preset's 0.05 m/s (+48 kN/m over the curve) and
+        softer at the full-size inertial number (0.0023 m/s: −47 kN/m, 38 %), both far
+        outside the seed scatter (``docs/theory/dem.md``, "Speed levers"); no preset uses
+        it. Opt in only for quick, approximate runs.
+    equilibrium_mass_floor
+        The same inertial mass scaling in the preparation's 1 g, gravity-ramp and N g stages
+        [-] (never in the compaction); their time windows and the gravity ramp are
+        stretched by the same factor as the step, so the step budget is the preset's. 0
+        (default): the true masses. Opt-in and not checked for equivalence (on a 2-layer
+        test specimen, whose 1 g stage runs to its time cap either way, it ends denser).
     """
 
     dt_safety: float = 0.5
@@ -441,6 +461,8 @@ class Numerics:
     sort_disks: bool = False
     subcycle_preparation: bool = True
     subcycle_dt_safety: float | None = None
+    penetration_mass_floor: float = 0.0
+    equilibrium_mass_floor: float = 0.0
 
     @property
     def prep_subcycles(self) -> bool:
@@ -456,6 +478,8 @@ class Numerics:
         v.in_range("dt_safety", self.dt_safety, 0.0, 1.0, low_inclusive=False)
         if self.subcycle_dt_safety is not None:
             v.in_range("subcycle_dt_safety", self.subcycle_dt_safety, 0.0, 1.0, low_inclusive=False)
+        v.in_range("penetration_mass_floor", self.penetration_mass_floor, 0.0, 1.0)
+        v.in_range("equilibrium_mass_floor", self.equilibrium_mass_floor, 0.0, 1.0)
         v.in_range("skin_ratio", self.skin_ratio, 0.0, 2.0, low_inclusive=False)
         if not isinstance(self.record_every, int) or self.record_every < 1:
             raise InputError(

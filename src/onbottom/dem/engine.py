@@ -113,6 +113,14 @@ class Simulation:
     nsub
         Sub-steps per time step [-] of the disks within half a skin of a wall, the lid or
         the pipe (zonal sub-cycling, :func:`step_sizes`, ``_kernels.fine_substeps``); 1: none.
+    inertial_mass_floor
+        Inertial mass scaling [kg per m of disk thickness]: every disk's inertial mass (the
+        mass that divides its force, and its moment of inertia ½·m·r²) is at least this, while
+        its weight stays its own m·g; the default step (``dt=None``) follows the lightest
+        inertial mass. 0 (default): the true masses. A numerical device for quasi-static
+        stages (inertial number well below 1e-3), not a change of the contact law: a static
+        state is the same with any inertia, the path towards it is not
+        (``docs/theory/dem.md``, "Speed levers").
     """
 
     def __init__(
@@ -129,8 +137,10 @@ class Simulation:
         pipe: PipeState | None = None,
         threads: int | None = None,
         nsub: int = 1,
+        inertial_mass_floor: float = 0.0,
     ) -> None:
         v.positive("density", density)
+        v.non_negative("inertial_mass_floor", inertial_mass_floor)
         if not isinstance(nsub, int) or nsub < 1:
             raise InputError(f"nsub = {nsub!r} is invalid: must be an integer >= 1")
         self.nsub = nsub
@@ -145,7 +155,10 @@ class Simulation:
         self.th = sample.theta.copy()
         self.rad = sample.radii.copy()
         self.mass = density * np.pi * self.rad**2
-        self.inert = 0.5 * self.mass * self.rad**2
+        # inertial mass scaling: no disk's inertia below the floor; its weight stays m·g
+        self.inertial_mass = np.maximum(self.mass, float(inertial_mass_floor))
+        self.inert = 0.5 * self.inertial_mass * self.rad**2
+        self._kmass = np.ascontiguousarray(np.column_stack([self.inertial_mass, self.mass]))
         self.fixed = np.zeros(n, np.bool_)
         self.box = sample.box
         self.attrs = dict(sample.attrs)
@@ -157,7 +170,7 @@ class Simulation:
         self.app = np.zeros(n)
         self.prm = np.zeros(K.N_PRM)
         if n:
-            m_min = float(self.mass.min())
+            m_min = float(self.inertial_mass.min())
             self.dt = dt if dt is not None else step_sizes(contacts, m_min, dt_safety, nsub > 1)[0]
         else:
             self.dt = dt if dt is not None else 1e-6
@@ -379,7 +392,7 @@ class Simulation:
 
     def _run(self, nsteps: int) -> tuple:
         return K.run_steps(
-            int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self.mass,
+            int(nsteps), self.prm, self.pos, self.vel, self.om, self.th, self.rad, self._kmass,
             self.inert, self.fixed, self.ref, self.start, self.nbr, self.fs, self.mr,
             self.rstart, self.ridx, self.fsw, self.mrw, self.pfx, self.pfy, self.unb, self.app,
             self.nsub, self.fire, numba.get_num_threads(),
@@ -407,7 +420,7 @@ class Simulation:
     def kinetic_energy(self) -> float:
         """Translational + rotational kinetic energy [J per m] (half-step velocities)."""
         return float(
-            0.5 * np.sum(self.mass * np.sum(self.vel**2, axis=1))
+            0.5 * np.sum(self.inertial_mass * np.sum(self.vel**2, axis=1))
             + 0.5 * np.sum(self.inert * self.om**2)
         )
 

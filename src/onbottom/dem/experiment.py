@@ -87,8 +87,10 @@ Progress = Callable[[float], None]
 def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = None) -> Simulation:
     """A :class:`Simulation` of ``sample`` with the design contacts at N g (no pipe yet)."""
     c = config.contacts
-    m_min = config.material.density * math.pi * float(sample.radii.min()) ** 2
     num = config.numerics
+    rho = config.material.density
+    floor = num.penetration_mass_floor * rho * math.pi * float(sample.radii.max()) ** 2
+    m_min = max(rho * math.pi * float(sample.radii.min()) ** 2, floor)
     safety = num.subcycled_dt_safety if num.subcycle else num.dt_safety
     dt, nsub = step_sizes(c, m_min, safety, num.subcycle)
     return Simulation(
@@ -101,6 +103,7 @@ def make_simulation(config: DEMConfig, sample: Sample, threads: int | None = Non
         gravity=(0.0, -config.loading.gravity_factor * GRAVITY),
         threads=threads,
         nsub=nsub,
+        inertial_mass_floor=floor,
     )
 
 
@@ -637,6 +640,11 @@ def _assemble(
         porosity,
         N,
     )
+    # with inertial mass scaling the d50 disk's inertia is max(m50, floor): I grows as its root
+    rho, d50 = config.material.density, config.psd.d50
+    m50 = rho * math.pi * d50 * d50 / 4.0
+    floor = config.numerics.penetration_mass_floor * rho * math.pi * float(sample.radii.max()) ** 2
+    inum_scaled = inum * math.sqrt(max(m50, floor) / m50)
     ds.attrs.update(
         provenance(
             "dem.penetration",
@@ -648,7 +656,8 @@ def _assemble(
             steps=int(sim.step_count),
             rebuilds=int(sim.rebuilds),
             inertial_number=float(inum),
-            quasi_static=int(inum <= 1e-3),
+            inertial_number_scaled=float(inum_scaled),
+            quasi_static=int(inum_scaled <= 1e-3),
             complete=int(complete),
             gravity_factor=float(N),
             pipe_diameter=float(D),

@@ -118,6 +118,8 @@ def _flatten(d: Any, prefix: str = "") -> dict[str, Any]:
 _ADDED_WITH_DEFAULT: dict[str, Any] = {
     "config.numerics.subcycle_preparation": True,
     "config.numerics.subcycle_dt_safety": None,
+    "config.numerics.penetration_mass_floor": 0.0,
+    "config.numerics.equilibrium_mass_floor": 0.0,
     "config.preparation.lid_pause": "fixed",
 }
 

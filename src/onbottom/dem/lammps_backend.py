@@ -500,6 +500,11 @@ class LammpsPenetrationCase:
             Any other field of :class:`LammpsPenetrationCase`.
         """
         geo, load, num, mat = config.geometry, config.loading, config.numerics, config.material
+        if getattr(num, "penetration_mass_floor", 0.0) > 0.0:
+            raise InputError(
+                f"numerics.penetration_mass_floor = {num.penetration_mass_floor!r} is invalid"
+                " for the LAMMPS backend: it runs the true masses only (must be 0)"
+            )
         radii = np.asarray(sample.radii, dtype=np.float64)
         box = tuple(float(b) for b in sample.box)
         D = float(geo.pipe_diameter)

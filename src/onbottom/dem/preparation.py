@@ -348,6 +348,24 @@ def prepare_sample(
         )
     else:
         dt_sub, nsub_sub = dt_plain, 1
+    # inertial mass scaling of the 1 g, ramp and N g stages (Numerics.equilibrium_mass_floor;
+    # never the compaction): the steps follow the lightest inertial mass
+    floor_eq = (
+        config.numerics.equilibrium_mass_floor
+        * config.material.density
+        * math.pi
+        * (float(diam.max()) / 2) ** 2
+    )
+    m_eq = max(m_min, floor_eq)
+    # a scaled assembly's own time scale is longer by the same factor as its step: the
+    # 1 g / N g time windows and the ramp are stretched alike (the preset's step budget)
+    stretch = math.sqrt(m_eq / m_min)
+    dt_plain_eq = step_sizes(config.contacts, m_eq, config.numerics.dt_safety, False)[0]
+    dt_sub_eq = (
+        step_sizes(config.contacts, m_eq, config.numerics.subcycled_dt_safety, True)[0]
+        if config.numerics.prep_subcycles
+        else dt_plain_eq
+    )
 
     def subcycled(stage: str) -> bool:
         """Whether ``stage`` takes the sub-cycled step (FIRE needs the plain one)."""
@@ -355,16 +373,26 @@ def prepare_sample(
             return False
         return prep.stage_relaxation(stage) != "fire" and nsub_sub > 1
 
-    def new_sim(sample: Sample, sub: bool = False) -> Simulation:
+    def step_size(stage: str) -> float:
+        """Time step [s] of ``stage``."""
+        eq = stage != "compaction"
+        if subcycled(stage):
+            return dt_sub_eq if eq else dt_sub
+        return dt_plain_eq if eq else dt_plain
+
+    def new_sim(sample: Sample, stage: str) -> Simulation:
+        """A simulation of ``sample`` with the step (and inertia) of ``stage``."""
+        sub = subcycled(stage)
         s = Simulation(
             sample,
             config.contacts,
             density=config.material.density,
             damping=config.material.damping,
-            dt=dt_sub if sub else dt_plain,
+            dt=step_size(stage),
             skin=config.numerics.skin_ratio * float(diam.min()),
             gravity=(0.0, 0.0),
             nsub=nsub_sub if sub else 1,
+            inertial_mass_floor=0.0 if stage == "compaction" else floor_eq,
         )
         s.set_soil_contact(prep_soil)
         return s
@@ -374,9 +402,9 @@ def prepare_sample(
         nonlocal sim
         assert sim is not None
         sub = subcycled(stage)
-        if sim.nsub != (nsub_sub if sub else 1):
+        if sim.nsub != (nsub_sub if sub else 1) or sim.dt != step_size(stage):
             t_now, steps = sim.time, sim.step_count
-            sim = new_sim(sim.to_sample(), sub)
+            sim = new_sim(sim.to_sample(), stage)
             sim.time, sim.step_count = t_now, steps
 
     first_layer = 0
@@ -396,7 +424,7 @@ def prepare_sample(
             saved.omega,
             saved.contacts,
         )
-        sim = new_sim(saved, subcycled(stage))
+        sim = new_sim(saved, stage)
         sim.time = float(meta["time"])
         if meta["lid"] is not None:
             sim.set_lid(float(meta["lid"]), 0.0)
@@ -427,7 +455,7 @@ def prepare_sample(
             # order before each layer as well (round-off only)
             sample = sample.permuted(sample.cell_order())
         t_prev = sim.time if sim is not None else 0.0
-        sim = new_sim(sample)
+        sim = new_sim(sample, "compaction")
         sim.time = t_prev
         clock.lap("generation", 0, sim.n)
         lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
@@ -524,8 +552,8 @@ def prepare_sample(
         result = settle(
             sim,
             prep.equilibrium_ratio,
-            prep.max_settle_time,
-            min_time=5e-3,
+            prep.max_settle_time * stretch,
+            min_time=5e-3 * stretch,
             start_time=stage_values[f"t0_{name}"],
             on_check=on_check(name),
             relaxation=prep.stage_relaxation(name),
@@ -546,7 +574,7 @@ def prepare_sample(
         order = snap.cell_order()
         if not np.array_equal(order, np.arange(snap.n)):
             t_now, steps = sim.time, sim.step_count
-            sim = new_sim(snap.permuted(order), sim.nsub > 1)
+            sim = new_sim(snap.permuted(order), stage)
             sim.time, sim.step_count = t_now, steps
     step_of(stage)  # from the compaction's plain step to the equilibrium stage's
     sim.set_soil_contact(soil)
@@ -561,7 +589,7 @@ def prepare_sample(
             sim.set_soil_contact(soil)
             sim.set_gravity(0.0, -GRAVITY)
         # ramp to N g, then equilibrium
-        ramp = config.loading.gravity_ramp_time
+        ramp = config.loading.gravity_ramp_time * stretch
         if ramp > 0:
             n_chunks = max(1, int(ramp / (200 * sim.dt)))
             steps = max(1, round(ramp / sim.dt / n_chunks))
