@@ -15,6 +15,8 @@ relaxed by FIRE at the plain step, ``Preparation.relaxation = "fire-1g"``) and f
 ``--lever mass`` (each specimen of the preset, penetrated as the preset runs it and again
 with inertial mass scaling, ``Numerics.penetration_mass_floor`` = ``--mass-floor``, default
 1.0: every disk as heavy as the largest in inertia, its weight its own) and for
+``--lever compaction-step`` (the whole case as the preset runs it, against the same with the
+compaction at the step ``--compaction-dt-safety``, ``Numerics.compaction_dt_safety``) and for
 ``--lever random``: there the baseline is the whole case as the presets ran it before that
 lever (sub-cycled engine, layers laid out on the square lattice,
 ``Preparation.layer_generation = "lattice"``) and the lever lays the layers out by random
@@ -26,6 +28,10 @@ with the step.
 Run (in a worktree prefix ``PYTHONPATH=src``)::
 
     python benchmarks/dem_lever_check.py --preset SM-reduced --seeds 1 2 3 --lever subcycle
+
+``--merge A.json B.json …`` prints the table and verdict of rows written by several calls
+(for instance one seed per process on a machine with more cores) and, with ``--json``,
+writes them as one record.
 """
 
 from __future__ import annotations
@@ -66,6 +72,8 @@ def lever(cfg: DEMConfig, name: str) -> DEMConfig:
         return cfg
     if name == "lidspeed":  # the speed comes from --lid-speed
         return cfg
+    if name == "compaction-step":  # the step comes from --compaction-dt-safety
+        return cfg
     if name == "lidpause":
         return cfg.replace(preparation=dataclasses.replace(cfg.preparation, lid_pause="adaptive"))
     if name == "random":
@@ -102,6 +110,7 @@ def main() -> None:
             "lidpause",
             "lidspeed",
             "mass",
+            "compaction-step",
         ),
     )
     ap.add_argument(
@@ -125,12 +134,25 @@ def main() -> None:
         help="override Loading.pipe_velocity of both runs [m/s] (for instance to match the"
         " full-size inertial number on a reduced preset)",
     )
+    ap.add_argument(
+        "--compaction-dt-safety",
+        type=float,
+        default=0.8,
+        help="Numerics.compaction_dt_safety of --lever compaction-step",
+    )
+    ap.add_argument(
+        "--merge", nargs="+", default=None, help="rows of earlier calls (their --json files)"
+    )
     ap.add_argument("--json", default=None)
     ap.add_argument("--dt-safety", type=float, default=None, help="dt_safety of the lever run")
     ap.add_argument(
         "--cache", default=None, help="folder keeping the specimens and plain curves between calls"
     )
     args = ap.parse_args()
+    if args.merge is not None:
+        rows = [r for f in args.merge for r in json.loads(Path(f).read_text())]
+        report(rows, args.lever, args.preset, args.json)
+        return
     if args.lever == "step" and args.dt_safety is None:
         ap.error("--lever step needs --dt-safety")
     cache = Path(args.cache) if args.cache else None
@@ -145,7 +167,8 @@ def main() -> None:
             preparation=dataclasses.replace(preset.preparation, layer_generation="lattice"),
         )
     if (
-        args.lever in ("lidpause", "lidspeed", "fire-1g", "mass") or args.preset_engine
+        args.lever in ("lidpause", "lidspeed", "fire-1g", "mass", "compaction-step")
+        or args.preset_engine
     ):  # the preset as it is
         base = preset
     prep_changes = args.lever in (
@@ -156,6 +179,7 @@ def main() -> None:
         "random",
         "lidpause",
         "lidspeed",
+        "compaction-step",
     )
     if args.pipe_velocity is not None:
         base = base.replace(
@@ -169,6 +193,9 @@ def main() -> None:
         if args.lever == "lidspeed":
             prep = dataclasses.replace(cfg.preparation, lid_speed=args.lid_speed)
             lcfg = lcfg.replace(preparation=prep)
+        if args.lever == "compaction-step":
+            num = dataclasses.replace(cfg.numerics, compaction_dt_safety=args.compaction_dt_safety)
+            lcfg = lcfg.replace(numerics=num)
         if args.lever == "mass":
             num = dataclasses.replace(cfg.numerics, penetration_mass_floor=args.mass_floor)
             lcfg = lcfg.replace(numerics=num)
@@ -178,12 +205,14 @@ def main() -> None:
                     lcfg.numerics, dt_safety=args.dt_safety, subcycle_dt_safety=None
                 )
             )
+        t_base: dict[str, float] = {}
+        t_lever: dict[str, float] = {}
         t0 = time.perf_counter()
         spath = cache / f"{cfg.name}_seed{seed}.nc" if cache is not None else None
         if spath is not None and spath.exists():
             sample = Sample.load(spath)
         else:
-            sample = prepare_sample(cfg)
+            sample = prepare_sample(cfg, timings=t_base)
             if spath is not None:
                 sample.save(spath)
         tp = time.perf_counter() - t0
@@ -191,7 +220,7 @@ def main() -> None:
         tpl = tp
         if prep_changes:
             t0 = time.perf_counter()
-            lsample = prepare_sample(lcfg)
+            lsample = prepare_sample(lcfg, timings=t_lever)
             tpl = time.perf_counter() - t0
         t0 = time.perf_counter()
         cpath = cache / f"{cfg.name}_seed{seed}{vtag}_plain.json" if cache is not None else None
@@ -215,6 +244,10 @@ def main() -> None:
             "wall_pen": (ta, tb),
             "e_Ng": (sample.attrs["void_ratio_Ng"], lsample.attrs["void_ratio_Ng"]),
             "steps": (plain_steps, int(b.attrs["steps"])),
+            "prep_steps": (
+                {k[:-6]: int(v) for k, v in t_base.items() if k.endswith("_steps")},
+                {k[:-6]: int(v) for k, v in t_lever.items() if k.endswith("_steps")},
+            ),
             "inertial_number": (
                 float(b.attrs["inertial_number"]),
                 float(b.attrs["inertial_number_scaled"]),
@@ -223,11 +256,18 @@ def main() -> None:
         }
         rows.append(row)
         print(json.dumps(row), flush=True)
+    report(rows, args.lever, args.preset, args.json, args.seeds)
+
+
+def report(rows: list[dict], lever_name: str, preset: str, out: str | None, seeds=None) -> None:
+    """Print the binned comparison and the verdict; write ``rows`` to ``out``."""
+    if seeds is None:
+        seeds = [r["seed"] for r in rows]
     pa = np.array([r["plain"] for r in rows])
     pb = np.array([r["lever"] for r in rows])
     scatter = pa.std(axis=0, ddof=1)
     diff = (pb - pa).mean(axis=0)
-    print(f"lever {args.lever}, preset {args.preset}, seeds {args.seeds}")
+    print(f"lever {lever_name}, preset {preset}, seeds {seeds}")
     print("w/D bin    plain  lever  scatter  mean diff  |diff|/scatter")
     for k in range(10):
         print(
@@ -243,8 +283,8 @@ def main() -> None:
     )
     verdict = "PASS" if np.nanmax(ratio) < 1 else "FAIL"
     print(f"max |diff|/scatter = {np.nanmax(ratio):.2f} -> {verdict}")
-    if args.json:
-        with open(args.json, "w") as f:
+    if out:
+        with open(out, "w") as f:
             json.dump(rows, f, indent=1)
 
 

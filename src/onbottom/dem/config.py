@@ -432,6 +432,19 @@ class Numerics:
         only roughly row-ordered; in cell order its step is 2–4 % faster on 2 threads and
         10 % on one on an idle machine (``benchmarks/bench_dem_cell_order.py``,
         ``bench_dem.py --cell-order``), 15–33 % beside another run sharing the cores.
+    compaction_dt_safety
+        Safety factor of the compaction's time step [-]: Δt = ``compaction_dt_safety``·
+        √(m_min/k_max) while the layers are laid and compressed by the lid (always the plain
+        step, never sub-cycled); ``None`` (default) → ``dt_safety``. The compaction contacts
+        are frictionless (``Preparation.prep_friction`` = 0 in the presets), so the shear and
+        rolling modes that set the 0.5 of ``dt_safety`` (a small disk sticking to a stiff
+        body, ω² ≈ 3.6·k/m) do not exist there: a disk pressed by the lid or a wall
+        (1e9 N/m) and four soil contacts has ω² ≈ 1.3e9/m, for which leapfrog is stable
+        below ≈ 1.75·√(m/1e9) (a disk in a corner: ≈ 1.4). Values above 0.5 therefore keep
+        the compaction stable; whether they keep the specimen is an equivalence question
+        (the compaction is a fast, collisional process): ``docs/theory/dem.md``, "Speed
+        levers", and ``benchmarks/dem_lever_check.py --lever compaction-step``. Only with
+        frictionless compaction contacts (the limit above does not hold with friction).
     penetration_mass_floor
         Inertial mass scaling in the penetration stage [-]: no disk's inertial mass (and
         moment of inertia ½·m·r²) falls below this fraction of the largest disk's mass, while
@@ -463,11 +476,17 @@ class Numerics:
     subcycle_dt_safety: float | None = None
     penetration_mass_floor: float = 0.0
     equilibrium_mass_floor: float = 0.0
+    compaction_dt_safety: float | None = None
 
     @property
     def prep_subcycles(self) -> bool:
         """Whether the preparation's 1 g, ramp and N g stages are sub-cycled."""
         return self.subcycle and self.subcycle_preparation
+
+    @property
+    def compaction_step_safety(self) -> float:
+        """Safety factor of the compaction's step (``compaction_dt_safety`` or ``dt_safety``)."""
+        return self.dt_safety if self.compaction_dt_safety is None else self.compaction_dt_safety
 
     @property
     def subcycled_dt_safety(self) -> float:
@@ -478,6 +497,10 @@ class Numerics:
         v.in_range("dt_safety", self.dt_safety, 0.0, 1.0, low_inclusive=False)
         if self.subcycle_dt_safety is not None:
             v.in_range("subcycle_dt_safety", self.subcycle_dt_safety, 0.0, 1.0, low_inclusive=False)
+        if self.compaction_dt_safety is not None:
+            v.in_range(
+                "compaction_dt_safety", self.compaction_dt_safety, 0.0, 1.0, low_inclusive=False
+            )
         v.in_range("penetration_mass_floor", self.penetration_mass_floor, 0.0, 1.0)
         v.in_range("equilibrium_mass_floor", self.equilibrium_mass_floor, 0.0, 1.0)
         v.in_range("skin_ratio", self.skin_ratio, 0.0, 2.0, low_inclusive=False)
@@ -515,6 +538,13 @@ class DEMConfig:
             raise InputError(
                 "preparation.relaxation = 'fire' is invalid with numerics.subcycle = true: "
                 "the sub-cycled disks are locally damped; use relaxation = 'damped'"
+            )
+        if self.numerics.compaction_dt_safety is not None and self.preparation.prep_friction > 0:
+            raise InputError(
+                f"numerics.compaction_dt_safety = {self.numerics.compaction_dt_safety!r} is"
+                f" invalid with preparation.prep_friction = {self.preparation.prep_friction!r}:"
+                " a longer compaction step is only for frictionless compaction contacts"
+                " (prep_friction = 0)"
             )
         if self.psd.d_max >= 0.5 * self.geometry.pipe_diameter:
             raise InputError(

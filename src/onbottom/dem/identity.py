@@ -120,6 +120,7 @@ _ADDED_WITH_DEFAULT: dict[str, Any] = {
     "config.numerics.subcycle_dt_safety": None,
     "config.numerics.penetration_mass_floor": 0.0,
     "config.numerics.equilibrium_mass_floor": 0.0,
+    "config.numerics.compaction_dt_safety": None,
     "config.preparation.lid_pause": "fixed",
 }
 

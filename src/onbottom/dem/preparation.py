@@ -341,13 +341,15 @@ def prepare_sample(
     # the compaction always takes the plain step; with Numerics.subcycle (and
     # subcycle_preparation) the 1 g and N g stages are zonally sub-cycled (a sub-cycled
     # compaction gave stiffer specimens, see docs/theory/dem.md, "Speed levers")
-    dt_plain, _ = step_sizes(config.contacts, m_min, config.numerics.dt_safety, False)
-    if config.numerics.prep_subcycles:
-        dt_sub, nsub_sub = step_sizes(
-            config.contacts, m_min, config.numerics.subcycled_dt_safety, True
-        )
-    else:
-        dt_sub, nsub_sub = dt_plain, 1
+    # (Numerics.compaction_dt_safety: its own plain step; frictionless contacts only)
+    dt_compaction, _ = step_sizes(
+        config.contacts, m_min, config.numerics.compaction_step_safety, False
+    )
+    nsub_sub = (
+        step_sizes(config.contacts, m_min, config.numerics.subcycled_dt_safety, True)[1]
+        if config.numerics.prep_subcycles
+        else 1
+    )
     # inertial mass scaling of the 1 g, ramp and N g stages (Numerics.equilibrium_mass_floor;
     # never the compaction): the steps follow the lightest inertial mass
     floor_eq = (
@@ -375,10 +377,9 @@ def prepare_sample(
 
     def step_size(stage: str) -> float:
         """Time step [s] of ``stage``."""
-        eq = stage != "compaction"
-        if subcycled(stage):
-            return dt_sub_eq if eq else dt_sub
-        return dt_plain_eq if eq else dt_plain
+        if stage == "compaction":
+            return dt_compaction
+        return dt_sub_eq if subcycled(stage) else dt_plain_eq
 
     def new_sim(sample: Sample, stage: str) -> Simulation:
         """A simulation of ``sample`` with the step (and inertia) of ``stage``."""
