@@ -135,6 +135,12 @@ def main() -> None:
         help="override Numerics.equilibrium_mass_floor (the same in the 1 g, ramp, N g stages)",
     )
     ap.add_argument(
+        "--compaction-dt-safety",
+        type=float,
+        default=None,
+        help="override Numerics.compaction_dt_safety (the compaction's own step)",
+    )
+    ap.add_argument(
         "--from-compaction",
         nargs=2,
         metavar=("CHECKPOINT", "STAGES"),
@@ -150,7 +156,7 @@ def main() -> None:
     if args.sort_disks is not None:
         num = dataclasses.replace(cfg.numerics, sort_disks=args.sort_disks == "on")
         cfg = cfg.replace(numerics=num)
-    for fld in ("penetration_mass_floor", "equilibrium_mass_floor"):
+    for fld in ("penetration_mass_floor", "equilibrium_mass_floor", "compaction_dt_safety"):
         if getattr(args, fld) is not None:
             num = dataclasses.replace(cfg.numerics, **{fld: getattr(args, fld)})
             cfg = cfg.replace(numerics=num)

@@ -205,3 +205,30 @@ def test_fire_1g_relaxes_only_the_1g_stage_and_is_allowed_with_subcycling():
         SM.replace(preparation=dataclasses.replace(SM.preparation, relaxation="fire"))
     with pytest.raises(InputError, match="relaxation.*fire-2g"):
         Preparation(relaxation="fire-2g")
+
+
+def test_compaction_step_is_validated_and_defaults_to_the_plain_step():
+    import dataclasses
+
+    from onbottom.dem.config import PRESETS, Numerics
+    from onbottom.dem.identity import differences
+
+    assert Numerics().compaction_dt_safety is None
+    assert Numerics(dt_safety=0.4).compaction_step_safety == 0.4
+    assert Numerics(compaction_dt_safety=1.0).compaction_step_safety == 1.0
+    for bad in (0.0, -0.5, 1.5, float("nan"), "fast"):
+        with pytest.raises(InputError, match="compaction_dt_safety"):
+            Numerics(compaction_dt_safety=bad)
+    sm = PRESETS["SM-reduced"]
+    lever = dataclasses.replace(sm.numerics, compaction_dt_safety=1.0)
+    with pytest.raises(InputError, match="compaction_dt_safety.*prep_friction = 0.3"):
+        sm.replace(
+            numerics=lever, preparation=dataclasses.replace(sm.preparation, prep_friction=0.3)
+        )
+    saved = {"config": {"numerics": {"subcycle": True}}}
+    now = {"config": {"numerics": {"subcycle": True, "compaction_dt_safety": None}}}
+    assert differences(saved, now) == []
+    now["config"]["numerics"]["compaction_dt_safety"] = 1.0
+    assert differences(saved, now) == [
+        "config.numerics.compaction_dt_safety: '(absent)' in the file, 1.0 now"
+    ]

@@ -50,7 +50,12 @@ full-size equivalence with the three damped seeds at the preset's step (3, 4, 6 
 compaction path gives a new specimen, so the comparison is with the seeds' spread, not with
 seed 6): interior e at 25 g within 0.002 of their mean (on SM-reduced, 36 seeds, the lever
 moved it by +0.0001 ± 0.0002), and the mean V over 0–0.5D and over 0–0.1D each within two
-standard deviations of the three seeds' means.
+standard deviations of the three seeds' means. *Outcome* (58.5 min, the case's own record
+``levers/full_case_SM-Dr48_seed6_cstep10_stages.json``): complete, quasi-static, interior e
+0.2238 (0.0004 from the seeds' mean), heave 0.129D, V at 0.5D 110.9 kN/m, mean V over
+0–0.5D 66.6 kN/m (band 62.6–86.8) pass; **V over 0–0.1D (17.5 kN/m against the band
+18.0–29.3) and V at 0.4D (78.7 kN/m, in a 52 % drop) fail**, and it does not harden (as the
+preset's seeds): strict xfails with the measured reasons. The lever stays opt-in.
 
 ``SD-seed5`` (the dense preset, second seed 5, summary files renamed from ``SD_*``; written
 on 2026-11-23 before its run, which then started over with the SD preset of that evening —
@@ -146,6 +151,15 @@ _SM48_SEED6_SOFTENS = (
 )
 
 
+_CSTEP_SOFTENS = (
+    "seed 6 with the compaction at twice the step (interior e = 0.2238) rises overall (38.5 / "
+    "77.0 / 110.9 kN/m at 0.1 / 0.3 / 0.5D) and saw-tooths like the three preset seeds: drops "
+    "of 17 % at 0.16-0.17D, 20 % at 0.20-0.22D, 29 % at 0.28-0.29D, 52 % at 0.32-0.43D "
+    "(107 -> 52 kN/m) and 21 % at 0.47-0.48D, none with a band reaching the surface (0 of 6); "
+    "see docs/validation/dem_penetration.md"
+)
+
+
 @pytest.mark.parametrize(
     "name",
     [
@@ -156,6 +170,9 @@ _SM48_SEED6_SOFTENS = (
         ),
         pytest.param(
             "SM-Dr48-seed6", marks=pytest.mark.xfail(strict=True, reason=_SM48_SEED6_SOFTENS)
+        ),
+        pytest.param(
+            "SM-Dr48-seed6-cstep", marks=pytest.mark.xfail(strict=True, reason=_CSTEP_SOFTENS)
         ),
     ],
 )
@@ -234,6 +251,14 @@ _SD_PEAK_AT_0_4D = (
 )
 
 
+_CSTEP_TROUGH_AT_0_4D = (
+    "seed 6 with the compaction at twice the step is in its deepest drop at 0.4D (107 kN/m at "
+    "0.32D down to 52 at 0.43D): bin mean 78.7 kN/m at 0.4D, x0.66 of the centrifuge's 120 "
+    "(the band is x1/1.5 = 80); at 0.5D 110.9 (x0.89 of 125) passes. The preset's seeds gave "
+    "85.6 (seed 3, also in a trough), 113.7 and 94.0 at 0.4D"
+)
+
+
 @pytest.mark.parametrize(
     ("name", "ratio"),
     [
@@ -245,7 +270,11 @@ _SD_PEAK_AT_0_4D = (
         ("SM-Dr48-seed4", 0.5),
         ("SM-Dr48-seed6", 0.4),
         ("SM-Dr48-seed6", 0.5),
-        ("SM-Dr48-seed6-cstep", 0.4),
+        pytest.param(
+            "SM-Dr48-seed6-cstep",
+            0.4,
+            marks=pytest.mark.xfail(strict=True, reason=_CSTEP_TROUGH_AT_0_4D),
+        ),
         ("SM-Dr48-seed6-cstep", 0.5),
         pytest.param("SD", 0.4, marks=pytest.mark.xfail(strict=True, reason=_SD_PEAK_AT_0_4D)),
         ("SD", 0.5),
@@ -314,7 +343,24 @@ def test_compaction_step_at_full_size_keeps_the_void_ratio():
     assert abs(e - sum(ref) / len(ref)) <= 0.002, (e, ref)
 
 
-@pytest.mark.parametrize("w_max", [0.1, 0.5 + 1e-9])
+_CSTEP_SOFTER_START = (
+    "the first 0.1D of the lever's full-size run is softer than the preset's three seeds: "
+    "mean V over 0-0.1D 17.5 kN/m against 26.9, 22.5 and 21.6 (mean 23.7, sd 2.8: band "
+    "18.0-29.3), V at 0.05D 15.2 against 24.9, 21.0, 25.3. Over 0-0.5D it is inside (66.6 "
+    "against 74.7 +- 2 x 6.1) and its void ratio matches (0.2238 against 0.2242). On "
+    "SM-reduced (36 seeds) the lever's 0-0.05D bin was the only early one below the preset's "
+    "(-3.6 kN/m, 0.96 paired standard errors): a softer surface layer, the one the lid "
+    "compacts last, is the likely reading. The lever stays opt-in"
+)
+
+
+@pytest.mark.parametrize(
+    "w_max",
+    [
+        pytest.param(0.1, marks=pytest.mark.xfail(strict=True, reason=_CSTEP_SOFTER_START)),
+        0.5 + 1e-9,
+    ],
+)
 def test_compaction_step_at_full_size_within_the_seed_scatter(w_max):
     """Mean V over 0-0.1D and 0-0.5D within two standard deviations of seeds 3, 4, 6."""
     lever = _mean_v("SM-Dr48-seed6-cstep", w_max)

@@ -89,6 +89,54 @@ def test_sorted_preparation_renumbers_before_each_layer_and_resumes_bitwise(tmp_
     _assert_resumes_after_first_layer(cfg, tmp_path / "prep.nc", whole)
 
 
+def _steps_taken(monkeypatch, config):
+    """Prepare ``config``; return the sample and the time step of every simulation it made."""
+    import onbottom.dem.preparation as prep_mod
+    from onbottom.dem.engine import Simulation
+
+    made = []
+
+    class Recorded(Simulation):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append((self.dt, self.nsub))
+
+    monkeypatch.setattr(prep_mod, "Simulation", Recorded)
+    timings: dict[str, float] = {}
+    return prepare_sample(config, timings=timings), made, timings
+
+
+def test_compaction_step_lever_changes_the_compaction_step_only(monkeypatch, tmp_path, tiny_sample):
+    """``Numerics.compaction_dt_safety``: the layers take Δt = 1.0·√(m_min/k_max), twice the
+    preset's plain step; the 1 g, ramp and N g stages keep theirs; set to the preset's 0.5, the
+    preparation is the preset's bit for bit; a run stopped after its first layer resumes
+    bitwise."""
+    import math
+
+    from onbottom.dem.engine import critical_time_step
+
+    _, base, t_base = _steps_taken(monkeypatch, TINY)
+    num = dataclasses.replace(TINY.numerics, compaction_dt_safety=1.0)
+    lever_cfg = TINY.replace(numerics=num)
+    lever, made, t_lever = _steps_taken(monkeypatch, lever_cfg)
+    n_layers = TINY.preparation.n_layers
+    # one simulation per layer (compaction), then the equilibrium stages
+    assert [nsub for _, nsub in base[:n_layers]] == [1] * n_layers
+    m_min = TINY.material.density * math.pi * float(tiny_sample.radii.min()) ** 2
+    (dt_base,) = {dt for dt, _ in base[:n_layers]}
+    (dt_lever,) = {dt for dt, _ in made[:n_layers]}
+    assert dt_base == pytest.approx(0.5 * critical_time_step(m_min, 1e9), rel=1e-12)
+    assert dt_lever == pytest.approx(2.0 * dt_base, rel=1e-14)
+    assert made[n_layers:] == base[n_layers:]
+    assert t_lever["compaction_steps"] < 0.7 * t_base["compaction_steps"]
+    assert lever.attrs["equilibrium_Ng_converged"]
+    monkeypatch.undo()
+    # the lever at the preset's own factor is the preset, bit for bit
+    same = TINY.replace(numerics=dataclasses.replace(TINY.numerics, compaction_dt_safety=0.5))
+    np.testing.assert_array_equal(prepare_sample(same).positions, tiny_sample.positions)
+    _assert_resumes_after_first_layer(lever_cfg, tmp_path / "prep.nc", lever)
+
+
 @pytest.mark.parametrize("stage", ["1g", "Ng"])
 def test_preparation_resumes_inside_an_equilibrium_stage(tmp_path, tiny_sample, stage):
     ck = tmp_path / "prep.nc"

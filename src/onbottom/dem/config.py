@@ -440,11 +440,16 @@ class Numerics:
         rolling modes that set the 0.5 of ``dt_safety`` (a small disk sticking to a stiff
         body, ω² ≈ 3.6·k/m) do not exist there: a disk pressed by the lid or a wall
         (1e9 N/m) and four soil contacts has ω² ≈ 1.3e9/m, for which leapfrog is stable
-        below ≈ 1.75·√(m/1e9) (a disk in a corner: ≈ 1.4). Values above 0.5 therefore keep
-        the compaction stable; whether they keep the specimen is an equivalence question
+        below ≈ 1.75·√(m/1e9) (a wall and the lid at right angles act on different
+        directions and do not add). Values up to 1 therefore keep the compaction stable;
+        whether they keep the specimen is an equivalence question
         (the compaction is a fast, collisional process): ``docs/theory/dem.md``, "Speed
         levers", and ``benchmarks/dem_lever_check.py --lever compaction-step``. Only with
         frictionless compaction contacts (the limit above does not hold with friction).
+        **Opt-in** (2026-11-26): at 1.0 whole cases on SM-reduced stay within the seed
+        scatter (36 seeds, largest ratio 0.21) and the full-size compaction takes 0.54 of
+        the steps, but the full-size SM-Dr48 run was softer over its first 0.1D than the
+        preset's three seeds (two of its checks fail), so no preset sets it.
     penetration_mass_floor
         Inertial mass scaling in the penetration stage [-]: no disk's inertial mass (and
         moment of inertia ½·m·r²) falls below this fraction of the largest disk's mass, while
