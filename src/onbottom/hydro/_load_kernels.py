@@ -48,7 +48,7 @@ def morison_lateral(u, dudt, current, ydot, diameter, rho, cd, cm, r_y):
     urel = u + current - ydot
     drag = 0.5 * rho * diameter * cd * urel * abs(urel)
     inertia = 0.25 * math.pi * rho * diameter * diameter * cm * dudt
-    dfdydot = -r_y * rho * diameter * cd * abs(urel)
+    dfdydot = r_y * (-rho * diameter * cd * abs(urel))
     return r_y * (drag + inertia), dfdydot
 
 
@@ -56,4 +56,4 @@ def morison_lateral(u, dudt, current, ydot, diameter, rho, cd, cm, r_y):
 def lift(u, current, diameter, rho, cl, r_z):
     """Lift F_Z = r_z · ½ ρ_w D C_L (U + V)² [N/m], positive upward."""
     s = u + current
-    return r_z * 0.5 * rho * diameter * cl * s * s
+    return r_z * (0.5 * rho * diameter * cl * s * s)
