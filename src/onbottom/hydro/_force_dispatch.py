@@ -1,0 +1,84 @@
+"""Static dispatch from a force-model id to its numba kernel, and the force-model contract.
+
+numba cannot cache functions that receive other jitted functions as arguments, so the storm
+section (:mod:`onbottom.dynamics._storm_kernel`) and the pipeline FE
+(:mod:`onbottom.dynamics.pipeline._pipeline_kernel`) call :func:`force_step` with the integer
+``model_id`` of the force-model class, as they call ``soil._dispatch.lateral_step`` for soil.
+
+Kernel contract
+---------------
+A hydrodynamic force model is a frozen dataclass (``name``, ``model_id``,
+``added_mass_coefficient``, ``parameter_table(K, M)``, ``describe()``; see
+:class:`onbottom.hydro.force_model.ForceModel`) in front of a numba kernel in its own private
+module (``hydro/_<name>_kernel.py``) with the signature::
+
+    kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out) -> None
+
+Arguments (float64 scalars unless said): ``params`` the model's parameters for the current sea
+state (1-D contiguous; one row of the table the solver built from ``parameter_table``, its
+layout given by the kernel module's ``P_*`` constants); ``state_old`` the committed state,
+:data:`~onbottom.hydro._force_contract.N_FORCE_STATE` slots (meaning: the module's ``S_*``
+constants); ``t`` time of the evaluation [s] (the trial step end); ``u``, ``dudt`` the
+wave-induced velocity normal to the pipe [m/s] and its time derivative [m/s²], without
+current; ``vc`` the steady current normal to the pipe [m/s], signed; ``ydot`` the pipe's
+lateral velocity [m/s] (0.0 when the solver's relative velocity is off); ``d`` outer diameter
+[m]; ``rho`` water density [kg/m³]; ``state_new`` the state after this evaluation;
+``out`` the :data:`~onbottom.hydro._force_contract.FO_SIZE` outputs F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ
+(slots ``FO_*`` in :mod:`onbottom.hydro._force_contract`), per unit length, **before** any
+reduction factor.
+
+1. A kernel is a pure function of its arguments: deterministic, no global state, no
+   allocation, no Python objects, no printing; float64 only.
+2. It never writes ``state_old``; it writes every slot of ``state_new`` it uses and all of
+   ``out[0:4]``. The solver copies ``state_new`` into the committed state only when the time
+   step is accepted, so the same ``state_old`` may be evaluated at several ``t`` and ``ydot``
+   (Newton iterations, halved steps) without side effects. ``t`` is strictly increasing
+   between committed states.
+3. A zero ``state_old`` is a valid initial state (the flow at rest before the record).
+4. Finite inputs give finite outputs; ``out[FO_DFY_DYD]`` and ``out[FO_DFZ_DYD]`` are
+   consistent with a finite difference of F_Y and F_Z in ``ydot`` (the Newton tangent);
+   ∂F_Y/∂ẏ <= 0 for a drag law.
+5. Mirror symmetry: (u, dudt, vc, ydot) → −(u, dudt, vc, ydot) from the mirrored state gives
+   F_Y → −F_Y and F_Z unchanged.
+6. The kernel has a plain-Python twin with the same arithmetic, tested to round-off, and
+   tests of rules 2–5 (``tests/unit/test_force_kernels.py``).
+
+What the solver does, not the kernel: the added mass on the pipe's own acceleration
+(ρ_w π D²/4 · ``added_mass_coefficient``, on the mass side); the DNV-RP-F109 reductions
+(F_Y·r_y, F_Z·r_z, ∂F_Y/∂ẏ·r_y; :mod:`onbottom.hydro.reductions`); the choice of the
+``params`` row (per kinematics sample when the model's parameters change with the sea state,
+blended with the stage weights; see :func:`onbottom.hydro.force_model.parameter_rows`).
+
+Adding a model: a kernel module, a new id below and a branch in :func:`force_step`, a class
+with that ``model_id`` (docs/contributing.md, "Add a force model").
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from onbottom.hydro._force_contract import FO_SIZE
+from onbottom.hydro._morison_kernel import morison_kernel
+
+# (the lead adds at merge: from onbottom.hydro._wake_kernel import wake_kernel
+#                          from onbottom.hydro._fourier_kernel import fourier_kernel)
+
+FORCE_MORISON = 0
+FORCE_WAKE = 1  # reserved: hydro/_wake_kernel.py (issue 30 item 1)
+FORCE_FOURIER = 2  # reserved: hydro/_fourier_kernel.py (issue 30 item 2)
+
+
+@njit(cache=True)
+def force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """Call the kernel of force model ``model_id`` (contract: the module docstring)."""
+    if model_id == FORCE_MORISON:
+        morison_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    # elif model_id == FORCE_WAKE:  -- branch added at merge (hydro/_wake_kernel.py)
+    #     wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    # elif model_id == FORCE_FOURIER:  -- branch added at merge (hydro/_fourier_kernel.py)
+    #     fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    else:
+        # unknown id: NaN forces (the step fails); the Python layer validates ids beforehand
+        for i in range(FO_SIZE):
+            out[i] = np.nan
