@@ -6,7 +6,8 @@ Equation of lateral motion per unit length (docs/theory/storm_section.md):
     F_Y = r_y(z) [ ½ ρ_w D C_D (U + V_c − ẏ)|U + V_c − ẏ| + ρ_w (π D²/4) C_M U̇ ]
     V(t) = w_s − F_Z,   F_Z = r_z(z) ½ ρ_w D C_L (U + V_c)²
 
-(:func:`onbottom.hydro._load_kernels.morison_lateral` / ``lift``). R from
+(the force model's kernel through :func:`onbottom.hydro._force_dispatch.force_step`, Morison +
+lift by default, its outputs F_Y, ∂F_Y/∂ẏ, F_Z times the reductions r_y, r_z here). R from
 ``onbottom.soil._dispatch.lateral_step`` with V(t) as its vertical load. r_y = r_const,y ·
 r_pen,y(z/D), r_z = r_const,z · r_pen,z(z/D) (DNV-RP-F109 (2017) Eqs 3.17–3.20) with z the
 penetration of the committed soil state at the start of the step (one-step lag, as CORUS-3D
@@ -27,9 +28,15 @@ Events: lift-off (V <= 0) — the pipe is free of soil while lifted (``LIFTOFF_F
 kernels return zero resistance) or the run stops (``LIFTOFF_STOP``); |y| >= y_limit stops the run
 (runaway).
 
+Force-model state: ``fstate`` (``N_FORCE_STATE`` slots, zeros at the start) is committed with
+the soil state when a step is accepted, from the force evaluation at the accepted (t₁, ẏ₁); the
+Newton iterations and rejected steps evaluate the model from the committed state only.
+
 Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
-``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``coef[3, nc]`` (C_D, C_M, C_L; nc = 1 or n samples),
-``rec[n, REC_*]`` (records every ``ST_REC_INTERVAL`` seconds; a zero-row buffer records nothing).
+``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``fparams[nc, n_params]`` (the force model's
+parameters: one row, or one row per flow sample j), ``fstate[N_FORCE_STATE]`` (committed force
+state, mutated), ``rec[n, REC_*]`` (records every ``ST_REC_INTERVAL`` seconds; a zero-row
+buffer records nothing).
 """
 
 from __future__ import annotations
@@ -39,12 +46,9 @@ import math
 import numpy as np
 from numba import njit
 
-from onbottom.hydro._load_kernels import (
-    lift,
-    morison_lateral,
-    penetration_reduction_y,
-    penetration_reduction_z,
-)
+from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
+from onbottom.hydro._force_dispatch import force_step
+from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 from onbottom.soil._dispatch import lateral_step
 from onbottom.soil.base import (
     OUT_FRICTION,
@@ -77,7 +81,7 @@ ST_WS = 11
 ST_RY_CONST = 12
 ST_RZ_CONST = 13
 ST_USE_PEN = 14
-ST_LIFT_REL = 15
+ST_UNUSED_15 = 15  # was the lift-on-relative-velocity flag (now a force parameter)
 ST_LIFTOFF = 16
 ST_REC_INTERVAL = 17
 ST_CURRENT = 18
@@ -160,47 +164,55 @@ def flow_at(t, kin_u, kin_a, dts):
 
 
 @njit(cache=True)
-def hydro_forces(settings, coef, j, u, dudt, ydot, z):
-    """(F_Y, dF_Y/dẏ, F_Z, r_y, r_z) of the force model ``settings[ST_FORCE_MODEL]``.
-
-    Model 0 = Morison + lift (:class:`onbottom.hydro.force_model.MorisonLift`). Add a branch per
-    new force model.
-    """
-    nc = coef.shape[1]
+def reduced_loads(settings, fparams, fstate, j, t, u, dudt, ydot, z, fstate_new, fout):
+    """(F_Y, dF_Y/dẏ, F_Z, r_y, r_z): the force model ``settings[ST_FORCE_MODEL]`` evaluated
+    from the committed ``fstate`` (:func:`onbottom.hydro._force_dispatch.force_step`, writing
+    ``fstate_new`` and ``fout``) with the parameter row of flow sample ``j``, times the F109
+    reductions r_y = r_const,y·r_pen,y(z/D), r_z = r_const,z·r_pen,z(z/D)."""
+    nc = fparams.shape[0]
     jj = j if nc > 1 else 0
     if jj >= nc:
         jj = nc - 1
-    cd = coef[0, jj]
-    cm = coef[1, jj]
-    cl = coef[2, jj]
     d = settings[ST_D]
-    rho = settings[ST_RHO]
-    vc = settings[ST_CURRENT]
+    force_step(
+        int(settings[ST_FORCE_MODEL]),
+        fparams[jj],
+        fstate,
+        t,
+        u,
+        dudt,
+        settings[ST_CURRENT],
+        ydot,
+        d,
+        settings[ST_RHO],
+        fstate_new,
+        fout,
+    )
     ry = settings[ST_RY_CONST]
     rz = settings[ST_RZ_CONST]
     if settings[ST_USE_PEN] != 0.0:
         ry *= penetration_reduction_y(z / d)
         rz *= penetration_reduction_z(z / d)
-    fy, dfdyd = morison_lateral(u, dudt, vc, ydot, d, rho, cd, cm, ry)
-    if settings[ST_LIFT_REL] != 0.0:
-        fz = lift(u - ydot, vc, d, rho, cl, rz)
-    else:
-        fz = lift(u, vc, d, rho, cl, rz)
-    return fy, dfdyd, fz, ry, rz
+    return ry * fout[FO_FY], ry * fout[FO_DFY_DYD], rz * fout[FO_FZ], ry, rz
 
 
 @njit(cache=True)
-def _eval(model_id, params, state_old, settings, coef, j, u1, a1dot, y0, dy, yd1, z, trial, out):
+def _eval(model_id, params, state_old, settings, fp, fs, j, t1, u1, a1dot, y0, dy, yd1, z, trial,
+          out, fs_new, fout):  # fmt: skip
     """Hydro + soil at the trial increment; returns (F_Y, dF/dẏ, F_Z, V, r_y, r_z)."""
-    fy, dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, z)
+    fy, dfdyd, fz, ry, rz = reduced_loads(settings, fp, fs, j, t1, u1, a1dot, yd1, z, fs_new, fout)
     v = settings[ST_WS] - fz
     lateral_step(model_id, params, state_old, y0 + dy, v, trial, out)
     return fy, dfdyd, fz, v, ry, rz
 
 
 @njit(cache=True)
-def solve_step(model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a0, dt, trial, out):
-    """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters)."""
+def solve_step(model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, yd0, a0, dt,
+               trial, out, fs_new, fout):  # fmt: skip
+    """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
+
+    ``fp``, ``fs``: the force parameters and the committed force state; ``fs_new``, ``fout``
+    scratch of the force model (as ``trial``, ``out`` of the soil model)."""
     m = settings[ST_MASS]
     gam = settings[ST_GAMMA]
     beta = settings[ST_BETA]
@@ -222,8 +234,9 @@ def solve_step(model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a
     for it in range(max_iter):
         yd1 = yd_base + cv * (dy - dy_hat)
         fy, dfdyd, _fz, _v, _ry, _rz = _eval(
-            model_id, params, state, settings, coef, j, u1, a1dot, y0, dy, yd1, z, trial, out
-        )
+            model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, dy, yd1, z, trial,
+            out, fs_new, fout,
+        )  # fmt: skip
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return dy, False, it + 1
@@ -254,21 +267,9 @@ def solve_step(model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
             _eval(
-                model_id,
-                params,
-                state,
-                settings,
-                coef,
-                j,
-                u1,
-                a1dot,
-                y0,
-                dy_next,
-                yd1,
-                z,
-                trial,
-                out,
-            )
+                model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, dy_next, yd1,
+                z, trial, out, fs_new, fout,
+            )  # fmt: skip
             return dy_next, True, it + 1
         dy = dy_next
     return dy, False, max_iter
@@ -296,28 +297,18 @@ def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
 
 
 @njit(cache=True)
-def initial(model_id, params, state, settings, coef, kin_u, kin_a, dyn, rec):
+def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec):
     """Initial acceleration, running summary and first record (pipe at rest at y = 0)."""
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
+    fs_new = np.zeros_like(fstate)
+    fout = np.empty(FO_SIZE)
     dts = settings[ST_DTS]
     u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
     fy, _dfdyd, fz, v, ry, rz = _eval(
-        model_id,
-        params,
-        state,
-        settings,
-        coef,
-        j,
-        u0,
-        a0,
-        dyn[D_Y],
-        0.0,
-        dyn[D_YD],
-        state[S_Z],
-        trial,
-        out,
-    )
+        model_id, params, state, settings, fparams, fstate, j, dyn[D_T], u0, a0, dyn[D_Y], 0.0,
+        dyn[D_YD], state[S_Z], trial, out, fs_new, fout,
+    )  # fmt: skip
     dyn[D_A] = (fy - out[OUT_R]) / settings[ST_MASS]
     dyn[D_F_PREV] = fy
     dyn[D_R_PREV] = out[OUT_R]
@@ -341,7 +332,9 @@ def initial(model_id, params, state, settings, coef, kin_u, kin_a, dyn, rec):
 
 
 @njit(cache=True)
-def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop, rec, n0):
+def integrate(
+    model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, t_stop, rec, n0
+):
     """Advance from dyn[D_T] to t_stop, the storm end, an event or a full record buffer.
 
     Returns (rows written in total, status).
@@ -357,6 +350,8 @@ def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop
     cap = rec.shape[0]
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
+    fs_new = np.zeros_like(fstate)
+    fout = np.empty(FO_SIZE)
     n = n0
     while True:
         t = dyn[D_T]
@@ -375,8 +370,9 @@ def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop
         t1 = t + dt
         u1, a1dot, j = flow_at(t1, kin_u, kin_a, dts)
         dy, conv, iters = solve_step(
-            model_id, params, state, settings, coef, j, u1, a1dot, y0, yd0, a0, dt, trial, out
-        )
+            model_id, params, state, settings, fparams, fstate, j, t1, u1, a1dot, y0, yd0, a0,
+            dt, trial, out, fs_new, fout,
+        )  # fmt: skip
         dyn[D_N_ITER] += iters
         if not math.isfinite(out[OUT_R]):
             return n, STATUS_SOIL_NAN
@@ -394,7 +390,10 @@ def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop
         dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
         a1 = (dy - dy_hat) / (beta * dt * dt)
         yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
-        fy, _dfdyd, fz, ry, rz = hydro_forces(settings, coef, j, u1, a1dot, yd1, state[S_Z])
+        # the force model at the accepted (t₁, ẏ₁): its loads and the force state to commit
+        fy, _dfdyd, fz, ry, rz = reduced_loads(
+            settings, fparams, fstate, j, t1, u1, a1dot, yd1, state[S_Z], fs_new, fout
+        )
         v = settings[ST_WS] - fz
         r1 = out[OUT_R]
         dyn[D_W_HYDRO] += 0.5 * (dyn[D_F_PREV] + fy) * dy
@@ -403,6 +402,8 @@ def integrate(model_id, params, state, settings, coef, kin_u, kin_a, dyn, t_stop
         dyn[D_R_PREV] = r1
         for i in range(state.shape[0]):
             state[i] = trial[i]
+        for i in range(fstate.shape[0]):
+            fstate[i] = fs_new[i]
         y1 = y0 + dy
         dyn[D_T] = t1
         dyn[D_Y] = y1

@@ -28,8 +28,9 @@ import xarray as xr
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
 from onbottom.errors import InputError
-from onbottom.hydro.force_model import ForceModel, MorisonLift
-from onbottom.hydro.reductions import PERMEABLE_SEABED_REDUCTION_Z, trench_reduction
+from onbottom.hydro._force_contract import N_FORCE_STATE
+from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
+from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Current, Storm
@@ -57,39 +58,6 @@ _STATUS_MESSAGES = {
     K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
     K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
 }
-
-
-@dataclass(frozen=True, kw_only=True, slots=True)
-class LoadReductions:
-    """DNV-RP-F109 (2017) load reductions applied in the time domain (Eqs 3.17–3.22).
-
-    Parameters
-    ----------
-    permeable_seabed : bool
-        r_perm,z = 0.7 (Eq 3.18) when True (sand, rock); 1 for clay.
-    penetration : bool
-        Apply r_pen,y, r_pen,z (Eqs 3.19–3.20) from the soil's current penetration.
-    trench_depth_over_d : float
-        z_t/D [-], in [0, 1]; 0 = no trench.
-    trench_angle_deg : float
-        Trench wall angle θ [deg], in [5, 45] (used when z_t > 0).
-    """
-
-    permeable_seabed: bool = True
-    penetration: bool = True
-    trench_depth_over_d: float = 0.0
-    trench_angle_deg: float = 45.0
-
-    def __post_init__(self) -> None:
-        in_range("LoadReductions.trench_depth_over_d", self.trench_depth_over_d, 0.0, 1.0)
-        in_range("LoadReductions.trench_angle_deg", self.trench_angle_deg, 5.0, 45.0)
-
-    def constant_factors(self) -> tuple[float, float]:
-        """(r_perm,y·r_tr,y, r_perm,z·r_tr,z) [-], the parts that do not change with z."""
-        ry, rz = trench_reduction(self.trench_depth_over_d, self.trench_angle_deg)
-        if self.permeable_seabed:
-            rz *= PERMEABLE_SEABED_REDUCTION_Z
-        return ry, rz
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -253,21 +221,6 @@ _REC_NAMES = {
 }
 
 
-def _stage_coefficients(
-    force_model: ForceModel, kin: StormKinematics, diameter: float
-) -> np.ndarray:
-    """(3, nc) coefficient array: constant → one column; per sea state → blended per sample."""
-    us = np.array([max(p["significant_velocity"], 1e-12) for p in kin.stage_parameters])
-    tu = np.array([p["mean_period"] for p in kin.stage_parameters])
-    table = force_model.coefficient_table(us * tu / diameter, abs(kin.current) / us)
-    if np.all(table == table[:, :1]):
-        return np.ascontiguousarray(table[:, :1])
-    w = kin.weights
-    wsum = np.sum(w, axis=0)
-    wn = np.where(wsum > 0.0, w / np.where(wsum > 0.0, wsum, 1.0), 1.0 / w.shape[0])
-    return np.ascontiguousarray(table @ wn)
-
-
 def simulate_storm_section(
     pipe: Pipe,
     soil: LateralResistanceModel,
@@ -318,6 +271,11 @@ def simulate_storm_section(
     if not isinstance(soil, LateralResistanceModel):
         raise InputError(f"soil = {type(soil).__name__} is invalid: need LateralResistanceModel")
     fm = force_model if force_model is not None else MorisonLift()
+    if not isinstance(fm, ForceModel):
+        raise InputError(
+            f"force_model = {type(fm).__name__} is invalid: expected a ForceModel"
+            " (name, model_id, added_mass_coefficient, parameter_table, describe)"
+        )
     red = reductions if reductions is not None else LoadReductions()
     s = settings if settings is not None else StormSolverSettings()
     d = pipe.outer_diameter
@@ -355,14 +313,14 @@ def simulate_storm_section(
     st[K.ST_RY_CONST] = ry_c
     st[K.ST_RZ_CONST] = rz_c
     st[K.ST_USE_PEN] = 1.0 if red.penetration else 0.0
-    st[K.ST_LIFT_REL] = 1.0 if fm.lift_relative_velocity else 0.0
     st[K.ST_LIFTOFF] = _LIFTOFF[s.liftoff]
     st[K.ST_REC_INTERVAL] = s.record_interval if s.record_interval is not None else math.inf
     st[K.ST_CURRENT] = kin.current
     st[K.ST_DTS] = kin.sample_interval
     st[K.ST_T_END] = kin.duration
     st[K.ST_FORCE_MODEL] = fm.model_id
-    coef = _stage_coefficients(fm, kin, d)
+    fparams = parameter_rows(fm, kin.weights, kin.stage_parameters, kin.current, d)
+    fstate = np.zeros(N_FORCE_STATE)
     params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
     state = np.array(soil.initial_state(), dtype=float)
     model_id = int(soil.model_id)
@@ -377,7 +335,7 @@ def simulate_storm_section(
         per = max(s.record_interval, s.dt_max)
         cap = int(min(kin.duration / per * 1.2 + 1024, 2_000_000))
         rec = np.empty((cap, K.N_REC))
-    n = K.initial(model_id, params, state, st, coef, ku, ka, dyn, rec)
+    n = K.initial(model_id, params, state, st, fparams, fstate, ku, ka, dyn, rec)
 
     chunks = int(s.chunks) if progress else 1
     bar = None
@@ -391,7 +349,9 @@ def simulate_storm_section(
         status = K.STATUS_LIFTOFF  # lifted off at the start
     while status == K.STATUS_CHUNK:
         t_stop = kin.duration * k / chunks if k < chunks else kin.duration
-        n, status = K.integrate(model_id, params, state, st, coef, ku, ka, dyn, t_stop, rec, n)
+        n, status = K.integrate(
+            model_id, params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rec, n
+        )
         if status == K.STATUS_BUFFER_FULL:
             rec = np.concatenate([rec, np.empty_like(rec)])
             status = K.STATUS_CHUNK

@@ -10,10 +10,14 @@ r_tr,z = 1 − 0.14 (θ − 5)^0.43 (z_t/D)^0.46                                
 z_p penetration, z_t trench depth, θ trench wall angle [deg]. Validity: 5° ≤ θ ≤ 45°,
 z_t/D ≤ 1; r_pen for z_p/D ≤ 0.5 (source notes: shared/spec/dnv-reference.md §2.3).
 The plain-numpy functions here are the twins of the numba kernels in
-:mod:`onbottom.hydro._load_kernels`.
+:mod:`onbottom.hydro._load_kernels`. :class:`LoadReductions` is the time-domain choice of the
+storm-section and pipeline solvers, which apply r_y, r_z to the force model's output
+(:mod:`onbottom.hydro._force_dispatch`).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -21,6 +25,7 @@ from onbottom._validate import in_range, non_negative, warn_outside
 
 __all__ = [
     "PERMEABLE_SEABED_REDUCTION_Z",
+    "LoadReductions",
     "penetration_reduction",
     "trench_reduction",
 ]
@@ -70,3 +75,36 @@ def trench_reduction(trench_depth_over_d: float, wall_angle_deg: float) -> tuple
     r_y = 1.0 - 0.18 * (th - 5.0) ** 0.25 * zt**0.42
     r_z = 1.0 - 0.14 * (th - 5.0) ** 0.43 * zt**0.46
     return float(r_y), float(r_z)
+
+
+@dataclass(frozen=True, kw_only=True, slots=True)
+class LoadReductions:
+    """DNV-RP-F109 (2017) load reductions applied in the time domain (Eqs 3.17–3.22).
+
+    Parameters
+    ----------
+    permeable_seabed : bool
+        r_perm,z = 0.7 (Eq 3.18) when True (sand, rock); 1 for clay.
+    penetration : bool
+        Apply r_pen,y, r_pen,z (Eqs 3.19–3.20) from the soil's current penetration.
+    trench_depth_over_d : float
+        z_t/D [-], in [0, 1]; 0 = no trench.
+    trench_angle_deg : float
+        Trench wall angle θ [deg], in [5, 45] (used when z_t > 0).
+    """
+
+    permeable_seabed: bool = True
+    penetration: bool = True
+    trench_depth_over_d: float = 0.0
+    trench_angle_deg: float = 45.0
+
+    def __post_init__(self) -> None:
+        in_range("LoadReductions.trench_depth_over_d", self.trench_depth_over_d, 0.0, 1.0)
+        in_range("LoadReductions.trench_angle_deg", self.trench_angle_deg, 5.0, 45.0)
+
+    def constant_factors(self) -> tuple[float, float]:
+        """(r_perm,y·r_tr,y, r_perm,z·r_tr,z) [-], the parts that do not change with z."""
+        ry, rz = trench_reduction(self.trench_depth_over_d, self.trench_angle_deg)
+        if self.permeable_seabed:
+            rz *= PERMEABLE_SEABED_REDUCTION_Z
+        return ry, rz
