@@ -178,6 +178,7 @@ def test_assemble_tangent_equals_the_full_evaluation():
     """The tangent rebuilt from stored nodal tangents equals evaluate(..., want_k=True)."""
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings
     from onbottom.dynamics.pipeline.solver import _kernel_settings
+    from onbottom.hydro._force_contract import FO_SIZE, N_FORCE_STATE
     from onbottom.hydro.short_crested import regular_node_kinematics
     from onbottom.inputs.pipe import Pipe
     from onbottom.inputs.soil import Sand
@@ -207,10 +208,12 @@ def test_assemble_tangent_equals_the_full_evaluation():
         p, fh, fs = np.zeros(3 * n), np.zeros(3 * n), np.zeros(3 * n)
         ab = np.zeros((3 * n, 6))
         ktu, ktv = np.zeros(n), np.zeros(n)
+        fst = np.zeros((n, N_FORCE_STATE))
         args = (st, a["props"], a["nodes"], a["fixed"], a["spring"], a["model_ids"], a["sparams"],
-                a["sstate"], a["axst"], d1, v1, uk, ak, vc, ry, 7.0, full, p, fh, fs, ab,
-                a["sstate"].copy(), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(6),
-                np.zeros((6, 6)), np.zeros(OUT_SIZE), np.zeros(n), np.zeros(n), ktu,
+                a["sstate"], a["axst"], m.force_model.parameter_table(1.0, 0.0), fst, 0.5,
+                d1, v1, uk, ak, vc, ry, 7.0, full, p, fh, fs, ab, a["sstate"].copy(), fst.copy(),
+                np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(6), np.zeros((6, 6)),
+                np.zeros(OUT_SIZE), np.zeros(FO_SIZE), np.zeros(n), np.zeros(n), ktu,
                 ktv)  # fmt: skip
         assert K.evaluate(*args)
         if not full:

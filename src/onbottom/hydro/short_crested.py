@@ -37,7 +37,7 @@ from onbottom._validate import positive
 from onbottom.errors import InputError
 from onbottom.hydro.kinematics import seabed_transfer, wave_number
 from onbottom.hydro.spectra import jonswap
-from onbottom.hydro.storm_kinematics import _stage_weights
+from onbottom.hydro.storm_kinematics import _stage_weights, seabed_velocity_parameters
 from onbottom.inputs.storm import Storm
 
 __all__ = [
@@ -62,12 +62,20 @@ class NodeKinematics:
         U [m/s].
     acceleration : ndarray, float32 (n_times, n_nodes)
         dU/dt [m/s²].
+    weights : ndarray or None
+        Stage weights w_k(t_j), shape (n_stages, n_times) (for per-sea-state force-model
+        parameters); None when the flow is not synthesised from sea states.
+    stage_parameters : tuple of dict
+        Per stage: significant_velocity U_s [m/s], mean_period T_u [s], spreading_factor R_D
+        (as :class:`~onbottom.hydro.storm_kinematics.StormKinematics`); empty with no stages.
     """
 
     t0: float
     dt: float
     velocity: np.ndarray
     acceleration: np.ndarray
+    weights: np.ndarray | None = None
+    stage_parameters: tuple[dict[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         positive("NodeKinematics.dt", self.dt)
@@ -75,6 +83,14 @@ class NodeKinematics:
             raise InputError(
                 "NodeKinematics.velocity/acceleration are invalid: need equal 2-D shapes"
                 f" (n_times, n_nodes), got {self.velocity.shape} and {self.acceleration.shape}"
+            )
+        if self.weights is not None and np.shape(self.weights) != (
+            len(self.stage_parameters),
+            self.velocity.shape[0],
+        ):
+            raise InputError(
+                f"NodeKinematics.weights of shape {np.shape(self.weights)} are invalid: need"
+                f" ({len(self.stage_parameters)}, {self.velocity.shape[0]}) (stages, times)"
             )
 
     @property
@@ -179,7 +195,14 @@ def pipeline_kinematics(
             ab += weights[kk][None, :] * ak + dweights[kk][None, :] * uk
         vel[:, b0 : b0 + nb] = ub.T
         acc[:, b0 : b0 + nb] = ab.T
-    return NodeKinematics(t0=0.0, dt=dts, velocity=vel, acceleration=acc)
+    return NodeKinematics(
+        t0=0.0,
+        dt=dts,
+        velocity=vel,
+        acceleration=acc,
+        weights=weights,
+        stage_parameters=tuple(seabed_velocity_parameters(s, depth) for s in storm.stages),
+    )
 
 
 def regular_node_kinematics(

@@ -8,7 +8,8 @@ M lumped (structural mass on u, structural + added mass on v, section rotary ine
 f_int the corotational beam (:mod:`._beam_kernel`); f_soil the lateral soil kernel of every
 node (``onbottom.soil._dispatch.lateral_step``) times its tributary length plus elastic–plastic
 axial friction μ_ax·V (:func:`onbottom.soil._coulomb_kernel.friction_return_map`); f_hyd the
-Morison load with relative velocity and lift from :mod:`onbottom.hydro._load_kernels`.
+load of the force model (:func:`onbottom.hydro._force_dispatch.force_step`, Morison with relative
+velocity and lift by default) times the F109 reductions r_y, r_z of every node.
 
 Time integration: HHT-α (Hilber, Hughes & Taylor 1977), α ∈ [−1/3, 0], β = (1 − α)²/4,
 γ = ½ − α; with P = f_hyd − f_int − f_spring − f_soil the step residual is
@@ -21,7 +22,12 @@ K_soil − ∂f_hyd/∂ḋ · γ/(βΔt)) — banded, factored by :mod:`._banded
 average-acceleration Newmark rule. A step that does not converge in ``max_iter`` iterations,
 or moves any node laterally by more than ``du_max``, is cut to half; a step that converged in
 few iterations lets the next grow by ``growth`` up to ``dt_max``. Accepted steps commit the soil
-states. Penetration reductions use the committed penetration of each node (lagged one step).
+states and the force-model states ``fstate[node, :]`` (from the evaluation at the accepted d₁,
+v₁; iterations and rejected steps start from the committed state). Penetration reductions use
+the committed penetration of each node (lagged one step); the lift, and with it the contact
+load V, is evaluated once per step at t₁ from the committed force state (with the lagged
+lateral velocity when the model's lift uses the relative velocity). The force model's
+parameters ``fparams`` are one row, or one row per kinematics sample (the left sample of t).
 """
 
 from __future__ import annotations
@@ -38,12 +44,9 @@ from onbottom.dynamics.pipeline._beam_kernel import (
     assemble_internal,
     node_section_forces,
 )
-from onbottom.hydro._load_kernels import (
-    lift,
-    morison_lateral,
-    penetration_reduction_y,
-    penetration_reduction_z,
-)
+from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
+from onbottom.hydro._force_dispatch import force_step
+from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._dispatch import lateral_step
 from onbottom.soil.base import OUT_R, OUT_SIZE, OUT_TANGENT, S_Z
@@ -61,21 +64,19 @@ ST_STOP_AT_LIMIT = 8  # 1: stop at the limit
 ST_GROWTH = 9  # step growth factor after an easy step
 ST_RHO = 10  # water density [kg/m³]
 ST_D = 11  # outer diameter [m]
-ST_CD = 12
-ST_CM = 13
-ST_CL = 14
-ST_R_PERM_Z = 15  # r_perm,z [-]
-ST_RELVEL = 16  # 1: relative-velocity drag
-ST_DELTA_AX = 17  # axial friction mobilisation displacement [m]
-ST_FIBRE = 18  # distance of the outer steel fibre from the neutral axis [m]
-ST_T_KIN0 = 19  # time of the first kinematics sample [s]
-ST_DT_KIN = 20  # kinematics sample interval [s]
-ST_PEN_RED = 21  # 1: penetration reductions r_pen,y/z
-ST_EA = 22  # reference EA for strain [N]
-ST_EI = 23  # reference EI for strain [N·m²]
-ST_PREDICTOR = 24  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
-ST_CTOL = 25  # Newton correction [m] below which a step is accepted (displacement resolution)
-N_SETTINGS = 26
+ST_FORCE_MODEL = 12  # force model id (onbottom.hydro._force_dispatch)
+ST_R_PERM_Z = 13  # r_perm,z [-]
+ST_RELVEL = 14  # 1: relative-velocity drag
+ST_DELTA_AX = 15  # axial friction mobilisation displacement [m]
+ST_FIBRE = 16  # distance of the outer steel fibre from the neutral axis [m]
+ST_T_KIN0 = 17  # time of the first kinematics sample [s]
+ST_DT_KIN = 18  # kinematics sample interval [s]
+ST_PEN_RED = 19  # 1: penetration reductions r_pen,y/z
+ST_EA = 20  # reference EA for strain [N]
+ST_EI = 21  # reference EI for strain [N·m²]
+ST_PREDICTOR = 22  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
+ST_CTOL = 23  # Newton correction [m] below which a step is accepted (displacement resolution)
+N_SETTINGS = 24
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -175,11 +176,32 @@ def kinematics_at(t, kin_u, kin_a, t0, dtk, uk, ak):
 
 
 @njit(cache=True)
-def node_loads(settings, nodes, sstate, uk, vcont, ry):
-    """Contact load V = W_s − F_Z and lateral reduction r_y of every node at the step end."""
+def parameter_row(settings, fparams, t):
+    """The force model's parameters at time t: the only row, or that of the left sample."""
+    n = fparams.shape[0]
+    if n == 1:
+        return fparams[0]
+    k = int((t - settings[ST_T_KIN0]) / settings[ST_DT_KIN])
+    if k < 0:
+        k = 0
+    elif k > n - 1:
+        k = n - 1
+    return fparams[k]
+
+
+@njit(cache=True)
+def node_loads(settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry, fscr, fout):
+    """Contact load V = W_s − r_z F_Z and lateral reduction r_y of every node at time t.
+
+    F_Z from the force model at the committed state ``fstate`` (``fscr`` receives the unused
+    trial state), with the lagged lateral velocity ``v0`` (the DOF vector of the last
+    committed step) as ẏ when the relative velocity is on.
+    """
     d = settings[ST_D]
     rho = settings[ST_RHO]
-    cl = settings[ST_CL]
+    model = int(settings[ST_FORCE_MODEL])
+    relvel = settings[ST_RELVEL] != 0.0
+    prow = parameter_row(settings, fparams, t)
     pen = settings[ST_PEN_RED] != 0.0
     for i in range(uk.shape[0]):
         zd = sstate[i, S_Z] / d if pen else 0.0
@@ -188,19 +210,26 @@ def node_loads(settings, nodes, sstate, uk, vcont, ry):
         if pen:
             rz *= penetration_reduction_z(zd)
             r_y *= penetration_reduction_y(zd)
-        fz = lift(uk[i], nodes[i, ND_CURRENT], d, rho, cl, rz)
-        vcont[i] = nodes[i, ND_WS] - fz
+        ydot = v0[NDOF_NODE * i + 1] if relvel else 0.0
+        force_step(
+            model, prow, fstate[i], t, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, d, rho, fscr, fout
+        )
+        vcont[i] = nodes[i, ND_WS] - rz * fout[FO_FZ]
         ry[i] = r_y
 
 
 @njit(cache=True)
 def evaluate(
-    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-    d1, v1, uk, ak, vcont, ry, c_v, want_k,
-    p, fh, fs, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax, kt_u, kt_v,
+    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
+    t1, d1, v1, uk, ak, vcont, ry, c_v, want_k,
+    p, fh, fs, ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out, fout, mom, nax, kt_u,
+    kt_v,
 ):  # fmt: skip
     """Net force P(d₁, v₁) = f_hyd − f_int − f_spring − f_soil and (``want_k``) its negative
     Jacobian K_T = ∂(−P)/∂d + c_v·∂(−f_hyd)/∂ḋ into the band ``ab`` (not yet with mass).
+
+    The soil and force models are evaluated from the committed ``sstate``, ``fstate`` into
+    ``trial``, ``ftrial`` (committed by the caller when the step is accepted).
 
     The nodal bending moment and axial force at d₁ are written to ``mom``, ``nax``; the nodal
     (soil + drag) tangents on u and v to ``kt_u``, ``kt_v`` (see :func:`assemble_tangent`).
@@ -223,8 +252,8 @@ def evaluate(
             ab[j, 0] += spring[j]
     dd = settings[ST_D]
     rho = settings[ST_RHO]
-    cd = settings[ST_CD]
-    cm = settings[ST_CM]
+    model = int(settings[ST_FORCE_MODEL])
+    prow = parameter_row(settings, fparams, t1)
     relvel = settings[ST_RELVEL] != 0.0
     delta_ax = settings[ST_DELTA_AX]
     for i in range(nodes.shape[0]):
@@ -232,11 +261,12 @@ def evaluate(
         iv = iu + 1
         ell = nodes[i, ND_TRIB]
         ydot = v1[iv] if relvel else 0.0
-        f_y, dfdv = morison_lateral(
-            uk[i], ak[i], nodes[i, ND_CURRENT], ydot, dd, rho, cd, cm, ry[i]
-        )
-        if not relvel:
-            dfdv = 0.0
+        force_step(
+            model, prow, fstate[i], t1, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, dd, rho,
+            ftrial[i], fout,
+        )  # fmt: skip
+        f_y = ry[i] * fout[FO_FY]
+        dfdv = ry[i] * fout[FO_DFY_DYD] if relvel else 0.0
         lateral_step(model_ids[i], sparams[i], sstate[i], d1[iv], vcont[i], trial[i], out)
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
@@ -280,7 +310,7 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
 
 @njit(cache=True)
 def initial_acceleration(
-    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
+    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
     kin_u, kin_a, vec, scal, nodal,
 ):  # fmt: skip
     """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_hyd, f_soil at the start."""
@@ -290,8 +320,13 @@ def initial_acceleration(
     ak = np.empty(n_nodes)
     vcont = np.empty(n_nodes)
     ry = np.empty(n_nodes)
-    kinematics_at(scal[SC_T], kin_u, kin_a, settings[ST_T_KIN0], settings[ST_DT_KIN], uk, ak)
-    node_loads(settings, nodes, sstate, uk, vcont, ry)
+    ftrial = np.zeros_like(fstate)
+    fout = np.empty(FO_SIZE)
+    t = scal[SC_T]
+    kinematics_at(t, kin_u, kin_a, settings[ST_T_KIN0], settings[ST_DT_KIN], uk, ak)
+    node_loads(
+        settings, nodes, sstate, fparams, fstate, t, uk, ak, vec[V_V], vcont, ry, ftrial[0], fout
+    )
     ab = np.zeros((ndof, HALF_BAND + 1))
     trial = np.empty_like(sstate)
     node_r = nodal[0]
@@ -301,10 +336,10 @@ def initial_acceleration(
     ke = np.empty((6, 6))
     out = np.empty(OUT_SIZE)
     ok = evaluate(
-        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-        vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
-        vec[V_P], vec[V_FH], vec[V_FS], ab, trial, node_r, node_f, node_fa, fe, ke, out,
-        np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
+        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
+        t, vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
+        vec[V_P], vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
+        fout, np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
     for i in range(n_nodes):
         for c in range(3):
@@ -377,7 +412,7 @@ def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
 
 @njit(cache=True)
 def integrate(
-    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
+    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
     kin_u, kin_a, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
 ):  # fmt: skip
     """Advance from scal[SC_T] to t_stop (a chunk end), t_end, an event or a full buffer.
@@ -385,7 +420,7 @@ def integrate(
     ``nodal`` (3 × n_nodes: soil resistance R, hydrodynamic load F_Y [N/m], axial friction
     [N/m] at the committed state) is state too. Records the state at the times ``t_out``
     (steps land on them) into ``rec``/``rec_t`` from row 0; ``vec``, ``scal``, ``sstate``,
-    ``axst`` and ``env`` are updated in place. Returns (rows written, status).
+    ``axst``, ``fstate`` and ``env`` are updated in place. Returns (rows written, status).
     """
     n_nodes = nodes.shape[0]
     ndof = NDOF_NODE * n_nodes
@@ -414,6 +449,9 @@ def integrate(
     ry = np.empty(n_nodes)
     ab = np.zeros((ndof, HALF_BAND + 1))
     trial = np.empty_like(sstate)
+    ftrial = np.zeros_like(fstate)
+    fscr = np.zeros(fstate.shape[1])
+    fout = np.empty(FO_SIZE)
     node_r = nodal[0]
     node_f = nodal[1]
     node_fa = nodal[2]
@@ -441,7 +479,8 @@ def integrate(
     n_out = t_out.shape[0]
     # initial record when the first output time is the current time
     kinematics_at(scal[SC_T], kin_u, kin_a, t0k, dtk, uk, ak)
-    node_loads(settings, nodes, sstate, uk, vcont, ry)
+    node_loads(settings, nodes, sstate, fparams, fstate, scal[SC_T], uk, ak, v0, vcont, ry, fscr,
+               fout)  # fmt: skip
     while True:
         t = scal[SC_T]
         k_out = int(scal[SC_K_OUT])
@@ -470,7 +509,7 @@ def integrate(
             clipped = True
         t1 = t + dt
         kinematics_at(t1, kin_u, kin_a, t0k, dtk, uk, ak)
-        node_loads(settings, nodes, sstate, uk, vcont, ry)
+        node_loads(settings, nodes, sstate, fparams, fstate, t1, uk, ak, v0, vcont, ry, fscr, fout)
         c_a = 1.0 / (beta * dt * dt)
         c_v = gam / (beta * dt)
         for j in range(ndof):
@@ -491,9 +530,9 @@ def integrate(
             want_k = it == 0
             ok = evaluate(
                 settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-                d1, v1, uk, ak, vcont, ry, c_v, want_k,
-                p1, fh1, fs1, ab, trial, node_r, node_f, node_fa, fe, ke, out, mom, nax, kt_u,
-                kt_v,
+                fparams, fstate, t1, d1, v1, uk, ak, vcont, ry, c_v, want_k,
+                p1, fh1, fs1, ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out, fout,
+                mom, nax, kt_u, kt_v,
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
@@ -581,6 +620,8 @@ def integrate(
         for i in range(n_nodes):
             for c in range(sstate.shape[1]):
                 sstate[i, c] = trial[i, c]
+            for c in range(fstate.shape[1]):
+                fstate[i, c] = ftrial[i, c]
             axst[i, 0] = d1[NDOF_NODE * i]
             axst[i, 1] = node_fa[i]
             if vcont[i] <= 0.0:

@@ -17,9 +17,9 @@ import numpy as np
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
-from onbottom.dynamics.storm_section import LoadReductions
 from onbottom.errors import InputError
-from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.force_model import ForceModel, MorisonLift
+from onbottom.hydro.reductions import LoadReductions
 from onbottom.inputs.pipe import Pipe
 from onbottom.soil.base import LateralResistanceModel
 
@@ -103,8 +103,11 @@ class PipelineModel:
         with the "spring" condition.
     axial_mobilisation : float
         Displacement mobilising full axial friction δ_ax [m], > 0 (default 5 mm) [I].
-    force_model : MorisonLift
-        Constant C_D, C_M, C_L and C_a (``rule`` per sea state is not supported here).
+    force_model : ForceModel
+        Hydrodynamic force model (any the storm section accepts; default
+        :class:`~onbottom.hydro.force_model.MorisonLift`, C_D 0.7, C_M 3.29, C_L 0.9). A
+        per-sea-state model needs kinematics synthesised from a storm
+        (:func:`~onbottom.hydro.short_crested.pipeline_kinematics`).
     reductions : LoadReductions
         F109 load reductions (permeable seabed, penetration, trench).
     current : float
@@ -126,7 +129,7 @@ class PipelineModel:
     end_conditions: str | tuple[str, str] = "fixed"
     end_springs: tuple[float, float, float] = (0.0, 0.0, 0.0)
     axial_mobilisation: float = 5.0e-3
-    force_model: MorisonLift = field(default_factory=MorisonLift)
+    force_model: ForceModel = field(default_factory=MorisonLift)
     reductions: LoadReductions = field(default_factory=LoadReductions)
     current: float = 0.0
     relative_velocity: bool = True
@@ -156,9 +159,10 @@ class PipelineModel:
         for i, k in enumerate(self.end_springs):
             non_negative(f"{c}.end_springs[{i}]", k)
         positive(f"{c}.axial_mobilisation", self.axial_mobilisation)
-        if not isinstance(self.force_model, MorisonLift) or self.force_model.rule is not None:
+        if not isinstance(self.force_model, ForceModel):
             raise InputError(
-                f"{c}.force_model is invalid: a MorisonLift with constant coefficients is needed"
+                f"{c}.force_model = {type(self.force_model).__name__} is invalid: expected a"
+                " ForceModel (name, model_id, added_mass_coefficient, parameter_table, describe)"
             )
         if self.strain_fibre_distance is not None:
             positive(f"{c}.strain_fibre_distance", self.strain_fibre_distance)

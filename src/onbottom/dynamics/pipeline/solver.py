@@ -28,6 +28,8 @@ from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.errors import InputError
+from onbottom.hydro._force_contract import N_FORCE_STATE
+from onbottom.hydro.force_model import parameter_rows
 from onbottom.hydro.short_crested import NodeKinematics
 from onbottom.results import annotate, provenance
 
@@ -231,9 +233,17 @@ class PipelineResult:
 
 
 def run_identity(
-    model: PipelineModel, kinematics: NodeKinematics, settings: PipelineSettings, extra: Any = None
+    model: PipelineModel,
+    kinematics: NodeKinematics,
+    settings: PipelineSettings,
+    extra: Any = None,
+    force_parameters: np.ndarray | None = None,
 ) -> str:
-    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics."""
+    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics.
+
+    ``force_parameters``: the force model's parameter rows; folded in only when they change
+    along the storm (per sea state), so a constant model keeps the identity of earlier runs.
+    """
     h = hashlib.sha256()
     meta = {
         "model": model.describe(),
@@ -244,6 +254,8 @@ def run_identity(
     h.update(json.dumps(meta, sort_keys=True, default=str).encode())
     h.update(np.ascontiguousarray(kinematics.velocity).tobytes())
     h.update(np.ascontiguousarray(kinematics.acceleration).tobytes())
+    if force_parameters is not None and force_parameters.shape[0] > 1:
+        h.update(np.ascontiguousarray(force_parameters).tobytes())
     return h.hexdigest()
 
 
@@ -265,9 +277,7 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     st[K.ST_GROWTH] = s.growth
     st[K.ST_RHO] = model.pipe.seawater_density
     st[K.ST_D] = d
-    st[K.ST_CD] = fm.cd
-    st[K.ST_CM] = fm.cm
-    st[K.ST_CL] = fm.cl
+    st[K.ST_FORCE_MODEL] = fm.model_id
     st[K.ST_R_PERM_Z] = r_perm_z
     st[K.ST_RELVEL] = 1.0 if model.relative_velocity else 0.0
     st[K.ST_DELTA_AX] = model.axial_mobilisation
@@ -453,10 +463,17 @@ def simulate_pipeline(
     arr = model.arrays()
     r_perm_z = float(arr["r_perm_z"][0])
     st = _kernel_settings(model, kinematics, s, r_perm_z)
+    fparams = parameter_rows(
+        model.force_model,
+        kinematics.weights,
+        kinematics.stage_parameters,
+        model.current,
+        model.pipe.outer_diameter,
+    )
     ku = np.ascontiguousarray(kinematics.velocity, dtype=np.float32)
     ka = np.ascontiguousarray(kinematics.acceleration, dtype=np.float32)
     ndof = B.NDOF_NODE * n
-    run_id = run_identity(model, kinematics, s, [t_end, identity_extra])
+    run_id = run_identity(model, kinematics, s, [t_end, identity_extra], fparams)
     d = model.pipe.outer_diameter
     if s.record_interval is not None:
         n_out = math.floor(t_end / s.record_interval + 1e-9) + 1
@@ -496,6 +513,7 @@ def simulate_pipeline(
         scal[K.SC_LIFT_NODE] = -1.0
         sstate = arr["sstate"]
         axst = arr["axst"]
+        fstate = np.zeros((n, N_FORCE_STATE))
         nodal = np.zeros((3, n))
         env = np.zeros((K.N_ENV, n))
         env[K.E_MIN_V] = 0.0
@@ -504,7 +522,7 @@ def simulate_pipeline(
         env[K.E_MIN_VCONT] = math.inf
         ok = K.initial_acceleration(
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
-            arr["sparams"], sstate, axst, ku, ka, vec, scal, nodal,
+            arr["sparams"], sstate, axst, fparams, fstate, ku, ka, vec, scal, nodal,
         )  # fmt: skip
         if not ok:
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
@@ -515,6 +533,8 @@ def simulate_pipeline(
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
             state["env"],
         )  # fmt: skip
+        # checkpoints written before the force state existed: Morison only, no state
+        fstate = state.get("fstate", np.zeros((n, N_FORCE_STATE)))
     writer = None if out_path is None else _Writer(out_path, x, base_attrs, rows)
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
@@ -536,8 +556,8 @@ def simulate_pipeline(
             while True:
                 m, status = K.integrate(
                     st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-                    arr["model_ids"], arr["sparams"], sstate, axst, ku, ka, vec, scal, nodal,
-                    t_out, t_end, t_stop, rec, rec_t, env,
+                    arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
+                    vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
                 )  # fmt: skip
                 if writer is not None:
                     writer.append(rec_t[:m].copy(), rec[:m])
@@ -555,7 +575,7 @@ def simulate_pipeline(
                     run_id,
                     writer.rows,
                     {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
-                     "env": env, "status": np.array(status)},
+                     "fstate": fstate, "env": env, "status": np.array(status)},
                 )  # fmt: skip
             if status != K.STATUS_CHUNK:
                 break
