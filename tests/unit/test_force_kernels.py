@@ -118,3 +118,12 @@ def test_unknown_model_id_gives_nan():
     force_step(99, _params(), np.zeros(N_FORCE_STATE), 0.0, 1.0, 0.0, 0.0, 0.0, D, RHO,
                np.zeros(N_FORCE_STATE), out)  # fmt: skip
     assert all(math.isnan(x) for x in out)
+
+
+def test_relative_velocity_drag_vanishes_when_pipe_moves_with_flow():
+    out, _ = _call(morison_kernel, _params(cd=1.0, rel=1.0), 1.0, 0.0, 0.5, 1.5)
+    assert out[FO_FY] == 0.0 and out[FO_DFY_DYD] == 0.0 and out[FO_FZ] == 0.0
+    out, _ = _call(morison_kernel, _params(), -0.5, 0.0, 0.5, 0.3)
+    assert out[FO_FZ] == 0.0  # lift on U + V without relative velocity
+    out, _ = _call(morison_kernel, _params(cl=0.9), 1.0, 0.0, 0.0, 0.0)
+    assert out[FO_FZ] == pytest.approx(0.5 * RHO * D * 0.9)

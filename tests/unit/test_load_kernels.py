@@ -1,15 +1,12 @@
-"""F109 load reductions and the shared Morison/lift kernels against hand calculations."""
+"""F109 load reductions and their numba kernels against hand calculations."""
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pytest
 
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro import _load_kernels as K
-from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
 from onbottom.hydro.reductions import penetration_reduction, trench_reduction
 
 
@@ -43,28 +40,3 @@ def test_trench_reduction_hand_values():
     assert trench_reduction(0.0, 30.0) == (1.0, 1.0)
     with pytest.raises(InputError, match="wall_angle_deg"):
         trench_reduction(0.5, 60.0)
-
-
-def test_morison_kernel_matches_numpy_forms_at_rest():
-    c = MorisonCoefficients(drag=0.9, inertia=3.29, lift=0.9)
-    u, a, v, d, rho = 1.3, 0.4, 0.5, 0.4, 1025.0
-    f, dfdv = K.morison_lateral(u, a, v, 0.0, d, rho, c.drag, c.inertia, 1.0)
-    assert f == pytest.approx(float(horizontal_force(np.array([u]), np.array([a]), v, d, c)[0]))
-    assert K.lift(u, v, d, rho, c.lift, 1.0) == pytest.approx(
-        float(lift_force(np.array([u]), v, d, c)[0])
-    )
-    # derivative by central difference
-    h = 1e-6
-    fp, _ = K.morison_lateral(u, a, v, h, d, rho, c.drag, c.inertia, 0.8)
-    fm, _ = K.morison_lateral(u, a, v, -h, d, rho, c.drag, c.inertia, 0.8)
-    _, d08 = K.morison_lateral(u, a, v, 0.0, d, rho, c.drag, c.inertia, 0.8)
-    assert d08 == pytest.approx((fp - fm) / (2 * h), rel=1e-6)
-    assert dfdv < 0.0
-
-
-def test_relative_velocity_drag_vanishes_when_pipe_moves_with_flow():
-    f, _ = K.morison_lateral(1.0, 0.0, 0.5, 1.5, 0.5, 1025.0, 1.0, 3.29, 1.0)
-    assert f == 0.0
-    assert K.lift(-0.5, 0.5, 0.5, 1025.0, 0.9, 0.7) == 0.0
-    assert K.lift(1.0, 0.0, 0.5, 1025.0, 0.9, 0.7) == pytest.approx(0.7 * 0.5 * 1025 * 0.5 * 0.9)
-    assert math.isfinite(K.morison_lateral(0.0, 0.0, 0.0, 0.0, 0.5, 1025.0, 1.0, 3.29, 1.0)[1])

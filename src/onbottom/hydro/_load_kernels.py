@@ -1,22 +1,13 @@
-"""Numba kernels of the time-domain hydrodynamic loads and F109 load reductions (private).
+"""Numba kernels of the DNV-RP-F109 penetration load reductions (private).
 
-Shared by the storm-section solver and the pipeline FE, so that both use the same force law.
-Plain-Python twins: :mod:`onbottom.hydro.reductions` (reductions) and
-:func:`onbottom.hydro.forces.horizontal_force` / :func:`onbottom.hydro.forces.lift_force`
-(forces at ẏ = 0, r = 1); tests compare them.
-
-Force law per unit length (docs/theory/storm_loads.md; DNV-RP-F109 (2017) §3.4 Morison form,
-relative velocity as in CORUS-3D, Youssef & Cassidy 2014):
-
-F_Y = r_y · [ ½ ρ_w D C_D (U + V − ẏ)|U + V − ẏ| + ρ_w (π D²/4) C_M U̇ ]
-F_Z = r_z · ½ ρ_w D C_L (U + V)²
-
-The added-mass term −ρ_w (π D²/4) C_a ÿ belongs with the mass on the left-hand side.
+Shared by the storm-section solver and the pipeline FE, which multiply the force model's
+output (:mod:`onbottom.hydro._force_dispatch`) by r_y = r_const,y · r_pen,y(z/D) and
+r_z = r_const,z · r_pen,z(z/D). Plain-Python twin:
+:func:`onbottom.hydro.reductions.penetration_reduction`; tests compare them. The Morison
+force law is in :mod:`onbottom.hydro._morison_kernel`.
 """
 
 from __future__ import annotations
-
-import math
 
 from numba import njit
 
@@ -35,25 +26,3 @@ def penetration_reduction_z(z_over_d):
     if z_over_d <= 0.1:
         return 1.0
     return max(1.0 - 1.3 * (z_over_d - 0.1), 0.0)
-
-
-@njit(cache=True)
-def morison_lateral(u, dudt, current, ydot, diameter, rho, cd, cm, r_y):
-    """Lateral load F_Y [N/m] and its derivative dF_Y/dẏ [N·s/m²] (relative-velocity drag).
-
-    u, dudt: wave-induced near-bed velocity [m/s] and acceleration [m/s²]; current V [m/s];
-    ydot: pipe velocity [m/s]; diameter D [m]; rho ρ_w [kg/m³]; cd, cm: C_D, C_M [-];
-    r_y: total lateral load reduction r_tot,y [-].
-    """
-    urel = u + current - ydot
-    drag = 0.5 * rho * diameter * cd * urel * abs(urel)
-    inertia = 0.25 * math.pi * rho * diameter * diameter * cm * dudt
-    dfdydot = r_y * (-rho * diameter * cd * abs(urel))
-    return r_y * (drag + inertia), dfdydot
-
-
-@njit(cache=True)
-def lift(u, current, diameter, rho, cl, r_z):
-    """Lift F_Z = r_z · ½ ρ_w D C_L (U + V)² [N/m], positive upward."""
-    s = u + current
-    return r_z * (0.5 * rho * diameter * cl * s * s)
