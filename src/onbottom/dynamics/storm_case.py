@@ -25,10 +25,11 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, load_case_file
-from onbottom.dynamics.storm_section import LoadReductions, StormSolverSettings
+from onbottom.dynamics.storm_section import StormSolverSettings
 from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
 from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.reductions import LoadReductions
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.stability_case import (

@@ -39,13 +39,10 @@ import xarray as xr
 
 from onbottom._validate import in_range, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER
-from onbottom.dynamics.storm_section import (
-    LoadReductions,
-    StormSolverSettings,
-    simulate_storm_section,
-)
+from onbottom.dynamics.storm_section import StormSolverSettings, simulate_storm_section
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import (
     StormKinematics,
     sea_state_for_velocity,
