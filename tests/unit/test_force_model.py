@@ -9,7 +9,7 @@ import pytest
 
 from onbottom.dynamics import _storm_kernel as K
 from onbottom.errors import InputError
-from onbottom.hydro._force_contract import FO_SIZE, N_FORCE_STATE
+from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE, N_FORCE_STATE
 from onbottom.hydro._morison_kernel import P_CD, P_CL, P_LIFT_REL
 from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
 
@@ -71,7 +71,9 @@ def test_kernel_force_law_matches_twin(z, u, dudt, ydot):
     fs, fs_new, fout = np.zeros(N_FORCE_STATE), np.zeros(N_FORCE_STATE), np.zeros(FO_SIZE)
 
     def loads(yd):
-        return K.reduced_loads(st, fp, fs, 0, 3.0, u, dudt, yd, z, fs_new, fout)
+        K.forces(st, fp[0], fs, 3.0, u, dudt, yd, fs_new, fout)
+        r_y, r_z = K.load_reductions(st, z)
+        return r_y * fout[FO_FY], r_y * fout[FO_DFY_DYD], r_z * fout[FO_FZ], r_y, r_z
 
     fy, dfdyd, fz, ry, rz = loads(ydot)
     ty, tdy, tz, try_, trz = _twin(u, dudt, 0.3, ydot, z, 0.4, 1025.0, 0.7, 3.29, 0.9, 0.9, 0.7)
@@ -114,5 +116,7 @@ def test_parameter_rows_constant_and_blended():
     np.testing.assert_allclose(rows[:, P_CD], [0.01 * k.mean(), 0.01 * k[0], 0.01 * k.mean(),
                                                0.01 * k[1], 0.01 * k[1]])  # fmt: skip
     np.testing.assert_allclose(rows[2, P_CL], m.mean())
+    # without stages (regular waves, measured flow): constant models only
+    np.testing.assert_array_equal(parameter_rows(MorisonLift(), None, [], 0.2, 0.5), const)
     with pytest.raises(InputError, match="stage_parameters"):
-        parameter_rows(MorisonLift(), w, [], 0.2, 0.5)
+        parameter_rows(MorisonLift.per_sea_state(rule), None, [], 0.2, 0.5)

@@ -95,7 +95,7 @@ def _python_kernels(monkeypatch, module, names):
 
 
 def test_section_commits_the_force_state_on_accepted_steps_only(monkeypatch):
-    captured = _python_kernels(monkeypatch, SK, ["reduced_loads", "_eval", "solve_step", "initial"])
+    captured = _python_kernels(monkeypatch, SK, ["forces", "solve_step", "initial"])
     t = np.arange(0.0, 30.0 + 1e-9, 0.1)
     u = 1.8 * np.sin(2 * np.pi * t / 8.0) * np.minimum(t / 8.0, 1.0)
     kin = StormKinematics(

@@ -164,66 +164,70 @@ def flow_at(t, kin_u, kin_a, dts):
 
 
 @njit(cache=True)
-def reduced_loads(settings, fparams, fstate, j, t, u, dudt, ydot, z, fstate_new, fout):
-    """(F_Y, dF_Y/dẏ, F_Z, r_y, r_z): the force model ``settings[ST_FORCE_MODEL]`` evaluated
-    from the committed ``fstate`` (:func:`onbottom.hydro._force_dispatch.force_step`, writing
-    ``fstate_new`` and ``fout``) with the parameter row of flow sample ``j``, times the F109
-    reductions r_y = r_const,y·r_pen,y(z/D), r_z = r_const,z·r_pen,z(z/D)."""
+def parameter_row(fparams, j):
+    """The force model's parameters for flow sample j: the only row, or row j (clamped)."""
     nc = fparams.shape[0]
     jj = j if nc > 1 else 0
     if jj >= nc:
         jj = nc - 1
-    d = settings[ST_D]
+    return fparams[jj]
+
+
+@njit(cache=True)
+def load_reductions(settings, z):
+    """(r_y, r_z) = (r_const,y·r_pen,y(z/D), r_const,z·r_pen,z(z/D)) at the penetration z [m]."""
+    ry = settings[ST_RY_CONST]
+    rz = settings[ST_RZ_CONST]
+    if settings[ST_USE_PEN] != 0.0:
+        d = settings[ST_D]
+        ry *= penetration_reduction_y(z / d)
+        rz *= penetration_reduction_z(z / d)
+    return ry, rz
+
+
+@njit(cache=True)
+def forces(settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
+    """The force model ``settings[ST_FORCE_MODEL]`` with the parameter row ``prow`` from the
+    committed ``fstate``: :func:`onbottom.hydro._force_dispatch.force_step` writing
+    ``fstate_new`` and ``fout`` (F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ before reductions)."""
     force_step(
         int(settings[ST_FORCE_MODEL]),
-        fparams[jj],
+        prow,
         fstate,
         t,
         u,
         dudt,
         settings[ST_CURRENT],
         ydot,
-        d,
+        settings[ST_D],
         settings[ST_RHO],
         fstate_new,
         fout,
     )
-    ry = settings[ST_RY_CONST]
-    rz = settings[ST_RZ_CONST]
-    if settings[ST_USE_PEN] != 0.0:
-        ry *= penetration_reduction_y(z / d)
-        rz *= penetration_reduction_z(z / d)
-    return ry * fout[FO_FY], ry * fout[FO_DFY_DYD], rz * fout[FO_FZ], ry, rz
 
 
 @njit(cache=True)
-def _eval(model_id, params, state_old, settings, fp, fs, j, t1, u1, a1dot, y0, dy, yd1, z, trial,
-          out, fs_new, fout):  # fmt: skip
-    """Hydro + soil at the trial increment; returns (F_Y, dF/dẏ, F_Z, V, r_y, r_z)."""
-    fy, dfdyd, fz, ry, rz = reduced_loads(settings, fp, fs, j, t1, u1, a1dot, yd1, z, fs_new, fout)
-    v = settings[ST_WS] - fz
-    lateral_step(model_id, params, state_old, y0 + dy, v, trial, out)
-    return fy, dfdyd, fz, v, ry, rz
-
-
-@njit(cache=True)
-def solve_step(model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, yd0, a0, dt,
-               trial, out, fs_new, fout):  # fmt: skip
+def solve_step(model_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0, dt, ry,
+               rz, trial, out, fs_new, fout):  # fmt: skip
     """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
 
-    ``fp``, ``fs``: the force parameters and the committed force state; ``fs_new``, ``fout``
-    scratch of the force model (as ``trial``, ``out`` of the soil model)."""
+    ``prow``, ``fs``: the force parameters of the step and the committed force state;
+    ``fs_new``, ``fout`` scratch of the force model (as ``trial``, ``out`` of the soil model);
+    ``ry``, ``rz`` the load reductions of the step (from the committed penetration). Each
+    iterate evaluates the force model, then the soil under V = w_s − r_z F_Z (the force and
+    soil calls are written out here, not wrapped, to keep the hot loop's calls few).
+    """
     m = settings[ST_MASS]
     gam = settings[ST_GAMMA]
     beta = settings[ST_BETA]
     rtol = settings[ST_RTOL]
+    ws = settings[ST_WS]
     max_iter = int(settings[ST_MAX_ITER])
-    z = state[S_Z]
     c0 = m / (beta * dt * dt)
     cv = gam / (beta * dt)
     dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
     yd_base = yd0 + dt * (1.0 - gam) * a0
-    scale = settings[ST_WS] + abs(m * a0) + 1.0
+    scale = ws + abs(m * a0) + 1.0
     tol_r = rtol * scale
     have_lo = False
     have_hi = False
@@ -233,10 +237,10 @@ def solve_step(model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, 
     eps = 4.0e-16 * (abs(y0) + abs(dy_hat) + 1e-12)
     for it in range(max_iter):
         yd1 = yd_base + cv * (dy - dy_hat)
-        fy, dfdyd, _fz, _v, _ry, _rz = _eval(
-            model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, dy, yd1, z, trial,
-            out, fs_new, fout,
-        )  # fmt: skip
+        forces(settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+        fy = ry * fout[FO_FY]
+        dfdyd = ry * fout[FO_DFY_DYD]
+        lateral_step(model_id, params, state, y0 + dy, ws - rz * fout[FO_FZ], trial, out)
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return dy, False, it + 1
@@ -266,10 +270,8 @@ def solve_step(model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, 
             dy_next = dy - r / cdamp
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
-            _eval(
-                model_id, params, state, settings, fp, fs, j, t1, u1, a1dot, y0, dy_next, yd1,
-                z, trial, out, fs_new, fout,
-            )  # fmt: skip
+            forces(settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+            lateral_step(model_id, params, state, y0 + dy_next, ws - rz * fout[FO_FZ], trial, out)
             return dy_next, True, it + 1
         dy = dy_next
     return dy, False, max_iter
@@ -305,10 +307,12 @@ def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dy
     fout = np.empty(FO_SIZE)
     dts = settings[ST_DTS]
     u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
-    fy, _dfdyd, fz, v, ry, rz = _eval(
-        model_id, params, state, settings, fparams, fstate, j, dyn[D_T], u0, a0, dyn[D_Y], 0.0,
-        dyn[D_YD], state[S_Z], trial, out, fs_new, fout,
-    )  # fmt: skip
+    ry, rz = load_reductions(settings, state[S_Z])
+    forces(settings, parameter_row(fparams, j), fstate, dyn[D_T], u0, a0, dyn[D_YD], fs_new, fout)
+    fy = ry * fout[FO_FY]
+    fz = rz * fout[FO_FZ]
+    v = settings[ST_WS] - fz
+    lateral_step(model_id, params, state, dyn[D_Y], v, trial, out)
     dyn[D_A] = (fy - out[OUT_R]) / settings[ST_MASS]
     dyn[D_F_PREV] = fy
     dyn[D_R_PREV] = out[OUT_R]
@@ -369,9 +373,11 @@ def integrate(
             dt = t_end - t
         t1 = t + dt
         u1, a1dot, j = flow_at(t1, kin_u, kin_a, dts)
+        prow = parameter_row(fparams, j)
+        ry, rz = load_reductions(settings, state[S_Z])
         dy, conv, iters = solve_step(
-            model_id, params, state, settings, fparams, fstate, j, t1, u1, a1dot, y0, yd0, a0,
-            dt, trial, out, fs_new, fout,
+            model_id, params, state, settings, prow, fstate, t1, u1, a1dot, y0, yd0, a0, dt, ry,
+            rz, trial, out, fs_new, fout,
         )  # fmt: skip
         dyn[D_N_ITER] += iters
         if not math.isfinite(out[OUT_R]):
@@ -391,9 +397,9 @@ def integrate(
         a1 = (dy - dy_hat) / (beta * dt * dt)
         yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
         # the force model at the accepted (t₁, ẏ₁): its loads and the force state to commit
-        fy, _dfdyd, fz, ry, rz = reduced_loads(
-            settings, fparams, fstate, j, t1, u1, a1dot, yd1, state[S_Z], fs_new, fout
-        )
+        forces(settings, prow, fstate, t1, u1, a1dot, yd1, fs_new, fout)
+        fy = ry * fout[FO_FY]
+        fz = rz * fout[FO_FZ]
         v = settings[ST_WS] - fz
         r1 = out[OUT_R]
         dyn[D_W_HYDRO] += 0.5 * (dyn[D_F_PREV] + fy) * dy
