@@ -81,14 +81,13 @@ ST_WS = 11
 ST_RY_CONST = 12
 ST_RZ_CONST = 13
 ST_USE_PEN = 14
-ST_UNUSED_15 = 15  # was the lift-on-relative-velocity flag (now a force parameter)
-ST_LIFTOFF = 16
-ST_REC_INTERVAL = 17
-ST_CURRENT = 18
-ST_DTS = 19
-ST_T_END = 20
-ST_FORCE_MODEL = 21
-N_SETTINGS = 22
+ST_LIFTOFF = 15
+ST_REC_INTERVAL = 16
+ST_CURRENT = 17
+ST_DTS = 18
+ST_T_END = 19
+ST_FORCE_MODEL = 20  # force model id (onbottom.hydro._force_dispatch)
+N_SETTINGS = 21
 
 # dynamic state and running summary
 D_T = 0
