@@ -173,3 +173,38 @@ def test_lift_relative_velocity_option():
     _, out = _eval(p, np.zeros(N_FORCE_STATE), 0.0, 1.0, 0.0, 0.0, ydot=0.4)
     assert out[FO_FZ] == pytest.approx(0.5 * RHO * D * 0.9 * 0.6**2, rel=1e-14)
     assert out[FO_DFZ_DYD] == pytest.approx(-RHO * D * 0.9 * 0.6, rel=1e-14)
+
+
+def test_calibration_inputs_named():
+    from onbottom.hydro.wake_calibration import (
+        compare_with_tables,
+        fit_wake_model,
+        regular_peak_coefficients,
+    )
+
+    m = WakeModel()
+    with pytest.raises(InputError, match="k_star"):
+        regular_peak_coefficients(m, 0.0, 0.0)
+    with pytest.raises(InputError, match="m_star"):
+        regular_peak_coefficients(m, 5.0, -1.0)
+    with pytest.raises(InputError, match="n_cycles"):
+        regular_peak_coefficients(m, 5.0, 0.0, n_cycles=1)
+    with pytest.raises(InputError, match="steps_per_cycle"):
+        regular_peak_coefficients(m, 5.0, 0.0, steps_per_cycle=8)
+    with pytest.raises(InputError, match="tables"):
+        compare_with_tables(m, [5.0, 10.0], [0.0], np.ones((2, 2)), np.ones((2, 2)))
+    with pytest.raises(InputError, match="free"):
+        fit_wake_model([5.0], [0.0], np.ones((1, 1)), np.ones((1, 1)), free=("name",))
+
+
+def test_regular_protocol_steady_limits():
+    """Wake off, K* large: C_Y → C_D∞ (+ the inertia's small share), C_Z → C_L∞ exactly."""
+    from onbottom.hydro.wake_calibration import regular_peak_coefficients
+
+    m = WakeModel().without_wake()
+    cy, cz = regular_peak_coefficients(m, [1000.0, 1000.0], [0.0, 10.0])
+    # F_Y peak of C_D sin² + a cos with a = π² C_M / K: C_D + a²/(4 C_D) for a < 2 C_D
+    a = math.pi**2 * 3.29 / 1000.0
+    assert cy[0] == pytest.approx(1.0 + a * a / 4.0, rel=1e-5)
+    assert cz[0] == pytest.approx(0.9, rel=1e-9)
+    assert cz[1] == pytest.approx(0.9, rel=1e-9)

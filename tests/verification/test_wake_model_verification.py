@@ -205,3 +205,27 @@ def test_peak_converges_with_sample_interval(m_star):
     assert errs[1] < errs[0] / 4.0
     assert errs[2] < errs[1] / 4.0
     assert errs[2] < 1e-5
+
+
+def test_fit_recovers_known_constants():
+    """Tables made by the model itself are fitted back to the constants that made them."""
+    from onbottom.hydro.wake_calibration import fit_wake_model
+
+    truth = WakeModel(wake_ratio=0.35, lift_excess=2.2, drag_relaxation=8.0)
+    k = np.array([2.5, 5.0, 10.0, 20.0, 40.0, 100.0])
+    m = np.array([0.0, 0.2, 0.5, 0.8])
+    kk, mm = np.meshgrid(k, m)
+    cy, cz = regular_peak_coefficients(truth, kk, mm, steps_per_cycle=200)
+    fit = fit_wake_model(
+        k,
+        m,
+        cy,
+        cz,
+        start=WakeModel(wake_ratio=0.6, lift_excess=1.0, drag_relaxation=3.0),
+        free=("wake_ratio", "lift_excess", "drag_relaxation"),
+        steps_per_cycle=200,
+    )
+    assert fit.model.wake_ratio == pytest.approx(0.35, rel=1e-4)
+    assert fit.model.lift_excess == pytest.approx(2.2, rel=1e-4)
+    assert fit.model.drag_relaxation == pytest.approx(8.0, rel=1e-4)
+    assert fit.rms_log < 1e-8
