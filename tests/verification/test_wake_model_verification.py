@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from onbottom.hydro import _load_kernels as lk
+from onbottom.hydro import _morison_kernel as mk
 from onbottom.hydro import _wake_kernel as wk
 from onbottom.hydro._force_contract import (
     FO_DFY_DYD,
@@ -54,19 +54,20 @@ def _run(kernel, params, t, u, dudt, vc, ydot, state0=None):
     return outs, states
 
 
-def test_wake_off_equals_morison_bit_for_bit():
-    """α_w = ΔC_D = ΔC_L = 0: F_Y, ∂F_Y/∂ẏ, F_Z identical to the shared Morison kernels."""
-    m = WakeModel(cd_steady=0.7, cl_steady=0.9, cm=3.29).without_wake()
+@pytest.mark.parametrize("lift_relative", [False, True])
+def test_wake_off_equals_morison_bit_for_bit(lift_relative):
+    """α_w = ΔC_D = ΔC_L = 0: out[0:4] identical to the Morison kernel's, step by step."""
+    m = WakeModel(
+        cd_steady=0.7, cl_steady=0.9, cm=3.29, lift_relative_velocity=lift_relative
+    ).without_wake()
     t, u, dudt, vc, ydot = _record(1)
     outs, states = _run(wk.wake_kernel, m.parameters(), t, u, dudt, vc, ydot)
     assert states[-1, wk.S_N_REVERSALS] >= 10  # the history did run
-    for i in range(t.size):
-        fy, dfy = lk.morison_lateral(u[i], dudt[i], vc[i], ydot[i], D, RHO, 0.7, 3.29, 1.0)
-        fz = lk.lift(u[i], vc[i], D, RHO, 0.9, 1.0)
-        assert outs[i, FO_FY] == fy
-        assert outs[i, FO_DFY_DYD] == dfy
-        assert outs[i, FO_FZ] == fz
-        assert outs[i, FO_DFZ_DYD] == 0.0
+    p = np.zeros(mk.N_PARAMS)
+    p[mk.P_CD], p[mk.P_CM], p[mk.P_CL] = 0.7, 3.29, 0.9
+    p[mk.P_LIFT_REL] = 1.0 if lift_relative else 0.0
+    ref, _ = _run(mk.morison_kernel, p, t, u, dudt, vc, ydot)
+    np.testing.assert_array_equal(outs, ref)
 
 
 def test_steady_current_gives_steady_drag_and_lift_only():

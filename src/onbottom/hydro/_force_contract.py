@@ -1,34 +1,25 @@
-"""Constants of the stateful hydrodynamic force-model kernel contract (no numba code).
+"""Slots of the stateful force-model kernel contract (private; no numba code here).
 
-Every force-model kernel (``hydro/_morison_kernel.py``, ``hydro/_wake_kernel.py``,
-``hydro/_fourier_kernel.py``) has the signature
+The contract itself is written as numbered rules in :mod:`onbottom.hydro._force_dispatch`.
+Every force-model kernel module imports its output slots and the state length from here.
 
-    kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+``out`` slots written by a kernel (forces per unit length, *before* the DNV-RP-F109 load
+reductions, which the solver applies):
 
-and is dispatched on an integer ``model_id`` by ``onbottom.hydro._force_dispatch.force_step``
-(the contract's numbered rules are in that module's docstring). ``state_old``/``state_new`` hold
-:data:`N_FORCE_STATE` slots; ``out`` holds :data:`FO_SIZE` values:
-
-* ``out[FO_FY]``: lateral force per unit length before reduction factors [N/m], positive in +y;
-* ``out[FO_DFY_DYD]``: ∂F_Y/∂ẏ [N·s/m²];
-* ``out[FO_FZ]``: vertical (lift) force per unit length before reductions [N/m], upward;
-* ``out[FO_DFZ_DYD]``: ∂F_Z/∂ẏ [N·s/m²].
+- ``FO_FY`` lateral force F_Y [N/m], positive in +y (drag, Froude–Krylov and added-mass
+  inertia on U̇; not the added mass on the pipe's own acceleration);
+- ``FO_DFY_DYD`` ∂F_Y/∂ẏ [N·s/m²] (<= 0 for a drag law);
+- ``FO_FZ`` vertical (lift) force F_Z [N/m], positive upward;
+- ``FO_DFZ_DYD`` ∂F_Z/∂ẏ [N·s/m²].
 """
 
 from __future__ import annotations
 
-__all__ = ["FO_DFY_DYD", "FO_DFZ_DYD", "FO_FY", "FO_FZ", "FO_SIZE", "N_FORCE_STATE"]
+FO_FY = 0
+FO_DFY_DYD = 1
+FO_FZ = 2
+FO_DFZ_DYD = 3
+FO_SIZE = 4
 
 N_FORCE_STATE = 16
-"""Number of history slots of a force model's state (zeros at the start of a run)."""
-
-FO_FY = 0
-"""Index of the lateral force F_Y [N/m] in ``out``."""
-FO_DFY_DYD = 1
-"""Index of ∂F_Y/∂ẏ [N·s/m²] in ``out``."""
-FO_FZ = 2
-"""Index of the vertical force F_Z [N/m] in ``out``."""
-FO_DFZ_DYD = 3
-"""Index of ∂F_Z/∂ẏ [N·s/m²] in ``out``."""
-FO_SIZE = 4
-"""Length of ``out``."""
+"""Length of a force model's state vector (zeros at the start of a run)."""

@@ -20,8 +20,8 @@ found by linear interpolation of q; s is integrated by the trapezoidal rule. The
 the ambient flow only (not ẏ), so ∂F/∂ẏ comes from the relative velocity alone.
 
 With α_w = ΔC_D = ΔC_L = 0 the forces are, bit for bit, those of
-:func:`onbottom.hydro._load_kernels.morison_lateral` and :func:`~._load_kernels.lift` with
-C_D = C_D∞, C_M, C_L = C_L∞ and r = 1.
+:func:`onbottom.hydro._morison_kernel.morison_kernel` with C_D = C_D∞, C_M, C_L = C_L∞ (both
+lift options).
 
 params (``P_*``, one row of :meth:`onbottom.hydro.wake.WakeModel.parameter_table`):
 C_D∞, C_L∞, C_M, ΔC_D, ΔC_L, λ_D, λ_L, α_w, λ_w, lift-relative flag, reversal tolerance.
@@ -154,15 +154,17 @@ def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
     x = dist / d
     cd = params[P_CD_STEADY] + relax * params[P_DCD] * math.exp(-x / params[P_LAMBDA_D])
     cl = params[P_CL_STEADY] + relax * params[P_DCL] * math.exp(-x / params[P_LAMBDA_L])
-    ue = q + sign * (wake0 * math.exp(-x / params[P_LAMBDA_W]))
+    uw = sign * (wake0 * math.exp(-x / params[P_LAMBDA_W]))
+    ue = q + uw
     urel = ue - ydot
     drag = 0.5 * rho * d * cd * urel * abs(urel)
     inertia = 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
     out[FO_FY] = drag + inertia
     out[FO_DFY_DYD] = -rho * d * cd * abs(urel)
     if params[P_LIFT_RELATIVE] != 0.0:
-        out[FO_FZ] = 0.5 * rho * d * cl * urel * urel
-        out[FO_DFZ_DYD] = -rho * d * cl * urel
+        s = ((u - ydot) + vc) + uw  # the Morison kernel's order: bit for bit when U_w = 0
+        out[FO_FZ] = 0.5 * rho * d * cl * s * s
+        out[FO_DFZ_DYD] = -rho * d * cl * s
     else:
         out[FO_FZ] = 0.5 * rho * d * cl * ue * ue
         out[FO_DFZ_DYD] = 0.0

@@ -94,6 +94,7 @@ def wake_kernel_py(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
         0.25 * math.pi * rho * d * d * params[P_CM] * dudt
     )
     out[FO_DFY_DYD] = -rho * d * c_drag * abs(u_rel)
-    u_lift = u_rel if params[P_LIFT_RELATIVE] != 0.0 else u_eff
+    relative = params[P_LIFT_RELATIVE] != 0.0
+    u_lift = ((u - ydot) + vc) + sign * u_wake if relative else u_eff
     out[FO_FZ] = 0.5 * rho * d * c_lift * u_lift * u_lift
-    out[FO_DFZ_DYD] = -rho * d * c_lift * u_rel if params[P_LIFT_RELATIVE] != 0.0 else 0.0
+    out[FO_DFZ_DYD] = -rho * d * c_lift * u_lift if relative else 0.0
