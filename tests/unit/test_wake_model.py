@@ -50,8 +50,9 @@ def test_model_identity_and_added_mass():
 
 def test_parameter_table_rows_and_layout():
     m = WakeModel(lift_relative_velocity=True)
-    table = m.parameter_table([5.0, 10.0, 20.0], [0.0, 0.5, np.inf])
+    table = m.parameter_table([5.0, 10.0, 0.0], [0.0, 0.5, np.inf])
     assert table.shape == (3, wk.N_PARAMS)
+    assert table.dtype == np.float64 and table.flags.c_contiguous
     assert np.all(table == table[0])
     row = table[0]
     assert row[wk.P_CD_STEADY] == m.cd_steady
@@ -97,7 +98,7 @@ def test_bad_inputs_named(kwargs, field):
 
 @pytest.mark.parametrize(
     ("k", "m"),
-    [([0.0], [0.0]), ([np.nan], [0.0]), ([5.0], [-0.1]), ([5.0, 6.0], [0.0])],
+    [([-1.0], [0.0]), ([np.nan], [0.0]), ([5.0], [-0.1]), ([5.0, 6.0], [0.0])],
 )
 def test_parameter_table_bad_k_m(k, m):
     with pytest.raises(InputError):

@@ -83,6 +83,12 @@ def test_published_constants_are_the_defaults():
     ]:
         row = next(ln for ln in text.splitlines() if f"| {symbol} |" in ln)
         assert float(row.split("|")[3]) == getattr(m, field)
+    theory = (DOCS.parent / "theory" / "wake_model.md").read_text(encoding="utf-8")
+    for field in ("drag_excess", "lift_excess", "drag_relaxation", "lift_relaxation",
+                  "wake_ratio", "wake_decay"):  # fmt: skip
+        row = next(ln for ln in theory.splitlines() if ln.startswith(f"| `{field}` |"))
+        cells = re.split(r"(?<!\\)\|", row)  # escaped pipes stay inside a cell
+        assert float(cells[5]) == getattr(m, field)
 
 
 def test_wake_improves_on_morison_everywhere_it_should(result):

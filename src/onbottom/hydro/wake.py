@@ -168,8 +168,9 @@ class WakeModel:
         """Array (n_stages, N_PARAMS): one identical row per stage (constants, no K, M rule).
 
         The model's K- and M-dependence comes from its history (distance since reversal,
-        previous half-cycle), not from the stage's K, M; those are checked (K > 0, M >= 0,
-        finite or M = inf) and set the number of rows.
+        previous half-cycle), not from the stage's K, M; those only set the number of rows and
+        are checked for sign (K >= 0, M >= 0, not NaN; a calm stage's K = 0 or M = inf is
+        accepted, as for a constant Morison model).
         """
         k = np.atleast_1d(np.asarray(keulegan_carpenter, dtype=float))
         m = np.atleast_1d(np.asarray(current_ratio, dtype=float))
@@ -178,8 +179,8 @@ class WakeModel:
                 f"WakeModel.parameter_table: K shape {k.shape} and M shape {m.shape} are"
                 " invalid: expected two 1-D arrays of the same length"
             )
-        if np.any(~np.isfinite(k) | (k <= 0.0)):
-            raise InputError(f"keulegan_carpenter = {k!r} is invalid: must be finite and > 0")
+        if np.any(np.isnan(k) | (k < 0.0)):
+            raise InputError(f"keulegan_carpenter = {k!r} is invalid: must be >= 0")
         if np.any(np.isnan(m) | (m < 0.0)):
             raise InputError(f"current_ratio = {m!r} is invalid: must be >= 0")
         return np.tile(self.parameters(), (k.size, 1))
