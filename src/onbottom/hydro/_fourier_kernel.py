@@ -1,0 +1,269 @@
+"""Numba kernel of the Fourier force model in irregular flow (private).
+
+Contract: :mod:`onbottom.hydro._force_contract` (signature, ``out`` slots, 16 state slots).
+Theory and every choice made here: ``docs/theory/fourier_model.md``; the Python side is
+:class:`onbottom.hydro.fourier.FourierModel`. Plain-Python twin: built from this source with
+``onbottom.soil._twin.pure_python`` in the tests (same arithmetic, interpreted).
+
+Per half-cycle of the total ambient flow W = U + V_c (Sørensen, Bryndum & Jacobsen 1986;
+Bryndum, Jacobsen & Tsahalis 1992, JOMAE 114:231; structure only, see the theory page)
+
+    F_Y = s · ½ρD Û² [A₀ʸ + Σₙ (Aₙʸ cos nθ + Bₙʸ sin nθ)] + ½ρD C_D [W_r|W_r| − W|W|]
+    F_Z =     ½ρD Û² [A₀ᶻ + Σₙ (Aₙᶻ cos nθ + Bₙᶻ sin nθ)]
+
+s = ±1 the half-cycle's flow direction, θ = π τ / T̂_h (τ time since the zero crossing that
+began the half-cycle, T̂_h its predicted duration), W_r = W − ẏ; the coefficients are bilinear
+in (K̂, M̂) = (Û T̂ / D, s V_c / Û) of the half-cycle, fixed at its start, clamped to the grid.
+Û, T̂ are the wave amplitude and period estimated from the completed half-cycles with the
+memory weight w: Û ← (1 − w) a_k + w Û, a_k = P_k − s_k V_c (P_k the peak |W|), and
+T̂ ← (1 − w) T_k / f(s_k V_c / a_k) + w T̂ with f(m) = ½ + asin(m)/π the fraction of a regular
+wave's period that a half-cycle following (m > 0) or opposing (m < 0) the current lasts;
+T̂_h = T̂ f(M̂). All of these are exact in regular flow with a current.
+
+Before two zero crossings (no completed half-cycle yet) and when a half-cycle outlasts its
+prediction (τ > T̂_h: a steady current, M > 1, a long irregular half-wave) the force falls back
+to the quasi-steady Morison law with the model's C_D, C_L, C_M:
+F_Y = ½ρD C_D W_r|W_r| + ρ (π D²/4) C_M U̇, F_Z = ½ρD C_L W².
+
+params (one float64 row): [N, n_K, n_M, w, C_D, C_L, C_M, 0, K grid (n_K), M grid (n_M),
+coefficients (n_K, n_M, 2, 2N+1)], each coefficient vector ordered A₀, A₁, B₁, …, A_N, B_N,
+component 0 = Y, 1 = Z (packed by :meth:`onbottom.hydro.fourier.FourierModel.params`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ, N_FORCE_STATE
+
+P_NHARM = 0
+"""Harmonic order N used (integer-valued)."""
+P_NK = 1
+"""Number of K grid values."""
+P_NM = 2
+"""Number of M grid values."""
+P_MEMORY = 3
+"""Memory weight w in [0, 1)."""
+P_CD = 4
+"""Quasi-steady drag coefficient C_D (fallback law and relative-motion correction)."""
+P_CL = 5
+"""Quasi-steady lift coefficient C_L (fallback law)."""
+P_CM = 6
+"""Inertia coefficient C_M (fallback law)."""
+P_HEADER = 8
+"""First slot of the K grid; the M grid and the coefficients follow."""
+
+S_INIT = 0
+"""1 once a sample has been seen (0 in a zero state: flow at rest)."""
+S_T = 1
+"""Time of the last evaluated sample [s]."""
+S_W = 2
+"""Total ambient flow W = U + V_c at that sample [m/s] (signed)."""
+S_SIGN = 3
+"""Direction s of the current half-cycle: +1, −1, or 0 while the flow has been at rest."""
+S_T_START = 4
+"""Time the current half-cycle began [s] (its zero crossing, linearly interpolated)."""
+S_PEAK = 5
+"""Running peak |W| of the current half-cycle [m/s]."""
+S_NCROSS = 6
+"""Zero crossings seen; >= 1 means the current half-cycle began at a crossing."""
+S_UM = 7
+"""Estimated wave amplitude Û [m/s]."""
+S_TW = 8
+"""Estimated wave period T̂ [s]."""
+S_HAVE = 9
+"""1 once Û, T̂ exist (one completed half-cycle)."""
+S_NCLAMP = 10
+"""Half-cycles whose (K̂, M̂) lay outside the table's grid (clamped)."""
+S_K = 11
+"""K̂ of the current half-cycle [-]."""
+S_M = 12
+"""M̂ = s V_c / Û of the current half-cycle [-] (> 0 following the current)."""
+S_TH = 13
+"""Predicted duration T̂_h of the current half-cycle [s]."""
+S_MODE = 14
+"""1 if the last evaluation used the Fourier series, 0 the quasi-steady fallback."""
+S_THETA = 15
+"""Phase θ of the last evaluation [rad] (0 in the fallback)."""
+
+M_CLIP = 0.95
+"""|m| limit in f(m) = ½ + asin(m)/π, so that a weak opposing half-cycle cannot give an
+unbounded period estimate."""
+
+
+@njit(cache=True)
+def half_cycle_fraction(m):
+    """f(m) = ½ + asin(m)/π: a half-cycle's share of a regular wave's period [-].
+
+    m = s V_c / U_m (> 0: the half-cycle flows with the current); clipped to ±``M_CLIP``.
+    """
+    if m > M_CLIP:
+        m = M_CLIP
+    elif m < -M_CLIP:
+        m = -M_CLIP
+    return 0.5 + math.asin(m) / math.pi
+
+
+@njit(cache=True)
+def locate(params, start, n, x):
+    """Cell ``i`` and fraction ``f`` of ``x`` on the grid ``params[start:start+n]``.
+
+    Returns (i, f, outside): clamped to the end values (f = 0 or 1) when ``x`` lies outside,
+    ``outside`` = 1.0 then; a one-point grid gives (0, 0.0, x != grid).
+    """
+    lo = params[start]
+    if n == 1:
+        return 0, 0.0, 1.0 if x != lo else 0.0
+    hi = params[start + n - 1]
+    if x <= lo:
+        return 0, 0.0, 1.0 if x < lo else 0.0
+    if x >= hi:
+        return n - 2, 1.0, 1.0 if x > hi else 0.0
+    i = 0
+    while i < n - 2 and params[start + i + 1] <= x:
+        i += 1
+    a = params[start + i]
+    return i, (x - a) / (params[start + i + 1] - a), 0.0
+
+
+@njit(cache=True)
+def series(params, comp, kc, mh, theta):
+    """A₀ + Σₙ (Aₙ cos nθ + Bₙ sin nθ) of component ``comp`` (0 Y, 1 Z) at (K, M), bilinear.
+
+    (K, M) are clamped to the grid. cos nθ, sin nθ by the angle-addition recurrence.
+    """
+    nh = int(params[P_NHARM])
+    nk = int(params[P_NK])
+    nm = int(params[P_NM])
+    ncoef = 2 * nh + 1
+    ik, fk, _ = locate(params, P_HEADER, nk, kc)
+    im, fm, _ = locate(params, P_HEADER + nk, nm, mh)
+    ik1 = ik + 1 if ik + 1 < nk else ik
+    im1 = im + 1 if im + 1 < nm else im
+    base = P_HEADER + nk + nm
+    o00 = base + ((ik * nm + im) * 2 + comp) * ncoef
+    o10 = base + ((ik1 * nm + im) * 2 + comp) * ncoef
+    o01 = base + ((ik * nm + im1) * 2 + comp) * ncoef
+    o11 = base + ((ik1 * nm + im1) * 2 + comp) * ncoef
+    w00 = (1.0 - fk) * (1.0 - fm)
+    w10 = fk * (1.0 - fm)
+    w01 = (1.0 - fk) * fm
+    w11 = fk * fm
+    total = w00 * params[o00] + w10 * params[o10] + w01 * params[o01] + w11 * params[o11]
+    c1 = math.cos(theta)
+    s1 = math.sin(theta)
+    cn = 1.0
+    sn = 0.0
+    for n in range(1, nh + 1):
+        c_next = cn * c1 - sn * s1
+        sn = sn * c1 + cn * s1
+        cn = c_next
+        ja = 2 * n - 1
+        jb = 2 * n
+        a = w00 * params[o00 + ja] + w10 * params[o10 + ja]
+        a += w01 * params[o01 + ja] + w11 * params[o11 + ja]
+        b = w00 * params[o00 + jb] + w10 * params[o10 + jb]
+        b += w01 * params[o01 + jb] + w11 * params[o11 + jb]
+        total += a * cn + b * sn
+    return total
+
+
+@njit(cache=True)
+def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """Fourier force model: F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ at time ``t`` (see the module docstring).
+
+    params: the packed row (layout above); state_old / state_new: 16 slots ``S_*``; t [s];
+    u [m/s], dudt [m/s²]: ambient wave-induced velocity and acceleration; vc [m/s]: current;
+    ydot [m/s]: pipe velocity; d [m]: outer diameter; rho [kg/m³]: water density.
+    """
+    for i in range(N_FORCE_STATE):
+        state_new[i] = state_old[i]
+    w = u + vc
+    if state_old[S_INIT] == 0.0:
+        # first sample of a run: the current half-cycle began before it (incomplete)
+        state_new[S_INIT] = 1.0
+        state_new[S_SIGN] = 1.0 if w > 0.0 else (-1.0 if w < 0.0 else 0.0)
+        state_new[S_T_START] = t
+        state_new[S_PEAK] = abs(w)
+    else:
+        s_old = state_old[S_SIGN]
+        if s_old == 0.0:
+            if w != 0.0:
+                # flow starting from rest: a half-cycle that did not begin at a crossing
+                state_new[S_SIGN] = 1.0 if w > 0.0 else -1.0
+                state_new[S_T_START] = t
+                state_new[S_PEAK] = abs(w)
+        elif w * s_old < 0.0:
+            # zero crossing between the last sample and this one
+            w_old = state_old[S_W]
+            t_old = state_old[S_T]
+            if w_old * s_old > 0.0:
+                tc = t_old + (t - t_old) * w_old / (w_old - w)
+            else:
+                tc = t_old
+            if state_old[S_NCROSS] >= 1.0:
+                # the ending half-cycle is complete: update the wave estimates
+                peak = state_old[S_PEAK]
+                tk = tc - state_old[S_T_START]
+                amp = peak - s_old * vc
+                if amp < 0.5 * peak:
+                    amp = 0.5 * peak
+                if tk > 0.0 and amp > 0.0:
+                    period = tk / half_cycle_fraction(s_old * vc / amp)
+                    if state_old[S_HAVE] > 0.0:
+                        mem = params[P_MEMORY]
+                        amp = (1.0 - mem) * amp + mem * state_old[S_UM]
+                        period = (1.0 - mem) * period + mem * state_old[S_TW]
+                    state_new[S_UM] = amp
+                    state_new[S_TW] = period
+                    state_new[S_HAVE] = 1.0
+            state_new[S_NCROSS] = state_old[S_NCROSS] + 1.0
+            s_new = -s_old
+            state_new[S_SIGN] = s_new
+            state_new[S_T_START] = tc
+            state_new[S_PEAK] = abs(w)
+            if state_new[S_HAVE] > 0.0:
+                um = state_new[S_UM]
+                kc = um * state_new[S_TW] / d
+                mh = s_new * vc / um
+                state_new[S_K] = kc
+                state_new[S_M] = mh
+                state_new[S_TH] = state_new[S_TW] * half_cycle_fraction(mh)
+                nk = int(params[P_NK])
+                nm = int(params[P_NM])
+                _, _, out_k = locate(params, P_HEADER, nk, kc)
+                _, _, out_m = locate(params, P_HEADER + nk, nm, mh)
+                if out_k > 0.0 or out_m > 0.0:
+                    state_new[S_NCLAMP] = state_old[S_NCLAMP] + 1.0
+        elif abs(w) > state_old[S_PEAK]:
+            state_new[S_PEAK] = abs(w)
+    state_new[S_T] = t
+    state_new[S_W] = w
+
+    q = 0.5 * rho * d
+    cd = params[P_CD]
+    wr = w - ydot
+    tau = t - state_new[S_T_START]
+    th = state_new[S_TH]
+    if state_new[S_HAVE] > 0.0 and state_new[S_NCROSS] >= 2.0 and th > 0.0 and tau <= th:
+        theta = math.pi * tau / th
+        um = state_new[S_UM]
+        amp2 = q * um * um
+        kc = state_new[S_K]
+        mh = state_new[S_M]
+        fy = state_new[S_SIGN] * amp2 * series(params, 0, kc, mh, theta)
+        fy += q * cd * (wr * abs(wr) - w * abs(w))
+        fz = amp2 * series(params, 1, kc, mh, theta)
+        state_new[S_MODE] = 1.0
+        state_new[S_THETA] = theta
+    else:
+        fy = q * cd * wr * abs(wr) + 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
+        fz = q * params[P_CL] * w * w
+        state_new[S_MODE] = 0.0
+        state_new[S_THETA] = 0.0
+    out[FO_FY] = fy
+    out[FO_DFY_DYD] = -2.0 * q * cd * abs(wr)
+    out[FO_FZ] = fz
+    out[FO_DFZ_DYD] = 0.0
