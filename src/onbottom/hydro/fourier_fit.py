@@ -101,7 +101,7 @@ class FourierRun:
             if not np.all(np.isfinite(a)):
                 i = int(np.argmax(~np.isfinite(a)))
                 raise InputError(
-                    f"FourierRun({self.label}).{key}[{i}] = {a[i]!r} is invalid: not finite"
+                    f"FourierRun({self.label}).{key}[{i}] = {float(a[i])!r} is invalid: not finite"
                 )
             arrays[key] = a
         n = arrays["time"].size
@@ -115,7 +115,7 @@ class FourierRun:
             i = int(np.argmax(dt <= 0.0))
             raise InputError(
                 f"FourierRun({self.label}).time is invalid: not strictly increasing at sample"
-                f" {i + 1} ({arrays['time'][i + 1]!r} after {arrays['time'][i]!r})"
+                f" {i + 1} ({float(arrays['time'][i + 1])!r} after {float(arrays['time'][i])!r})"
             )
         for key, a in arrays.items():
             a.setflags(write=False)
