@@ -21,8 +21,9 @@ wave's period that a half-cycle following (m > 0) or opposing (m < 0) the curren
 T̂_h = T̂ f(M̂). All of these are exact in regular flow with a current.
 
 Before two zero crossings (no completed half-cycle yet) and when a half-cycle outlasts its
-prediction (τ > T̂_h: a steady current, M > 1, a long irregular half-wave) the force falls back
-to the quasi-steady Morison law with the model's C_D, C_L, C_M:
+prediction by more than ``OVERRUN`` (τ > 1.05 T̂_h; up to there the phase is held at π): a
+steady current, M > 1, a long irregular half-wave, the force falls back to the quasi-steady
+Morison law with the model's C_D, C_L, C_M:
 F_Y = ½ρD C_D W_r|W_r| + ρ (π D²/4) C_M U̇, F_Z = ½ρD C_L W².
 
 params (one float64 row): [N, n_K, n_M, w, C_D, C_L, C_M, 0, K grid (n_K), M grid (n_M),
@@ -87,6 +88,11 @@ S_MODE = 14
 """1 if the last evaluation used the Fourier series, 0 the quasi-steady fallback."""
 S_THETA = 15
 """Phase θ of the last evaluation [rad] (0 in the fallback)."""
+
+OVERRUN = 0.05
+"""A half-cycle may outlast its predicted duration T̂_h by this fraction with the phase held at
+θ = π (so that the O(Δt²) error of the estimates in regular flow never switches to the
+fallback law); beyond (1 + OVERRUN) T̂_h the quasi-steady law applies."""
 
 M_CLIP = 0.95
 """|m| limit in f(m) = ½ + asin(m)/π, so that a weak opposing half-cycle cannot give an
@@ -247,8 +253,12 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
     wr = w - ydot
     tau = t - state_new[S_T_START]
     th = state_new[S_TH]
-    if state_new[S_HAVE] > 0.0 and state_new[S_NCROSS] >= 2.0 and th > 0.0 and tau <= th:
-        theta = math.pi * tau / th
+    if state_new[S_HAVE] > 0.0 and state_new[S_NCROSS] >= 2.0 and th > 0.0:
+        in_series = tau <= (1.0 + OVERRUN) * th
+    else:
+        in_series = False
+    if in_series:
+        theta = math.pi * min(tau / th, 1.0)
         um = state_new[S_UM]
         amp2 = q * um * um
         kc = state_new[S_K]
