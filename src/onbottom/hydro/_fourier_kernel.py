@@ -71,11 +71,11 @@ S_PEAK = 5
 S_NCROSS = 6
 """Zero crossings seen; >= 1 means the current half-cycle began at a crossing."""
 S_UM = 7
-"""Estimated wave amplitude Û [m/s]."""
+"""Estimated wave amplitude Û [m/s]; > 0 once one half-cycle has completed."""
 S_TW = 8
 """Estimated wave period T̂ [s]."""
-S_HAVE = 9
-"""1 once Û, T̂ exist (one completed half-cycle)."""
+S_XK = 9
+"""Fractional grid index of K̂ in the table (cell i + fraction f, clamped), set at the crossing."""
 S_NCLAMP = 10
 """Half-cycles whose (K̂, M̂) lay outside the table's grid (clamped)."""
 S_K = 11
@@ -86,8 +86,8 @@ S_TH = 13
 """Predicted duration T̂_h of the current half-cycle [s]."""
 S_MODE = 14
 """1 if the last evaluation used the Fourier series, 0 the quasi-steady fallback."""
-S_THETA = 15
-"""Phase θ of the last evaluation [rad] (0 in the fallback)."""
+S_XM = 15
+"""Fractional grid index of M̂ in the table, set at the crossing."""
 
 OVERRUN = 0.05
 """A half-cycle may outlast its predicted duration T̂_h by this fraction with the phase held at
@@ -135,45 +135,58 @@ def locate(params, start, n, x):
 
 
 @njit(cache=True)
-def series(params, comp, kc, mh, theta):
-    """A₀ + Σₙ (Aₙ cos nθ + Bₙ sin nθ) of component ``comp`` (0 Y, 1 Z) at (K, M), bilinear.
+def grid_index(params, start, n, x):
+    """Fractional index i + f of ``x`` on the grid ``params[start:start+n]`` (clamped) and 1.0
+    if ``x`` lies outside the grid, else 0.0."""
+    i, f, outside = locate(params, start, n, x)
+    return i + f, outside
 
-    (K, M) are clamped to the grid. cos nθ, sin nθ by the angle-addition recurrence.
+
+@njit(cache=True)
+def series(params, xk, xm, theta):
+    """(Y, Z) values of A₀ + Σₙ (Aₙ cos nθ + Bₙ sin nθ), coefficients bilinear in the cell.
+
+    xk, xm: fractional grid indices of K and M (:func:`grid_index`); cos nθ, sin nθ by the
+    angle-addition recurrence, shared by both components.
     """
     nh = int(params[P_NHARM])
     nk = int(params[P_NK])
     nm = int(params[P_NM])
     ncoef = 2 * nh + 1
-    ik, fk, _ = locate(params, P_HEADER, nk, kc)
-    im, fm, _ = locate(params, P_HEADER + nk, nm, mh)
+    ik = min(int(xk), nk - 1)
+    im = min(int(xm), nm - 1)
+    fk = xk - ik
+    fm = xm - im
     ik1 = ik + 1 if ik + 1 < nk else ik
     im1 = im + 1 if im + 1 < nm else im
     base = P_HEADER + nk + nm
-    o00 = base + ((ik * nm + im) * 2 + comp) * ncoef
-    o10 = base + ((ik1 * nm + im) * 2 + comp) * ncoef
-    o01 = base + ((ik * nm + im1) * 2 + comp) * ncoef
-    o11 = base + ((ik1 * nm + im1) * 2 + comp) * ncoef
+    o00 = base + (ik * nm + im) * 2 * ncoef
+    o10 = base + (ik1 * nm + im) * 2 * ncoef
+    o01 = base + (ik * nm + im1) * 2 * ncoef
+    o11 = base + (ik1 * nm + im1) * 2 * ncoef
     w00 = (1.0 - fk) * (1.0 - fm)
     w10 = fk * (1.0 - fm)
     w01 = (1.0 - fk) * fm
     w11 = fk * fm
-    total = w00 * params[o00] + w10 * params[o10] + w01 * params[o01] + w11 * params[o11]
     c1 = math.cos(theta)
     s1 = math.sin(theta)
+    sy = 0.0
+    sz = 0.0
     cn = 1.0
     sn = 0.0
-    for n in range(1, nh + 1):
-        c_next = cn * c1 - sn * s1
-        sn = sn * c1 + cn * s1
-        cn = c_next
-        ja = 2 * n - 1
-        jb = 2 * n
-        a = w00 * params[o00 + ja] + w10 * params[o10 + ja]
-        a += w01 * params[o01 + ja] + w11 * params[o11 + ja]
-        b = w00 * params[o00 + jb] + w10 * params[o10 + jb]
-        b += w01 * params[o01 + jb] + w11 * params[o11 + jb]
-        total += a * cn + b * sn
-    return total
+    for j in range(ncoef):
+        if j > 0 and j % 2 == 1:
+            c_next = cn * c1 - sn * s1
+            sn = sn * c1 + cn * s1
+            cn = c_next
+        basis = cn if j % 2 == 1 or j == 0 else sn
+        cy = w00 * params[o00 + j] + w10 * params[o10 + j]
+        cy += w01 * params[o01 + j] + w11 * params[o11 + j]
+        cz = w00 * params[o00 + ncoef + j] + w10 * params[o10 + ncoef + j]
+        cz += w01 * params[o01 + ncoef + j] + w11 * params[o11 + ncoef + j]
+        sy += cy * basis
+        sz += cz * basis
+    return sy, sz
 
 
 @njit(cache=True)
@@ -218,19 +231,18 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
                     amp = 0.5 * peak
                 if tk > 0.0 and amp > 0.0:
                     period = tk / half_cycle_fraction(s_old * vc / amp)
-                    if state_old[S_HAVE] > 0.0:
+                    if state_old[S_UM] > 0.0:
                         mem = params[P_MEMORY]
                         amp = (1.0 - mem) * amp + mem * state_old[S_UM]
                         period = (1.0 - mem) * period + mem * state_old[S_TW]
                     state_new[S_UM] = amp
                     state_new[S_TW] = period
-                    state_new[S_HAVE] = 1.0
             state_new[S_NCROSS] = state_old[S_NCROSS] + 1.0
             s_new = -s_old
             state_new[S_SIGN] = s_new
             state_new[S_T_START] = tc
             state_new[S_PEAK] = abs(w)
-            if state_new[S_HAVE] > 0.0:
+            if state_new[S_UM] > 0.0:
                 um = state_new[S_UM]
                 kc = um * state_new[S_TW] / d
                 mh = s_new * vc / um
@@ -238,9 +250,10 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
                 state_new[S_M] = mh
                 state_new[S_TH] = state_new[S_TW] * half_cycle_fraction(mh)
                 nk = int(params[P_NK])
-                nm = int(params[P_NM])
-                _, _, out_k = locate(params, P_HEADER, nk, kc)
-                _, _, out_m = locate(params, P_HEADER + nk, nm, mh)
+                xk, out_k = grid_index(params, P_HEADER, nk, kc)
+                xm, out_m = grid_index(params, P_HEADER + nk, int(params[P_NM]), mh)
+                state_new[S_XK] = xk
+                state_new[S_XM] = xm
                 if out_k > 0.0 or out_m > 0.0:
                     state_new[S_NCLAMP] = state_old[S_NCLAMP] + 1.0
         elif abs(w) > state_old[S_PEAK]:
@@ -253,7 +266,7 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
     wr = w - ydot
     tau = t - state_new[S_T_START]
     th = state_new[S_TH]
-    if state_new[S_HAVE] > 0.0 and state_new[S_NCROSS] >= 2.0 and th > 0.0:
+    if state_new[S_UM] > 0.0 and state_new[S_NCROSS] >= 2.0 and th > 0.0:
         in_series = tau <= (1.0 + OVERRUN) * th
     else:
         in_series = False
@@ -261,18 +274,14 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
         theta = math.pi * min(tau / th, 1.0)
         um = state_new[S_UM]
         amp2 = q * um * um
-        kc = state_new[S_K]
-        mh = state_new[S_M]
-        fy = state_new[S_SIGN] * amp2 * series(params, 0, kc, mh, theta)
-        fy += q * cd * (wr * abs(wr) - w * abs(w))
-        fz = amp2 * series(params, 1, kc, mh, theta)
+        sy, sz = series(params, state_new[S_XK], state_new[S_XM], theta)
+        fy = state_new[S_SIGN] * amp2 * sy + q * cd * (wr * abs(wr) - w * abs(w))
+        fz = amp2 * sz
         state_new[S_MODE] = 1.0
-        state_new[S_THETA] = theta
     else:
         fy = q * cd * wr * abs(wr) + 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
         fz = q * params[P_CL] * w * w
         state_new[S_MODE] = 0.0
-        state_new[S_THETA] = 0.0
     out[FO_FY] = fy
     out[FO_DFY_DYD] = -2.0 * q * cd * abs(wr)
     out[FO_FZ] = fz
