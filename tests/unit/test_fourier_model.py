@@ -24,6 +24,8 @@ def test_example_model_and_parameter_row_layout():
     nk, nm = tab.k_grid.size, tab.m_grid.size
     assert row[FK.P_NHARM] == 5 and row[FK.P_NK] == nk and row[FK.P_NM] == nm
     assert row[FK.P_MEMORY] == 0.25 and row[FK.P_CD] == 0.7 and row[FK.P_CM] == 3.29
+    assert model.phase == "flow" and row[FK.P_PHASE] == 1.0
+    assert FourierModel.example(phase="time").params()[FK.P_PHASE] == 0.0
     np.testing.assert_array_equal(row[FK.P_HEADER : FK.P_HEADER + nk], tab.k_grid)
     coef = row[FK.P_HEADER + nk + nm :].reshape(nk, nm, 2, 11)
     np.testing.assert_array_equal(coef, tab.coefficients[0])
@@ -64,6 +66,7 @@ def test_parameter_table_rows_identical_and_warns_outside_grid():
         ({"added_mass": -1.0}, "FourierModel.added_mass"),
         ({"roughness": 0.01}, "no roughness axis"),
         ({"model_id": 1}, "model_id"),
+        ({"phase": "elapsed"}, "FourierModel.phase"),
     ],
 )
 def test_validation_names_the_field(kwargs, match):

@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -76,13 +77,18 @@ def irregular(seed=3, n=6000, dt=0.02, current=0.25):
     return t, u, dudt, np.full_like(t, current), ydot
 
 
+PHASES = ("time", "flow")
+
+
+@pytest.mark.parametrize("phase", PHASES)
 @pytest.mark.parametrize(("m", "tol"), [(0.0, 1e-12), (0.4, 2e-4)])
-def test_morison_table_reproduces_morison_at_a_node(morison_model, m, tol):
+def test_morison_table_reproduces_morison_at_a_node(morison_model, m, tol, phase):
     """At a node (K = 10) the only errors are the fit's truncation at N = 5 (M = 0: none,
     W|W| and U̇ are exact in two harmonics) and the O(Δt²) crossing and peak estimates of the
     kernel at Δt = T/400: stated tolerance 2e-4 of the peak |F_Y| with current."""
+    params = replace(morison_model, phase=phase).params()
     t, u, dudt, vc, period = regular(10.0, m)
-    out, states = run(FK.fourier_kernel, morison_model.params(), t, u, dudt, vc, 0 * t)
+    out, states = run(FK.fourier_kernel, params, t, u, dudt, vc, 0 * t)
     fy, fz = morison(u, dudt, vc, 0.0)
     late = t > 3.0 * period
     assert np.all(states[late, FK.S_MODE] == 1.0)  # the Fourier series, not the fallback
@@ -92,19 +98,20 @@ def test_morison_table_reproduces_morison_at_a_node(morison_model, m, tol):
     assert np.abs(out[late, FO_FZ] - fz[late]).max() <= tol * scale
     # pipe motion: the relative-velocity correction is Morison's drag difference exactly
     yd = 0.3 * np.cos(0.5 * t)
-    out2, _ = run(FK.fourier_kernel, morison_model.params(), t, u, dudt, vc, yd)
+    out2, _ = run(FK.fourier_kernel, params, t, u, dudt, vc, yd)
     fy2, _ = morison(u, dudt, vc, yd)
     np.testing.assert_allclose(out2[:, FO_FY] - out[:, FO_FY], fy2 - fy, rtol=0, atol=1e-9)
 
 
-def test_morison_table_between_nodes_within_interpolation_error():
+@pytest.mark.parametrize("phase", PHASES)
+def test_morison_table_between_nodes_within_interpolation_error(phase):
     """Between nodes the bilinear interpolation is the error: the inertia coefficient
     A₁ = π² C_M / K is linear in 1/K, not K, and lift is quadratic in M. On a grid with
     K ratio 1.1 and M step 0.1 both stay below 0.5 %: stated tolerance 0.5 % of peak F_Y."""
     tab = synthetic_morison_table(
         [8.0, 8.8, 9.68, 10.648], [0.0, 0.1, 0.2, 0.3], cd=CD, cm=CM, cl=CL, harmonics=5
     )
-    params = FourierModel(table=tab).params()
+    params = FourierModel(table=tab, phase=phase).params()
     t, u, dudt, vc, period = regular(9.3, 0.15)
     out, _ = run(FK.fourier_kernel, params, t, u, dudt, vc, 0 * t)
     fy, fz = morison(u, dudt, vc, 0.0)
@@ -114,8 +121,9 @@ def test_morison_table_between_nodes_within_interpolation_error():
     assert np.abs(out[late, FO_FZ] - fz[late]).max() <= 5e-3 * scale
 
 
-def test_twin_to_round_off():
-    params = FourierModel.example().params()
+@pytest.mark.parametrize("phase", PHASES)
+def test_twin_to_round_off(phase):
+    params = FourierModel.example(phase=phase).params()
     t, u, dudt, vc, ydot = irregular(n=2500)
     out, st = run(FK.fourier_kernel, params, t, u, dudt, vc, ydot)
     out_py, st_py = run(pure_python(FK.fourier_kernel), params, t, u, dudt, vc, ydot)
@@ -124,8 +132,9 @@ def test_twin_to_round_off():
     np.testing.assert_allclose(st_py, st, rtol=1e-13, atol=1e-13)
 
 
-def test_mirror_symmetry_bit_for_bit():
-    params = FourierModel.example().params()
+@pytest.mark.parametrize("phase", PHASES)
+def test_mirror_symmetry_bit_for_bit(phase):
+    params = FourierModel.example(phase=phase).params()
     t, u, dudt, vc, ydot = irregular(seed=5)
     out, st = run(FK.fourier_kernel, params, t, u, dudt, vc, ydot)
     outm, stm = run(FK.fourier_kernel, params, t, -u, -dudt, -vc, -ydot)
@@ -169,8 +178,9 @@ def test_steady_current_gives_the_steady_force():
     np.testing.assert_allclose(out[:, FO_FZ], fz, rtol=1e-13, atol=1e-10)
 
 
-def test_derivative_matches_finite_difference():
-    params = FourierModel.example().params()
+@pytest.mark.parametrize("phase", PHASES)
+def test_derivative_matches_finite_difference(phase):
+    params = FourierModel.example(phase=phase).params()
     t, u, dudt, vc, ydot = irregular(n=3000)
     _, st = run(FK.fourier_kernel, params, t, u, dudt, vc, ydot)
     sn = np.zeros(N_FORCE_STATE)

@@ -11,23 +11,25 @@ Bryndum, Jacobsen & Tsahalis 1992, JOMAE 114:231; structure only, see the theory
     F_Y = s · ½ρD Û² [A₀ʸ + Σₙ (Aₙʸ cos nθ + Bₙʸ sin nθ)] + ½ρD C_D [W_r|W_r| − W|W|]
     F_Z =     ½ρD Û² [A₀ᶻ + Σₙ (Aₙᶻ cos nθ + Bₙᶻ sin nθ)]
 
-s = ±1 the half-cycle's flow direction, θ = π τ / T̂_h (τ time since the zero crossing that
-began the half-cycle, T̂_h its predicted duration), W_r = W − ẏ; the coefficients are bilinear
-in (K̂, M̂) = (Û T̂ / D, s V_c / Û) of the half-cycle, fixed at its start, clamped to the grid.
-Û, T̂ are the wave amplitude and period estimated from the completed half-cycles with the
-memory weight w: Û ← (1 − w) a_k + w Û, a_k = P_k − s_k V_c (P_k the peak |W|), and
+s = ±1 the half-cycle's flow direction, θ ∈ [0, π] its phase, W_r = W − ẏ; the coefficients
+are bilinear in (K̂, M̂) = (Û T̂ / D, s V_c / Û) of the half-cycle, fixed at its start, clamped
+to the grid. Û, T̂ are the wave amplitude and period estimated from the completed half-cycles
+with the memory weight w: Û ← (1 − w) a_k + w Û, a_k = P_k − s_k V_c (P_k the peak |W|), and
 T̂ ← (1 − w) T_k / f(s_k V_c / a_k) + w T̂ with f(m) = ½ + asin(m)/π the fraction of a regular
-wave's period that a half-cycle following (m > 0) or opposing (m < 0) the current lasts;
-T̂_h = T̂ f(M̂). All of these are exact in regular flow with a current.
+wave's period that a half-cycle following (m > 0) or opposing (m < 0) the current lasts. The
+phase (``P_PHASE``): "time", θ = π τ / T̂_h with τ the time since the zero crossing that began
+the half-cycle and T̂_h = T̂ f(M̂) its predicted duration; or "flow", θ from the wave's
+instantaneous phase φ = atan2(ω̂ U, U̇), ω̂ = 2π/T̂ (:func:`flow_phase`), which reaches π exactly
+at every zero crossing. Both are exact in regular flow with a current.
 
 Before two zero crossings (no completed half-cycle yet) and when a half-cycle outlasts its
-prediction by more than ``OVERRUN`` (τ > 1.05 T̂_h; up to there the phase is held at π): a
-steady current, M > 1, a long irregular half-wave, the force falls back to the quasi-steady
+prediction by more than ``OVERRUN`` (τ > 1.05 T̂_h; up to there the "time" phase is held at
+π): a steady current, M > 1, a long irregular half-wave, the force falls back to the quasi-steady
 Morison law with the model's C_D, C_L, C_M:
 F_Y = ½ρD C_D W_r|W_r| + ρ (π D²/4) C_M U̇, F_Z = ½ρD C_L W².
 
-params (one float64 row): [N, n_K, n_M, w, C_D, C_L, C_M, 0, K grid (n_K), M grid (n_M),
-coefficients (n_K, n_M, 2, 2N+1)], each coefficient vector ordered A₀, A₁, B₁, …, A_N, B_N,
+params (one float64 row): [N, n_K, n_M, w, C_D, C_L, C_M, phase (0 time, 1 flow),
+K grid (n_K), M grid (n_M), coefficients (n_K, n_M, 2, 2N+1)], each coefficient vector ordered A₀, A₁, B₁, …, A_N, B_N,
 component 0 = Y, 1 = Z (packed by :meth:`onbottom.hydro.fourier.FourierModel.params`).
 """
 
@@ -53,6 +55,9 @@ P_CL = 5
 """Quasi-steady lift coefficient C_L (fallback law)."""
 P_CM = 6
 """Inertia coefficient C_M (fallback law)."""
+P_PHASE = 7
+"""Phase rule: 0 = elapsed time (θ = π τ / T̂_h), 1 = flow (θ from the instantaneous wave
+phase of U, U̇ with the estimated period, :func:`flow_phase`); the scale is Û in both."""
 P_HEADER = 8
 """First slot of the K grid; the M grid and the coefficients follow."""
 
@@ -190,6 +195,38 @@ def series(params, xk, xm, theta):
 
 
 @njit(cache=True)
+def flow_phase(u_h, dudt_h, vc_h, period):
+    """Half-cycle phase θ [rad] and wave amplitude A [m/s] from the instantaneous flow.
+
+    u_h, dudt_h, vc_h: U, U̇, V_c in the half-cycle's frame (multiplied by its direction s);
+    period: the estimated wave period T̂ [s]. With ω = 2π/T̂, the wave's local phase
+    φ = atan2(ω U, U̇) and amplitude A = √(U² + (U̇/ω)²) (U = A sin φ, U̇ = A ω cos φ in a
+    regular wave); the half-cycle spans φ ∈ (−α, π + α), α = asin(V/A) (clipped to
+    ±asin ``M_CLIP``), mapped linearly to θ ∈ [0, π]. At a zero crossing of U + V this gives
+    θ = π (and θ = 0 just after it) exactly, in any flow; in a regular wave θ = π τ / T_h.
+    """
+    omega = 2.0 * math.pi / period
+    a = math.sqrt(u_h * u_h + (dudt_h / omega) ** 2)
+    if a <= 0.0:
+        return 0.0, 0.0
+    phi = math.atan2(omega * u_h, dudt_h)
+    if phi < -0.5 * math.pi:
+        phi += 2.0 * math.pi
+    m = vc_h / a
+    if m > M_CLIP:
+        m = M_CLIP
+    elif m < -M_CLIP:
+        m = -M_CLIP
+    alpha = math.asin(m)
+    theta = math.pi * (phi + alpha) / (math.pi + 2.0 * alpha)
+    if theta < 0.0:
+        theta = 0.0
+    elif theta > math.pi:
+        theta = math.pi
+    return theta, a
+
+
+@njit(cache=True)
 def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Fourier force model: F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ at time ``t`` (see the module docstring).
 
@@ -271,11 +308,16 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
     else:
         in_series = False
     if in_series:
-        theta = math.pi * min(tau / th, 1.0)
-        um = state_new[S_UM]
-        amp2 = q * um * um
+        s = state_new[S_SIGN]
+        if params[P_PHASE] == 0.0:
+            theta = math.pi * min(tau / th, 1.0)
+            amp = state_new[S_UM]
+        else:
+            theta, _ = flow_phase(s * u, s * dudt, s * vc, state_new[S_TW])
+            amp = state_new[S_UM]
+        amp2 = q * amp * amp
         sy, sz = series(params, state_new[S_XK], state_new[S_XM], theta)
-        fy = state_new[S_SIGN] * amp2 * sy + q * cd * (wr * abs(wr) - w * abs(w))
+        fy = s * amp2 * sy + q * cd * (wr * abs(wr) - w * abs(w))
         fz = amp2 * sz
         state_new[S_MODE] = 1.0
     else:

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from onbottom._validate import in_range, integer, non_negative
+from onbottom._validate import in_range, integer, non_negative, one_of
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro._fourier_kernel import (
     P_CD,
@@ -34,13 +34,16 @@ from onbottom.hydro._fourier_kernel import (
     P_NHARM,
     P_NK,
     P_NM,
+    P_PHASE,
 )
 from onbottom.hydro.fourier_table import FourierTable
 
-__all__ = ["FORCE_FOURIER", "FourierModel"]
+__all__ = ["FORCE_FOURIER", "PHASES", "FourierModel"]
 
 FORCE_FOURIER = 2
 """Model id of the Fourier force model in ``hydro._force_dispatch``."""
+PHASES = ("time", "flow")
+"""Phase rules of a half-cycle (``docs/theory/fourier_model.md``)."""
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -57,6 +60,13 @@ class FourierModel:
         w in [0, 1): weight of the previous estimate when a completed half-cycle updates the
         wave amplitude and period (Û ← (1 − w) a_k + w Û); default 0.25, the value used by
         programs of this kind (``shared/spec/on-bottom-stability.md``).
+    phase : str
+        How the phase θ and the scale of the current half-cycle are found: ``"time"`` (the
+        elapsed time since its zero crossing, θ = π τ / T̂_h, scale Û from the completed
+        half-cycles) or ``"flow"`` (default: the instantaneous phase of the wave from U and U̇
+        with the estimated period, so that θ reaches π exactly at each zero crossing). Both
+        are exact in regular flow; in irregular flow "flow" follows the record more closely
+        and jumps less at crossings (theory page, "Irregular flow: the two phase rules").
     roughness : float or None
         Pipe roughness k/D [-] when the table has a roughness axis (linear between slices).
     drag_coefficient : float
@@ -74,6 +84,7 @@ class FourierModel:
     table: FourierTable
     harmonics: int | None = None
     memory_weight: float = 0.25
+    phase: str = "flow"
     roughness: float | None = None
     drag_coefficient: float = 0.7
     lift_coefficient: float = 0.9
@@ -102,6 +113,7 @@ class FourierModel:
             )
         if self.harmonics is not None:
             integer("FourierModel.harmonics", self.harmonics, 1, self.table.harmonics)
+        one_of("FourierModel.phase", self.phase, PHASES)
         in_range("FourierModel.memory_weight", self.memory_weight, 0.0, 1.0, high_inclusive=False)
         for key in ("drag_coefficient", "lift_coefficient", "inertia_coefficient"):
             in_range(f"FourierModel.{key}", getattr(self, key), 0.0, 10.0)
@@ -150,6 +162,7 @@ class FourierModel:
         row[P_NK] = nk
         row[P_NM] = nm
         row[P_MEMORY] = self.memory_weight
+        row[P_PHASE] = PHASES.index(self.phase)
         row[P_CD] = self.drag_coefficient
         row[P_CL] = self.lift_coefficient
         row[P_CM] = self.inertia_coefficient
@@ -199,6 +212,7 @@ class FourierModel:
             "force_model_id": self.model_id,
             "fourier_harmonics": self.harmonic_order,
             "fourier_memory_weight": self.memory_weight,
+            "fourier_phase": self.phase,
             "drag_coefficient": self.drag_coefficient,
             "lift_coefficient": self.lift_coefficient,
             "inertia_coefficient": self.inertia_coefficient,
