@@ -30,7 +30,8 @@ F_Y = ½ρD C_D W_r|W_r| + ρ (π D²/4) C_M U̇, F_Z = ½ρD C_L W².
 
 params (one float64 row): [N, n_K, n_M, w, C_D, C_L, C_M, phase (0 time, 1 flow),
 K grid (n_K), M grid (n_M), coefficients (n_K, n_M, 2, 2N+1)], each coefficient vector
-ordered A₀, A₁, B₁, …, A_N, B_N, component 0 = Y, 1 = Z (packed by :meth:`onbottom.hydro.fourier.FourierModel.params`).
+ordered A₀, A₁, B₁, …, A_N, B_N, component 0 = Y, 1 = Z (packed by
+:meth:`onbottom.hydro.fourier.FourierModel.params`).
 """
 
 from __future__ import annotations
