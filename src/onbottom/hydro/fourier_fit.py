@@ -25,9 +25,11 @@ verification that a Morison table reproduces Morison.
 
 from __future__ import annotations
 
+import csv
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -48,6 +50,7 @@ __all__ = [
     "fit_run",
     "half_cycles",
     "morison_regular_run",
+    "read_run_csv",
     "synthetic_morison_table",
     "table_from_fits",
 ]
@@ -312,6 +315,93 @@ def fit_fourier_table(
         fit_run(r, diameter=diameter, rho=rho, harmonics=harmonics, discard=discard) for r in runs
     ]
     return table_from_fits(fits, source=source, metadata=metadata)
+
+
+RUN_COLUMNS = (("t", "s"), ("U", "m/s"), ("F_Y", "N/m"), ("F_Z", "N/m"))
+"""Columns of a run CSV and the unit each must carry on the units line."""
+RUN_KEYS = ("current_m_s", "K", "M", "label")
+"""``# key: value`` lines a run CSV may carry (current V [m/s], nominal K and M, a name)."""
+
+
+def read_run_csv(path: str | Path) -> FourierRun:
+    """Read one run from CSV (strict schema; errors name the file, line and field).
+
+    ``#`` lines are comments; ``# current_m_s: 0.3`` (the steady current V [m/s] in U, default
+    0), ``# K: 10``, ``# M: 0.4`` (nominal values, optional) and ``# label: …`` are read. Then a
+    header ``t,U,F_Y,F_Z``, a units line ``s,m/s,N/m,N/m``, and the samples: time [s] strictly
+    increasing, total flow U + V normal to the pipe [m/s], forces per unit length [N/m].
+    """
+    p = Path(path)
+    meta: dict[str, str] = {}
+    rows: list[tuple[int, list[str]]] = []
+    with p.open(encoding="utf-8", newline="") as fh:
+        for no, line in enumerate(fh, start=1):
+            s = line.strip()
+            if not s:
+                continue
+            if s.startswith("#"):
+                body = s.lstrip("#").strip()
+                if ":" in body:
+                    key, value = (x.strip() for x in body.split(":", 1))
+                    if key in RUN_KEYS:
+                        meta[key] = value
+                continue
+            rows.append((no, next(csv.reader([s]))))
+    if len(rows) < 3:
+        raise InputError(f"run file {str(p)!r}: expected a header, a units line and samples")
+    header = [h.strip() for h in rows[0][1]]
+    units = [u.strip() for u in rows[1][1]]
+    names = [c for c, _ in RUN_COLUMNS]
+    if header != names:
+        raise InputError(
+            f"run file {str(p)!r} line {rows[0][0]}: header {','.join(header)!r} is invalid:"
+            f" expected {','.join(names)!r}"
+        )
+    if len(units) != len(RUN_COLUMNS):
+        raise InputError(
+            f"run file {str(p)!r} line {rows[1][0]}: the units line has {len(units)} entries"
+            f" for {len(RUN_COLUMNS)} columns (expected s,m/s,N/m,N/m)"
+        )
+    for (col, unit), got in zip(RUN_COLUMNS, units, strict=True):
+        if got != unit:
+            raise InputError(
+                f"run file {str(p)!r} line {rows[1][0]}: column {col} has unit {got!r}:"
+                f" expected {unit!r}"
+            )
+    data = np.empty((len(rows) - 2, 4))
+    for i, (no, fields) in enumerate(rows[2:]):
+        if len(fields) != 4:
+            raise InputError(f"run file {str(p)!r} line {no}: {len(fields)} fields, expected 4")
+        for j, v in enumerate(fields):
+            try:
+                data[i, j] = float(v)
+            except ValueError:
+                raise InputError(
+                    f"run file {str(p)!r} line {no}: {names[j]} = {v.strip()!r} is invalid:"
+                    " expected a number"
+                ) from None
+
+    def number(key: str) -> float | None:
+        if key not in meta:
+            return None
+        try:
+            return float(meta[key])
+        except ValueError:
+            raise InputError(
+                f"run file {str(p)!r}: {key} = {meta[key]!r} is invalid: expected a number"
+            ) from None
+
+    current = number("current_m_s")
+    return FourierRun(
+        data[:, 0],
+        data[:, 1],
+        data[:, 2],
+        data[:, 3],
+        0.0 if current is None else current,
+        number("K"),
+        number("M"),
+        label=meta.get("label", p.name),
+    )
 
 
 Coefficient = float | Callable[[float], float]
