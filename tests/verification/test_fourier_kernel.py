@@ -222,3 +222,15 @@ def test_memory_weight_converges_geometrically(w):
         expect = 0.6 + (u0 - 0.6) * w**k
         assert um[k_change + k] == pytest.approx(expect, abs=1e-12)
     np.testing.assert_allclose(st[starts[2:], FK.S_TW], period, rtol=1e-9)
+
+
+def test_blend_of_equal_rows_keeps_the_integer_header():
+    """A solver blending two stage rows, (1 − a) r + a r, may move N, n_K, n_M by an ulp; the
+    kernel reads them rounded, so the force is unchanged to round-off."""
+    row = FourierModel.example().params()
+    blended = (1.0 - 0.3) * row + 0.3 * row
+    blended[FK.P_NHARM] = np.nextafter(5.0, 0.0)  # the worst case: just below the integer
+    t, u, dudt, vc, ydot = irregular(n=1500)
+    out, _ = run(FK.fourier_kernel, row, t, u, dudt, vc, ydot)
+    out_b, _ = run(FK.fourier_kernel, blended, t, u, dudt, vc, ydot)
+    np.testing.assert_allclose(out_b, out, rtol=1e-12, atol=1e-9)

@@ -43,7 +43,8 @@ from numba import njit
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ, N_FORCE_STATE
 
 P_NHARM = 0
-"""Harmonic order N used (integer-valued)."""
+"""Harmonic order N used (integer-valued; read rounded, so that a solver's blend of two equal
+rows, (1 − a)·N + a·N, cannot truncate it)."""
 P_NK = 1
 """Number of K grid values."""
 P_NM = 2
@@ -155,9 +156,9 @@ def series(params, xk, xm, theta):
     xk, xm: fractional grid indices of K and M (:func:`grid_index`); cos nθ, sin nθ by the
     angle-addition recurrence, shared by both components.
     """
-    nh = int(params[P_NHARM])
-    nk = int(params[P_NK])
-    nm = int(params[P_NM])
+    nh = int(params[P_NHARM] + 0.5)
+    nk = int(params[P_NK] + 0.5)
+    nm = int(params[P_NM] + 0.5)
     ncoef = 2 * nh + 1
     ik = min(int(xk), nk - 1)
     im = min(int(xm), nm - 1)
@@ -287,9 +288,9 @@ def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
                 state_new[S_K] = kc
                 state_new[S_M] = mh
                 state_new[S_TH] = state_new[S_TW] * half_cycle_fraction(mh)
-                nk = int(params[P_NK])
+                nk = int(params[P_NK] + 0.5)
                 xk, out_k = grid_index(params, P_HEADER, nk, kc)
-                xm, out_m = grid_index(params, P_HEADER + nk, int(params[P_NM]), mh)
+                xm, out_m = grid_index(params, P_HEADER + nk, int(params[P_NM] + 0.5), mh)
                 state_new[S_XK] = xk
                 state_new[S_XM] = xm
                 if out_k > 0.0 or out_m > 0.0:

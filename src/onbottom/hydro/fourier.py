@@ -180,9 +180,11 @@ class FourierModel:
         M = V / U_s are spectral values, while the Fourier model needs each half-cycle's own
         K and M, which scatter widely around them in an irregular sea. The row carries the
         whole (K, M) grid and the kernel interpolates at every half-cycle
-        (``docs/theory/fourier_model.md``). A stage whose K or |M| lies outside the table's
-        grid gets an :class:`~onbottom.errors.OutOfRangeWarning` here, since many of its
-        half-cycles will be clamped to the grid's edge.
+        (``docs/theory/fourier_model.md``). The row is long (8 + n_K + n_M + 2 n_K n_M (2N+1)
+        floats: 3,002 for the example table), so a solver should keep one row per stage, not
+        one per time sample. A stage whose K or |M| lies outside the table's grid gets an
+        :class:`~onbottom.errors.OutOfRangeWarning` here, since many of its half-cycles will
+        be clamped to the grid's edge.
         """
         k = np.atleast_1d(np.asarray(keulegan_carpenter, dtype=float))
         m = np.atleast_1d(np.asarray(current_ratio, dtype=float))
