@@ -28,6 +28,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "loads",
     "storm",
     "curves",
+    "fourier_fit",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
