@@ -138,6 +138,8 @@ def command(
         setup = load_storm_case(case)
     notes = _split_warnings(caught, as_json)
     n = setup.seeds if seeds is None else int(seeds)
+    if n > 1 and not hasattr(setup.storm, "with_seed"):
+        raise _seeds_error(n)
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")
     if n == 1:
@@ -216,6 +218,15 @@ def command(
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _seeds_error(n: int) -> InputError:
+    err = InputError(
+        f"--seeds = {n} is invalid with a regular wave or a measured record ([storm] kind):"
+        " the flow is deterministic, run one seed"
+    )
+    err.field = "--seeds"  # type: ignore[attr-defined]
+    return err
 
 
 def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:

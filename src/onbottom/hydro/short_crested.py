@@ -37,12 +37,13 @@ from onbottom._validate import positive
 from onbottom.errors import InputError
 from onbottom.hydro.kinematics import seabed_transfer, wave_number
 from onbottom.hydro.spectra import jonswap
-from onbottom.hydro.storm_kinematics import _stage_weights
+from onbottom.hydro.storm_kinematics import StormKinematics, _stage_weights
 from onbottom.inputs.storm import Storm
 
 __all__ = [
     "NodeKinematics",
     "directions_cos_s",
+    "long_crested_node_kinematics",
     "pipeline_kinematics",
     "regular_node_kinematics",
 ]
@@ -217,4 +218,28 @@ def regular_node_kinematics(
         dt=dt,
         velocity=(e * u).astype(np.float32),
         acceleration=(e * a + de * u).astype(np.float32),
+    )
+
+
+def long_crested_node_kinematics(kinematics: StormKinematics, n_nodes: int) -> NodeKinematics:
+    """The section flow of a :class:`~onbottom.hydro.storm_kinematics.StormKinematics` at every
+    node, in phase (a long-crested flow normal to the pipe: a regular wave or a measured
+    record). The current is not included (the pipeline model carries it per node).
+
+    Parameters
+    ----------
+    kinematics : StormKinematics
+    n_nodes : int
+        Number of nodes, >= 1.
+    """
+    n = int(n_nodes)
+    if n < 1:
+        raise InputError(f"n_nodes = {n_nodes!r} is invalid: must be >= 1")
+    u = np.asarray(kinematics.velocity, dtype=np.float32)
+    a = np.asarray(kinematics.acceleration, dtype=np.float32)
+    return NodeKinematics(
+        t0=0.0,
+        dt=float(kinematics.sample_interval),
+        velocity=np.ascontiguousarray(np.repeat(u[:, None], n, axis=1)),
+        acceleration=np.ascontiguousarray(np.repeat(a[:, None], n, axis=1)),
     )
