@@ -129,6 +129,10 @@ def command(
         if isinstance(payload, dict):
             payload["warnings"] = notes
             _report(payload, as_json)
+            if not payload.get("success", True):
+                # as the section: a failed or flagged run (e.g. status −3, outside the soil
+                # model's range) exits with EXIT_INVALID_RESULT
+                raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
     from onbottom.dynamics.storm_case import load_storm_case
@@ -194,7 +198,7 @@ def command(
     save_dataset(study.data, nc)
     st = study.statistics
     d = setup.pipe.outer_diameter
-    ok_rows = study.data["status"].values > 0
+    ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)
     final = study.data["final_displacement"].values[ok_rows]
     payload = {
         "max_displacement_m": st["mean"],
