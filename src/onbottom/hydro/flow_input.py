@@ -254,7 +254,8 @@ def velocity_series(
         if bad.size:
             i = int(bad[0])
             raise InputError(
-                f"{source}: {name} = {a[i]!r} at {label} {int(where[i])} is invalid: every"
+                f"{source}: {name} = {float(a[i])!r} at {label} {int(where[i])} is invalid:"
+                " every"
                 f" value must be a finite number ({bad.size} bad value(s) in column {name})"
             )
     if n < 3:
@@ -266,8 +267,9 @@ def velocity_series(
         i = int(back[0]) + 1
         kind = "duplicates" if dt[i - 1] == 0.0 else "goes back from"
         raise InputError(
-            f"{source}: t = {t[i]!r} s at {label} {int(where[i])} {kind} the previous time"
-            f" {t[i - 1]!r} s: time must increase strictly"
+            f"{source}: t = {float(t[i])!r} s at {label} {int(where[i])} {kind} the previous"
+            " time"
+            f" {float(t[i - 1])!r} s: time must increase strictly"
         )
     step = float(np.median(dt))
     dev = np.abs(dt - step) / step
@@ -275,7 +277,8 @@ def velocity_series(
     if off.size:
         i = int(off[0]) + 1
         raise InputError(
-            f"{source}: the interval t = {t[i - 1]!r} → {t[i]!r} s ({label} {int(where[i])}) is"
+            f"{source}: the interval t = {float(t[i - 1])!r} → {float(t[i])!r} s"
+            f" ({label} {int(where[i])}) is"
             f" {dt[i - 1]:.6g} s against the median {step:.6g} s: a gap or non-uniform sampling"
             f" ({off.size} interval(s) off by more than sampling_tolerance = {tol:g});"
             " resample the record onto a uniform time grid"
@@ -337,39 +340,39 @@ def read_velocity_series(
         key = next((k for k, alias in _NAMES.items() if name in alias), None)
         if key is None:
             raise InputError(
-                f"{p}:{head_no}: column {col + 1} {cell.strip()!r} is unknown: expected"
+                f"{p}, line {head_no}: column {col + 1} {cell.strip()!r} is unknown: expected"
                 " 't [s]', 'U [m/s]' and optionally 'dU/dt [m/s^2]'"
             )
         if key in order:
-            raise InputError(f"{p}:{head_no}: column {key} appears twice")
+            raise InputError(f"{p}, line {head_no}: column {key} appears twice")
         if not unit:
             raise InputError(
-                f"{p}:{head_no}: column {cell.strip()!r} has no unit: write it in brackets,"
+                f"{p}, line {head_no}: column {cell.strip()!r} has no unit: write it in brackets,"
                 f" e.g. '{key} [{_UNITS[key][0]}]'"
             )
         if unit not in _UNITS[key]:
             raise InputError(
-                f"{p}:{head_no}: column {key} unit [{unit}] is invalid: must be"
+                f"{p}, line {head_no}: column {key} unit [{unit}] is invalid: must be"
                 f" [{_UNITS[key][0]}] (SI; convert the record first)"
             )
         order.append(key)
     for need in ("t", "U"):
         if need not in order:
-            raise InputError(f"{p}:{head_no}: column {need} is missing from the header")
+            raise InputError(f"{p}, line {head_no}: column {need} is missing from the header")
     data: dict[str, list[float]] = {k: [] for k in order}
     rows = []
     for line_no, ln in lines[1:]:
         cells = next(csv.reader([ln]))
         if len(cells) != len(order):
             raise InputError(
-                f"{p}:{line_no}: {len(cells)} value(s), the header has {len(order)} columns"
+                f"{p}, line {line_no}: {len(cells)} value(s), the header has {len(order)} columns"
             )
         for key, cell in zip(order, cells, strict=True):
             try:
                 data[key].append(float(cell) if cell.strip() else math.nan)
             except ValueError:
                 raise InputError(
-                    f"{p}:{line_no}: {key} = {cell.strip()!r} is invalid: not a number"
+                    f"{p}, line {line_no}: {key} = {cell.strip()!r} is invalid: not a number"
                 ) from None
         rows.append(line_no)
     return velocity_series(

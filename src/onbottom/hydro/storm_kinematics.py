@@ -182,7 +182,8 @@ class StormKinematics:
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
                 raise InputError(
-                    f"{cls}.{name}[{int(bad[0])}] = {arr[bad[0]]!r} is invalid: must be finite"
+                    f"{cls}.{name}[{int(bad[0])}] = {float(arr[bad[0]])!r} is invalid: must be"
+                    " finite"
                 )
         if not math.isfinite(self.current):
             raise InputError(f"{cls}.current = {self.current!r} is invalid: must be finite")
