@@ -175,11 +175,6 @@ class StormCase(StrictModel):
     @model_validator(mode="after")
     def _waves(self) -> StormCase:
         if self.storm.kind != "spectral":
-            if self.run.seeds > 1:
-                raise ValueError(
-                    f"run.seeds = {self.run.seeds} is invalid with storm.kind ="
-                    f" {self.storm.kind!r}: the flow is deterministic, give seeds = 1"
-                )
             return self
         if self.waves is None and not self.storm.stages:
             raise ValueError("give [waves] (the peak sea state) or [[storm.stages]]")
@@ -351,6 +346,12 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     ]
     check_common_tables(case, where, sea_states=stages)
     _check_time_step(case, chk)
+    if case.storm.kind != "spectral" and case.run.seeds > 1:
+        chk.fail(
+            "run.seeds",
+            f"run.seeds = {case.run.seeds!r} is invalid with storm.kind = {case.storm.kind!r}:"
+            " the flow is deterministic, give seeds = 1",
+        )
     rho = case.environment.water_density
     with _Keys(chk):
         section = case.pipe.section(rho)
