@@ -13,7 +13,7 @@ Regular wave
     Deep water (k d >> 1): U_w → 0 as e^{−kd}; shallow water (k d << 1): U_w → (H/2)√(g/d).
 
     Validity (named :class:`~onbottom.errors.OutOfRangeWarning`, the run goes on): linear
-    theory is a first-order theory for H/λ << 1 and H/d << 1. DNV-RP-C205 (2010) §3.2.2.3
+    theory is a first-order theory for H/λ << 1 and H/d << 1. DNV-RP-C205 (2010) §3.2.2
     separates the Stokes (U_R < 30) from the cnoidal (U_R > 30) range by the Ursell number
     U_R = H λ² / d³; at U_R >= 30 the near-bed velocity of a real wave is more peaked and
     asymmetric than the sinusoid used here (Sarpkaya & Isaacson 1981 §4.6). A wave steeper
@@ -61,10 +61,11 @@ __all__ = [
 
 URSELL_LINEAR_LIMIT = 30.0
 """Ursell number U_R = Hλ²/d³ from which linear (and Stokes) theory is poor (DNV-RP-C205
-(2010) §3.2.2.3: cnoidal theory for U_R > 30)."""
+(2010) §3.2.2: cnoidal theory for U_R > 30)."""
 
 MICHE_BREAKING_STEEPNESS = 0.142
-"""Miche (1944) breaking limit H/λ = 0.142 tanh(k d) [-] (DNV-RP-C205 (2010) §3.4.6)."""
+"""Miche (1944) breaking limit H/λ = 0.142 tanh(k d) [-] (DNV-RP-C205 (2010) §3.4, breaking
+wave limit)."""
 
 SAMPLING_TOLERANCE = 1e-3
 """Default largest relative deviation of a sampling interval from the median interval [-]."""
@@ -99,14 +100,14 @@ def linear_wave_validity(height: float, period: float, depth: float) -> dict[str
         raise InputError(
             f"height = {h!r} m is invalid with period = {t!r} s and depth = {d!r} m: the wave"
             f" steepness H/λ = {h / lam:.4g} exceeds the Miche breaking limit"
-            f" 0.142·tanh(kd) = {limit:.4g} (λ = {lam:.4g} m; DNV-RP-C205 §3.4.6), no such"
+            f" 0.142·tanh(kd) = {limit:.4g} (λ = {lam:.4g} m; DNV-RP-C205 §3.4), no such"
             f" wave exists: H must be <= {limit * lam:.4g} m"
         )
     if ursell >= URSELL_LINEAR_LIMIT:
         warnings.warn(
             f"regular wave H = {h:g} m, T = {t:g} s in d = {d:g} m: Ursell number"
             f" U_R = Hλ²/d³ = {ursell:.3g} >= {URSELL_LINEAR_LIMIT:g} (λ = {lam:.4g} m),"
-            " outside the range of linear (Airy) theory (DNV-RP-C205 §3.2.2.3: cnoidal range);"
+            " outside the range of linear (Airy) theory (DNV-RP-C205 §3.2.2: cnoidal range);"
             " the near-bed velocity of the real wave is more peaked than the sinusoid used",
             OutOfRangeWarning,
             stacklevel=3,
