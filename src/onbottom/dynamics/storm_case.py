@@ -6,6 +6,13 @@ share the strict tables of :mod:`onbottom.inputs.stability_case`; this module ad
 ``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE
 (issue 13); it is accepted here and validated by that command.
 
+``[storm] kind`` selects the flow: ``"spectral"`` (default: ``[waves]`` or ``[[storm.stages]]``,
+random phases), ``"regular"`` (``height`` [m], ``period`` [s], ``direction_deg``; linear Airy
+wave in ``[environment].water_depth``, ``build_up_hours`` ramp, ``peak_hours`` at full
+amplitude) or ``"measured"`` (``series``: CSV ``t [s], U [m/s][, dU/dt [m/s^2]]``, a path
+relative to the case file's folder; ``sampling_tolerance``). The last two are deterministic
+(``run.seeds`` = 1) and give :class:`~onbottom.hydro.storm_kinematics.StormKinematics`.
+
 Soil model from ``[seabed].model``: ``sand`` → Verley & Sotberg silica, ``calcareous`` →
 Verley & Sotberg calcareous (Youssef & Cassidy 2014 Table 3), ``clay`` → Verley & Lund,
 ``rock``/``coulomb`` → Coulomb friction. Seabed roughness z_0 (when ``[current].z0`` is absent):
