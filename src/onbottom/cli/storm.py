@@ -100,11 +100,11 @@ def command(
 
     The storm is [waves] as the peak after a 0.5 h build-up, 3 h at the peak (or
     [[storm.stages]]), or a regular wave ([storm] kind = "regular", height, period) or a
-    measured velocity record ([storm] kind = "measured", series = CSV); [current], [seabed] (sand: Verley & Sotberg, clay: Verley & Lund,
-    rock: Coulomb), [hydro] coefficients and F109 load reductions. Reports the maximum and
-    final lateral displacement and the DNV-RP-F109 verdicts against 0.5D and 10D; a run
-    whose penetration left the soil model's range (z > D/2) is flagged (status -3, exit
-    code 3). See examples/storm_case.toml.
+    measured velocity record ([storm] kind = "measured", series = CSV); [current], [seabed]
+    (sand: Verley & Sotberg, clay: Verley & Lund, rock: Coulomb), [hydro] coefficients and
+    F109 load reductions. Reports the maximum and final lateral displacement and the
+    DNV-RP-F109 verdicts against 0.5D and 10D; a run whose penetration left the soil model's
+    range (z > D/2) is flagged (status -3, exit code 3). See examples/storm_case.toml.
     """
     progress = not quiet and not as_json
     check_output_names(
