@@ -167,3 +167,32 @@ def test_max_penetration_base_kernel_equals_python_twin():
         np.testing.assert_allclose(h1, h2, rtol=1e-12, atol=1e-12)
     with pytest.raises(ValueError, match="max_penetration_base"):
         VerleySotberg.silica(PIPE, SAND, max_penetration_base="deepest")
+
+
+def test_seeds_count_flagged_runs_and_say_so():
+    from onbottom.dynamics.storm_section import StormSolverSettings as Settings
+    from onbottom.inputs.storm import SeaState, Storm
+    from onbottom.study.storm_seeds import run_storm_seeds
+
+    storm = Storm.standard(SeaState(hs=2.5, tp=10.0), build_up_hours=0.003, peak_hours=0.02)
+    study = run_storm_seeds(
+        PIPE,
+        _fast_sand(),
+        storm,
+        seeds=2,
+        n_workers=0,
+        depth=15.0,
+        current=CURRENT,
+        settings=Settings(record_interval=None),
+    )
+    flags = study.data["out_of_range"].values
+    assert flags.tolist() == [1, 1]
+    assert (study.data["status"].values == STATUS_OUTSIDE_VALIDITY).all()
+    assert (study.data["out_of_range_time"].values > 0.0).all()
+    # the flagged seeds count in the statistics (their numbers are kept) ...
+    assert study.statistics["n_out_of_range"] == 2 and study.statistics["n_failed"] == 0
+    assert study.statistics["mean"] == pytest.approx(
+        float(np.mean(study.data["max_displacement"].values))
+    )
+    # ... and the study is not a clean success (exit code 3 from the CLI)
+    assert not study.success and len(study.failures) == 2
