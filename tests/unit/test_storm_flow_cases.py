@@ -156,3 +156,12 @@ def test_cli_runs_a_measured_record_on_the_pipeline(tmp_path, capsys):
         ymax = ds["max_abs_y"].values
     assert ymax.max() > 0.0
     assert np.ptp(ymax) <= 1e-6 * ymax.max()
+
+
+def test_regular_example_case_loads():
+    from pathlib import Path
+
+    case = Path(__file__).resolve().parents[2] / "examples" / "storm_regular_case.toml"
+    kin = load_storm_case(case).storm
+    assert kin.stage_parameters[0]["kind"] == "regular"
+    assert kin.duration == pytest.approx(0.3 * 3600.0, abs=0.5)
