@@ -202,3 +202,24 @@ def test_empty_or_inconsistent_kinematics_is_a_named_error(kw, match):
 
 def test_consistent_kinematics_builds():
     assert _kin().time[-1] == 10.0
+
+
+def test_regular_wave_along_a_pipeline_travels_at_its_angle():
+    from onbottom.hydro.short_crested import long_crested_node_kinematics
+
+    kin = StormKinematics.regular(
+        2.0, 10.0, 30.0, duration=60.0, diameter=0.5, direction_deg=60.0, build_up_s=10.0
+    )
+    lam = kin.stage_parameters[0]["wave_length"]
+    half = 0.5 * lam / math.cos(math.radians(60.0))  # half a wave length along the line
+    x = np.array([0.0, half, 2.0 * half])
+    nk = long_crested_node_kinematics(kin, 3, x)
+    amp = np.max(np.abs(kin.velocity))
+    np.testing.assert_allclose(nk.velocity[:, 0], kin.velocity, atol=1e-6 * amp)
+    np.testing.assert_allclose(nk.acceleration[:, 0], kin.acceleration, atol=1e-5 * amp)
+    np.testing.assert_allclose(nk.velocity[:, 1], -kin.velocity, atol=1e-5 * amp)  # phase π
+    np.testing.assert_allclose(nk.velocity[:, 2], kin.velocity, atol=1e-5 * amp)  # phase 2π
+    # normal incidence or a measured record: every node in phase
+    normal = StormKinematics.regular(2.0, 10.0, 30.0, duration=20.0, diameter=0.5)
+    nk2 = long_crested_node_kinematics(normal, 3, x)
+    assert np.all(nk2.velocity == nk2.velocity[:, :1])

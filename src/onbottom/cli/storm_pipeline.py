@@ -422,8 +422,9 @@ class _SeedJob:
         run = build_pipeline_run(self.path)
         setup, model, table = run["setup"], run["model"], run["table"]
         if isinstance(setup.storm, StormKinematics):
-            # a regular wave or a measured record: long-crested, in phase along the line
-            kin = long_crested_node_kinematics(setup.storm, model.x.size)
+            # a regular wave (travelling along the line at its angle) or a measured record
+            # (in phase along the line): long-crested
+            kin = long_crested_node_kinematics(setup.storm, model.x.size, model.x)
         else:
             storm = setup.storm.with_seed(int(seed))
             kin = pipeline_kinematics(

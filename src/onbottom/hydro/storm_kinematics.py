@@ -282,6 +282,9 @@ class StormKinematics:
             "depth": float(depth),
             "ursell": info["ursell"],
             "wave_length": info["wave_length"],
+            "direction_deg": float(direction_deg),
+            "build_up_s": float(build_up_s),
+            "amplitude": info["amplitude"],
         }
         return cls(
             sample_interval=dts,
