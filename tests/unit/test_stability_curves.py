@@ -73,3 +73,58 @@ def test_grid_dataset_table_and_cli(tmp_path, capsys):
     with open(case.with_suffix(".csv"), encoding="utf-8") as fh:
         assert next(csv.DictReader(fh))["soil"] == "sand"
     assert case.with_suffix(".png").stat().st_size > 5_000
+
+
+def test_points_outside_the_soil_model_are_marked(tmp_path, monkeypatch):
+    """A storm that buries the pipe (status −3) counts with its displacement and marks its
+    point in the NetCDF, the CSV rows, the figure and the report (issue 30 item 5)."""
+    import types
+
+    import matplotlib.pyplot as plt
+
+    from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
+    from onbottom.plotting.storm import plot_stability_curves
+    from onbottom.report.content import SectionContext
+    from onbottom.report.sections.stability_curves import build
+    from onbottom.results import save_dataset
+    from onbottom.study import stability_curves as sc
+
+    def fake(pipe, soil, kin, **kw):
+        us = kin.stage_parameters[0]["significant_velocity"]
+        lv = pipe.submerged_weight / (0.5 * FAST.water_density * pipe.outer_diameter * us * us)
+        buried = kin.current != 0.0  # with a current (M > 0) every storm buries the pipe
+        return types.SimpleNamespace(
+            status=STATUS_OUTSIDE_VALIDITY if buried else 1,
+            success=not buried,
+            message="outside the model's validity" if buried else "end",
+            max_displacement=20.0 / lv * pipe.outer_diameter,  # L_stable = 40, L_10 = 2
+        )
+
+    monkeypatch.setattr(sc, "simulate_storm_section", fake)
+    ds = stability_curves([5.0], [0.0, 4.0], soils=["sand"], settings=FAST, n_workers=0)
+    for crit, lv in (("L_stable", 40.0), ("L_10", 2.0)):
+        assert ds[crit].values.ravel() == pytest.approx([lv, lv], rel=0.1)
+        assert ds[f"{crit}_out_of_range"].values.ravel().tolist() == [0, 1]
+    assert ds["out_of_range"].values.ravel().tolist() == [0, 1]
+    rows = curves_table(ds)
+    assert [r["L_stable_out_of_range"] for r in rows] == [0, 1]
+    assert [r["L_10_out_of_range"] for r in rows] == [0, 1]
+    fig = plot_stability_curves(ds)
+    labels = [ln.get_label() for ln in fig.axes[0].get_lines()]
+    assert "outside soil model range" in labels
+    open_marker = next(
+        ln for ln in fig.axes[0].get_lines() if ln.get_label() == "outside soil model range"
+    )
+    assert open_marker.get_markerfacecolor() == "white"
+    assert len(open_marker.get_xdata()) == 1  # only the M = 4 point
+    plt.close(fig)
+    folder = tmp_path / "docs" / "validation" / "stability_curves"
+    folder.mkdir(parents=True)
+    save_dataset(ds, folder / "fake.nc")
+    back = load_dataset(folder / "fake.nc")
+    assert back["L_10_out_of_range"].values.ravel().tolist() == [0, 1]
+    content = build(SectionContext(name="stability_curves", out_dir=tmp_path, repo_root=tmp_path))
+    table = content.tables[0]
+    assert "L_stable_out_of_range" in table.columns
+    check = next(c for c in content.checks if "outside" in c.name)
+    assert check.value == 1

@@ -227,6 +227,16 @@ def command(
                 f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
                 f" M={note['M']:g}: {note['message']}"
             )
+        flagged = [
+            f"{r['soil']} K={r['K']:g} M={r['M']:g} N={r['N']:g}"
+            for r in rows
+            if any(v for k, v in r.items() if k.endswith("_out_of_range"))
+        ]
+        if flagged:
+            click.echo(
+                f"  outside the soil model's range (storms buried the pipe beyond D/2; marked"
+                f" out_of_range): {', '.join(flagged)}"
+            )
         click.echo(
             f"{payload['total_storms']} storms in {payload['wall_time_s']:.1f} s on"
             f" {payload['workers']} worker(s); written: {nc}, {csv_path}, {png}"

@@ -99,10 +99,12 @@ def command(
     """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
 
     The storm is [waves] as the peak after a 0.5 h build-up, 3 h at the peak (or
-    [[storm.stages]]); [current], [seabed] (sand: Verley & Sotberg, clay: Verley & Lund,
-    rock: Coulomb), [hydro] coefficients and F109 load reductions. Reports the maximum and
-    final lateral displacement and the DNV-RP-F109 verdicts against 0.5D and 10D. See
-    examples/storm_case.toml.
+    [[storm.stages]]), or a regular wave ([storm] kind = "regular", height, period) or a
+    measured velocity record ([storm] kind = "measured", series = CSV); [current], [seabed]
+    (sand: Verley & Sotberg, clay: Verley & Lund, rock: Coulomb), [hydro] coefficients and
+    F109 load reductions. Reports the maximum and final lateral displacement and the
+    DNV-RP-F109 verdicts against 0.5D and 10D; a run whose penetration left the soil model's
+    range (z > D/2) is flagged (status -3, exit code 3). See examples/storm_case.toml.
     """
     progress = not quiet and not as_json
     check_output_names(
@@ -129,6 +131,10 @@ def command(
         if isinstance(payload, dict):
             payload["warnings"] = notes
             _report(payload, as_json)
+            if not payload.get("success", True):
+                # as the section: a failed or flagged run (e.g. status −3, outside the soil
+                # model's range) exits with EXIT_INVALID_RESULT
+                raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
     from onbottom.dynamics.storm_case import load_storm_case
@@ -138,6 +144,8 @@ def command(
         setup = load_storm_case(case)
     notes = _split_warnings(caught, as_json)
     n = setup.seeds if seeds is None else int(seeds)
+    if n > 1 and not hasattr(setup.storm, "with_seed"):
+        raise _seeds_error(n)
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")
     if n == 1:
@@ -192,7 +200,7 @@ def command(
     save_dataset(study.data, nc)
     st = study.statistics
     d = setup.pipe.outer_diameter
-    ok_rows = study.data["status"].values > 0
+    ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)
     final = study.data["final_displacement"].values[ok_rows]
     payload = {
         "max_displacement_m": st["mean"],
@@ -216,6 +224,15 @@ def command(
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _seeds_error(n: int) -> InputError:
+    err = InputError(
+        f"--seeds = {n} is invalid with a regular wave or a measured record ([storm] kind):"
+        " the flow is deterministic, run one seed"
+    )
+    err.field = "--seeds"  # type: ignore[attr-defined]
+    return err
 
 
 def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:

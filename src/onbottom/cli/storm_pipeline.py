@@ -178,7 +178,8 @@ def _fail(p: Path, text: str | None, field: str, message: str) -> None:
 def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
     """Refuse a mesh whose memory or run time is excessive, with the estimate."""
     nodes = round(table.length / table.element_length) + 1
-    storm_s = float(setup.storm.duration_s)
+    storm = setup.storm
+    storm_s = float(storm.duration_s if hasattr(storm, "duration_s") else storm.duration)
     run_s = storm_s if table.duration is None else min(table.duration, storm_s)
     steps = run_s / setup.settings.dt_max
     mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
@@ -415,14 +416,20 @@ class _SeedJob:
 
     def run(self, seed: int):
         from onbottom.dynamics.pipeline import simulate_pipeline
-        from onbottom.hydro.short_crested import pipeline_kinematics
+        from onbottom.hydro.short_crested import long_crested_node_kinematics, pipeline_kinematics
+        from onbottom.hydro.storm_kinematics import StormKinematics
 
         run = build_pipeline_run(self.path)
         setup, model, table = run["setup"], run["model"], run["table"]
-        storm = setup.storm.with_seed(int(seed))
-        kin = pipeline_kinematics(
-            storm, setup.depth, model.x, sample_interval=setup.sample_interval
-        )
+        if isinstance(setup.storm, StormKinematics):
+            # a regular wave (travelling along the line at its angle) or a measured record
+            # (in phase along the line): long-crested
+            kin = long_crested_node_kinematics(setup.storm, model.x.size, model.x)
+        else:
+            storm = setup.storm.with_seed(int(seed))
+            kin = pipeline_kinematics(
+                storm, setup.depth, model.x, sample_interval=setup.sample_interval
+            )
         return simulate_pipeline(
             model,
             kin,
@@ -500,6 +507,11 @@ def run_pipeline_case(
     setup = run["setup"]
     table: PipelineTable = run["table"]
     n = setup.seeds if seeds is None else int(seeds)
+    if n > 1 and not hasattr(setup.storm, "with_seed"):
+        raise InputError(
+            f"seeds = {n} is invalid with a regular wave or a measured record ([storm] kind):"
+            " the flow is deterministic, run one seed"
+        )
     base = Path(output) if output is not None else p.with_suffix(".nc")
     if n > 1 and (plot is not None or animation is not None):
         raise InputError("--plot/animation are for one seed: run the seed of interest alone")

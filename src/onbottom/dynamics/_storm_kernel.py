@@ -24,6 +24,10 @@ After easy steps Δt doubles back up to dt_max.
 Energy accounting (trapezoidal, signed): W_hydro += ½(F₀ + F₁)Δy, W_soil += ½(R₀ + R₁)Δy; with
 average-acceleration Newmark ½M(ẏ₁² − ẏ₀²) = W_hydro − W_soil holds to round-off per step.
 
+Validity: the first time the committed penetration exceeds ``ST_Z_LIMIT`` (D/2 for the
+Verley & Sotberg and Verley & Lund models) is kept in ``D_T_ZLIMIT`` (and y in
+``D_Y_ZLIMIT``); the run goes on and the caller flags the result, as the section solver does.
+
 Events: lift-off (V <= 0) — the pipe is free of soil while lifted (``LIFTOFF_FREE``, the soil
 kernels return zero resistance) or the run stops (``LIFTOFF_STOP``); |y| >= y_limit stops the run
 (runaway).
@@ -87,7 +91,8 @@ ST_CURRENT = 17
 ST_DTS = 18
 ST_T_END = 19
 ST_FORCE_MODEL = 20  # force model id (onbottom.hydro._force_dispatch)
-N_SETTINGS = 21
+ST_Z_LIMIT = 21  # penetration beyond the soil model's range [m] (inf: none)
+N_SETTINGS = 22
 
 # dynamic state and running summary
 D_T = 0
@@ -113,7 +118,9 @@ D_ZMIN = 19
 D_T_LIMIT = 20
 D_FZ_MAX = 21
 D_V_MIN = 22
-N_DYN = 23
+D_T_ZLIMIT = 23  # time the penetration first exceeded ST_Z_LIMIT [s] (-1: never)
+D_Y_ZLIMIT = 24  # displacement y at that time [m]
+N_DYN = 25
 
 # record columns
 REC_T = 0
@@ -322,6 +329,10 @@ def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dy
     dyn[D_YMAX] = abs(dyn[D_Y])
     dyn[D_T_LIMIT] = -1.0
     dyn[D_T_LIFTOFF] = -1.0
+    dyn[D_T_ZLIMIT] = -1.0
+    if out[OUT_Z] > settings[ST_Z_LIMIT]:
+        dyn[D_T_ZLIMIT] = dyn[D_T]
+        dyn[D_Y_ZLIMIT] = dyn[D_Y]
     if v <= 0.0:
         dyn[D_LIFTED] = 1.0
         dyn[D_N_LIFTOFF] = 1.0
@@ -423,6 +434,9 @@ def integrate(
             dyn[D_ZMAX] = z1
         if z1 < dyn[D_ZMIN]:
             dyn[D_ZMIN] = z1
+        if z1 > settings[ST_Z_LIMIT] and dyn[D_T_ZLIMIT] < 0.0:
+            dyn[D_T_ZLIMIT] = t1  # left the soil model's range: flagged, the run goes on
+            dyn[D_Y_ZLIMIT] = y1
         if fz > dyn[D_FZ_MAX]:
             dyn[D_FZ_MAX] = fz
         if v < dyn[D_V_MIN]:

@@ -6,6 +6,13 @@ share the strict tables of :mod:`onbottom.inputs.stability_case`; this module ad
 ``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE
 (issue 13); it is accepted here and validated by that command.
 
+``[storm] kind`` selects the flow: ``"spectral"`` (default: ``[waves]`` or ``[[storm.stages]]``,
+random phases), ``"regular"`` (``height`` [m], ``period`` [s], ``direction_deg``; linear Airy
+wave in ``[environment].water_depth``, ``build_up_hours`` ramp, ``peak_hours`` at full
+amplitude) or ``"measured"`` (``series``: CSV ``t [s], U [m/s][, dU/dt [m/s^2]]``, a path
+relative to the case file's folder; ``sampling_tolerance``). The last two are deterministic
+(``run.seeds`` = 1) and give :class:`~onbottom.hydro.storm_kinematics.StormKinematics`.
+
 Soil model from ``[seabed].model``: ``sand`` → Verley & Sotberg silica, ``calcareous`` →
 Verley & Sotberg calcareous (Youssef & Cassidy 2014 Table 3), ``clay`` → Verley & Lund,
 ``rock``/``coulomb`` → Coulomb friction. Seabed roughness z_0 (when ``[current].z0`` is absent):
@@ -30,6 +37,7 @@ from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
 from onbottom.hydro.force_model import MorisonLift
 from onbottom.hydro.reductions import LoadReductions
+from onbottom.hydro.storm_kinematics import StormKinematics
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.stability_case import (
@@ -48,7 +56,14 @@ from onbottom.soil.coulomb import CoulombFriction
 from onbottom.soil.verley_lund import VerleyLund
 from onbottom.soil.verley_sotberg import VerleySotberg
 
-__all__ = ["StormCase", "StormSetup", "load_storm_case", "seabed_roughness", "soil_model"]
+__all__ = [
+    "StormCase",
+    "StormSetup",
+    "case_relative",
+    "load_storm_case",
+    "seabed_roughness",
+    "soil_model",
+]
 
 _D50 = np.array([0.0625, 0.25, 0.5, 1.0, 4.0, 25.0, 125.0, 500.0]) * 1e-3
 _Z0 = np.array(list(SEABED_ROUGHNESS.values()))
@@ -65,6 +80,22 @@ class StageTable(StrictModel):
 
 
 class StormTable(StrictModel):
+    kind: Literal["spectral", "regular", "measured"] = Field(
+        "spectral",
+        description="spectral (random-phase JONSWAP storm), regular (Airy wave height/period)"
+        " or measured (velocity series CSV)",
+    )
+    height: float | None = Field(None, gt=0.0, le=40.0, description="regular wave H [m]")
+    period: float | None = Field(None, gt=0.0, le=40.0, description="regular wave T [s]")
+    direction_deg: float | None = Field(
+        None, ge=0.0, le=360.0, description="regular wave direction to the pipe axis [deg]"
+    )
+    series: str | None = Field(
+        None, min_length=1, description="measured: CSV t [s], U [m/s][, dU/dt [m/s^2]]"
+    )
+    sampling_tolerance: float | None = Field(
+        None, gt=0.0, le=0.5, description="measured: relative sampling-interval tolerance [-]"
+    )
     seed: int = Field(0, ge=0, description="random-phase seed of the first storm [-]")
     build_up_hours: float | None = Field(None, ge=0.0, le=100.0, description="[h]")
     peak_hours: float | None = Field(None, gt=0.0, le=100.0, description="[h]")
@@ -82,6 +113,31 @@ class StormTable(StrictModel):
             raise ValueError(
                 "give peak_hours (one peak from [waves]) or [[storm.stages]], not both"
             )
+        own = {
+            "spectral": (),
+            "regular": ("height", "period", "direction_deg"),
+            "measured": ("series", "sampling_tolerance"),
+        }
+        for kind, keys in own.items():
+            if kind == self.kind:
+                continue
+            for key in keys:
+                if getattr(self, key) is not None:
+                    raise ValueError(f"{key} is for kind = {kind!r}, not {self.kind!r}")
+        if self.kind != "spectral" and self.stages:
+            raise ValueError(f"[[storm.stages]] are for kind = 'spectral', not {self.kind!r}")
+        if self.kind == "regular" and (self.height is None or self.period is None):
+            raise ValueError("kind = 'regular' needs height [m] and period [s]")
+        if self.kind == "measured":
+            if self.series is None:
+                raise ValueError("kind = 'measured' needs series (a CSV file)")
+            for key in ("build_up_hours", "peak_hours"):
+                if getattr(self, key) is not None:
+                    raise ValueError(
+                        f"{key} is not used with kind = 'measured': the record sets the time"
+                    )
+        if self.kind != "spectral" and self.decay_hours:
+            raise ValueError(f"decay_hours is for kind = 'spectral', not {self.kind!r}")
         return self
 
 
@@ -126,6 +182,8 @@ class StormCase(StrictModel):
 
     @model_validator(mode="after")
     def _waves(self) -> StormCase:
+        if self.storm.kind != "spectral":
+            return self
         if self.waves is None and not self.storm.stages:
             raise ValueError("give [waves] (the peak sea state) or [[storm.stages]]")
         return self
@@ -154,12 +212,16 @@ def soil_model(model: str, pipe: Pipe, seabed: Sand | Clay | Rock) -> LateralRes
 
 @dataclass(frozen=True)
 class StormSetup:
-    """Everything :func:`simulate_storm_section` needs, built from a case."""
+    """Everything :func:`simulate_storm_section` needs, built from a case.
+
+    ``storm`` is a :class:`Storm` (``[storm] kind = "spectral"``) or, for a regular wave or a
+    measured record, its :class:`StormKinematics` (current included; one deterministic run).
+    """
 
     pipe: Pipe
     soil: LateralResistanceModel
     seabed: Sand | Clay | Rock
-    storm: Storm
+    storm: Storm | StormKinematics
     depth: float
     current: Current
     z0: float
@@ -245,6 +307,10 @@ class _Keys:
 def _check_time_step(case: StormCase, chk: _Checker) -> None:
     """The largest step against the shortest peak period of the storm (see the constants)."""
     periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
+    if case.storm.kind == "regular":
+        periods = [(case.storm.period, "storm.period")]
+    elif case.storm.kind == "measured":
+        return  # the record's own sampling sets the flow resolution
     if not periods and case.waves is not None:
         periods = [(case.waves.tp, "waves.tp")]
     if not periods:
@@ -288,6 +354,12 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     ]
     check_common_tables(case, where, sea_states=stages)
     _check_time_step(case, chk)
+    if case.storm.kind != "spectral" and case.run.seeds > 1:
+        chk.fail(
+            "run.seeds",
+            f"run.seeds = {case.run.seeds!r} is invalid with storm.kind = {case.storm.kind!r}:"
+            " the flow is deterministic, give seeds = 1",
+        )
     rho = case.environment.water_density
     with _Keys(chk):
         section = case.pipe.section(rho)
@@ -315,7 +387,18 @@ def _build_objects(
         )
     soil = soil_model(case.seabed.model, pipe, seabed)
     st = case.storm
-    if st.stages:
+    c = case.current
+    current = Current(
+        velocity=c.velocity,
+        reference_height=c.reference_height,
+        direction_deg=c.direction_deg,
+        z0=c.z0,
+    )
+    z0 = c.z0 if c.z0 is not None else seabed_roughness(seabed)
+    storm: Storm | StormKinematics
+    if st.kind != "spectral":
+        storm = _flow_input(case, path, pipe, current, z0)
+    elif st.stages:
         w = case.waves
         stages = tuple(
             SeaState(
@@ -357,13 +440,6 @@ def _build_objects(
             decay_hours=st.decay_hours,
             seed=st.seed,
         )
-    c = case.current
-    current = Current(
-        velocity=c.velocity,
-        reference_height=c.reference_height,
-        direction_deg=c.direction_deg,
-        z0=c.z0,
-    )
     h = case.hydro
     fm = MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient)
     if h.reductions:
@@ -395,7 +471,7 @@ def _build_objects(
         storm=storm,
         depth=case.environment.water_depth,
         current=current,
-        z0=c.z0 if c.z0 is not None else seabed_roughness(seabed),
+        z0=z0,
         force_model=fm,
         reductions=red,
         settings=settings,
@@ -404,6 +480,76 @@ def _build_objects(
         fractile=case.run.fractile,
         path=None if path is None else os.fspath(path),
     )
+
+
+def case_relative(path: str | os.PathLike | None, name: str) -> Path:
+    """A path named in a case file: absolute as given, else relative to the case's folder."""
+    p = Path(name).expanduser()
+    if p.is_absolute() or path is None:
+        return p
+    return Path(path).resolve().parent / p
+
+
+def _flow_input(
+    case: StormCase, path: str | os.PathLike | None, pipe: Pipe, current: Current, z0: float
+) -> StormKinematics:
+    """The flow of ``[storm] kind = "regular"`` or ``"measured"`` (errors under their keys)."""
+    st = case.storm
+    file = None if path is None else str(path)
+    d = pipe.outer_diameter
+    if st.kind == "regular":
+        w = case.waves
+        direction = st.direction_deg
+        if direction is None:
+            direction = w.direction_deg if w is not None else 90.0
+        build = (st.build_up_hours or 0.0) * 3600.0
+        peak = (3.0 if st.peak_hours is None else st.peak_hours) * 3600.0
+        try:
+            return StormKinematics.regular(
+                st.height,
+                st.period,
+                case.environment.water_depth,
+                duration=build + peak,
+                diameter=d,
+                direction_deg=direction,
+                build_up_s=build,
+                current=current,
+                z0=z0,
+                sample_interval=st.sample_interval,
+            )
+        except InputError as exc:
+            raise CaseFileError(
+                f"{file or '<case>'}: storm.height/storm.period: {exc}",
+                field="storm.height",
+                file=file,
+            ) from None
+    series = case_relative(path, st.series)
+    if not series.is_file():
+        raise CaseFileError(
+            f"{file or '<case>'}: storm.series = {st.series!r} is invalid: no file {series}"
+            " (a path relative to the case file's folder, or absolute)",
+            field="storm.series",
+            file=file,
+        )
+    if st.sample_interval is not None:
+        raise CaseFileError(
+            f"{file or '<case>'}: storm.sample_interval is not used with kind = 'measured':"
+            " the record's own sampling is used (remove the key)",
+            field="storm.sample_interval",
+            file=file,
+        )
+    try:
+        return StormKinematics.from_series(
+            series,
+            diameter=d,
+            current=current,
+            z0=z0,
+            sampling_tolerance=st.sampling_tolerance,
+        )
+    except InputError as exc:
+        raise CaseFileError(
+            f"{file or '<case>'}: storm.series: {exc}", field="storm.series", file=file
+        ) from None
 
 
 def load_storm_case(path: str | os.PathLike) -> StormSetup:

@@ -27,6 +27,7 @@ import xarray as xr
 
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
+from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
 from onbottom.errors import InputError
 from onbottom.hydro._force_contract import N_FORCE_STATE
 from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
@@ -39,9 +40,11 @@ from onbottom.soil.base import LateralResistanceModel
 
 __all__ = [
     "CRITERIA_OVER_D",
+    "STATUS_OUTSIDE_VALIDITY",
     "LoadReductions",
     "StormSectionResult",
     "StormSolverSettings",
+    "penetration_limit",
     "simulate_storm_section",
 ]
 
@@ -58,6 +61,18 @@ _STATUS_MESSAGES = {
     K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
     K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
 }
+
+
+def penetration_limit(soil: LateralResistanceModel) -> float:
+    """Penetration [m] beyond which a soil model is used outside its range (∞: no limit).
+
+    D/2 for the models that carry the pipe diameter (Verley & Sotberg: the power laws in z/D
+    are used for a pipe at most half buried, :data:`onbottom.soil.verley_sotberg`
+    ``Z_OVER_D_RANGE``; Verley & Lund likewise) — the rule of
+    :func:`onbottom.dynamics.section.simulate_section`; none for Coulomb friction.
+    """
+    d = getattr(soil, "outer_diameter", None)
+    return 0.5 * float(d) if d is not None else math.inf
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -151,7 +166,10 @@ class StormSectionResult:
         physical outcomes); False on numerical failure.
     status : int
         1 end of storm, 2 runaway (stop limit reached), 3 lift-off stop, −1 step failure,
-        −2 soil kernel NaN.
+        −2 soil kernel NaN, −3 the run left the soil model's range (penetration beyond
+        :func:`penetration_limit`, D/2 for Verley & Sotberg / Verley & Lund): the run went on
+        to its end (or stop) and its numbers are kept, ``success`` is False and the message
+        says when and where (as :func:`onbottom.dynamics.section.simulate_section`).
     message : str
     diameter : float
         D [m].
@@ -164,7 +182,9 @@ class StormSectionResult:
         runaway beyond it).
     summary : dict
         n_steps, n_rejected, time_of_max [s], final_time [s], max_penetration [m],
-        min_penetration [m], n_liftoff, first_liftoff_time [s] (−1 if none), min_contact_force
+        min_penetration [m], out_of_range_time [s] (first time the penetration exceeded
+        :func:`penetration_limit`, −1 if never), out_of_range_displacement [m] (y then),
+        penetration_limit [m], n_liftoff, first_liftoff_time [s] (−1 if none), min_contact_force
         [N/m], max_lift [N/m], work_hydro [J/m], work_soil [J/m], kinetic_energy [J/m],
         mean_newton_iterations.
     data : xarray.Dataset or None
@@ -321,6 +341,8 @@ def simulate_storm_section(
     st[K.ST_FORCE_MODEL] = fm.model_id
     fparams = parameter_rows(fm, kin.weights, kin.stage_parameters, kin.current, d)
     fstate = np.zeros(N_FORCE_STATE)
+    z_lim = penetration_limit(soil)
+    st[K.ST_Z_LIMIT] = z_lim
     params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
     state = np.array(soil.initial_state(), dtype=float)
     model_id = int(soil.model_id)
@@ -377,6 +399,17 @@ def simulate_storm_section(
     }
     if status == K.STATUS_LIMIT:
         message += f" ({s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s)"
+    t_out = float(dyn[K.D_T_ZLIMIT])
+    if success and t_out >= 0.0:
+        success = False
+        status = STATUS_OUTSIDE_VALIDITY
+        message = (
+            f"outside the model's validity: penetration exceeded D/2 = {z_lim:.4g} m at"
+            f" t = {t_out:.1f} s (y = {dyn[K.D_Y_ZLIMIT]:.4g} m), largest"
+            f" {dyn[K.D_ZMAX]:.4g} m = {dyn[K.D_ZMAX] / d:.3g}D (the {soil.name} model holds"
+            f" for z <= D/2; the run went on: {message})"
+        )
+        logger.warning("simulate_storm_section: %s", message)
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),
         "n_rejected": int(dyn[K.D_N_REJECT]),
@@ -384,6 +417,9 @@ def simulate_storm_section(
         "final_time": float(dyn[K.D_T]),
         "max_penetration": float(dyn[K.D_ZMAX]),
         "min_penetration": float(dyn[K.D_ZMIN]),
+        "out_of_range_time": t_out,
+        "out_of_range_displacement": float(dyn[K.D_Y_ZLIMIT]) if t_out >= 0.0 else math.nan,
+        "penetration_limit": z_lim,
         "n_liftoff": int(dyn[K.D_N_LIFTOFF]),
         "first_liftoff_time": float(dyn[K.D_T_LIFTOFF]),
         "min_contact_force": float(dyn[K.D_V_MIN]),
@@ -421,6 +457,8 @@ def simulate_storm_section(
             max_displacement=ymax,
             criteria_0_5D=int(criteria["0.5D"]),
             criteria_10D=int(criteria["10D"]),
+            out_of_range=int(t_out >= 0.0),
+            out_of_range_time=t_out,
             soil_reference=soil.reference,
             **fm.describe(),
             **(dict(attrs) if attrs else {}),

@@ -59,14 +59,13 @@ import numpy as np
 from numba import njit
 
 from onbottom.hydro._force_contract import FO_SIZE
+from onbottom.hydro._fourier_kernel import fourier_kernel
 from onbottom.hydro._morison_kernel import morison_kernel
-
-# (the lead adds at merge: from onbottom.hydro._wake_kernel import wake_kernel
-#                          from onbottom.hydro._fourier_kernel import fourier_kernel)
+from onbottom.hydro._wake_kernel import wake_kernel
 
 FORCE_MORISON = 0
-FORCE_WAKE = 1  # reserved: hydro/_wake_kernel.py (issue 30 item 1)
-FORCE_FOURIER = 2  # reserved: hydro/_fourier_kernel.py (issue 30 item 2)
+FORCE_WAKE = 1  # hydro/_wake_kernel.py, hydro/wake.py (issue 30 item 1)
+FORCE_FOURIER = 2  # hydro/_fourier_kernel.py, hydro/fourier.py (issue 30 item 2)
 
 
 @njit(cache=True)
@@ -74,10 +73,10 @@ def force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_
     """Call the kernel of force model ``model_id`` (contract: the module docstring)."""
     if model_id == FORCE_MORISON:
         morison_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
-    # elif model_id == FORCE_WAKE:  -- branch added at merge (hydro/_wake_kernel.py)
-    #     wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
-    # elif model_id == FORCE_FOURIER:  -- branch added at merge (hydro/_fourier_kernel.py)
-    #     fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    elif model_id == FORCE_WAKE:
+        wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    elif model_id == FORCE_FOURIER:
+        fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
     else:
         # unknown id: NaN forces (the step fails); the Python layer validates ids beforehand
         for i in range(FO_SIZE):

@@ -37,12 +37,17 @@ from onbottom._validate import positive
 from onbottom.errors import InputError
 from onbottom.hydro.kinematics import seabed_transfer, wave_number
 from onbottom.hydro.spectra import jonswap
-from onbottom.hydro.storm_kinematics import _stage_weights, seabed_velocity_parameters
+from onbottom.hydro.storm_kinematics import (
+    StormKinematics,
+    _stage_weights,
+    seabed_velocity_parameters,
+)
 from onbottom.inputs.storm import Storm
 
 __all__ = [
     "NodeKinematics",
     "directions_cos_s",
+    "long_crested_node_kinematics",
     "pipeline_kinematics",
     "regular_node_kinematics",
 ]
@@ -240,4 +245,66 @@ def regular_node_kinematics(
         dt=dt,
         velocity=(e * u).astype(np.float32),
         acceleration=(e * a + de * u).astype(np.float32),
+    )
+
+
+def long_crested_node_kinematics(
+    kinematics: StormKinematics, n_nodes: int, x: np.ndarray | None = None
+) -> NodeKinematics:
+    """The flow of a :class:`~onbottom.hydro.storm_kinematics.StormKinematics` at every node of
+    a line (a long-crested flow: a regular wave or a measured record).
+
+    A regular wave (``StormKinematics.regular``) at the angle θ_w to the pipe axis travels
+    along the line: U(x, t) = e(t)·U_w sin θ_w·cos(ωt − k x cos θ_w) (k from the dispersion
+    relation; x = 0 is the section's flow); at θ_w = 90° every node is in phase. A measured
+    record (or no ``x``) acts in phase at every node. The current is not included (the
+    pipeline model carries it per node).
+
+    Parameters
+    ----------
+    kinematics : StormKinematics
+    n_nodes : int
+        Number of nodes, >= 1.
+    x : array or None
+        Node positions along the pipe [m] (n_nodes values) for the phase of a regular wave.
+    """
+    n = int(n_nodes)
+    if n < 1:
+        raise InputError(f"n_nodes = {n_nodes!r} is invalid: must be >= 1")
+    p = kinematics.stage_parameters[0]
+    kx = 0.0
+    if p.get("kind") == "regular" and x is not None:
+        cos_t = math.cos(math.radians(p["direction_deg"]))
+        kx = 0.0 if abs(cos_t) < 1e-12 else 2.0 * math.pi / p["wave_length"] * cos_t
+    if kx == 0.0:
+        u = np.asarray(kinematics.velocity, dtype=np.float32)
+        a = np.asarray(kinematics.acceleration, dtype=np.float32)
+        return NodeKinematics(
+            t0=0.0,
+            dt=float(kinematics.sample_interval),
+            velocity=np.ascontiguousarray(np.repeat(u[:, None], n, axis=1)),
+            acceleration=np.ascontiguousarray(np.repeat(a[:, None], n, axis=1)),
+        )
+    xx = np.asarray(x, dtype=float)
+    if xx.shape != (n,):
+        raise InputError(f"x has shape {xx.shape}: expected ({n},) node positions [m]")
+    t = kinematics.time[:, None]
+    w = 2.0 * math.pi / p["mean_period"]
+    ramp = p.get("build_up_s", 0.0)
+    if ramp > 0.0:
+        e = np.minimum(t / ramp, 1.0)
+        de = np.where(t < ramp, 1.0 / ramp, 0.0)
+    else:
+        e = np.ones_like(t)
+        de = np.zeros_like(t)
+    arg = w * t - kx * xx[None, :]
+    amp = p["amplitude"]
+    c = np.cos(arg)
+    vel = e * amp * c
+    acc = -e * amp * w * np.sin(arg) + de * amp * c
+    return NodeKinematics(
+        t0=0.0,
+        dt=float(kinematics.sample_interval),
+        velocity=np.ascontiguousarray(vel, dtype=np.float32),
+        acceleration=np.ascontiguousarray(acc, dtype=np.float32),
     )

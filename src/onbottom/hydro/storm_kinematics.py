@@ -28,7 +28,9 @@ multiply each stage's series: U = Σ w_k U_k, U̇ = Σ (w_k U̇_k + ẇ_k U_k).
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.fft import irfft, next_fast_len
@@ -159,10 +161,209 @@ class StormKinematics:
     stage_parameters: list[dict[str, float]] = field(default_factory=list)
     seed: int = 0
 
+    def __post_init__(self) -> None:
+        # an empty or inconsistent flow is a named error, never a run (issue 30: an empty
+        # stage_parameters once ran with an empty coefficient array and forces ≈ 1e-320)
+        cls = "StormKinematics"
+        dts = self.sample_interval
+        if not (isinstance(dts, int | float) and math.isfinite(dts) and dts > 0.0):
+            raise InputError(f"{cls}.sample_interval = {dts!r} is invalid: must be > 0 s")
+        u = np.asarray(self.velocity)
+        a = np.asarray(self.acceleration)
+        if u.ndim != 1 or u.size < 2:
+            raise InputError(
+                f"{cls}.velocity has shape {u.shape}: need a 1-D series of >= 2 samples"
+            )
+        if a.shape != u.shape:
+            raise InputError(
+                f"{cls}.acceleration has shape {a.shape}, velocity {u.shape}: must match"
+            )
+        for name, arr in (("velocity", u), ("acceleration", a)):
+            bad = np.flatnonzero(~np.isfinite(arr))
+            if bad.size:
+                raise InputError(
+                    f"{cls}.{name}[{int(bad[0])}] = {float(arr[bad[0]])!r} is invalid: must be"
+                    " finite"
+                )
+        if not math.isfinite(self.current):
+            raise InputError(f"{cls}.current = {self.current!r} is invalid: must be finite")
+        t_last = (u.size - 1) * dts
+        if not (0.0 < self.duration <= t_last * (1.0 + 1e-9) + 1e-12):
+            raise InputError(
+                f"{cls}.duration = {self.duration!r} s is invalid: must lie in (0, {t_last:g}]"
+                f" s, the time of the last sample ({u.size} samples every {dts:g} s)"
+            )
+        w = np.asarray(self.weights)
+        ns = len(self.stage_parameters)
+        if ns == 0:
+            raise InputError(
+                f"{cls}.stage_parameters = [] is invalid: give one dict per stage with"
+                " significant_velocity [m/s] and mean_period [s] (the force model's K and M"
+                " come from them); use StormKinematics.regular/from_series or storm_kinematics"
+            )
+        if w.ndim != 2 or w.shape != (ns, u.size):
+            raise InputError(
+                f"{cls}.weights has shape {w.shape}: expected (stages, samples) = ({ns}, {u.size})"
+            )
+        for i, p in enumerate(self.stage_parameters):
+            us = p.get("significant_velocity") if isinstance(p, dict) else None
+            tu = p.get("mean_period") if isinstance(p, dict) else None
+            if us is None or not math.isfinite(us) or us < 0.0:
+                raise InputError(
+                    f"{cls}.stage_parameters[{i}].significant_velocity = {us!r} is invalid:"
+                    " must be a finite value >= 0 m/s"
+                )
+            if tu is None or not math.isfinite(tu) or tu <= 0.0:
+                raise InputError(
+                    f"{cls}.stage_parameters[{i}].mean_period = {tu!r} is invalid: must be > 0 s"
+                )
+
     @property
     def time(self) -> np.ndarray:
         """Sample times [s]."""
         return np.arange(self.velocity.size) * self.sample_interval
+
+    @classmethod
+    def regular(
+        cls,
+        height: float,
+        period: float,
+        depth: float,
+        *,
+        duration: float,
+        diameter: float,
+        direction_deg: float = 90.0,
+        build_up_s: float = 0.0,
+        current: Current | None = None,
+        z0: float | None = None,
+        sample_interval: float | None = None,
+    ) -> StormKinematics:
+        """Flow of a regular Airy wave (:func:`onbottom.hydro.flow_input.regular_wave_flow`).
+
+        Parameters
+        ----------
+        height, period, depth : float
+            Wave height H [m], period T [s], water depth d [m], > 0.
+        duration : float
+            Record length [s], > 0.
+        diameter : float
+            Pipe outer diameter D [m], > 0 (for the current averaged over D).
+        direction_deg : float
+            Wave direction relative to the pipe axis θ_w [deg] (90: normal to the pipe).
+        build_up_s : float
+            Linear build-up of the amplitude [s], >= 0.
+        current : Current or None
+        z0 : float or None
+            Seabed roughness [m] when ``current.z0`` is None.
+        sample_interval : float or None
+            Δt_s [s]; None → T/50.
+
+        ``stage_parameters``: one stage with U_s = U_w sin θ_w (the velocity amplitude, the
+        regular-wave U* of DNV-RP-F109 §3.4.3) and T_u = T, so K = U_w T/D, M = V/U_w.
+        """
+        from onbottom.hydro.flow_input import regular_wave_flow
+
+        d = positive("diameter", diameter)
+        u, a, dts, info = regular_wave_flow(
+            height,
+            period,
+            depth,
+            duration=duration,
+            direction_deg=direction_deg,
+            build_up_s=build_up_s,
+            sample_interval=sample_interval,
+        )
+        params = {
+            "significant_velocity": abs(info["amplitude"]),
+            "mean_period": float(period),
+            "spreading_factor": abs(math.sin(math.radians(direction_deg))),
+            "kind": "regular",
+            "height": float(height),
+            "depth": float(depth),
+            "ursell": info["ursell"],
+            "wave_length": info["wave_length"],
+            "direction_deg": float(direction_deg),
+            "build_up_s": float(build_up_s),
+            "amplitude": info["amplitude"],
+        }
+        return cls(
+            sample_interval=dts,
+            velocity=u,
+            acceleration=a,
+            current=current_normal_to_pipe(current, d, z0),
+            duration=(u.size - 1) * dts,
+            weights=np.ones((1, u.size)),
+            stage_parameters=[params],
+        )
+
+    @classmethod
+    def from_series(
+        cls,
+        series: Any,
+        *,
+        diameter: float,
+        current: Current | None = None,
+        z0: float | None = None,
+        sampling_tolerance: float | None = None,
+    ) -> StormKinematics:
+        """Flow of a measured velocity record normal to the pipe.
+
+        Parameters
+        ----------
+        series : path or VelocitySeries
+            CSV file (:func:`onbottom.hydro.flow_input.read_velocity_series`) or a checked
+            :class:`~onbottom.hydro.flow_input.VelocitySeries` (from arrays:
+            :func:`~onbottom.hydro.flow_input.velocity_series`).
+        diameter : float
+            Pipe outer diameter D [m], > 0 (for the current averaged over D).
+        current : Current or None
+            Steady current added to the record (None: the record holds all the flow).
+        z0 : float or None
+        sampling_tolerance : float or None
+            Relative tolerance on the sampling interval [-] (None: the reader's default).
+
+        ``stage_parameters``: one stage with U_s = 2·std(U) and T_u = 2π·std(U)/std(U̇), the
+        spectral definitions U_s = 2√M_0, T_u = 2π√(M_0/M_2) of DNV-RP-F109 §3.4.3 estimated
+        from the record (U̇ has the spectrum ω² S_UU).
+        """
+        from onbottom.hydro.flow_input import VelocitySeries, read_velocity_series
+
+        d = positive("diameter", diameter)
+        if isinstance(series, VelocitySeries):
+            vs = series
+        elif isinstance(series, str | os.PathLike):
+            kw = {} if sampling_tolerance is None else {"sampling_tolerance": sampling_tolerance}
+            vs = read_velocity_series(series, **kw)
+        else:
+            raise InputError(
+                f"series = {type(series).__name__} is invalid: expected a CSV path or a"
+                " VelocitySeries"
+            )
+        su = float(np.std(vs.velocity))
+        sa = float(np.std(vs.acceleration))
+        if su <= 0.0 or sa <= 0.0:
+            tu = vs.duration
+        else:
+            tu = 2.0 * math.pi * su / sa
+        params = {
+            "significant_velocity": 2.0 * su,
+            "mean_period": tu,
+            "spreading_factor": 1.0,
+            "kind": "measured",
+            "source": vs.source,
+            "t0": vs.t0,
+            "acceleration_given": int(vs.acceleration_given),
+        }
+        n = vs.velocity.size
+        return cls(
+            sample_interval=vs.sample_interval,
+            velocity=vs.velocity,
+            acceleration=vs.acceleration,
+            current=current_normal_to_pipe(current, d, z0),
+            duration=vs.duration,
+            weights=np.ones((1, n)),
+            stage_parameters=[params],
+        )
 
 
 def _stage_weights(storm: Storm, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

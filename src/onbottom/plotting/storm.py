@@ -74,7 +74,9 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
     """L/(2 + M)² against K, one line per M, one panel per soil (rows) and criterion (columns).
 
     ``curves`` is the dataset of :func:`onbottom.study.stability_curves.stability_curves`
-    (variables ``L_stable`` and ``L_10`` over dimensions soil, N, M, K).
+    (variables ``L_stable`` and ``L_10`` over dimensions soil, N, M, K). Points whose storms
+    left the soil model's range (``<criterion>_out_of_range`` = 1) are drawn as open markers
+    with a red edge ("outside soil model range" in the legend).
     """
     soils = [str(s) for s in curves["soil"].values]
     crits = [c for c in ("L_stable", "L_10") if c in curves]
@@ -89,6 +91,7 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
     for i, soil in enumerate(soils):
         for j, crit in enumerate(crits):
             ax = axes[i, j]
+            marked = False
             for kn, n in enumerate(n_values):
                 for km, m in enumerate(curves["M"].values):
                     y = curves[crit].sel(soil=soil, N=n, M=m).values / (2.0 + m) ** 2
@@ -102,6 +105,22 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
                         ls=("-", "--", ":", "-.")[kn % 4],
                         label=label,
                     )
+                    flag = f"{crit}_out_of_range"
+                    if flag in curves:
+                        out = curves[flag].sel(soil=soil, N=n, M=m).values == 1
+                        if out.any():
+                            ax.plot(
+                                curves["K"].values[out],
+                                y[out],
+                                ls="none",
+                                marker="o",
+                                ms=7,
+                                mfc="white",
+                                mec="red",
+                                mew=1.2,
+                                label=None if marked else "outside soil model range",
+                            )
+                            marked = True
             ax.set_xscale("log")
             ax.set_xlabel("K = U_s T_u / D [-]")
             ax.set_ylabel(f"{crit} / (2 + M)² [-]")

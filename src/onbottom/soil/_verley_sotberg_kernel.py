@@ -67,7 +67,8 @@ P_WORK_INTEGRAND = 12  # INTEGRAND_* code
 P_ZI = 13  # initial penetration of the first trough z_i [m] (Eq 7/15)
 P_PASSIVE_RULE = 14  # RULE_* code of onbottom.soil._trough (elastoplastic / legacy_elastic)
 P_B_PLACEMENT = 15  # B_* code: factor B outside or inside the bracket of Eqs 13-14
-N_PARAMS = 16
+P_ZMAX_BASE = 16  # ZMAX_BASE_* code: the z_i of Eq 8's cap (as-laid Eq 7, or the trough's)
+N_PARAMS = 17
 
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # origin (centre) of the current trough y0 [m]
@@ -94,6 +95,9 @@ ZMAX_LAW_NO_HALF = 1  # alternative reading of Eq 8 without the factor 0.5
 
 B_OUTSIDE = 0  # z/D = z_i/D + B·0.23·[E/(γ'D³)]^0.5·... and + B·0.5·[s/(K_s D)]^0.5
 B_INSIDE = 1  # B inside the powers: factor B^0.5 (0.23·[B·E/(γ'D³)]^0.5, 0.5·[B·s/(K_s D)]^0.5)
+
+ZMAX_BASE_AS_LAID = 0  # Eq 8 about the as-laid z_i of Eq 7 (P_ZI): no ratchet over troughs
+ZMAX_BASE_TROUGH = 1  # Eq 8 about the current trough's z_i (= z3 of the last breakout)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -136,7 +140,10 @@ def residual_ratio(z2_over_d):
 def grown_penetration(params, z_old, zi, work, smax, v_load):
     """Penetration after work ``work`` and amplitude ``smax`` in region 2 (never below z_old).
 
-    z = max(z_old, min(Eq 6, Eq 8)) with the factor B (Youssef & Cassidy Eqs 13-14).
+    z = max(z_old, min(Eq 6, Eq 8)) with the factor B (Youssef & Cassidy Eqs 13-14). Eq 6
+    grows from the trough's z_i; Eq 8's cap is about the as-laid z_i of Eq 7 (``P_ZI``,
+    default) or the trough's (``ZMAX_BASE_TROUGH``, the earlier rule, which let each new
+    trough restart the cap from z3 and ratchet z up under sustained sliding).
     """
     if v_load <= 0.0 or smax <= 0.0 or params[P_WORK_LAW] == WORK_LAW_NONE:
         return z_old
@@ -152,7 +159,8 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     half = 0.5
     if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
         half = 1.0
-    z_cap = zi + b * half * d * (smax / (ks * d)) ** 0.5
+    base = zi if params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH else params[P_ZI]
+    z_cap = base + b * half * d * (smax / (ks * d)) ** 0.5
     z_new = min(z_work, z_cap)
     if z_new > z_old:
         return z_new

@@ -42,6 +42,7 @@ from onbottom.soil.base import S_REGION, S_Z, LateralResistanceModel
 __all__ = [
     "B_PLACEMENTS",
     "KS_CALIBRATION_RANGE",
+    "MAX_PENETRATION_BASES",
     "PASSIVE_LAWS",
     "PASSIVE_RULES",
     "PENETRATION_LAWS",
@@ -101,6 +102,19 @@ B_PLACEMENTS: dict[str, int] = {
     "outside": _k.B_OUTSIDE,
     "inside": _k.B_INSIDE,
 }
+
+MAX_PENETRATION_BASES: dict[str, int] = {
+    "as_laid": _k.ZMAX_BASE_AS_LAID,
+    "trough": _k.ZMAX_BASE_TROUGH,
+}
+"""Which z_i the cap of Eq 8 (z2max/D = z_i/D + 0.5·[s/(K_s D)]^0.5) is measured from [I]:
+``"as_laid"`` (default) the initial penetration of Eq 7 on virgin soil — the z_i the paper
+defines (Youssef & Cassidy 2014 restate Eq 8 with the z_i of Eq 7), so cyclic motion of
+amplitude s can never bury the pipe deeper than z_i + 0.5D·[s/(K_s D)]^0.5 however often it
+breaks out and starts a new trough; ``"trough"`` the z_i of the current trough (z3 after a
+breakout): the earlier rule, under which sustained sliding with reversals ratcheted z up by
+the whole cap at every new trough (docs/theory/verley_sotberg.md, "Penetration under
+sustained sliding")."""
 """Where the factor B of Youssef & Cassidy (2014) Eqs 13–14 stands [R]: ``"outside"`` the
 bracket (z/D = z_i/D + B·0.23·[E/(γ'D³)]^0.5·[K_s s/D]^−0.31, default) or ``"inside"`` it
 (0.23·[B·E/(γ'D³)]^0.5, 0.5·[B·s/(K_s D)]^0.5, i.e. an effective factor B^0.5)."""
@@ -335,6 +349,9 @@ class VerleySotberg(LateralResistanceModel):
         "legacy_elastic" (restoring force on the envelope); see :data:`PASSIVE_RULES`.
     b_placement : str
         "outside" (default) or "inside" the bracket of Eqs 13–14; see :data:`B_PLACEMENTS`.
+    max_penetration_base : str
+        "as_laid" (default: Eq 8's cap about the z_i of Eq 7) or "trough" (about the current
+        trough's z_i); see :data:`MAX_PENETRATION_BASES`.
     variant : str
         Label stored in results ("silica", "calcareous", "f109", "custom").
     """
@@ -362,6 +379,7 @@ class VerleySotberg(LateralResistanceModel):
     mobilisation_displacement: float | None = None
     passive_rule: str = "elastoplastic"
     b_placement: str = "outside"
+    max_penetration_base: str = "as_laid"
     variant: str = "custom"
 
     def __post_init__(self) -> None:
@@ -404,6 +422,7 @@ class VerleySotberg(LateralResistanceModel):
         one_of(f"{cls}.work_integrand", self.work_integrand, WORK_INTEGRANDS)
         one_of(f"{cls}.passive_rule", self.passive_rule, PASSIVE_RULES)
         one_of(f"{cls}.b_placement", self.b_placement, B_PLACEMENTS)
+        one_of(f"{cls}.max_penetration_base", self.max_penetration_base, MAX_PENETRATION_BASES)
         if self.mobilisation_displacement is not None:
             in_range(
                 f"{cls}.mobilisation_displacement",
@@ -607,6 +626,7 @@ class VerleySotberg(LateralResistanceModel):
         p[_k.P_ZI] = self.initial_penetration
         p[_k.P_PASSIVE_RULE] = PASSIVE_RULES[self.passive_rule]
         p[_k.P_B_PLACEMENT] = B_PLACEMENTS[self.b_placement]
+        p[_k.P_ZMAX_BASE] = MAX_PENETRATION_BASES[self.max_penetration_base]
         return p
 
     def initial_state(self) -> np.ndarray:
@@ -637,4 +657,5 @@ class VerleySotberg(LateralResistanceModel):
             "mobilisation_displacement": self.delta,
             "passive_rule": self.passive_rule,
             "b_placement": self.b_placement,
+            "max_penetration_base": self.max_penetration_base,
         }

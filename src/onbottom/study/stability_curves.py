@@ -20,7 +20,13 @@ Construction of a point (our choices; F109 and PONDUS do not publish theirs):
   can only be lower (less conservative) than with unstopped runs — by little, since the stop is
   far above the target;
 * a bisection evaluation stops early once the seeds run so far decide which side of the target
-  the mean is on (deterministic: the decision is the one all seeds would give).
+  the mean is on (deterministic: the decision is the one all seeds would give);
+* a storm whose penetration left the soil model's range (z > D/2, status −3 of
+  :func:`~onbottom.dynamics.storm_section.simulate_storm_section`) counts with its
+  displacement, and the point is marked ``out_of_range`` (NetCDF variable
+  ``<criterion>_out_of_range``, CSV column, open marker in the figure, report table) when any
+  storm at the two L values that bracket the answer (or, without an answer, at any L tried)
+  left the range: its L rests on the model outside its calibration.
 
 Each point is one task on Dask (:mod:`onbottom.study.engine`); seeds run inside the task.
 """
@@ -39,7 +45,11 @@ import xarray as xr
 
 from onbottom._validate import in_range, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER
-from onbottom.dynamics.storm_section import StormSolverSettings, simulate_storm_section
+from onbottom.dynamics.storm_section import (
+    STATUS_OUTSIDE_VALIDITY,
+    StormSolverSettings,
+    simulate_storm_section,
+)
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro.force_model import MorisonLift
 from onbottom.hydro.reductions import LoadReductions
@@ -201,8 +211,8 @@ def _mean_max(
     us: float,
     target: float,
     s: CurveSettings,
-) -> tuple[bool, float, int]:
-    """(mean max |y|/D >= target?, mean over the seeds run, seeds run)."""
+) -> tuple[bool, float, int, int]:
+    """(mean max |y|/D >= target?, mean over the seeds run, seeds run, seeds out of range)."""
     d = s.diameter
     ws = weight_parameter * 0.5 * s.water_density * d * us * us
     pipe = Pipe(outer_diameter=d, submerged_weight=ws, seawater_density=s.water_density)
@@ -214,20 +224,23 @@ def _mean_max(
     red = LoadReductions(permeable_seabed=soil != "clay")
     n = len(kins)
     total = 0.0
+    n_out = 0
     for i, kin in enumerate(kins):
         r = simulate_storm_section(
             pipe, soil_model, kin, force_model=s.force_model, reductions=red, settings=settings
         )
-        if not r.success:
+        if r.status == STATUS_OUTSIDE_VALIDITY:
+            n_out += 1  # ran to its end outside the soil model's range: counted, flagged
+        elif not r.success:
             raise RuntimeError(f"seed {kin.seed}: {r.message}")
         total += r.max_displacement / d
         run = i + 1
         # decided already? (remaining seeds add between 0 and stop each)
         if total >= target * n:
-            return True, total / run, run
+            return True, total / run, run, n_out
         if total + (n - run) * (stop + 0.1) < target * n:
-            return False, total / run, run
-    return total / n >= target, total / n, n
+            return False, total / run, run, n_out
+    return total / n >= target, total / n, n, n_out
 
 
 def find_weight_parameter(
@@ -235,7 +248,9 @@ def find_weight_parameter(
 ) -> dict[str, Any]:
     """Bisect log L for the seed-averaged max |y| = target·D of ``criterion``.
 
-    Returns a dict with L, bracket, evaluations, storms, runtime, and a status message.
+    Returns a dict with L, bracket, evaluations, storms, runtime, out_of_range (storms at the
+    final bracket — any L tried without an answer — that left the soil model's range), and a
+    status message.
     """
     if soil not in SOILS:
         raise InputError(f"soil = {soil!r} is invalid: must be one of {SOILS}")
@@ -249,14 +264,16 @@ def find_weight_parameter(
     evals = 0
     storms = 0
     cache: dict[float, bool] = {}
+    outside: dict[float, int] = {}
 
     def moves(lv: float) -> bool:
         nonlocal evals, storms
         if lv not in cache:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", OutOfRangeWarning)
-                above, _, ran = _mean_max(soil, lv, kins, us, target, s)
+                above, _, ran, n_out = _mean_max(soil, lv, kins, us, target, s)
             cache[lv] = above
+            outside[lv] = n_out
             evals += 1
             storms += ran
         return cache[lv]
@@ -297,6 +314,13 @@ def find_weight_parameter(
             else:
                 hi = mid
     value = math.sqrt(lo * hi) if ok else math.nan
+    n_out = outside.get(lo, 0) + outside.get(hi, 0) if ok else sum(outside.values())
+    if n_out:
+        message += (
+            f"; outside the soil model's range: {n_out} storm(s)"
+            + (" at the bracketing L values" if ok else "")
+            + " buried the pipe beyond D/2"
+        )
     return {
         "soil": soil,
         "K": float(k),
@@ -312,6 +336,7 @@ def find_weight_parameter(
         "cpu_s": time.process_time() - c0,
         "success": bool(ok),
         "error": False,
+        "out_of_range": int(n_out),
         "message": message,
     }
 
@@ -340,6 +365,7 @@ class _PointJob:
                 "cpu_s": 0.0,
                 "success": False,
                 "error": True,
+                "out_of_range": 0,
                 "message": f"{type(exc).__name__}: {exc}",
             }
 
@@ -424,7 +450,15 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     for c in criteria:
         arrs = {
             name: np.full(shape, np.nan)
-            for name in ("L", "L_low", "L_high", "evaluations", "storms", "runtime_s")
+            for name in (
+                "L",
+                "L_low",
+                "L_high",
+                "evaluations",
+                "storms",
+                "runtime_s",
+                "out_of_range",
+            )
         }
         for a, so in enumerate(soils):
             for b, n in enumerate(ns):
@@ -432,7 +466,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
                     for j, k in enumerate(ks):
                         r = idx[(so, n, m, k, c)]
                         for name in arrs:
-                            arrs[name][a, b, i, j] = r[name]
+                            arrs[name][a, b, i, j] = r.get(name, 0)
         dims = ("soil", "N", "M", "K")
         data[c] = (dims, arrs["L"])
         data[f"{c}_over_2_plus_M_squared"] = (
@@ -444,6 +478,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
         data[f"{c}_evaluations"] = (dims, arrs["evaluations"])
         data[f"{c}_storms"] = (dims, arrs["storms"])
         data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
+        data[f"{c}_out_of_range"] = (dims, (arrs["out_of_range"] > 0).astype(np.int8))
     failures = [
         {k2: r[k2] for k2 in ("soil", "K", "M", "N", "criterion", "message")}
         for r in rows
@@ -485,11 +520,26 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
             long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D",
             units="1",
         )
+        ds[f"{c}_out_of_range"].attrs.update(
+            long_name=f"1: storms deciding {c} buried the pipe beyond the soil model's range",
+            units="1",
+            flag_values="0 1",
+            flag_meanings="in_range out_of_range",
+        )
+    ds["out_of_range"] = sum(ds[f"{c}_out_of_range"] for c in criteria).clip(max=1)
+    ds["out_of_range"] = ds["out_of_range"].astype(np.int8)
+    ds["out_of_range"].attrs.update(
+        long_name="1: a criterion's storms left the soil model's range (z > D/2)",
+        units="1",
+        flag_values="0 1",
+        flag_meanings="in_range out_of_range",
+    )
     return annotate(ds)
 
 
 def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
-    """Rows soil, N, M, K, L_stable, L_10 and their L/(2 + M)² forms (for CSV)."""
+    """Rows soil, N, M, K, L_stable, L_10, their L/(2 + M)² forms and ``<criterion>
+    out_of_range`` (1: storms deciding the point left the soil model's range; for CSV)."""
     rows = []
     crits = [c for c in CRITERIA if c in ds]
     for so in ds["soil"].values:
@@ -506,5 +556,7 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                         v = float(ds[c].sel(soil=so, N=n, M=m, K=k))
                         row[c] = v
                         row[f"{c}/(2+M)^2"] = v / (2.0 + float(m)) ** 2
+                        key = f"{c}_out_of_range"
+                        row[key] = int(ds[key].sel(soil=so, N=n, M=m, K=k)) if key in ds else 0
                     rows.append(row)
     return rows

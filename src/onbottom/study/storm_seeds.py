@@ -22,6 +22,7 @@ import xarray as xr
 
 from onbottom.dynamics.storm_section import (
     CRITERIA_OVER_D,
+    STATUS_OUTSIDE_VALIDITY,
     StormSolverSettings,
     simulate_storm_section,
 )
@@ -75,6 +76,7 @@ class _SeedJob:
             "time_of_max": r.summary["time_of_max"],
             "n_liftoff": r.summary["n_liftoff"],
             "max_penetration": r.summary["max_penetration"],
+            "out_of_range_time": r.summary["out_of_range_time"],
             "n_steps": r.summary["n_steps"],
         }
 
@@ -87,7 +89,9 @@ class SeedStudy:
     ----------
     data : xarray.Dataset
         Per seed (dimension ``seed``): max_displacement, final_displacement [m], status,
-        time_of_max [s], n_liftoff, max_penetration [m]; NaN for failed seeds.
+        time_of_max [s], n_liftoff, max_penetration [m], out_of_range_time [s] (−1: never),
+        out_of_range (1: the run left the soil model's range, status −3; its numbers are
+        kept and counted in the statistics); NaN for failed seeds.
     statistics : dict
         Over the successful seeds: mean, std, min, max and the ``fractile`` of the maximum
         displacement [m]; n_seeds, n_failed; mean_over_D.
@@ -118,11 +122,15 @@ def _collect(
         "time_of_max",
         "n_liftoff",
         "max_penetration",
+        "out_of_range_time",
         "n_steps",
     )
     cols = {k: np.array([r.get(k, math.nan) for r in rows], dtype=float) for k in names}
     status = np.array([r["status"] for r in rows], dtype=np.int64)
-    ok = np.array([bool(r["success"]) for r in rows])
+    # a seed that left the soil model's range ran to its end: its numbers count, flagged
+    # (status −3 and ``out_of_range``), and it is listed with the failures (exit code 3)
+    flagged = status == STATUS_OUTSIDE_VALIDITY
+    ok = np.array([bool(r["success"]) for r in rows]) | flagged
     failures = [
         {"seed": r["seed"], "status": r["status"], "message": r["message"]}
         for r in rows
@@ -142,13 +150,15 @@ def _collect(
         stats = {k: math.nan for k in ("mean", "std", "min", "max", "fractile")}
         stats["fractile_level"] = float(fractile)
     stats["n_seeds"] = len(rows)
-    stats["n_failed"] = len(failures)
+    stats["n_failed"] = len(failures) - int(flagged.sum())
+    stats["n_out_of_range"] = int(flagged.sum())
     stats["mean_over_D"] = stats["mean"] / diameter
     criteria = {k: bool(stats["mean"] <= lim * diameter) for k, lim in CRITERIA_OVER_D.items()}
     ds = xr.Dataset(
         {
             **{k: ("seed", v) for k, v in cols.items()},
             "status": ("seed", status),
+            "out_of_range": ("seed", flagged.astype(np.int8)),
         },
         coords={"seed": seeds},
         attrs=provenance(
@@ -164,6 +174,8 @@ def _collect(
         ("final_displacement", "m"),
         ("time_of_max", "s"),
         ("max_penetration", "m"),
+        ("out_of_range_time", "s"),
+        ("out_of_range", "1"),
         ("n_liftoff", "1"),
         ("n_steps", "1"),
         ("status", "1"),

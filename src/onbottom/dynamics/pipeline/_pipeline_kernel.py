@@ -76,7 +76,8 @@ ST_EA = 20  # reference EA for strain [N]
 ST_EI = 21  # reference EI for strain [N·m²]
 ST_PREDICTOR = 22  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
 ST_CTOL = 23  # Newton correction [m] below which a step is accepted (displacement resolution)
-N_SETTINGS = 24
+ST_Z_LIMIT = 24  # penetration beyond the soil models' range [m] (inf: none)
+N_SETTINGS = 25
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -115,7 +116,9 @@ SC_T_LIMIT = 10  # time the displacement limit was first reached [s] (nan: none)
 SC_NEG_PIVOT = 11  # steps whose Jacobian had a negative pivot
 SC_N_FACTOR = 12  # band factorisations
 SC_LIFT_NODE = 13  # node of the first lift-off
-N_SCAL = 14
+SC_T_ZLIMIT = 14  # first time a node's penetration exceeded ST_Z_LIMIT [s] (nan: never)
+SC_ZLIMIT_NODE = 15  # that node (-1: none); the run goes on, the caller flags the result
+N_SCAL = 16
 
 # ---- record fields (rec[k, F_*, node]) ---------------------------------------------------------
 F_U = 0  # axial displacement [m]
@@ -147,7 +150,7 @@ STATUS_END = 1
 STATUS_LIMIT = 2
 STATUS_STEP_FAILED = -1
 STATUS_SOIL_NAN = -2
-STATUS_SINGULAR = -3
+STATUS_SINGULAR = -4  # (-3 is the section solvers' "outside the soil model's range")
 
 
 @njit(cache=True)
@@ -624,6 +627,9 @@ def integrate(
                 fstate[i, c] = ftrial[i, c]
             axst[i, 0] = d1[NDOF_NODE * i]
             axst[i, 1] = node_fa[i]
+            if sstate[i, S_Z] > settings[ST_Z_LIMIT] and scal[SC_ZLIMIT_NODE] < 0.0:
+                scal[SC_T_ZLIMIT] = t1
+                scal[SC_ZLIMIT_NODE] = i
             if vcont[i] <= 0.0:
                 if scal[SC_N_LIFT] == 0.0:
                     scal[SC_T_LIFT] = t1

@@ -27,6 +27,7 @@ from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
+from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
 from onbottom.errors import InputError
 from onbottom.hydro._force_contract import N_FORCE_STATE
 from onbottom.hydro.force_model import parameter_rows
@@ -161,7 +162,10 @@ class PipelineResult:
     success : bool
         True when the run ended normally (end of storm or runaway stop).
     status : int
-        1 end, 2 runaway stop, −1 step failure, −2 soil NaN, −3 singular Jacobian.
+        1 end, 2 runaway stop, −1 step failure, −2 soil NaN, −3 a node's penetration left
+        the soil model's range (beyond D/2 for Verley & Sotberg / Verley & Lund, as the
+        section solvers; the run went on, its numbers are kept, ``success`` is False and the
+        message names the time, node and x), −4 singular Jacobian.
     message : str
     diameter : float
         D [m].
@@ -289,7 +293,16 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     st[K.ST_EI] = model.ei
     st[K.ST_PREDICTOR] = _PREDICTOR
     st[K.ST_CTOL] = 1e-9 * d
+    st[K.ST_Z_LIMIT] = _penetration_limit(model)
     return st
+
+
+def _penetration_limit(model: PipelineModel) -> float:
+    """D/2 when a section's soil model carries D (Verley & Sotberg, Verley & Lund; the rule of
+    the section solvers), else ∞ (Coulomb)."""
+    if any(getattr(sec.model, "outer_diameter", None) is not None for sec in model.sections):
+        return 0.5 * model.pipe.outer_diameter
+    return math.inf
 
 
 class _Writer:
@@ -511,6 +524,8 @@ def simulate_pipeline(
         scal[K.SC_T_LIFT] = math.nan
         scal[K.SC_T_LIMIT] = math.nan
         scal[K.SC_LIFT_NODE] = -1.0
+        scal[K.SC_T_ZLIMIT] = math.nan
+        scal[K.SC_ZLIMIT_NODE] = -1.0
         sstate = arr["sstate"]
         axst = arr["axst"]
         fstate = np.zeros((n, N_FORCE_STATE))
@@ -635,11 +650,31 @@ def simulate_pipeline(
     if not success:
         message += f" (t = {scal[K.SC_T]:.6g} s, dt_min = {st[K.ST_DT_MIN]:.3g} s)"
         logger.warning("simulate_pipeline: %s", message)
+    z_node = int(scal[K.SC_ZLIMIT_NODE])
+    summary["out_of_range_time"] = float(scal[K.SC_T_ZLIMIT])
+    summary["out_of_range_node"] = float(z_node)
+    summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
+    summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
+    if success and z_node >= 0:
+        success = False
+        status = STATUS_OUTSIDE_VALIDITY
+        zmax = float(np.max(env[K.E_MAX_Z]))
+        message = (
+            f"outside the model's validity: penetration exceeded D/2 ="
+            f" {st[K.ST_Z_LIMIT]:.4g} m at t = {scal[K.SC_T_ZLIMIT]:.1f} s, node {z_node}"
+            f" (x = {x[z_node]:.4g} m); largest {zmax:.4g} m = {zmax / d:.3g}D at x ="
+            f" {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m (the soil models hold for z <= D/2;"
+            f" the run went on: {message})"
+        )
+        logger.warning("simulate_pipeline: %s", message)
     final_attrs = {
         "status": int(status),
         "message": message,
         "max_displacement": vmax,
         "max_strain": emax,
+        "out_of_range": int(z_node >= 0),
+        "out_of_range_time": float(scal[K.SC_T_ZLIMIT]),
+        "out_of_range_x": summary["out_of_range_x"],
         "summary": json.dumps(summary, default=float),
     }
     data = None

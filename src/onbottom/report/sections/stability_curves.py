@@ -46,13 +46,19 @@ def build(ctx: SectionContext) -> SectionContent:
     except ImportError:
         plot_stability_curves = None
     tables, figures = [], []
+    flagged = 0
     for path in files:
         ds = load_dataset(path)
         rows = curves_table(ds)
+        flagged += sum(
+            1 for r in rows if any(v for k, v in r.items() if k.endswith("_out_of_range"))
+        )
         cols = list(rows[0]) if rows else ["soil"]
         tables.append(
             Table(
-                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria",
+                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria"
+                " (*_out_of_range = 1: the storms deciding the point buried the pipe beyond"
+                " the soil model's range, z > D/2)",
                 columns=cols,
                 rows=[[r[c] for c in cols] for r in rows],
                 digits=3,
@@ -63,7 +69,8 @@ def build(ctx: SectionContext) -> SectionContent:
                 ctx.save_figure(
                     plot_stability_curves(ds, title=path.stem),
                     path.stem,
-                    f"{path.name}: L/(2 + M)² against K for each soil and M.",
+                    f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
+                    " markers: points outside the soil model's range.",
                 )
             )
     return SectionContent(
@@ -76,7 +83,14 @@ def build(ctx: SectionContext) -> SectionContent:
                 reference=None,
                 tolerance="—",
                 status="info",
-            )
+            ),
+            Check(
+                name="curve points outside the soil model's range",
+                value=flagged,
+                reference=None,
+                tolerance="—",
+                status="info",
+            ),
         ],
         tables=tables,
         figures=figures,
