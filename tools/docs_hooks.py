@@ -46,6 +46,7 @@ API_PACKAGES = (
     ("onbottom.dem", ""),
     ("onbottom.calibration", ""),
     ("onbottom.study", ""),
+    ("onbottom.metocean", ""),
     ("onbottom.plotting", ""),
     ("onbottom.report", ""),
     ("onbottom.results", ""),

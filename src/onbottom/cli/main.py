@@ -28,6 +28,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "loads",
     "storm",
     "curves",
+    "metocean",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
