@@ -192,13 +192,9 @@ def sector_toml(
         )
     if pipe_heading_deg is None or not math.isfinite(row.centre_deg):
         direction = 90.0
-        dir_note = (
-            "worst case: waves normal to the pipe"
-            if pipe_heading_deg is None or not (math.isfinite(row.centre_deg))
-            else ""
-        )
-        if pipe_heading_deg is None and math.isfinite(row.centre_deg):
-            dir_note = "set from the sector centre and the pipe heading (--pipe-heading-deg)"
+        dir_note = "worst case, waves normal to the pipe"
+        if math.isfinite(row.centre_deg):
+            dir_note += " (--pipe-heading-deg gives the sector's own)"
     else:
         direction = (row.centre_deg - pipe_heading_deg) % 360.0
         dir_note = f"sector centre {row.centre_deg:g}° − pipe heading {pipe_heading_deg:g}°"
