@@ -123,3 +123,16 @@ def test_input_errors_exit_1_with_the_field(tmp_path, capsys):
         main(["metocean", str(EXAMPLE), "--out", str(tmp_path / "o"), "--return-periods", "10,x"])
         == 1
     )
+
+
+@pytest.mark.slow
+def test_report_section_runs_and_passes(tmp_path):
+    from onbottom.report import build_report
+
+    res = build_report(tmp_path, only=["metocean"])
+    (sec,) = [s for s in res.sections if s.name == "metocean"]
+    assert sec.state == "ok", sec.reason
+    assert res.n_fail == 0
+    html = res.index.read_text(encoding="utf-8")
+    assert "100-year H_s (omni) against the generating model" in html
+    assert (tmp_path / "figures" / "metocean_contours.png").is_file()

@@ -147,3 +147,13 @@ def test_joint_fit_recovers_the_generating_model():
     for h in (1.0, 2.0, 3.0, 4.0):
         for q in (0.05, 0.5, 0.95):
             assert fit.tp_quantile(h, q) == pytest.approx(float(true.tp_quantile(h, q)), rel=0.015)
+
+
+@pytest.mark.slow
+def test_reference_storm_levels_of_the_example_model_are_what_a_2000_year_draw_gives():
+    """The constants the report and the theory page compare the example's analysis with."""
+    from onbottom.metocean.synthetic import STORM_LEVELS_2000Y, simulated_storm_levels
+
+    got = simulated_storm_levels()
+    for r, ref in STORM_LEVELS_2000Y.items():
+        assert got[r] == pytest.approx(ref, abs=0.005)
