@@ -67,6 +67,32 @@ def test_end_to_end_on_the_shipped_example(run, capsys):
     jm = payload["joint_model"]
     assert jm["hs_scale"] == pytest.approx(1.0, rel=0.1)
     assert jm["hs_shape"] == pytest.approx(1.35, rel=0.1)
+    _docs_numbers_are_these(payload)
+
+
+def _docs_numbers_are_these(payload):
+    """The numbers docs/theory/metocean.md states for the shipped example (to half a unit of
+    their last decimal): the omni table, the fitted Weibull, the 100-year contour's H_s."""
+    from onbottom.metocean.synthetic import STORM_LEVELS_2000Y
+
+    text = (ROOT / "docs" / "theory" / "metocean.md").read_text(encoding="utf-8")
+    rows = re.findall(
+        r"^\| (\d+) \| ([\d.]+) \[([\d.]+), ([\d.]+)\] m \| ([\d.]+) m \|$", text, re.M
+    )
+    assert [r[0] for r in rows] == ["1", "10", "100"]
+    omni = payload["table"][0]
+    for i, (rp, v, lo, hi, ref) in enumerate(rows):
+        assert omni["hs"][i] == pytest.approx(float(v), abs=0.005)
+        assert omni["hs_lower"][i] == pytest.approx(float(lo), abs=0.005)
+        assert omni["hs_upper"][i] == pytest.approx(float(hi), abs=0.005)
+        assert STORM_LEVELS_2000Y[float(rp)] == pytest.approx(float(ref), abs=0.005)
+    m = re.search(r"fitted joint model: α = ([\d.]+) m, β = ([\d.]+), γ = ([\d.]+) m", text)
+    jm = payload["joint_model"]
+    assert jm["hs_scale"] == pytest.approx(float(m.group(1)), abs=5e-4)
+    assert jm["hs_shape"] == pytest.approx(float(m.group(2)), abs=5e-4)
+    assert jm["hs_location"] == pytest.approx(float(m.group(3)), abs=5e-4)
+    c = re.search(r"100-year IFORM contour reaches H_s = ([\d.]+) m", text)
+    assert payload["contour_max_hs"]["100"] == pytest.approx(float(c.group(1)), abs=0.005)
 
 
 def _case_with(fragment: str) -> str:

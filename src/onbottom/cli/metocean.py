@@ -12,7 +12,8 @@ Writes into ``--out``:
   IFORM contours, with provenance attributes;
 * ``return_levels.png``, ``contours.png`` — the figures.
 
-``--json`` keys: ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
+``--json`` keys: ``success`` (false when the omnidirectional H_s has no return values: exit
+status 3), ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
 ``return_periods``, ``ci_method``, ``confidence``, ``table`` (list of rows: ``sector``,
 ``centre_deg``, ``hs``, ``hs_lower``, ``hs_upper``, ``tp``, ``tp_low``, ``tp_high``,
 ``current``, ``current_lower``, ``current_upper``, each a list over ``return_periods``; SI),
@@ -26,7 +27,13 @@ from pathlib import Path
 
 import click
 
-from onbottom.cli._common import Number, emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 
 __all__ = ["command", "run_metocean"]
 
@@ -67,6 +74,8 @@ def run_metocean(
     import importlib.util
     import math
 
+    import numpy as np
+
     from onbottom.errors import InputError
 
     missing = [m for m in ("pyextremes", "virocon") if importlib.util.find_spec(m) is None]
@@ -100,6 +109,12 @@ def run_metocean(
     out.mkdir(parents=True, exist_ok=True)
     files = [str(write_text_atomic(out / "design_table.csv", design_table_csv(rows)))]
     notes: list[str] = []
+    if max(options.return_periods) > 4.0 * hc.years:
+        notes.append(
+            f"return periods up to {max(options.return_periods):g} years from a"
+            f" {hc.years:.1f}-year record: beyond about 4 times the record the values are"
+            " extrapolations (Coles 2001 §4.4); read the intervals"
+        )
     f109 = 10.0 in return_periods and 100.0 in return_periods and hc.has_current
     if not f109:
         notes.append(
@@ -143,6 +158,7 @@ def run_metocean(
         return None if x is None else [v if math.isfinite(v) else None for v in x]
 
     return {
+        "success": bool(np.all(np.isfinite(result.hs["omni"].value))),
         "hindcast": str(hindcast_path),
         "years": hc.years,
         "step_hours": hc.step_hours,
@@ -300,6 +316,8 @@ def command(
     )
     if as_json:
         emit_json(payload)
+        if not payload["success"]:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
     rps = payload["return_periods"]
     click.echo(
@@ -322,3 +340,6 @@ def command(
     for n in payload["notes"]:
         click.echo(f"note: {n}", err=True)
     click.echo(f"written to {out}: {len(payload['files'])} files")
+    if not payload["success"]:
+        click.echo("NOT VALID: no return values for the whole record (too few storms)", err=True)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

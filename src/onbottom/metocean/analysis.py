@@ -19,7 +19,13 @@ from onbottom.metocean.hindcast import Hindcast
 from onbottom.metocean.joint import JointModel, fit_joint_model, iform_contour
 from onbottom.metocean.storms import sector_edges, sector_mask, storm_peaks, threshold_for_rate
 
-__all__ = ["MetoceanOptions", "MetoceanResult", "analyse_hindcast", "sector_names"]
+__all__ = [
+    "MIN_TARGET_STORMS",
+    "MetoceanOptions",
+    "MetoceanResult",
+    "analyse_hindcast",
+    "sector_names",
+]
 
 _COMPASS = (
     "N",
@@ -197,10 +203,15 @@ def _version(dist: str) -> str:
         return "unknown"
 
 
+MIN_TARGET_STORMS = 20
+"""Fewest storms the threshold aims at, whatever the rate (short records)."""
+
+
 def _levels(values, hc: Hindcast, o: MetoceanOptions, name: str) -> ReturnLevels:
+    rate = max(o.storm_rate, MIN_TARGET_STORMS / hc.years)
     u = (
-        threshold_for_rate(values, hc.step_hours, o.r_hours, hc.years, o.storm_rate)
-        if np.any(values > 0)
+        threshold_for_rate(values, hc.step_hours, o.r_hours, hc.years, rate)
+        if np.count_nonzero(values > 0) > 1
         else np.inf
     )
     storms = storm_peaks(values, hc.step_hours, u, o.r_hours, hc.years)
@@ -221,7 +232,8 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
     """Storms, return values per sector (H_s, current), joint model and contours.
 
     Each series (omni and each sector's masked series) gets its own threshold, set so that
-    about ``storm_rate`` storms a year exceed it, declustered with ``r_hours``.
+    about ``storm_rate`` storms a year (and at least :data:`MIN_TARGET_STORMS` in the record)
+    exceed it, declustered with ``r_hours``.
     """
     o = options or MetoceanOptions()
     hc = hindcast
