@@ -95,9 +95,9 @@ def _docs_numbers_are_these(payload):
     assert payload["contour_max_hs"]["100"] == pytest.approx(float(c.group(1)), abs=0.005)
 
 
-def _case_with(fragment: str) -> str:
-    """examples/stability_case.toml with its [waves], [current], [[combinations]] replaced."""
-    text = (ROOT / "examples" / "stability_case.toml").read_text(encoding="utf-8")
+def _case_with(fragment: str, example: str = "stability_case.toml") -> str:
+    """An example case with its [waves], [current], [[combinations]] replaced."""
+    text = (ROOT / "examples" / example).read_text(encoding="utf-8")
     kept, skip = [], False
     for line in text.splitlines():
         head = re.match(r"^\s*\[\[?([a-z_.]+)\]\]?", line)
@@ -134,6 +134,14 @@ def test_case_fragment_pastes_into_a_stability_case(run, tmp_path):
     assert combos[1].current.velocity == pytest.approx(float(w["current_100y"]), abs=6e-4)
     # waves from W on a N-S pipe: normal to the pipe
     assert combos[0].sea_state.direction_deg % 180.0 == pytest.approx(90.0)
+    # the same fragment in the storm example: [waves] is the storm's peak, [current] its current
+    from onbottom.dynamics.storm_case import load_storm_case
+
+    storm_path = tmp_path / "storm.toml"
+    storm_path.write_text(_case_with(frag, "storm_case.toml"), encoding="utf-8")
+    setup = load_storm_case(storm_path)
+    assert max(st.hs for st in setup.storm.stages) == pytest.approx(float(w["hs_100y"]), abs=0.006)
+    assert setup.current.velocity == pytest.approx(float(w["current_10y"]), abs=6e-4)
 
 
 def test_input_errors_exit_1_with_the_field(tmp_path, capsys):
