@@ -92,7 +92,6 @@ def test_bootstrap_interval_brackets_the_estimate_and_is_reproducible():
     np.testing.assert_array_equal(a.upper, b.upper)
 
 
-@pytest.mark.slow
 def test_eva_intervals_cover_the_known_return_levels_over_50_draws():
     from scipy import stats
 
