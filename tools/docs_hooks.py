@@ -47,6 +47,7 @@ API_PACKAGES = (
     ("onbottom.calibration", ""),
     ("onbottom.study", ""),
     ("onbottom.metocean", ""),
+    ("onbottom.reliability", ""),
     ("onbottom.plotting", ""),
     ("onbottom.report", ""),
     ("onbottom.results", ""),
