@@ -178,6 +178,14 @@ def estimate_failure_probability(
     if method in ("form", "importance"):
         solver = ot.Cobyla()
         solver.setMaximumCallsNumber(2000)
+        for set_tol in (
+            solver.setMaximumAbsoluteError,
+            solver.setMaximumRelativeError,
+            solver.setMaximumResidualError,
+        ):  # the design point to 1e-10 in the standard space
+            set_tol(1e-10)
+        g_mean = float(counter(np.array([list(dist.getMean())]))[0, 0])
+        solver.setMaximumConstraintError(1e-9 * max(1.0, abs(g_mean)))  # on g = 0, g's scale
         solver.setStartingPoint(dist.getMean())  # physical space (openturns 1.27)
         form = ot.FORM(solver, event)
         form.run()
