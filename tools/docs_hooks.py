@@ -46,6 +46,8 @@ API_PACKAGES = (
     ("onbottom.dem", ""),
     ("onbottom.calibration", ""),
     ("onbottom.study", ""),
+    ("onbottom.metocean", ""),
+    ("onbottom.reliability", ""),
     ("onbottom.plotting", ""),
     ("onbottom.report", ""),
     ("onbottom.results", ""),

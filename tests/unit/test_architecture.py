@@ -27,16 +27,21 @@ ALLOWED: dict[str, set[str]] = {
     "checks": BASE | {"inputs", "hydro", "soil"},
     "dynamics": BASE | {"inputs", "hydro", "soil"},
     "dem": BASE,  # never soil/ or hydro/
+    "metocean": BASE | {"inputs"},  # hindcast statistics: no physics of the pipe
+    # reliability: estimators now; the storm campaign (dynamics, study, metocean) to come
+    "reliability": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "metocean"},
     "study": BASE | {"inputs", "hydro", "soil", "dynamics", "checks"},
     "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},
-    "plotting": BASE | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study"},
+    "plotting": BASE
+    | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study", "metocean"}
+    | {"reliability"},
     # report draws its figures with plotting/ and reports the checks/ of the design cases
     "report": BASE
     | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting"},
+    | {"plotting", "metocean", "reliability"},
     "cli": BASE
     | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "report"},
+    | {"plotting", "report", "metocean", "reliability"},
 }
 
 

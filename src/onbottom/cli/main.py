@@ -29,6 +29,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "storm",
     "curves",
     "fourier_fit",
+    "metocean",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 

@@ -42,6 +42,7 @@ SECTION_MODULES: tuple[str, ...] = (
     "pipeline",
     "stability_curves",
     "dem",
+    "metocean",
 )
 """Modules of ``onbottom.report.sections``, each registering one section (add new ones at the
 end; the order on the page comes from each section's ``order``)."""

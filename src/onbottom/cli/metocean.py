@@ -1,0 +1,345 @@
+"""``onbottom metocean``: from a hindcast to the per-sector design table of DNV-RP-F109.
+
+Writes into ``--out``:
+
+* ``design_table.csv`` — per sector (omni first): H_s per return period with its confidence
+  interval, the T_p that goes with it (median and 5–95 % of T_p|H_s), the current speed per
+  return period with its interval;
+* ``case_<sector>.toml`` — for each sector with enough storms, ``[waves]`` (100-year),
+  ``[current]`` (10-year) and the two F109 §3.4.2 ``[[combinations]]``, to paste over those
+  tables of a ``stability`` / ``storm`` case file;
+* ``metocean.nc`` — return values, intervals, thresholds, storm counts, GPD parameters,
+  IFORM contours, with provenance attributes;
+* ``return_levels.png``, ``contours.png`` — the figures.
+
+``--json`` keys: ``success`` (false when the omnidirectional H_s has no return values: exit
+status 3), ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
+``return_periods``, ``ci_method``, ``confidence``, ``table`` (list of rows: ``sector``,
+``centre_deg``, ``hs``, ``hs_lower``, ``hs_upper``, ``tp``, ``tp_low``, ``tp_high``,
+``current``, ``current_lower``, ``current_upper``, each a list over ``return_periods``; SI),
+``joint_model`` (parameters), ``contour_max_hs`` (per return period, m), ``files`` (paths
+written), ``notes`` (sectors without values and why).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    emit_json,
+    handle_errors,
+    json_option,
+)
+
+__all__ = ["command", "run_metocean"]
+
+
+def _return_periods(text: str) -> tuple[float, ...]:
+    from onbottom.errors import InputError
+
+    try:
+        vals = tuple(float(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        vals = ()
+    if not vals:
+        err = InputError(
+            f"--return-periods = {text!r} is invalid: expected comma-separated years, e.g. 1,10,100"
+        )
+        err.field = "--return-periods"  # type: ignore[attr-defined]
+        raise err
+    return tuple(sorted(set(vals)))
+
+
+def run_metocean(
+    hindcast_path: Path,
+    out: Path,
+    *,
+    sectors: int = 8,
+    return_periods: tuple[float, ...] = (1.0, 10.0, 100.0),
+    storm_rate: float = 3.0,
+    r_hours: float = 48.0,
+    confidence: float = 0.95,
+    ci_method: str = "profile",
+    n_bootstrap: int = 200,
+    seed: int = 0,
+    pipe_heading_deg: float | None = None,
+    current_height: float = 1.0,
+    figures: bool = True,
+) -> dict:
+    """Run the analysis and write the outputs; returns the JSON payload."""
+    import importlib.util
+    import math
+
+    import numpy as np
+
+    from onbottom.errors import InputError
+
+    missing = [m for m in ("pyextremes", "virocon") if importlib.util.find_spec(m) is None]
+    if missing:
+        raise InputError(
+            f"onbottom metocean needs the optional package(s) {', '.join(missing)}:"
+            " pip install 'onbottom[metocean]'"
+        )
+    from onbottom.metocean.analysis import MetoceanOptions, analyse_hindcast
+    from onbottom.metocean.hindcast import read_hindcast
+    from onbottom.metocean.table import design_rows, design_table_csv, sector_toml
+    from onbottom.results import save_dataset, write_text_atomic
+
+    if out.exists() and not out.is_dir():
+        err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
+        err.field = "--out"  # type: ignore[attr-defined]
+        raise err
+    options = MetoceanOptions(
+        sectors=sectors,
+        return_periods=return_periods,
+        storm_rate=storm_rate,
+        r_hours=r_hours,
+        confidence=confidence,
+        ci_method=ci_method,
+        n_bootstrap=n_bootstrap,
+        seed=seed,
+    )
+    hc = read_hindcast(hindcast_path)
+    result = analyse_hindcast(hc, options)
+    rows = design_rows(result)
+    out.mkdir(parents=True, exist_ok=True)
+    files = [str(write_text_atomic(out / "design_table.csv", design_table_csv(rows)))]
+    notes: list[str] = []
+    if max(options.return_periods) > 4.0 * hc.years:
+        notes.append(
+            f"return periods up to {max(options.return_periods):g} years from a"
+            f" {hc.years:.1f}-year record: beyond about 4 times the record the values are"
+            " extrapolations (Coles 2001 §4.4); read the intervals"
+        )
+    f109 = 10.0 in return_periods and 100.0 in return_periods and hc.has_current
+    if not f109:
+        notes.append(
+            "no case_*.toml: the F109 combinations need the 10- and 100-year values and a"
+            " current in the hindcast"
+        )
+    for row in rows:
+        lv = result.hs[row.sector]
+        if lv.note:
+            notes.append(f"H_s {row.sector}: {lv.note}")
+        if result.current is not None and result.current[row.sector].note:
+            notes.append(f"current {row.sector}: {result.current[row.sector].note}")
+        if not f109:
+            continue
+        try:
+            text = sector_toml(
+                row,
+                source=str(hindcast_path),
+                pipe_heading_deg=pipe_heading_deg,
+                current_height=current_height,
+            )
+        except InputError as exc:
+            notes.append(f"no case_{row.sector}.toml: {exc}")
+            continue
+        files.append(str(write_text_atomic(out / f"case_{row.sector}.toml", text)))
+    files.append(str(save_dataset(result.to_dataset(), out / "metocean.nc")))
+    if figures:
+        import matplotlib.pyplot as plt
+
+        from onbottom.plotting.metocean import plot_contours, plot_return_levels
+
+        for name, fig in (
+            ("return_levels.png", plot_return_levels(result, title=hindcast_path.name)),
+            ("contours.png", plot_contours(result)),
+        ):
+            fig.savefig(out / name, dpi=110)
+            plt.close(fig)
+            files.append(str(out / name))
+
+    def lst(x):
+        return None if x is None else [v if math.isfinite(v) else None for v in x]
+
+    return {
+        "success": bool(np.all(np.isfinite(result.hs["omni"].value))),
+        "hindcast": str(hindcast_path),
+        "years": hc.years,
+        "step_hours": hc.step_hours,
+        "sectors": result.sectors,
+        "return_periods": list(options.return_periods),
+        "ci_method": ci_method,
+        "confidence": confidence,
+        "table": [
+            {
+                "sector": r.sector,
+                "centre_deg": r.centre_deg if math.isfinite(r.centre_deg) else None,
+                **{
+                    k: lst(getattr(r, k))
+                    for k in (
+                        "hs",
+                        "hs_lower",
+                        "hs_upper",
+                        "tp",
+                        "tp_low",
+                        "tp_high",
+                        "current",
+                        "current_lower",
+                        "current_upper",
+                    )
+                },
+            }
+            for r in rows
+        ],
+        "joint_model": result.joint.as_dict(),
+        "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
+        "files": files,
+        "notes": notes,
+    }
+
+
+@click.command("metocean")
+@click.argument("hindcast", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--out",
+    "out",
+    type=click.Path(file_okay=False, path_type=Path),
+    required=True,
+    help="Folder for the table, the case fragments, metocean.nc and the figures.",
+)
+@click.option(
+    "--sectors",
+    type=Number(int, min=1, max=36),
+    default=8,
+    show_default=True,
+    help="Equal direction sectors, the first centred on north (1: omnidirectional only).",
+)
+@click.option(
+    "--return-periods",
+    "return_periods",
+    default="1,10,100",
+    show_default=True,
+    help="Return periods [years], comma-separated (F109's table needs 10 and 100).",
+)
+@click.option(
+    "--storm-rate",
+    type=Number(float, min=0.5, max=50.0, unit="1/year"),
+    default=3.0,
+    show_default=True,
+    help="Storms per year above each series' POT threshold (sets the threshold).",
+)
+@click.option(
+    "--r-hours",
+    type=Number(float, min=3.0, max=720.0, unit="h"),
+    default=48.0,
+    show_default=True,
+    help="Declustering time [h]: exceedances closer than this are one storm.",
+)
+@click.option(
+    "--confidence",
+    type=Number(float, min=0.5, max=1.0, min_open=True, max_open=True),
+    default=0.95,
+    show_default=True,
+    help="Level of the confidence intervals.",
+)
+@click.option(
+    "--ci",
+    "ci_method",
+    type=click.Choice(["profile", "bootstrap"]),
+    default="profile",
+    show_default=True,
+    help="Confidence intervals: profile likelihood (Coles 2001) or pyextremes' bootstrap.",
+)
+@click.option(
+    "--bootstrap",
+    "n_bootstrap",
+    type=Number(int, min=20, max=5000),
+    default=200,
+    show_default=True,
+    help="Bootstrap samples per fit (with --ci bootstrap).",
+)
+@click.option(
+    "--seed",
+    type=Number(int, min=0, max=2**32 - 1),
+    default=0,
+    show_default=True,
+    help="Seed of the bootstrap.",
+)
+@click.option(
+    "--pipe-heading-deg",
+    type=Number(float, min=0.0, max=360.0, unit="deg"),
+    default=None,
+    help="Pipe axis heading [deg from north]: sets direction_deg of the case fragments.",
+)
+@click.option(
+    "--current-height",
+    type=Number(float, min=0.01, max=1000.0, min_open=False, unit="m"),
+    default=1.0,
+    show_default=True,
+    help="Height above the seabed of the hindcast's current [m] (reference_height).",
+)
+@click.option("--no-figures", is_flag=True, help="Skip the figures.")
+@json_option
+@handle_errors
+def command(
+    hindcast: Path,
+    out: Path,
+    sectors: int,
+    return_periods: str,
+    storm_rate: float,
+    r_hours: float,
+    confidence: float,
+    ci_method: str,
+    n_bootstrap: int,
+    seed: int,
+    pipe_heading_deg: float | None,
+    current_height: float,
+    no_figures: bool,
+    as_json: bool,
+) -> None:
+    """Metocean statistics of HINDCAST (CSV or NetCDF: time, hs, tp, wave_direction_deg,
+    current_speed, current_direction_deg; see docs/theory/metocean.md): declustered storms,
+    return values per direction sector with confidence intervals (POT/GPD, pyextremes), the
+    DNV-RP-C205 H_s–T_p model and IFORM contours (virocon), and the DNV-RP-F109 design table
+    per sector.
+    """
+    payload = run_metocean(
+        hindcast,
+        out,
+        sectors=sectors,
+        return_periods=_return_periods(return_periods),
+        storm_rate=storm_rate,
+        r_hours=r_hours,
+        confidence=confidence,
+        ci_method=ci_method,
+        n_bootstrap=n_bootstrap,
+        seed=seed,
+        pipe_heading_deg=pipe_heading_deg,
+        current_height=current_height,
+        figures=not no_figures,
+    )
+    if as_json:
+        emit_json(payload)
+        if not payload["success"]:
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+        return
+    rps = payload["return_periods"]
+    click.echo(
+        f"{payload['hindcast']}: {payload['years']:.1f} years, step {payload['step_hours']:g} h"
+    )
+    head = "".join(f" {'Hs ' + format(r, 'g') + 'y':>9} {'Tp':>6}" for r in rps)
+    has_cur = payload["table"][0]["current"] is not None
+    if has_cur:
+        head += "".join(f" {'U ' + format(r, 'g') + 'y':>8}" for r in rps)
+    click.echo(f"{'sector':<7}{head}")
+
+    def g(x, nd):
+        return f"{x:.{nd}f}" if x is not None else "–"
+
+    for r in payload["table"]:
+        line = "".join(f" {g(h, 2):>9} {g(t, 1):>6}" for h, t in zip(r["hs"], r["tp"], strict=True))
+        if has_cur:
+            line += "".join(f" {g(u, 3):>8}" for u in r["current"])
+        click.echo(f"{r['sector']:<7}{line}")
+    for n in payload["notes"]:
+        click.echo(f"note: {n}", err=True)
+    click.echo(f"written to {out}: {len(payload['files'])} files")
+    if not payload["success"]:
+        click.echo("NOT VALID: no return values for the whole record (too few storms)", err=True)
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -1,0 +1,415 @@
+"""Hindcast time series: the strict CSV / NetCDF schema, its checks, and :class:`Hindcast`.
+
+CSV layout (``#`` lines are comments; a header row, then a **units row**, then data)::
+
+    time,hs,tp,wave_direction_deg,current_speed,current_direction_deg
+    UTC,m,s,deg,m/s,deg
+    2000-01-01T00:00:00Z,0.85,7.59,166.9,0.331,24.4
+
+* ``time``: ISO 8601, UTC (a trailing ``Z`` or none; no other offset), strictly increasing at
+  one constant step (gaps, duplicates and times out of order are errors naming the rows).
+* ``hs`` significant wave height [m], ``tp`` spectral peak period [s],
+  ``wave_direction_deg`` the direction the waves come **from** [deg, clockwise from north].
+* ``current_speed`` [m/s] and ``current_direction_deg`` the direction the current goes **to**
+  [deg] (oceanographic conventions). The two current columns are optional together.
+
+NetCDF: a ``time`` coordinate and the same variable names, each with a ``units`` attribute
+(``m``; ``s``; ``deg``/``degree``/``degrees``; ``m/s``/``m s-1``).
+
+Impossible values are errors naming the row and time: non-finite values, H_s outside
+[0, 30] m, T_p outside (0, 40] s, a steepness 2πH_s/(gT_p²) above 1/7 (breaking), directions
+outside [0, 360] deg, a current speed outside [0, 10] m/s.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from onbottom.constants import GRAVITY
+from onbottom.errors import InputError
+
+__all__ = ["COLUMNS", "UNITS", "Hindcast", "read_hindcast", "write_hindcast_csv"]
+
+COLUMNS: tuple[str, ...] = (
+    "time",
+    "hs",
+    "tp",
+    "wave_direction_deg",
+    "current_speed",
+    "current_direction_deg",
+)
+"""Column names of the schema, in file order (the two current columns are optional)."""
+UNITS: dict[str, tuple[str, ...]] = {
+    "time": ("UTC",),
+    "hs": ("m",),
+    "tp": ("s",),
+    "wave_direction_deg": ("deg", "degree", "degrees"),
+    "current_speed": ("m/s", "m s-1"),
+    "current_direction_deg": ("deg", "degree", "degrees"),
+}
+"""Accepted unit spellings per column (the first is written)."""
+MAX_STEEPNESS = 1.0 / 7.0
+"""Breaking limit of a wave's steepness 2πH/(gT²) (Michell 1893, deep water)."""
+_LIMITS = {
+    "hs": (0.0, 30.0, "m"),
+    "tp": (0.0, 40.0, "s"),
+    "wave_direction_deg": (0.0, 360.0, "deg"),
+    "current_speed": (0.0, 10.0, "m/s"),
+    "current_direction_deg": (0.0, 360.0, "deg"),
+}
+_MAX_LISTED = 5
+
+
+def _fail(field: str, message: str) -> None:
+    err = InputError(message)
+    err.field = field  # type: ignore[attr-defined]
+    raise err
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class Hindcast:
+    """A checked hindcast time series (SI units; see the module docstring for conventions).
+
+    Attributes
+    ----------
+    time : ndarray of datetime64[s]
+        UTC times, strictly increasing at a constant step.
+    hs : ndarray
+        Significant wave height H_s [m].
+    tp : ndarray
+        Spectral peak period T_p [s].
+    wave_direction_deg : ndarray
+        Wave direction, coming from [deg].
+    current_speed : ndarray or None
+        Current speed [m/s].
+    current_direction_deg : ndarray or None
+        Current direction, going to [deg].
+    source : str
+        File it was read from (or a description).
+    """
+
+    time: np.ndarray
+    hs: np.ndarray
+    tp: np.ndarray
+    wave_direction_deg: np.ndarray
+    current_speed: np.ndarray | None
+    current_direction_deg: np.ndarray | None
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        _check_series(self)
+
+    @property
+    def step_hours(self) -> float:
+        """Sampling interval [h]."""
+        return float((self.time[1] - self.time[0]) / np.timedelta64(1, "s")) / 3600.0
+
+    @property
+    def years(self) -> float:
+        """Length covered, n·Δt [years of 365.2425 d]."""
+        return len(self.time) * self.step_hours / (24.0 * 365.2425)
+
+    @property
+    def has_current(self) -> bool:
+        """Whether the current columns are present."""
+        return self.current_speed is not None
+
+    def series(self, name: str):
+        """One column as a :class:`pandas.Series` indexed by time (for pyextremes)."""
+        import pandas as pd
+
+        return pd.Series(
+            np.asarray(getattr(self, name), dtype=float),
+            index=pd.DatetimeIndex(self.time.astype("datetime64[ns]"), name="date-time"),
+            name=name,
+        )
+
+
+def _row_list(rows: np.ndarray, time: np.ndarray, offset: int, label: str) -> str:
+    shown = ", ".join(
+        f"{label} {int(r) + offset} ({str(time[r])[:19]})" for r in rows[:_MAX_LISTED]
+    )
+    more = f" and {len(rows) - _MAX_LISTED} more" if len(rows) > _MAX_LISTED else ""
+    return shown + more
+
+
+def _check_series(h: Hindcast, row_offset: int = 0, label: str = "index") -> None:
+    """Schema and value checks; ``row_offset`` turns array indices into file lines (``label``
+    names them: ``"line"`` for CSV, ``"index"`` for arrays and NetCDF)."""
+    off = row_offset
+    n = len(h.time)
+    if n < 3:
+        _fail("time", f"time = {n} rows is invalid: a hindcast needs at least 3 time steps")
+    names = ["hs", "tp", "wave_direction_deg"]
+    if (h.current_speed is None) != (h.current_direction_deg is None):
+        _fail(
+            "current_speed",
+            "current_speed/current_direction_deg is invalid: give both current columns or none",
+        )
+    if h.current_speed is not None:
+        names += ["current_speed", "current_direction_deg"]
+    for name in names:
+        a = getattr(h, name)
+        if len(a) != n:
+            _fail(name, f"{name} has {len(a)} values for {n} times")
+    t = h.time
+    dt = np.diff(t.astype("datetime64[s]").astype(np.int64))
+    bad = np.flatnonzero(dt < 0) + 1
+    if bad.size:
+        _fail(
+            "time",
+            f"time is invalid: not increasing at {_row_list(bad, t, off, label)} (earlier"
+            " than the row before; sort the file)",
+        )
+    dup = np.flatnonzero(dt == 0) + 1
+    if dup.size:
+        _fail("time", f"time is invalid: duplicate time stamps at {_row_list(dup, t, off, label)}")
+    vals, counts = np.unique(dt, return_counts=True)
+    step = int(vals[np.argmax(counts)])  # the most common step (the smallest on ties)
+    gaps = np.flatnonzero(dt != step) + 1
+    if gaps.size:
+        what = ", ".join(
+            f"{str(t[g - 1])[:19]} → {str(t[g])[:19]} ({dt[g - 1] / 3600.0:g} h)"
+            for g in gaps[:_MAX_LISTED]
+        )
+        more = f" and {gaps.size - _MAX_LISTED} more" if gaps.size > _MAX_LISTED else ""
+        _fail(
+            "time",
+            f"time is invalid: the step is {step / 3600.0:g} h but {gaps.size} interval(s)"
+            f" differ (gaps or irregular sampling) at {label} "
+            f"{', '.join(str(int(g) + off) for g in gaps[:_MAX_LISTED])}: {what}{more}; fill or"
+            " split the record",
+        )
+    for name in names:
+        a = np.asarray(getattr(h, name), dtype=float)
+        lo, hi, unit = _LIMITS[name]
+        nonfinite = np.flatnonzero(~np.isfinite(a))
+        if nonfinite.size:
+            _fail(
+                name,
+                f"{name} is invalid: missing or non-finite values at"
+                f" {_row_list(nonfinite, t, off, label)}",
+            )
+        if name == "tp":
+            out = np.flatnonzero((a <= lo) | (a > hi))
+            rng = f"({lo:g}, {hi:g}]"
+        else:
+            out = np.flatnonzero((a < lo) | (a > hi))
+            rng = f"[{lo:g}, {hi:g}]"
+        if out.size:
+            r = out[0]
+            _fail(
+                name,
+                f"{name} = {a[r]!r} {unit} is invalid at {_row_list(out, t, off, label)}:"
+                f" must lie in {rng} {unit} (check the unit)",
+            )
+    steep = 2.0 * math.pi * np.asarray(h.hs) / (GRAVITY * np.asarray(h.tp) ** 2)
+    over = np.flatnonzero(steep > MAX_STEEPNESS)
+    if over.size:
+        r = over[0]
+        _fail(
+            "tp",
+            f"hs, tp = {h.hs[r]:g} m, {h.tp[r]:g} s is invalid at"
+            f" {_row_list(over, t, off, label)}: the steepness 2πH_s/(gT_p²) ="
+            f" {steep[r]:.3g} exceeds the breaking limit 1/7"
+            " (is T_p a zero-crossing or a mean period, or in the wrong unit?)",
+        )
+
+
+def _parse_time(text: str, row: int) -> np.datetime64:
+    s = text.strip()
+    if s.endswith("Z"):
+        s = s[:-1]
+    if "+" in s[10:] or s[10:].count("-") > 0:
+        _fail("time", f"time = {text!r} is invalid at line {row}: give UTC (a trailing Z or none)")
+    try:
+        return np.datetime64(s, "s")
+    except ValueError:
+        _fail(
+            "time",
+            f"time = {text!r} is invalid at line {row}: expected ISO 8601, e.g."
+            " 2000-01-01T00:00:00Z",
+        )
+    raise AssertionError  # unreachable
+
+
+def _read_csv(path: Path) -> Hindcast:
+    with path.open(encoding="utf-8", newline="") as fh:
+        lines = [
+            (i + 1, ln) for i, ln in enumerate(fh) if ln.strip() and not ln.lstrip().startswith("#")
+        ]
+    if len(lines) < 2:
+        _fail("header", f"{path}: expected a header row and a units row, then data")
+    header_row, header = lines[0]
+    cols = [c.strip() for c in next(csv.reader([header]))]
+    allowed = (list(COLUMNS), list(COLUMNS[:4]))
+    if cols not in allowed:
+        _fail(
+            "header",
+            f"header = {','.join(cols)!r} (line {header_row}) is invalid: expected"
+            f" {','.join(COLUMNS)!r} (the two current columns may be left out)",
+        )
+    units_row, units_line = lines[1]
+    units = [u.strip() for u in next(csv.reader([units_line]))]
+    if len(units) != len(cols):
+        _fail(
+            "units",
+            f"units row (line {units_row}) has {len(units)} entries for {len(cols)} columns",
+        )
+    for c, u in zip(cols, units, strict=True):
+        if u not in UNITS[c]:
+            _fail(
+                c,
+                f"{c} unit = {u!r} (line {units_row}) is invalid: expected"
+                f" {' or '.join(map(repr, UNITS[c]))} (convert the column to SI)",
+            )
+    n = len(lines) - 2
+    time = np.empty(n, dtype="datetime64[s]")
+    data = np.empty((n, len(cols) - 1))
+    for k, (lineno, ln) in enumerate(lines[2:]):
+        parts = ln.rstrip("\r\n").split(",")
+        if len(parts) != len(cols):
+            _fail("row", f"line {lineno} has {len(parts)} fields: expected {len(cols)}")
+        time[k] = _parse_time(parts[0], lineno)
+        for j, p in enumerate(parts[1:]):
+            try:
+                data[k, j] = float(p) if p.strip() else math.nan
+            except ValueError:
+                _fail(
+                    cols[j + 1],
+                    f"{cols[j + 1]} = {p!r} is invalid at line {lineno}: expected a number",
+                )
+    rows = np.array([ln for ln, _ in lines[2:]])
+    cur = len(cols) == 6
+    h = Hindcast.__new__(Hindcast)
+    fields = dict(
+        time=time,
+        hs=data[:, 0],
+        tp=data[:, 1],
+        wave_direction_deg=data[:, 2],
+        current_speed=data[:, 3] if cur else None,
+        current_direction_deg=data[:, 4] if cur else None,
+        source=str(path),
+    )
+    for k, v in fields.items():
+        object.__setattr__(h, k, v)
+    # messages name file lines: the data lines are consecutive (comments only above them)
+    if np.any(np.diff(rows) != 1):
+        _fail(
+            "row",
+            f"{path}: comment or blank lines among the data (after line"
+            f" {rows[np.flatnonzero(np.diff(rows) != 1)[0]]})",
+        )
+    _check_series(h, row_offset=int(rows[0]), label="line")
+    return h
+
+
+def _read_netcdf(path: Path) -> Hindcast:
+    import xarray as xr
+
+    try:
+        ds = xr.open_dataset(path)
+    except (OSError, ValueError) as exc:
+        _fail("file", f"{path}: cannot be read as NetCDF ({exc})")
+    with ds:
+        if "time" not in ds.coords and "time" not in ds:
+            _fail("time", f"{path}: no 'time' coordinate")
+        needed = list(COLUMNS[1:4])
+        cur = "current_speed" in ds or "current_direction_deg" in ds
+        if cur:
+            needed += list(COLUMNS[4:])
+        arrays = {}
+        for name in needed:
+            if name not in ds:
+                _fail(
+                    name,
+                    f"{path}: variable {name!r} is missing (expected {', '.join(COLUMNS[1:])})",
+                )
+            u = str(ds[name].attrs.get("units", ""))
+            if u not in UNITS[name]:
+                _fail(
+                    name,
+                    f"{name} units = {u!r} is invalid: expected"
+                    f" {' or '.join(map(repr, UNITS[name]))} (a 'units' attribute in SI)",
+                )
+            arrays[name] = np.asarray(ds[name].values, dtype=float).ravel()
+        time = np.asarray(ds["time"].values)
+        if not np.issubdtype(time.dtype, np.datetime64):
+            _fail(
+                "time",
+                f"{path}: 'time' is not decoded as dates (give CF 'units' like"
+                " 'hours since 2000-01-01')",
+            )
+        time = time.astype("datetime64[s]")
+    h = Hindcast.__new__(Hindcast)
+    for k, v in dict(
+        time=time,
+        hs=arrays["hs"],
+        tp=arrays["tp"],
+        wave_direction_deg=arrays["wave_direction_deg"],
+        current_speed=arrays.get("current_speed"),
+        current_direction_deg=arrays.get("current_direction_deg"),
+        source=str(path),
+    ).items():
+        object.__setattr__(h, k, v)
+    _check_series(h)  # NetCDF: time indices from 0
+    return h
+
+
+def read_hindcast(path: str | os.PathLike) -> Hindcast:
+    """Read and check a hindcast (``.csv`` or ``.nc``); see the module docstring.
+
+    Raises
+    ------
+    InputError
+        Wrong columns or units, gaps, duplicates, times out of order, impossible values —
+        naming the column, the row (file line for CSV, time index for NetCDF) and the time.
+    """
+    p = Path(path)
+    if not p.is_file():
+        _fail("HINDCAST", f"HINDCAST = {str(p)!r} is invalid: no such file")
+    suffix = p.suffix.lower()
+    if suffix == ".csv":
+        return _read_csv(p)
+    if suffix in (".nc", ".nc4", ".netcdf"):
+        return _read_netcdf(p)
+    _fail("HINDCAST", f"HINDCAST = {str(p)!r} is invalid: the file name must end in .csv or .nc")
+    raise AssertionError  # unreachable
+
+
+def write_hindcast_csv(
+    path: str | os.PathLike, data: dict[str, np.ndarray], *, comments: tuple[str, ...] = ()
+) -> Path:
+    """Write a hindcast in the CSV schema (``data`` as returned by
+    :func:`~onbottom.metocean.synthetic.synthetic_hindcast`); directions to 0.1°, H_s to cm,
+    T_p to 0.01 s, current to mm/s."""
+    from onbottom.results import write_text_atomic
+
+    cur = "current_speed" in data and data["current_speed"] is not None
+    cols = COLUMNS if cur else COLUMNS[:4]
+    out = [f"# {c}\n" for c in comments]
+    out.append(",".join(cols) + "\n")
+    out.append(",".join(UNITS[c][0] for c in cols) + "\n")
+    t = np.asarray(data["time"]).astype("datetime64[s]").astype(str)
+    fmt = {
+        "hs": "{:.2f}",
+        "tp": "{:.2f}",
+        "wave_direction_deg": "{:.1f}",
+        "current_speed": "{:.3f}",
+        "current_direction_deg": "{:.1f}",
+    }
+    columns = [np.asarray(data[c]) for c in cols[1:]]
+    for i in range(len(t)):
+        out.append(
+            t[i]
+            + "Z,"
+            + ",".join(fmt[c].format(col[i]) for c, col in zip(cols[1:], columns, strict=True))
+            + "\n"
+        )
+    return write_text_atomic(path, "".join(out))
