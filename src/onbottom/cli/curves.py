@@ -253,7 +253,7 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     from onbottom.constants import GRAVITY
     from onbottom.dynamics.storm_case import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.errors import InputError
-    from onbottom.hydro.force_model import MorisonLift
+    from onbottom.hydro.registry import force_model_from_case
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
     from onbottom.inputs.stability_case import _Checker
     from onbottom.study.stability_curves import CurveSettings
@@ -282,7 +282,7 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
             clay_submerged_unit_weight=c.clay_submerged_unit_weight,
             clay_friction=c.clay_friction,
             water_density=cfg.environment.water_density if cfg.environment else 1025.0,
-            force_model=MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient),
+            force_model=force_model_from_case(h, base_dir=case.resolve().parent),
         )
     except InputError as exc:
         msg = str(exc)

@@ -35,8 +35,9 @@ from onbottom._casefile import CaseFileError, StrictModel, load_case_file
 from onbottom.dynamics.storm_section import StormSolverSettings
 from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
-from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.force_model import ForceModel
 from onbottom.hydro.reductions import LoadReductions
+from onbottom.hydro.registry import force_model_from_case
 from onbottom.hydro.storm_kinematics import StormKinematics
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
@@ -225,7 +226,7 @@ class StormSetup:
     depth: float
     current: Current
     z0: float
-    force_model: MorisonLift
+    force_model: ForceModel
     reductions: LoadReductions
     settings: StormSolverSettings
     sample_interval: float | None
@@ -441,7 +442,7 @@ def _build_objects(
             seed=st.seed,
         )
     h = case.hydro
-    fm = MorisonLift(cd=h.cd, cm=h.cm, cl=h.cl, added_mass=h.added_mass_coefficient)
+    fm = force_model_from_case(h, base_dir=None if path is None else Path(path).resolve().parent)
     if h.reductions:
         red = LoadReductions(
             permeable_seabed=case.seabed.model != "clay",

@@ -51,7 +51,7 @@ from onbottom.dynamics.storm_section import (
     simulate_storm_section,
 )
 from onbottom.errors import InputError, OutOfRangeWarning
-from onbottom.hydro.force_model import MorisonLift
+from onbottom.hydro.force_model import ForceModel, MorisonLift
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import (
     StormKinematics,
@@ -114,8 +114,9 @@ class CurveSettings:
         clay_submerged_unit_weight γ' [N/m³]; clay_friction μ [-].
     water_density : float
         ρ_w [kg/m³].
-    force_model : MorisonLift
-        Hydrodynamic coefficients (default C_D 0.7, C_M 3.29, C_L 0.9).
+    force_model : ForceModel
+        Hydrodynamic force model (:mod:`onbottom.hydro.registry`: ``MorisonLift``,
+        ``WakeModel``, ``FourierModel``); default constant Morison C_D 0.7, C_M 3.29, C_L 0.9.
     """
 
     diameter: float = 0.5
@@ -136,7 +137,7 @@ class CurveSettings:
     clay_submerged_unit_weight: float = 8.0e3
     clay_friction: float = 0.2
     water_density: float = RHO_SEAWATER
-    force_model: MorisonLift = field(default_factory=MorisonLift)
+    force_model: ForceModel = field(default_factory=MorisonLift)
 
     def __post_init__(self) -> None:
         positive("CurveSettings.diameter", self.diameter)
@@ -497,10 +498,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
         coords={"soil": soils, "N": ns, "M": ms, "K": ks},
         attrs=provenance(
             "stability_curves",
-            {
-                k2: (v if not isinstance(v, MorisonLift) else v.describe())
-                for k2, v in s.__dict__.items()
-            },
+            {k2: (v.describe() if k2 == "force_model" else v) for k2, v in s.__dict__.items()},
             total_storms=total_storms,
             wall_time_s=wall,
             busy_time_s=busy,
