@@ -38,6 +38,7 @@ from onbottom.hydro.reductions import (
     penetration_reduction,
     trench_reduction,
 )
+from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
@@ -184,9 +185,11 @@ def absolute_lateral_stability(
     hs, tp : float
         Design H_s [m] and T_p [s], > 0.
     depth : float
-        Water depth d [m], > 0.
+        Water depth d [m], > D (an :class:`InputError` otherwise; a
+        :class:`~onbottom.errors.ShallowWaterWarning` below 3 D or near breaking, see
+        :mod:`onbottom.inputs.consistency`).
     current_velocity : float
-        Current V(z_r) [m/s], >= 0.
+        Current V(z_r) [m/s], >= 0 (a warning above 3 m/s).
     current_reference_height : float
         z_r [m], > 0.
     roughness : float or None
@@ -221,6 +224,36 @@ def absolute_lateral_stability(
     """
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {pipe!r} is invalid: expected a Pipe")
+    for name, value in (
+        ("hs", hs),
+        ("tp", tp),
+        ("depth", depth),
+        ("current_velocity", current_velocity),
+        ("current_reference_height", current_reference_height),
+        ("roughness", roughness),
+        ("gamma", gamma),
+        ("wave_direction_deg", wave_direction_deg),
+        ("current_direction_deg", current_direction_deg),
+        ("spreading_s", spreading_s),
+        ("penetration", penetration),
+        ("trench_depth", trench_depth),
+        ("trench_angle_deg", trench_angle_deg),
+        ("duration", duration),
+    ):
+        consistency.scalar(name, value)
+    consistency.report(
+        consistency.section_in_sea(
+            diameter=pipe.outer_diameter,
+            depth=depth,
+            hs=hs,
+            tp=tp,
+            current_velocity=current_velocity,
+            angles=(
+                ("wave_direction_deg", wave_direction_deg),
+                ("current_direction_deg", current_direction_deg),
+            ),
+        )
+    )
     kind = seabed_kind(seabed)
     one_of("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
     gamma_sc = safety_factor(region, kind, safety_class)

@@ -14,6 +14,7 @@ from onbottom.cli._common import (
     emit_json,
     handle_errors,
     json_option,
+    unique_notes,
 )
 
 __all__ = ["command", "evaluate_loads"]
@@ -130,8 +131,8 @@ def evaluate_loads(
         "combinations": out,
         "success": not invalid,
         "message": "; ".join(invalid),
-        "warnings": sorted(
-            {str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)}
+        "warnings": unique_notes(
+            [str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)]
         ),
     }
     return payload, envs

@@ -8,7 +8,13 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import EXIT_INVALID_RESULT, emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    emit_json,
+    handle_errors,
+    json_option,
+    unique_notes,
+)
 
 __all__ = ["command"]
 
@@ -121,7 +127,9 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
                 )
     caught.extend(checking)
     invalid = penetration_outside_validity(rows)
-    notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
+    notes = unique_notes(
+        [str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)]
+    )
     from onbottom.inputs.stability_case import HydroTable
 
     if case.hydro != HydroTable():

@@ -273,6 +273,46 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
         )
 
 
+def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any) -> None:
+    """At least three nodes free to move laterally (fixed and pinned ends hold theirs)."""
+    from onbottom.inputs import consistency
+    from onbottom.inputs.stability_case import _Checker
+
+    nodes = round(table.length / table.element_length) + 1
+    pair = (ends, ends) if isinstance(ends, str) else tuple(ends)
+    held = sum(1 for e in pair if e in ("fixed", "pinned"))
+    _Checker(p, text).apply(
+        consistency.free_nodes(
+            nodes - held,
+            field="pipeline.element_length",
+            detail=f" ({nodes} nodes on length = {table.length:g} m, {held} held by"
+            f" end_conditions = {table.end_conditions!r})",
+        )
+    )
+
+
+MAX_CHUNKS = 10_000
+"""Most NetCDF/checkpoint chunks of one run: each chunk costs a file write and a checkpoint
+(~0.1 s), so 10⁴ chunks add ~20 min of writing; ``chunk_duration`` must not be shorter."""
+
+
+def _check_chunks(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
+    """Refuse a ``chunk_duration`` that splits the run into more than :data:`MAX_CHUNKS`."""
+    storm_s = float(setup.storm.duration_s)
+    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    n = math.ceil(run_s / table.chunk_duration)
+    if n > MAX_CHUNKS:
+        _fail(
+            p,
+            text,
+            "pipeline.chunk_duration",
+            f"pipeline.chunk_duration = {table.chunk_duration!r} s is invalid: it splits the"
+            f" {run_s:.4g} s run into {n:.3g} chunks (each a NetCDF write and a checkpoint,"
+            f" about {n * 0.1 / 3600:.3g} h of writing); the limit is {MAX_CHUNKS} chunks:"
+            f" chunk_duration must be >= {run_s / MAX_CHUNKS:.3g} s",
+        )
+
+
 def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
     if table.animation is None:
         return
@@ -309,6 +349,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
     setup = build_setup(case, p)
     _check_mesh(p, text, table, setup)
+    _check_chunks(p, text, table, setup)
     _check_animation(p, text, table)
     pipe = setup.pipe
     if table.mass is not None:
@@ -376,6 +417,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
             f"{p}: [pipeline] is invalid: {exc}", field="pipeline", file=str(p)
         ) from None
     _check_structure(p, text, table, model)
+    _check_free_nodes(p, text, table, ends)
     sv = case.solver
     settings = PipelineSettings(
         alpha=table.hht_alpha,
