@@ -45,7 +45,6 @@ __all__ = [
     "json_option",
     "plain_numbers",
     "report_click_error",
-    "unique_notes",
 ]
 
 EXIT_INPUT = 1
@@ -73,13 +72,6 @@ def _jsonable(obj: Any) -> Any:
     if isinstance(obj, np.integer):
         return int(obj)
     return obj
-
-
-def unique_notes(messages: Sequence[str]) -> list[str]:
-    """Sorted unique warning messages, without a message that another repeats after its
-    ``file, line N: `` prefix (the case layer and the API both check a rule)."""
-    notes = sorted(set(messages))
-    return [m for m in notes if not any(o != m and o.endswith(": " + m) for o in notes)]
 
 
 def emit_json(payload: Mapping[str, Any] | Sequence[Any]) -> None:

@@ -14,7 +14,6 @@ from onbottom.cli._common import (
     emit_json,
     handle_errors,
     json_option,
-    unique_notes,
 )
 
 __all__ = ["command", "evaluate_loads"]
@@ -66,7 +65,9 @@ def evaluate_loads(
     )
     out: list[dict[str, Any]] = []
     envs = []
-    with warnings.catch_warnings(record=True) as checking:
+    from onbottom.inputs.consistency import warnings_reported_by_case
+
+    with warnings.catch_warnings(record=True) as checking, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
     caught.extend(checking)
@@ -131,8 +132,8 @@ def evaluate_loads(
         "combinations": out,
         "success": not invalid,
         "message": "; ".join(invalid),
-        "warnings": unique_notes(
-            [str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)]
+        "warnings": sorted(
+            {str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)}
         ),
     }
     return payload, envs

@@ -8,13 +8,7 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import (
-    EXIT_INVALID_RESULT,
-    emit_json,
-    handle_errors,
-    json_option,
-    unique_notes,
-)
+from onbottom.cli._common import EXIT_INVALID_RESULT, emit_json, handle_errors, json_option
 
 __all__ = ["command"]
 
@@ -84,7 +78,9 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         trench_angle_deg=case.seabed.trench_angle_deg,
         permeable=d.permeable,
     )
-    with warnings.catch_warnings(record=True) as checking:
+    from onbottom.inputs.consistency import warnings_reported_by_case
+
+    with warnings.catch_warnings(record=True) as checking, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
         design: dict[str, Any] = {"solve_for": d.solve_for}
@@ -127,9 +123,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
                 )
     caught.extend(checking)
     invalid = penetration_outside_validity(rows)
-    notes = unique_notes(
-        [str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)]
-    )
+    notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
     from onbottom.inputs.stability_case import HydroTable
 
     if case.hydro != HydroTable():

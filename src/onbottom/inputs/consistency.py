@@ -38,7 +38,9 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from numbers import Real
 
@@ -76,6 +78,7 @@ __all__ = [
     "section_in_sea",
     "steepness_limit",
     "stop_limit",
+    "warnings_reported_by_case",
     "youngs_modulus",
 ]
 
@@ -142,10 +145,26 @@ def raise_first(findings: Iterable[Finding]) -> None:
             raise err
 
 
+_CASE_REPORTED: ContextVar[bool] = ContextVar("onbottom_case_reported", default=False)
+
+
+@contextmanager
+def warnings_reported_by_case() -> Iterator[None]:
+    """Within this block the API functions raise the errors of these rules but leave their
+    warnings to the case layer, which has already issued them with the file and the line."""
+    token = _CASE_REPORTED.set(True)
+    try:
+        yield
+    finally:
+        _CASE_REPORTED.reset(token)
+
+
 def report(findings: Sequence[Finding], *, stacklevel: int = 3) -> None:
     """API reporting: the first error raises :class:`InputError`; then every warning is issued
-    with its category."""
+    with its category (unless within :func:`warnings_reported_by_case`)."""
     raise_first(findings)
+    if _CASE_REPORTED.get():
+        return
     for f in findings:
         warnings.warn(f.message, f.category, stacklevel=stacklevel)
 
