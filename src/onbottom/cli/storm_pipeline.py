@@ -316,9 +316,15 @@ def _check_chunks(p: Path, text: str | None, table: PipelineTable, setup: Any) -
 def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
     if table.animation is None:
         return
+    from onbottom._casefile import contained
+
     ap = Path(table.animation)
     if not ap.is_absolute():
         ap = p.parent / ap
+    try:  # a case file writes only inside its own folder (issue #31)
+        contained(table.animation, ap, folder=p.parent, field="pipeline.animation")
+    except CaseFileError as exc:
+        _fail(p, text, "pipeline.animation", str(exc))
     if ap.suffix.lower() != ".gif":
         _fail(
             p,

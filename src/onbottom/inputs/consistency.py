@@ -132,7 +132,9 @@ def _err(field: str, message: str) -> Finding:
     return Finding(field, message, True)
 
 
-def _warn(field: str, message: str, category: type[Warning] = PhysicalConsistencyWarning) -> Finding:
+def _warn(
+    field: str, message: str, category: type[Warning] = PhysicalConsistencyWarning
+) -> Finding:
     return Finding(field, message, False, category)
 
 

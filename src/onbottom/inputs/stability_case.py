@@ -375,9 +375,7 @@ class _Checker:
         where = f"{self.file}{f', line {line}' if line else ''}: "
         raise CaseFileError(where + _plain(message), field=field or None, file=self.file, line=line)
 
-    def warn(
-        self, field: str, message: str, category: type[Warning] = OutOfRangeWarning
-    ) -> None:
+    def warn(self, field: str, message: str, category: type[Warning] = OutOfRangeWarning) -> None:
         line = self._line(field)
         where = f"{self.file}{f', line {line}' if line else ''}: "
         warnings.warn(where + _plain(message), category, stacklevel=3)
