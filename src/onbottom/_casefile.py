@@ -34,9 +34,9 @@ from pydantic import BaseModel, ConfigDict
 from onbottom.errors import InputError
 
 __all__ = [
-    "CaseFileError",
     "MAX_CASE_FILE_BYTES",
     "MAX_NESTING",
+    "CaseFileError",
     "StrictModel",
     "contained",
     "load_case_file",

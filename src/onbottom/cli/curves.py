@@ -218,10 +218,7 @@ def command(
         emit_json(payload)
     else:
         for r in rows:
-            txt = ", ".join(
-                f"{k} = {v:.3g}" for k, v in r.items() if k not in ("soil", "N", "M", "K")
-            )
-            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {txt}")
+            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {_point(r)}")
         for note in notes:
             click.echo(
                 f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
@@ -233,6 +230,31 @@ def command(
         )
     if failures:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _point(row: dict[str, Any]) -> str:
+    """One console line of a curve point: per criterion L, its bracket, the seeds' spread of
+    max |y|/D at both ends, and NOT CONVERGED where the bracket is wider than the tolerance."""
+    parts = []
+    for c in ("L_stable", "L_10"):
+        if c not in row:
+            continue
+        lo, hi = row.get(f"{c}_L_low"), row.get(f"{c}_L_high")
+        spread = (
+            f"; seeds max|y|/D {row[f'{c}_seed_min_low']:.3g}-{row[f'{c}_seed_max_low']:.3g}"
+            f" at L_low, {row[f'{c}_seed_min_high']:.3g}-{row[f'{c}_seed_max_high']:.3g} at"
+            " L_high"
+            if f"{c}_seed_min_low" in row
+            else ""
+        )
+        if row.get(f"{c}_converged", True):
+            parts.append(
+                f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}], {c}/(2+M)^2 ="
+                f" {row[f'{c}/(2+M)^2']:.3g}{spread}"
+            )
+        else:
+            parts.append(f"{c} NOT CONVERGED (bracket [{lo:.3g}, {hi:.3g}]){spread}")
+    return "; ".join(parts)
 
 
 def _settings(case: Path, cfg: CurvesCase) -> Any:
@@ -300,6 +322,11 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
                     f" represents it (needs H_s <= 30 m and T_p <= 40 s; {exc})",
                 )
             tps.append((sea.tp, k, n))
+    # a storm peak of a few peak periods at least (onbottom.inputs.consistency)
+    from onbottom.inputs import consistency
+
+    tp_max = max(tps)[0]
+    chk.apply(consistency.peak_duration(c.peak_hours * 3600.0, tp_max, field="curves.peak_hours"))
     # the time-step rule of `onbottom storm` (docs/theory/storm_section.md)
     tp, k, n = min(tps)
     if c.time_step > TIME_STEP_MAX_FRACTION * tp:
