@@ -132,6 +132,12 @@ class CurvesCase(StrictModel):
     help="Local Dask worker processes (default one per core; 0 = in this process).",
 )
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB).",
+)
 @json_option
 @handle_errors
 def command(
@@ -140,6 +146,7 @@ def command(
     scheduler: str | None,
     workers: int | None,
     quiet: bool,
+    force: bool,
     as_json: bool,
 ) -> None:
     """Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).
@@ -167,6 +174,7 @@ def command(
         for note in notes_in:
             click.echo(f"warning: {note}", err=True)
     check_output_path(nc, field="--output")
+    _check_budget(c, workers=workers, force=force)
     t0 = time.perf_counter()
     ds = stability_curves(
         c.K,
@@ -230,6 +238,33 @@ def command(
         )
     if failures:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _check_budget(c: CurvesTable, *, workers: int | None, force: bool) -> None:
+    """Refuse a grid whose estimated time or memory exceeds the budget (unless --force)."""
+    import math
+
+    from onbottom.constants import GRAVITY
+    from onbottom.study import budget
+
+    n_points = len(c.K) * len(c.M) * len(c.N) * len(c.soils) * len(c.criteria)
+    # the shortest zero-up-crossing period T_u of the grid: the most flow samples (memory)
+    tu = min(math.sqrt(k * c.diameter / (n * GRAVITY)) for k in c.K for n in c.N)
+    budget.check(
+        budget.curve_points(
+            n_points,
+            c.seeds,
+            (c.build_up_hours + c.peak_hours) * 3600.0,
+            c.time_step,
+            tolerance=c.tolerance,
+            l_min=c.l_min,
+            l_max=c.l_max,
+            tp=tu,
+            workers=workers,
+        ),
+        force=force,
+        field="[curves]",
+    )
 
 
 def _point(row: dict[str, Any]) -> str:

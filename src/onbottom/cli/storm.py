@@ -8,7 +8,6 @@ simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`) for o
 
 from __future__ import annotations
 
-import tomllib
 import warnings
 from pathlib import Path
 from typing import Any
@@ -29,11 +28,13 @@ from onbottom.errors import InputError, OutOfRangeWarning
 
 
 def _has_pipeline_table(case: Path) -> bool:
-    try:
-        with open(case, "rb") as fh:
-            return "pipeline" in tomllib.load(fh)
-    except (OSError, tomllib.TOMLDecodeError):
+    from onbottom._casefile import CaseFileError, read_json, read_toml
+
+    try:  # size- and nesting-limited readers (a device or a huge file is refused at once)
+        doc, _ = read_json(case) if case.suffix.lower() == ".json" else read_toml(case)
+    except CaseFileError:
         return False  # the strict loader reports the problem with its line
+    return isinstance(doc, dict) and "pipeline" in doc
 
 
 def _run_pipeline(case: Path, **options: Any) -> Any:
@@ -84,6 +85,12 @@ def _run_pipeline(case: Path, **options: Any) -> Any:
     help="Figure (png, pdf, svg): y–t, z–t, H–y and V–H (one seed only).",
 )
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory of the seeds exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB).",
+)
 @json_option
 @handle_errors
 def command(
@@ -94,6 +101,7 @@ def command(
     output: Path | None,
     plot: Path | None,
     quiet: bool,
+    force: bool,
     as_json: bool,
 ) -> None:
     """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
@@ -176,7 +184,20 @@ def command(
         return
 
     from onbottom.results import save_dataset
+    from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
+
+    budget.check(
+        budget.section_storms(
+            n,
+            float(setup.storm.duration_s),
+            setup.settings.dt_max,
+            tp=max(s.tp for s in setup.storm.stages),
+            workers=workers,
+        ),
+        force=force,
+        field="--seeds",
+    )
 
     study = run_storm_seeds(
         setup.pipe,
