@@ -439,6 +439,20 @@ def stability_curves(
         over dimensions (soil, N, M, K); attributes: total storms, wall time, settings.
     """
     s = settings if settings is not None else CurveSettings()
+    for name, vals in (
+        ("k_values", k_values),
+        ("m_values", m_values),
+        ("n_values", n_values),
+        ("soils", soils),
+        ("criteria", criteria),
+    ):
+        if isinstance(vals, (str, bytes)) or not hasattr(vals, "__iter__"):
+            err = InputError(
+                f"{name} = {vals!r} is invalid: expected a sequence of values (a list), not"
+                " one value"
+            )
+            err.field = name  # type: ignore[attr-defined]
+            raise err
     for soil in soils:
         if soil not in SOILS:
             raise InputError(f"soils = {soil!r} is invalid: must be one of {SOILS}")
