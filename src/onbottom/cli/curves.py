@@ -70,7 +70,7 @@ class CurvesTable(StrictModel):
     tolerance: float = Field(0.02, gt=0.0, le=0.5, description="relative L bracket [-]")
     l_min: float = Field(1.0, gt=0.0, description="initial L bracket low [-]")
     l_max: float = Field(300.0, gt=0.0, description="initial L bracket high [-]")
-    diameter: float = Field(0.5, gt=0.0, le=5.0, description="D [m]")
+    diameter: float = Field(0.5, ge=0.005, le=5.0, description="D [m], in [0.005, 5]")
     time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest step [s]")
     gamma: float = Field(3.3, ge=1.0, le=7.0, description="JONSWAP γ [-]")
     tn_over_tp: float = Field(0.1, gt=0.0, le=1.0, description="T_n/T_p [-]")

@@ -267,7 +267,7 @@ def sea_state(
         return []
     what = f" ({label})" if label else ""
     out: list[Finding] = []
-    steep = 2.0 * math.pi * h / (GRAVITY * t * t)
+    steep = 2.0 * math.pi * h / (GRAVITY * t * t) if t * t > 0.0 else math.inf
     if steep > MAX_WAVE_STEEPNESS:
         out.append(
             _err(

@@ -83,7 +83,8 @@ class CurveSettings:
     Parameters
     ----------
     diameter : float
-        Pipe outer diameter D [m], > 0 (results are dimensionless; D sets the scale).
+        Pipe outer diameter D [m], in [0.005, 5] (results are dimensionless; D sets the
+        scale).
     seeds : int
         Storms per evaluation, >= 1; seeds first_seed, first_seed + 1, ...
     first_seed : int
@@ -132,7 +133,7 @@ class CurveSettings:
     force_model: MorisonLift = field(default_factory=MorisonLift)
 
     def __post_init__(self) -> None:
-        positive("CurveSettings.diameter", self.diameter)
+        in_range("CurveSettings.diameter", self.diameter, 0.005, 5.0)  # mm typed as m
         if int(self.seeds) < 1 or int(self.first_seed) < 0:
             raise InputError(
                 f"CurveSettings.seeds = {self.seeds!r} / first_seed = {self.first_seed!r} are"
