@@ -294,6 +294,24 @@ def test_storm_seeds_beyond_the_budget_are_refused(tmp_path, capsys, no_runs):
     assert "--force" in msg and "100000 storms" in msg
 
 
+def test_pipeline_seeds_beyond_the_budget_are_refused(tmp_path, capsys, monkeypatch):
+    import onbottom.cli.storm_pipeline as sp
+
+    def never(*args, **kwargs):
+        raise AssertionError("the run started: the budget check did not refuse it")
+
+    monkeypatch.setattr(sp, "run_pipeline_case", never)
+    text = (EXAMPLES / "pipeline_case.toml").read_text(encoding="utf-8")
+    text = _edit(text, "length = 200.0 ", "length = 1000.0 ")
+    text = _edit(text, "element_length = 4.0 ", "element_length = 2.0 ")
+    text = _edit(text, "build_up_hours = 0.0167 ", "build_up_hours = 0.5 ")
+    text = _edit(text, "peak_hours = 0.0667 ", "peak_hours = 3.0 ")
+    case = _write(tmp_path, text)
+    args = ["storm", str(case), "--seeds", "2000", "--workers", "2"]
+    msg = _error(args, capsys, "--seeds")
+    assert "2000 pipeline storms" in msg
+
+
 def test_curves_grid_beyond_the_budget_is_refused(tmp_path, capsys, no_runs):
     ks = ", ".join(str(5.0 + 0.1 * i) for i in range(100))
     ms = ", ".join(str(0.01 * i) for i in range(100))

@@ -123,6 +123,8 @@ def command(
     if _has_pipeline_table(case):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", OutOfRangeWarning)
+            if seeds is not None and seeds > 1 and not force:
+                _check_pipeline_budget(case, seeds, workers)
             payload = _run_pipeline(
                 case,
                 seeds=seeds,
@@ -239,6 +241,17 @@ def command(
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _check_pipeline_budget(case: Path, seeds: int, workers: int | None) -> None:
+    """Refuse pipeline seeds beyond the budget (onbottom.study.budget) before any run."""
+    try:
+        from onbottom.cli.storm_pipeline import estimate_seeds
+    except ImportError:
+        return  # reported by _run_pipeline
+    from onbottom.study import budget
+
+    budget.check(estimate_seeds(case, seeds, workers), force=False, field="--seeds")
 
 
 def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:

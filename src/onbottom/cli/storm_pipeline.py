@@ -291,6 +291,21 @@ def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any
     )
 
 
+def estimate_seeds(path: str | os.PathLike, seeds: int | None, workers: int | None) -> Any:
+    """:class:`onbottom.study.budget.Estimate` of the seeds of a pipeline case (validated)."""
+    from onbottom.study import budget
+
+    run = build_pipeline_run(path)
+    table, setup = run["table"], run["setup"]
+    n = setup.seeds if seeds is None else int(seeds)
+    nodes = int(run["model"].x.size)
+    storm_s = float(setup.storm.duration_s)
+    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    cpu = SECONDS_PER_NODE_STEP * nodes * run_s / run["settings"].dt_max
+    mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
+    return budget.pipeline_storms(n, cpu, mem, workers=workers)
+
+
 MAX_CHUNKS = 10_000
 """Most NetCDF/checkpoint chunks of one run: each chunk costs a file write and a checkpoint
 (~0.1 s), so 10⁴ chunks add ~20 min of writing; ``chunk_duration`` must not be shorter."""

@@ -33,6 +33,7 @@ __all__ = [
     "Estimate",
     "check",
     "curve_points",
+    "pipeline_storms",
     "section_storms",
     "sweep_points",
 ]
@@ -147,6 +148,22 @@ def curve_points(
         f"{n_points} curve points × about {evaluations} evaluations × {seeds} seeds ="
         f" {storms:.3g} storms of {duration_s / 3600:.3g} h",
     )
+
+
+def pipeline_storms(
+    n_storms: int,
+    run_seconds: float,
+    memory_bytes: float,
+    *,
+    workers: int | None,
+) -> Estimate:
+    """``n_storms`` pipeline-FE storms, each estimated at ``run_seconds`` [s] on one core and
+    ``memory_bytes`` of kinematics (``cli/storm_pipeline.py``: ~1 µs per node-step, ~0.5 MB
+    per node-hour)."""
+    w = min(_workers(workers), max(n_storms, 1))
+    wall = run_seconds * math.ceil(n_storms / w)
+    mem = w * memory_bytes + n_storms * RESULT_BYTES_PER_RUN
+    return Estimate(n_storms, wall, mem, w, f"{n_storms} pipeline storms")
 
 
 def sweep_points(n_points: int, *, workers: int | None) -> Estimate:
