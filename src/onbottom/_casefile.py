@@ -34,8 +34,11 @@ from pydantic import BaseModel, ConfigDict
 from onbottom.errors import InputError
 
 __all__ = [
+    "MAX_CASE_FILE_BYTES",
+    "MAX_NESTING",
     "CaseFileError",
     "StrictModel",
+    "contained",
     "load_case_file",
     "parse_case",
     "read_json",
@@ -104,7 +107,9 @@ def read_toml(path: str | os.PathLike) -> tuple[dict[str, Any], str]:
     p = Path(path)
     text = _read_text(p)
     try:
-        return tomllib.loads(text), text
+        return _check_nesting(p, tomllib.loads(text)), text
+    except RecursionError:
+        raise _too_deep(p) from None
     except tomllib.TOMLDecodeError as exc:
         m = _TOML_LINE.search(str(exc))
         line = int(m.group(1)) if m else None
@@ -118,7 +123,9 @@ def read_json(path: str | os.PathLike) -> tuple[Any, str]:
     p = Path(path)
     text = _read_text(p)
     try:
-        return json.loads(text), text
+        return _check_nesting(p, json.loads(text)), text
+    except RecursionError:
+        raise _too_deep(p) from None
     except json.JSONDecodeError as exc:
         raise CaseFileError(
             f"{p}: not valid JSON: {exc.msg} (at line {exc.lineno}, column {exc.colno})",
@@ -127,29 +134,123 @@ def read_json(path: str | os.PathLike) -> tuple[Any, str]:
         ) from None
 
 
+MAX_CASE_FILE_BYTES = 10_000_000
+"""Largest case file read (10 MB): case files are a few kB; a larger file is not a case file
+(a result, a device such as /dev/zero) and is refused before it is read into memory."""
+
+MAX_NESTING = 32
+"""Deepest nesting of tables and arrays in a case file (the schemas need 4)."""
+
+
 def _read_text(p: Path) -> str:
     if not p.exists():
         raise CaseFileError(f"{p}: file not found", field="path", file=str(p))
     if p.is_dir():
         raise CaseFileError(f"{p}: is a folder, expected a file", field="path", file=str(p))
+    if not p.is_file():
+        raise CaseFileError(
+            f"{p}: is not a regular file (a device, pipe or socket), expected a case file",
+            field="path",
+            file=str(p),
+        )
     try:
-        return p.read_text(encoding="utf-8")
+        size = p.stat().st_size
+        if size > MAX_CASE_FILE_BYTES:
+            raise _too_large(p, size)
+        with p.open("rb") as fh:
+            raw = fh.read(MAX_CASE_FILE_BYTES + 1)
+        if len(raw) > MAX_CASE_FILE_BYTES:
+            raise _too_large(p, len(raw))
+        return raw.decode("utf-8")
     except UnicodeDecodeError:
         raise CaseFileError(f"{p}: not a UTF-8 text file", field="path", file=str(p)) from None
     except OSError as exc:
         raise CaseFileError(f"{p}: cannot be read ({exc.strerror})", file=str(p)) from None
 
 
-def resolve_path(value: str, *, relative_to: str | os.PathLike | None, field: str) -> Path:
-    """Resolve a file named in a case file (relative to the case file's folder); must exist."""
+def _too_large(p: Path, size: int) -> CaseFileError:
+    return CaseFileError(
+        f"{p}: is {size / 1e6:.3g} MB or more, larger than the {MAX_CASE_FILE_BYTES / 1e6:g} MB"
+        " limit of a case file (is it a case file?)",
+        field="path",
+        file=str(p),
+    )
+
+
+def _nesting(doc: Any) -> int:
+    """Deepest nesting of mappings and lists in ``doc`` (iterative: no recursion limit)."""
+    deepest = 0
+    stack: list[tuple[Any, int]] = [(doc, 0)]
+    while stack:
+        obj, depth = stack.pop()
+        if isinstance(obj, Mapping):
+            children: Any = obj.values()
+        elif isinstance(obj, list):
+            children = obj
+        else:
+            continue
+        depth += 1
+        deepest = max(deepest, depth)
+        if depth > MAX_NESTING:
+            return depth
+        stack.extend((c, depth) for c in children)
+    return deepest
+
+
+def _check_nesting(p: Path, doc: Any) -> Any:
+    if _nesting(doc) > MAX_NESTING:
+        raise _too_deep(p)
+    return doc
+
+
+def _too_deep(p: Path) -> CaseFileError:
+    return CaseFileError(
+        f"{p}: tables or arrays nested deeper than {MAX_NESTING} levels: not a case file",
+        field="path",
+        file=str(p),
+    )
+
+
+def resolve_path(
+    value: str,
+    *,
+    relative_to: str | os.PathLike | None,
+    field: str,
+    must_exist: bool = True,
+) -> Path:
+    """Resolve a file named in a case file (relative to the case file's folder).
+
+    The file must lie inside the case file's folder (an absolute path or ``..`` that leaves
+    it is a :class:`CaseFileError` naming ``field``: a case file never reaches other files on
+    the disk) and, with ``must_exist``, exist.
+    """
     p = Path(value)
     if not p.is_absolute() and relative_to is not None:
         p = Path(relative_to).parent / p
-    if not p.is_file():
+    if relative_to is not None:
+        contained(value, p, folder=Path(relative_to).parent, field=field)
+    if must_exist and not p.is_file():
         raise CaseFileError(
             f"{field} = {value!r} is invalid: file {p} not found", field=field, file=str(p)
         )
     return p
+
+
+def contained(
+    value: str, path: str | os.PathLike, *, folder: str | os.PathLike, field: str
+) -> Path:
+    """``path`` resolved; a :class:`CaseFileError` naming ``field`` unless it lies inside
+    ``folder`` (the case file's folder)."""
+    base = Path(folder).resolve()
+    full = Path(path).resolve()
+    if full != base and base not in full.parents:
+        raise CaseFileError(
+            f"{field} = {value!r} is invalid: it leaves the case file's folder {base} (a file"
+            " named in a case file must lie in that folder or below it; give a relative path"
+            " without '..')",
+            field=field,
+        )
+    return full
 
 
 # ---------------------------------------------------------------------------------------------

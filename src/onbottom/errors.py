@@ -6,11 +6,26 @@
   correlation. The computation goes on; the message gives the range and the source.
 * :class:`SolutionError` — an equation has no solution in the admissible interval (for example
   no embedment ``0 < z <= D`` balances the applied load).
+* :class:`PhysicalConsistencyWarning` (an :class:`OutOfRangeWarning`) — inputs that are each
+  valid but unusual together or for the physics (shallow water against the pipe, a current
+  faster than 3 m/s, a layer lighter than water); its subclasses :class:`ShallowWaterWarning`
+  and :class:`UnitSlipWarning` (a value that looks typed in another unit: radians for degrees).
+* :class:`BudgetError` — a run's estimated time or memory exceeds the stated budget (an
+  :class:`InputError`; ``--force`` runs it anyway).
 """
 
 from __future__ import annotations
 
-__all__ = ["InputError", "OnbottomError", "OutOfRangeWarning", "SolutionError"]
+__all__ = [
+    "BudgetError",
+    "InputError",
+    "OnbottomError",
+    "OutOfRangeWarning",
+    "PhysicalConsistencyWarning",
+    "ShallowWaterWarning",
+    "SolutionError",
+    "UnitSlipWarning",
+]
 
 
 class OnbottomError(Exception):
@@ -27,3 +42,19 @@ class SolutionError(OnbottomError, RuntimeError):
 
 class OutOfRangeWarning(UserWarning):
     """A value lies outside the range over which an empirical correlation was calibrated."""
+
+
+class PhysicalConsistencyWarning(OutOfRangeWarning):
+    """Inputs valid one by one but physically unusual together (see ``inputs/consistency.py``)."""
+
+
+class ShallowWaterWarning(PhysicalConsistencyWarning):
+    """The water is shallow against the pipe (depth < 3 D) or the sea state is near breaking."""
+
+
+class UnitSlipWarning(PhysicalConsistencyWarning):
+    """A value looks typed in another unit (radians in a ``_deg`` key, MPa for Pa, …)."""
+
+
+class BudgetError(InputError):
+    """The estimated run time or memory of a run exceeds the stated budget (``--force``)."""

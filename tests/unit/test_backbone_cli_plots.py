@@ -65,7 +65,7 @@ def test_path_response_dataset_and_plot():
 
 
 def test_cli_reports_range_warnings(capsys):
-    args = ["backbone", "--weight-kn", "0.01", "--gamma-kn", "10", "--json"]
+    args = ["backbone", "--diameter", "1", "--weight-kn", "0.01", "--gamma-kn", "10", "--json"]
     assert main(args) == 0
     out = json.loads(capsys.readouterr().out)
     assert any("K_s" in w for w in out["warnings"])

@@ -424,7 +424,7 @@ def test_calibration_record_file(tmp_path, suffix, data):
 # --------------------------------------------------------------------------------------------
 # options of every command
 # --------------------------------------------------------------------------------------------
-BACKBONE = ["backbone", "--weight-kn", "10.5", "--gamma-kn", "7.5"]
+BACKBONE = ["backbone", "--diameter", "1.0", "--weight-kn", "10.5", "--gamma-kn", "7.5"]
 SAND = ["penetration", "--diameter", "0.5", "--gamma-kn", "16.7", "--phi-deg", "35"]
 CLAY = ["penetration", "--soil", "clay", "--diameter", "0.5", "--gamma-kn", "6"]
 
@@ -436,9 +436,21 @@ OPTION_CASES = [
     ("bb-diameter-inf", [*BACKBONE, "--diameter", "inf"], "--diameter"),
     ("bb-diameter-text", [*BACKBONE, "--diameter", "one"], "--diameter"),
     ("bb-diameter-mm", [*BACKBONE, "--diameter", "500"], "outer_diameter"),
-    ("bb-weight-zero", ["backbone", "--weight-kn", "0", "--gamma-kn", "7.5"], "--weight-kn"),
-    ("bb-gamma-MN", ["backbone", "--weight-kn", "10", "--gamma-kn", "0.0075"], "--gamma-kn"),
-    ("bb-gamma-N", ["backbone", "--weight-kn", "10", "--gamma-kn", "7500"], "--gamma-kn"),
+    (
+        "bb-weight-zero",
+        ["backbone", "--diameter", "1", "--weight-kn", "0", "--gamma-kn", "7.5"],
+        "--weight-kn",
+    ),
+    (
+        "bb-gamma-MN",
+        ["backbone", "--diameter", "1", "--weight-kn", "10", "--gamma-kn", "0.0075"],
+        "--gamma-kn",
+    ),
+    (
+        "bb-gamma-N",
+        ["backbone", "--diameter", "1", "--weight-kn", "10", "--gamma-kn", "7500"],
+        "--gamma-kn",
+    ),
     ("bb-mu-3", [*BACKBONE, "--mu", "3"], "--mu"),
     ("bb-A-negative", [*BACKBONE, "--A", "-0.1"], "--A"),
     ("bb-z2-range", [*BACKBONE, "--z2-over-d", "2"], "--z2-over-d"),
@@ -715,7 +727,9 @@ def _result(args: list[str]) -> dict:
 
 
 def test_backbone_penetration_beyond_half_diameter():
-    out = _result(["backbone", "--weight-kn", "50", "--gamma-kn", "1.0", "--cycles", "2"])
+    out = _result(
+        ["backbone", "--diameter", "1", "--weight-kn", "50", "--gamma-kn", "1.0", "--cycles", "2"]
+    )
     assert out["success"] is False and "exceeds D/2" in out["message"]
 
 

@@ -74,10 +74,13 @@ def test_sweep_command_writes_grid(tmp_path, capsys):
 
 
 def test_sweep_misfit_builtin_and_bad_function(record_csv, tmp_path, capsys):
+    import shutil
+
     grid = tmp_path / "grid.toml"
+    shutil.copy(record_csv, tmp_path / record_csv.name)  # files of a grid lie beside it
     grid.write_text(
         f'[sweep]\nfunction = "misfit"\n[grid]\nC = [0.79, 1.0]\n'
-        f'[fixed]\nrecord = "{record_csv.as_posix()}"\nA = 0.25\nB = 0.35\nmu = 0.48\n'
+        f'[fixed]\nrecord = "{record_csv.name}"\nA = 0.25\nB = 0.35\nmu = 0.48\n'
     )
     out = tmp_path / "m.nc"
     assert main(["sweep", str(grid), "-o", str(out), "--workers", "0", "--no-progress"]) == 0

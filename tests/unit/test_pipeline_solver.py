@@ -194,8 +194,8 @@ def test_onbottom_storm_dispatches_a_pipeline_case(tmp_path, capsys):
     from onbottom.cli.main import main
 
     case = tmp_path / "pipeline_case.toml"
-    text = EXAMPLE.read_text().replace(
-        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.005"
+    text = EXAMPLE.read_text().replace(  # 0.01 h: a peak of 3 T_p at least (issue #31)
+        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.01"
     )
     case.write_text(text)
     code = main(["storm", str(case), "--json", "-o", str(tmp_path / "out.nc")])
@@ -230,8 +230,8 @@ def test_animation_is_a_gif(tmp_path):
 @pytest.mark.slow
 def test_several_seeds_on_dask_and_in_process(tmp_path):
     case = tmp_path / "pipeline_case.toml"
-    text = EXAMPLE.read_text().replace(
-        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.003"
+    text = EXAMPLE.read_text().replace(  # 0.01 h: a peak of 3 T_p at least (issue #31)
+        "peak_hours = 0.0667             # 4 min", "peak_hours = 0.01"
     )
     text = text.replace("build_up_hours = 0.0167         # 1 min", "build_up_hours = 0.003")
     case.write_text(text)

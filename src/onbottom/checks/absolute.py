@@ -25,10 +25,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
-from onbottom._validate import in_range, non_negative, one_of
+from onbottom._validate import finite, in_range, non_negative, one_of
 from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
 from onbottom.errors import InputError
 from onbottom.hydro.current import SEABED_ROUGHNESS
@@ -38,6 +39,7 @@ from onbottom.hydro.reductions import (
     penetration_reduction,
     trench_reduction,
 )
+from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
@@ -150,6 +152,10 @@ class AbsoluteStabilityResult:
         return out
 
 
+def _args(**kwargs: Any) -> list[tuple[str, Any]]:
+    return list(kwargs.items())
+
+
 def absolute_lateral_stability(
     pipe: Pipe,
     seabed: Sand | Clay | Rock,
@@ -184,9 +190,11 @@ def absolute_lateral_stability(
     hs, tp : float
         Design H_s [m] and T_p [s], > 0.
     depth : float
-        Water depth d [m], > 0.
+        Water depth d [m], > D (an :class:`InputError` otherwise; a
+        :class:`~onbottom.errors.ShallowWaterWarning` below 3 D or near breaking, see
+        :mod:`onbottom.inputs.consistency`).
     current_velocity : float
-        Current V(z_r) [m/s], >= 0.
+        Current V(z_r) [m/s], >= 0 (a warning above 3 m/s).
     current_reference_height : float
         z_r [m], > 0.
     roughness : float or None
@@ -221,6 +229,44 @@ def absolute_lateral_stability(
     """
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {pipe!r} is invalid: expected a Pipe")
+    # one number per argument (an array is a named error, a 0-d array a number)
+    hs, tp, depth = (
+        finite(k, consistency.scalar(k, v)) for k, v in _args(hs=hs, tp=tp, depth=depth)
+    )
+    current_velocity, current_reference_height, wave_direction_deg, current_direction_deg = (
+        finite(k, consistency.scalar(k, v))
+        for k, v in _args(
+            current_velocity=current_velocity,
+            current_reference_height=current_reference_height,
+            wave_direction_deg=wave_direction_deg,
+            current_direction_deg=current_direction_deg,
+        )
+    )
+    trench_depth, trench_angle_deg, duration = (
+        finite(k, consistency.scalar(k, v))
+        for k, v in _args(
+            trench_depth=trench_depth, trench_angle_deg=trench_angle_deg, duration=duration
+        )
+    )
+    roughness, gamma, spreading_s, penetration = (
+        None if v is None else finite(k, consistency.scalar(k, v))
+        for k, v in _args(
+            roughness=roughness, gamma=gamma, spreading_s=spreading_s, penetration=penetration
+        )
+    )
+    consistency.report(
+        consistency.section_in_sea(
+            diameter=pipe.outer_diameter,
+            depth=depth,
+            hs=hs,
+            tp=tp,
+            current_velocity=current_velocity,
+            angles=(
+                ("wave_direction_deg", wave_direction_deg),
+                ("current_direction_deg", current_direction_deg),
+            ),
+        )
+    )
     kind = seabed_kind(seabed)
     one_of("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
     gamma_sc = safety_factor(region, kind, safety_class)

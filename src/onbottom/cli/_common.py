@@ -74,9 +74,19 @@ def _jsonable(obj: Any) -> Any:
     return obj
 
 
+def _versioned(payload: Any) -> Any:
+    """``payload`` with ``schema_version`` first (a JSON object; docs/json.md)."""
+    from onbottom.cli.json_contract import SCHEMA_VERSION
+
+    if isinstance(payload, Mapping):
+        return {"schema_version": SCHEMA_VERSION, **{k: v for k, v in payload.items()}}
+    return payload
+
+
 def emit_json(payload: Mapping[str, Any] | Sequence[Any]) -> None:
-    """Print ``payload`` as JSON (NaN/inf become null)."""
-    click.echo(json.dumps(_jsonable(payload), indent=2))
+    """Print ``payload`` as JSON (NaN/inf become null) with ``schema_version`` (the contract
+    of every command's keys: :mod:`onbottom.cli.json_contract`, docs/json.md)."""
+    click.echo(json.dumps(_jsonable(_versioned(payload)), indent=2))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -139,7 +149,7 @@ def error_payload(exc: BaseException) -> dict[str, dict[str, Any]]:
 def emit_error(exc: BaseException, *, as_json: bool) -> None:
     """Report ``exc``: a JSON error object on stdout, or ``Error: message`` on stderr."""
     if as_json:
-        click.echo(json.dumps(error_payload(exc), indent=2))
+        click.echo(json.dumps(_versioned(error_payload(exc)), indent=2))
     elif isinstance(exc, click.ClickException):
         exc.show()
     else:

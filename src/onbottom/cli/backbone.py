@@ -44,7 +44,7 @@ _POS = Number(float, min=0.0, min_open=True)
     help="silica: Verley & Sotberg (1994); calcareous: Youssef & Cassidy (2014); "
     "f109: silica with the DNV-RP-F109 §3.4.6 passive law.",
 )
-@click.option("--diameter", type=_POS, default=1.0, show_default=True, help="D [m].")
+@click.option("--diameter", type=_POS, required=True, help="Pipe outer diameter D [m] (required).")
 @click.option(
     "--weight-kn",
     type=_POS,

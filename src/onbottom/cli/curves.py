@@ -70,7 +70,7 @@ class CurvesTable(StrictModel):
     tolerance: float = Field(0.02, gt=0.0, le=0.5, description="relative L bracket [-]")
     l_min: float = Field(1.0, gt=0.0, description="initial L bracket low [-]")
     l_max: float = Field(300.0, gt=0.0, description="initial L bracket high [-]")
-    diameter: float = Field(0.5, gt=0.0, le=5.0, description="D [m]")
+    diameter: float = Field(0.5, ge=0.005, le=5.0, description="D [m], in [0.005, 5]")
     time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest step [s]")
     gamma: float = Field(3.3, ge=1.0, le=7.0, description="JONSWAP γ [-]")
     tn_over_tp: float = Field(0.1, gt=0.0, le=1.0, description="T_n/T_p [-]")
@@ -132,6 +132,12 @@ class CurvesCase(StrictModel):
     help="Local Dask worker processes (default one per core; 0 = in this process).",
 )
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB).",
+)
 @json_option
 @handle_errors
 def command(
@@ -140,6 +146,7 @@ def command(
     scheduler: str | None,
     workers: int | None,
     quiet: bool,
+    force: bool,
     as_json: bool,
 ) -> None:
     """Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).
@@ -167,6 +174,7 @@ def command(
         for note in notes_in:
             click.echo(f"warning: {note}", err=True)
     check_output_path(nc, field="--output")
+    _check_budget(c, workers=workers, force=force)
     t0 = time.perf_counter()
     ds = stability_curves(
         c.K,
@@ -218,10 +226,7 @@ def command(
         emit_json(payload)
     else:
         for r in rows:
-            txt = ", ".join(
-                f"{k} = {v:.3g}" for k, v in r.items() if k not in ("soil", "N", "M", "K")
-            )
-            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {txt}")
+            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {_point(r)}")
         for note in notes:
             click.echo(
                 f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
@@ -243,6 +248,58 @@ def command(
         )
     if failures:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _check_budget(c: CurvesTable, *, workers: int | None, force: bool) -> None:
+    """Refuse a grid whose estimated time or memory exceeds the budget (unless --force)."""
+    import math
+
+    from onbottom.constants import GRAVITY
+    from onbottom.study import budget
+
+    n_points = len(c.K) * len(c.M) * len(c.N) * len(c.soils) * len(c.criteria)
+    # the shortest zero-up-crossing period T_u of the grid: the most flow samples (memory)
+    tu = min(math.sqrt(k * c.diameter / (n * GRAVITY)) for k in c.K for n in c.N)
+    budget.check(
+        budget.curve_points(
+            n_points,
+            c.seeds,
+            (c.build_up_hours + c.peak_hours) * 3600.0,
+            c.time_step,
+            tolerance=c.tolerance,
+            l_min=c.l_min,
+            l_max=c.l_max,
+            tp=tu,
+            workers=workers,
+        ),
+        force=force,
+        field="[curves]",
+    )
+
+
+def _point(row: dict[str, Any]) -> str:
+    """One console line of a curve point: per criterion L, its bracket, the seeds' spread of
+    max |y|/D at both ends, and NOT CONVERGED where the bracket is wider than the tolerance."""
+    parts = []
+    for c in ("L_stable", "L_10"):
+        if c not in row:
+            continue
+        lo, hi = row.get(f"{c}_L_low"), row.get(f"{c}_L_high")
+        spread = (
+            f"; seeds max|y|/D {row[f'{c}_seed_min_low']:.3g}-{row[f'{c}_seed_max_low']:.3g}"
+            f" at L_low, {row[f'{c}_seed_min_high']:.3g}-{row[f'{c}_seed_max_high']:.3g} at"
+            " L_high"
+            if f"{c}_seed_min_low" in row
+            else ""
+        )
+        if row.get(f"{c}_converged", True):
+            parts.append(
+                f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}], {c}/(2+M)^2 ="
+                f" {row[f'{c}/(2+M)^2']:.3g}{spread}"
+            )
+        else:
+            parts.append(f"{c} NOT CONVERGED (bracket [{lo:.3g}, {hi:.3g}]){spread}")
+    return "; ".join(parts)
 
 
 def _settings(case: Path, cfg: CurvesCase) -> Any:
@@ -310,6 +367,11 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
                     f" represents it (needs H_s <= 30 m and T_p <= 40 s; {exc})",
                 )
             tps.append((sea.tp, k, n))
+    # a storm peak of a few peak periods at least (onbottom.inputs.consistency)
+    from onbottom.inputs import consistency
+
+    tp_max = max(tps)[0]
+    chk.apply(consistency.peak_duration(c.peak_hours * 3600.0, tp_max, field="curves.peak_hours"))
     # the time-step rule of `onbottom storm` (docs/theory/storm_section.md)
     tp, k, n = min(tps)
     if c.time_step > TIME_STEP_MAX_FRACTION * tp:

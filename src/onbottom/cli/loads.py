@@ -65,7 +65,9 @@ def evaluate_loads(
     )
     out: list[dict[str, Any]] = []
     envs = []
-    with warnings.catch_warnings(record=True) as checking:
+    from onbottom.inputs.consistency import warnings_reported_by_case
+
+    with warnings.catch_warnings(record=True) as checking, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
     caught.extend(checking)

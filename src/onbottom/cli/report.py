@@ -27,9 +27,16 @@ __all__ = ["command"]
 )
 @click.option("--fast", is_flag=True, help="Leave out the slow sections (calibration recovery, …).")
 @click.option("--list", "list_", is_flag=True, help="List the sections and exit.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Overwrite an index.html in --out that onbottom did not write.",
+)
 @json_option
 @handle_errors
-def command(out: str, only: tuple[str, ...], fast: bool, list_: bool, as_json: bool) -> None:
+def command(
+    out: str, only: tuple[str, ...], fast: bool, list_: bool, force: bool, as_json: bool
+) -> None:
     """Validation report: every comparison with the papers and the standards on one page.
 
     Runs the fast comparisons (F114 against the reference values and the penetration tests,
@@ -38,6 +45,8 @@ def command(out: str, only: tuple[str, ...], fast: bool, list_: bool, as_json: b
     fail against the stated tolerances and provenance (version, git commit, date, machine,
     run time). Sections whose part of onbottom is missing from this build are listed as "not
     available". Exit status 0 even when checks fail (the page says which); 1 on bad input.
+    --out is refused when it is the filesystem root or the home folder, or when it holds an
+    index.html that onbottom did not write (unless --force); an earlier report is replaced.
     """
     from onbottom.report.build import build_report
     from onbottom.report.registry import Section, load_sections, missing_requirements
@@ -60,7 +69,7 @@ def command(out: str, only: tuple[str, ...], fast: bool, list_: bool, as_json: b
                 flags = ("slow " if r["slow"] else "") + ("" if r["available"] else "unavailable")
                 click.echo(f"{r['name']:<18} {r['title']}  {flags}".rstrip())
         return
-    res = build_report(out, only=only or None, fast=fast)
+    res = build_report(out, only=only or None, fast=fast, force=force)
     if as_json:
         emit_json(res.summary())
         return

@@ -78,7 +78,9 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         trench_angle_deg=case.seabed.trench_angle_deg,
         permeable=d.permeable,
     )
-    with warnings.catch_warnings(record=True) as checking:
+    from onbottom.inputs.consistency import warnings_reported_by_case
+
+    with warnings.catch_warnings(record=True) as checking, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
         rows = run_checks(section, seabed, env, combos, options)
         design: dict[str, Any] = {"solve_for": d.solve_for}

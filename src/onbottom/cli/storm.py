@@ -8,7 +8,6 @@ simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`) for o
 
 from __future__ import annotations
 
-import tomllib
 import warnings
 from pathlib import Path
 from typing import Any
@@ -29,11 +28,13 @@ from onbottom.errors import InputError, OutOfRangeWarning
 
 
 def _has_pipeline_table(case: Path) -> bool:
-    try:
-        with open(case, "rb") as fh:
-            return "pipeline" in tomllib.load(fh)
-    except (OSError, tomllib.TOMLDecodeError):
+    from onbottom._casefile import CaseFileError, read_json, read_toml
+
+    try:  # size- and nesting-limited readers (a device or a huge file is refused at once)
+        doc, _ = read_json(case) if case.suffix.lower() == ".json" else read_toml(case)
+    except CaseFileError:
         return False  # the strict loader reports the problem with its line
+    return isinstance(doc, dict) and "pipeline" in doc
 
 
 def _run_pipeline(case: Path, **options: Any) -> Any:
@@ -84,6 +85,12 @@ def _run_pipeline(case: Path, **options: Any) -> Any:
     help="Figure (png, pdf, svg): y–t, z–t, H–y and V–H (one seed only).",
 )
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory of the seeds exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB).",
+)
 @json_option
 @handle_errors
 def command(
@@ -94,6 +101,7 @@ def command(
     output: Path | None,
     plot: Path | None,
     quiet: bool,
+    force: bool,
     as_json: bool,
 ) -> None:
     """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
@@ -117,6 +125,8 @@ def command(
     if _has_pipeline_table(case):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", OutOfRangeWarning)
+            if seeds is not None and seeds > 1 and not force:
+                _check_pipeline_budget(case, seeds, workers)
             payload = _run_pipeline(
                 case,
                 seeds=seeds,
@@ -171,6 +181,7 @@ def command(
             plt.close(fig)
         payload = {
             **res.to_dict(),
+            "mean_max_displacement_m": res.to_dict().get("max_displacement_m"),
             "seeds": 1,
             "seed": setup.storm.seed,
             "diameter_m": res.diameter,
@@ -184,7 +195,20 @@ def command(
         return
 
     from onbottom.results import save_dataset
+    from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
+
+    budget.check(
+        budget.section_storms(
+            n,
+            float(setup.storm.duration_s),
+            setup.settings.dt_max,
+            tp=max(s.tp for s in setup.storm.stages),
+            workers=workers,
+        ),
+        force=force,
+        field="--seeds",
+    )
 
     study = run_storm_seeds(
         setup.pipe,
@@ -203,7 +227,8 @@ def command(
     ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)
     final = study.data["final_displacement"].values[ok_rows]
     payload = {
-        "max_displacement_m": st["mean"],
+        "max_displacement_m": st["max"],
+        "mean_max_displacement_m": st["mean"],
         "final_displacement_m": float(abs(final).mean()) if final.size else None,
         "criteria": study.criteria,
         "status": 1 if study.success else -9,
@@ -235,6 +260,17 @@ def _seeds_error(n: int) -> InputError:
     return err
 
 
+def _check_pipeline_budget(case: Path, seeds: int, workers: int | None) -> None:
+    """Refuse pipeline seeds beyond the budget (onbottom.study.budget) before any run."""
+    try:
+        from onbottom.cli.storm_pipeline import estimate_seeds
+    except ImportError:
+        return  # reported by _run_pipeline
+    from onbottom.study import budget
+
+    budget.check(estimate_seeds(case, seeds, workers), force=False, field="--seeds")
+
+
 def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:
     """Messages of the :class:`OutOfRangeWarning` s caught (echoed to stderr without --json);
     other warnings are re-issued as usual."""
@@ -253,11 +289,15 @@ def _report(payload: dict[str, Any], as_json: bool) -> None:
         emit_json(payload)
         return
     click.echo(payload.get("message", ""))
-    if payload.get("max_displacement_m") is not None:
-        d = payload.get("diameter_m")
-        tail = f" ({payload['max_displacement_m'] / d:.3g}D)" if d else ""
-        label = "mean max" if (payload.get("seeds") or 1) > 1 else "max"
-        click.echo(f"  {label} |y|            {payload['max_displacement_m']:.4g} m{tail}")
+    d = payload.get("diameter_m")
+    shown = [("max |y|", "max_displacement_m")]
+    if (payload.get("seeds") or 1) > 1:  # the worst seed, then the seed mean
+        shown = [("max |y| (worst)", "max_displacement_m")]
+        shown.append(("mean of seed max", "mean_max_displacement_m"))
+    for label, key in shown:
+        if payload.get(key) is not None:
+            tail = f" ({payload[key] / d:.3g}D)" if d else ""
+            click.echo(f"  {label:<20} {payload[key]:.4g} m{tail}")
     if payload.get("final_displacement_m") is not None:
         click.echo(f"  final y (|y| mean)   {payload['final_displacement_m']:.4g} m")
     for k, v in (payload.get("criteria") or {}).items():

@@ -175,11 +175,16 @@ def _fail(p: Path, text: str | None, field: str, message: str) -> None:
     _Checker(p, text).fail(field, message)
 
 
+def _storm_duration(storm: Any) -> float:
+    """Duration [s] of a spectral :class:`Storm` or of given kinematics (regular, measured)."""
+    return float(storm.duration_s if hasattr(storm, "duration_s") else storm.duration)
+
+
 def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
     """Refuse a mesh whose memory or run time is excessive, with the estimate."""
     nodes = round(table.length / table.element_length) + 1
     storm = setup.storm
-    storm_s = float(storm.duration_s if hasattr(storm, "duration_s") else storm.duration)
+    storm_s = _storm_duration(storm)
     run_s = storm_s if table.duration is None else min(table.duration, storm_s)
     steps = run_s / setup.settings.dt_max
     mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
@@ -274,12 +279,73 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
         )
 
 
+def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any) -> None:
+    """At least three nodes free to move laterally (fixed and pinned ends hold theirs)."""
+    from onbottom.inputs import consistency
+    from onbottom.inputs.stability_case import _Checker
+
+    nodes = round(table.length / table.element_length) + 1
+    pair = (ends, ends) if isinstance(ends, str) else tuple(ends)
+    held = sum(1 for e in pair if e in ("fixed", "pinned"))
+    _Checker(p, text).apply(
+        consistency.free_nodes(
+            nodes - held,
+            field="pipeline.element_length",
+            detail=f" ({nodes} nodes on length = {table.length:g} m, {held} held by"
+            f" end_conditions = {table.end_conditions!r})",
+        )
+    )
+
+
+def estimate_seeds(path: str | os.PathLike, seeds: int | None, workers: int | None) -> Any:
+    """:class:`onbottom.study.budget.Estimate` of the seeds of a pipeline case (validated)."""
+    from onbottom.study import budget
+
+    run = build_pipeline_run(path)
+    table, setup = run["table"], run["setup"]
+    n = setup.seeds if seeds is None else int(seeds)
+    nodes = int(run["model"].x.size)
+    storm_s = _storm_duration(setup.storm)
+    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    cpu = SECONDS_PER_NODE_STEP * nodes * run_s / run["settings"].dt_max
+    mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
+    return budget.pipeline_storms(n, cpu, mem, workers=workers)
+
+
+MAX_CHUNKS = 10_000
+"""Most NetCDF/checkpoint chunks of one run: each chunk costs a file write and a checkpoint
+(~0.1 s), so 10⁴ chunks add ~20 min of writing; ``chunk_duration`` must not be shorter."""
+
+
+def _check_chunks(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
+    """Refuse a ``chunk_duration`` that splits the run into more than :data:`MAX_CHUNKS`."""
+    storm_s = _storm_duration(setup.storm)
+    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    n = math.ceil(run_s / table.chunk_duration)
+    if n > MAX_CHUNKS:
+        _fail(
+            p,
+            text,
+            "pipeline.chunk_duration",
+            f"pipeline.chunk_duration = {table.chunk_duration!r} s is invalid: it splits the"
+            f" {run_s:.4g} s run into {n:.3g} chunks (each a NetCDF write and a checkpoint,"
+            f" about {n * 0.1 / 3600:.3g} h of writing); the limit is {MAX_CHUNKS} chunks:"
+            f" chunk_duration must be >= {run_s / MAX_CHUNKS:.3g} s",
+        )
+
+
 def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
     if table.animation is None:
         return
+    from onbottom._casefile import contained
+
     ap = Path(table.animation)
     if not ap.is_absolute():
         ap = p.parent / ap
+    try:  # a case file writes only inside its own folder (issue #31)
+        contained(table.animation, ap, folder=p.parent, field="pipeline.animation")
+    except CaseFileError as exc:
+        _fail(p, text, "pipeline.animation", str(exc))
     if ap.suffix.lower() != ".gif":
         _fail(
             p,
@@ -310,6 +376,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
     setup = build_setup(case, p)
     _check_mesh(p, text, table, setup)
+    _check_chunks(p, text, table, setup)
     _check_animation(p, text, table)
     pipe = setup.pipe
     if table.mass is not None:
@@ -377,6 +444,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
             f"{p}: [pipeline] is invalid: {exc}", field="pipeline", file=str(p)
         ) from None
     _check_structure(p, text, table, model)
+    _check_free_nodes(p, text, table, ends)
     sv = case.solver
     settings = PipelineSettings(
         alpha=table.hht_alpha,

@@ -182,15 +182,30 @@ def read_grid(path: str | Path) -> dict[str, Any]:
     help="Exit 0 when some (not all) runs failed (default: exit status 3).",
 )
 @click.option("--no-progress", is_flag=True, help="Hide the progress bar.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB).",
+)
 @json_option
 @handle_errors
-def command(grid_file, output, scheduler, workers, allow_failures, no_progress, as_json):
-    """Run the sweep of GRID_FILE (TOML) and write the results to NetCDF."""
+def command(grid_file, output, scheduler, workers, allow_failures, no_progress, force, as_json):
+    """Run the sweep of GRID_FILE (TOML) and write the results to NetCDF.
+
+    The grid's run time and memory are estimated first (about 1 s per point on one core);
+    beyond the budget (12 h, 8 GB) the sweep is refused unless --force.
+    """
+    import math
+
     from onbottom.results import save_dataset
+    from onbottom.study import budget
     from onbottom.study.sweep import sweep
 
     check_output_path(output, field="--output")
     spec = read_grid(grid_file)
+    n_points = math.prod(len(v) for v in spec["grid"].values())
+    budget.check(budget.sweep_points(n_points, workers=workers), force=force, field="[grid]")
     ds = sweep(
         spec["function"],
         spec["grid"],

@@ -583,9 +583,14 @@ def _read_programme_csv(path: str) -> np.ndarray:
             warnings.simplefilter("ignore", UserWarning)
             data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
     except (ValueError, UnicodeDecodeError) as exc:
+        # never echo the file's contents (numpy quotes the offending text): row/column only
+        import re
+
+        m = re.search(r"at row (\d+), column (\d+)", str(exc))
+        where = f" (row {int(m.group(1)) + 2}, column {m.group(2)})" if m else ""
         raise InputError(
             f"programme.file = {path!r} is invalid: expected numeric CSV columns time [s],"
-            f" H [kN/m], V [kN/m] after one header line ({exc})"
+            f" H [kN/m], V [kN/m] after one header line{where}"
         ) from None
     if data.ndim != 2 or data.shape[1] < 3 or data.shape[0] < 2:
         raise InputError(
@@ -686,8 +691,13 @@ def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
             v = np.asarray(take("vertical_load_kn"), dtype=float) * _KN
         else:
             path = str(take("file"))
-            if base is not None and not os.path.isabs(path):
-                path = os.path.join(base, path)
+            if base is not None:
+                from onbottom._casefile import contained
+
+                value = path
+                if not os.path.isabs(path):
+                    path = os.path.join(base, path)
+                contained(value, path, folder=base, field="programme.file")
             data = _read_programme_csv(path)
             t, h, v = data[:, 0], data[:, 1] * _KN, data[:, 2] * _KN
         period = table.pop("cycle_period", None)

@@ -39,6 +39,7 @@ from onbottom.hydro.force_model import ForceModel
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.registry import force_model_from_case
 from onbottom.hydro.storm_kinematics import StormKinematics
+from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.stability_case import (
@@ -334,6 +335,29 @@ def _check_time_step(case: StormCase, chk: _Checker) -> None:
         )
 
 
+def _check_durations_and_stop(case: StormCase, chk: _Checker) -> None:
+    """A storm peak of at least a few peak periods and a runaway stop at or above the largest
+    F109 criterion (:mod:`onbottom.inputs.consistency`)."""
+    from onbottom.dynamics.storm_section import CRITERIA_OVER_D
+
+    found: list[consistency.Finding] = []
+    st = case.storm
+    if st.stages:
+        for i, s in enumerate(st.stages):
+            found += consistency.peak_duration(
+                s.duration_hours * 3600.0, s.tp, field=f"storm.stages[{i}].duration_hours"
+            )
+    elif case.waves is not None:
+        peak = 3.0 if st.peak_hours is None else st.peak_hours
+        found += consistency.peak_duration(peak * 3600.0, case.waves.tp, field="storm.peak_hours")
+    found += consistency.stop_limit(
+        case.solver.max_displacement_over_d,
+        CRITERIA_OVER_D.values(),
+        field="solver.max_displacement_over_d",
+    )
+    chk.apply(found)
+
+
 def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> StormSetup:
     """Objects of a validated :class:`StormCase`.
 
@@ -361,6 +385,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
             f"run.seeds = {case.run.seeds!r} is invalid with storm.kind = {case.storm.kind!r}:"
             " the flow is deterministic, give seeds = 1",
         )
+    _check_durations_and_stop(case, chk)
     rho = case.environment.water_density
     with _Keys(chk):
         section = case.pipe.section(rho)

@@ -33,6 +33,7 @@ from onbottom.hydro._force_contract import N_FORCE_STATE
 from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
+from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Current, Storm
 from onbottom.results import annotate, provenance, save_dataset
@@ -269,7 +270,8 @@ def simulate_storm_section(
         The storm (synthesised here with ``depth``, ``current``, ``z0``) or its precomputed
         kinematics (then ``depth``/``current`` are ignored).
     depth : float or None
-        Water depth [m], > 0; needed with a :class:`Storm`.
+        Water depth [m], > D (the pipe's outer diameter) and with every stage below breaking
+        (:mod:`onbottom.inputs.consistency`); needed with a :class:`Storm`.
     current : Current or None
         Steady current.
     z0 : float or None
@@ -305,6 +307,21 @@ def simulate_storm_section(
     elif isinstance(storm, Storm):
         if depth is None:
             raise InputError("depth = None is invalid: the water depth [m] is needed")
+        consistency.scalar("depth", depth)
+        consistency.scalar("z0", z0)
+        consistency.scalar("sample_interval", sample_interval)
+        # errors only: the case files report the warnings of these rules with file and line
+        found = consistency.depth_and_diameter(depth, d, depth_field="depth")
+        for i, stage in enumerate(storm.stages):
+            found += consistency.sea_state(
+                stage.hs,
+                stage.tp,
+                depth,
+                hs_field=f"storm.stages[{i}].hs",
+                tp_field=f"storm.stages[{i}].tp",
+                depth_field="depth",
+            )
+        consistency.raise_first(found)
         kin = storm_kinematics(
             storm, depth, diameter=d, current=current, z0=z0, sample_interval=sample_interval
         )

@@ -105,9 +105,12 @@ def seabed_velocity_parameters(
     m0 = spectral_moment(w, suu, 0)
     m2 = spectral_moment(w, suu, 2)
     rd = spreading_factor(sea.direction_deg, sea.spreading_s)
+    # waves that do not reach the seabed (deep water): no flow, T_u of the surface (m0/m2 → the
+    # surface spectrum's ratio is not defined once both moments underflow; T_p is a bound)
+    t_u = 2.0 * math.pi * math.sqrt(m0 / m2) if m2 > 0.0 else sea.tp
     return {
         "significant_velocity": 2.0 * math.sqrt(m0) * rd,
-        "mean_period": 2.0 * math.pi * math.sqrt(m0 / m2),
+        "mean_period": t_u,
         "spreading_factor": rd,
     }
 

@@ -156,6 +156,9 @@ class Pipe:
         youngs_modulus : float
             Steel E [Pa], > 0; the bending and axial stiffnesses use the steel wall only.
         """
+        from onbottom.inputs import consistency
+
+        consistency.raise_first(consistency.youngs_modulus(youngs_modulus, field="youngs_modulus"))
         ds = positive("Pipe.steel_outer_diameter", steel_outer_diameter)
         t = in_range("Pipe.wall_thickness", wall_thickness, 0.0, ds / 2.0, low_inclusive=False)
         positive("Pipe.steel_density", steel_density)

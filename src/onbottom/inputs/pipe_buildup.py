@@ -25,6 +25,7 @@ from dataclasses import dataclass, field, replace
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER, RHO_STEEL
 from onbottom.errors import InputError
+from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Layer, Pipe
 
 __all__ = ["CONDITIONS", "Contents", "PipeBuildUp", "PipeProperties"]
@@ -105,7 +106,8 @@ class PipeBuildUp:
     steel_density : float
         [kg/m³], > 0 (default 7850).
     youngs_modulus : float
-        Steel Young's modulus E [Pa], > 0 (default 207 GPa).
+        Steel Young's modulus E [Pa], in [1e10, 3e11] (default 207 GPa; 207000 is MPa typed
+        as Pa: an error).
     layers : tuple of Layer
         Coatings from the steel outwards (corrosion coat, insulation, concrete), any number.
     marine_growth : Layer or None
@@ -137,6 +139,9 @@ class PipeBuildUp:
         )
         positive("PipeBuildUp.steel_density", self.steel_density)
         positive("PipeBuildUp.youngs_modulus", self.youngs_modulus)
+        consistency.raise_first(
+            consistency.youngs_modulus(self.youngs_modulus, field="PipeBuildUp.youngs_modulus")
+        )
         positive("PipeBuildUp.seawater_density", self.seawater_density)
         object.__setattr__(self, "layers", tuple(self.layers))
         for i, layer in enumerate(self.layers):

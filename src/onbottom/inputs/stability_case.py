@@ -27,6 +27,7 @@ from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, _find_line, load_case_file
 from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.inputs import consistency
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Layer, Pipe
 from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
@@ -332,16 +333,22 @@ class StabilityCase(StrictModel):
 
 
 # ---- checks across tables and plausibility (after the schema) -------------------------------
-MAX_WAVE_STEEPNESS = 1.0 / 7.0
-"""Limiting steepness H/L of a single wave (Miche/Stokes, deep water): a sea state with a
-larger S_p = 2π H_s/(g T_p²) cannot exist — an error (T_p in the wrong unit, H_max for H_s)."""
+# limits shared with the API (kept here under their old names)
+MAX_WAVE_STEEPNESS = consistency.MAX_WAVE_STEEPNESS
+MAX_HS_OVER_DEPTH = consistency.MAX_HS_OVER_DEPTH
+USUAL_HS_OVER_DEPTH = consistency.USUAL_HS_OVER_DEPTH
 
-MAX_HS_OVER_DEPTH = 0.78
-"""Depth-limited breaking H/d ≈ 0.78 (McCowan): a significant wave height above it is an error."""
 
-USUAL_HS_OVER_DEPTH = 0.5
-"""Above H_s/d = 0.5 the sea is in the surf zone: linear wave kinematics (F109 §3.2) are outside
-their usual range — a warning."""
+def outer_diameter(pipe: PipeTable) -> float:
+    """Outer diameter D [m] of a [pipe] table: given (simple form) or the steel plus twice
+    every layer and the marine growth (build-up form)."""
+    if not pipe.is_buildup:
+        return float(pipe.outer_diameter)
+    d = float(pipe.steel_outer_diameter) + 2.0 * sum(layer.thickness for layer in pipe.layers)
+    if pipe.marine_growth is not None:
+        d += 2.0 * pipe.marine_growth.thickness
+    return d
+
 
 _OBJECT_TABLES = {
     "PipeBuildUp": "pipe",
@@ -356,16 +363,6 @@ _OBJECT_TABLES = {
     "Current": "current",
     "LoadCombination": "combinations",
 }
-
-
-def _steepness_limit(tp: float) -> float:
-    """DNV-RP-C205 (2010) §3.5.5.4 limiting average steepness S_p of a design sea state:
-    1/15 for T_p <= 8 s, 1/25 for T_p >= 15 s, linear in between."""
-    if tp <= 8.0:
-        return 1.0 / 15.0
-    if tp >= 15.0:
-        return 1.0 / 25.0
-    return 1.0 / 15.0 + (tp - 8.0) / 7.0 * (1.0 / 25.0 - 1.0 / 15.0)
 
 
 class _Checker:
@@ -390,10 +387,19 @@ class _Checker:
         where = f"{self.file}{f', line {line}' if line else ''}: "
         raise CaseFileError(where + _plain(message), field=field or None, file=self.file, line=line)
 
-    def warn(self, field: str, message: str) -> None:
+    def warn(self, field: str, message: str, category: type[Warning] = OutOfRangeWarning) -> None:
         line = self._line(field)
         where = f"{self.file}{f', line {line}' if line else ''}: "
-        warnings.warn(where + _plain(message), OutOfRangeWarning, stacklevel=3)
+        warnings.warn(where + _plain(message), category, stacklevel=3)
+
+    def apply(self, findings: list[consistency.Finding]) -> None:
+        """Report :mod:`onbottom.inputs.consistency` findings under their case-file keys:
+        the first error raises, then every warning is issued."""
+        for f in findings:
+            if f.error:
+                self.fail(f.field, f.message)
+        for f in findings:
+            self.warn(f.field, f.message, f.category)
 
     def rename(self, exc: InputError) -> NoReturn:
         """Re-raise an error of an input object under the case-file key it came from."""
@@ -401,7 +407,7 @@ class _Checker:
         field = getattr(exc, "field", None)
         head = text.split(" ", 1)[0]
         obj, _, attr = head.partition(".")
-        if field is None and obj in _OBJECT_TABLES and attr:
+        if (field is None or field == head) and obj in _OBJECT_TABLES and attr:
             field = f"{_OBJECT_TABLES[obj]}.{attr}"
             text = f"{field}{text[len(head) :]}"
         self.fail(field or "", text)
@@ -520,45 +526,52 @@ def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
                 " [500, 200000] Pa (check the unit: Pa, not kPa)",
             )
 
-    # -- sea states -------------------------------------------------------------------------
+    # -- physical consistency (onbottom.inputs.consistency: shared with the API) -----------
     depth = case.environment.water_depth
+    rho_w = case.environment.water_density
+    found: list[consistency.Finding] = []
+    found += consistency.depth_and_diameter(
+        depth, outer_diameter(case.pipe), depth_field="environment.water_depth"
+    )
     states = [] if case.waves is None else [("", case.waves.hs, case.waves.tp, "waves", "waves")]
     states += list(extra_states)
     for label, hs, tp, hs_at, tp_at in states:
-        what = f" ({label})" if label else ""
-        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
-        if steep > MAX_WAVE_STEEPNESS:
-            chk.fail(
-                f"{tp_at}.tp",
-                f"{tp_at}.tp = {tp!r} s is invalid with H_s = {hs:g} m{what}: the steepness"
-                f" 2πH_s/(gT_p²) = {steep:.3g} exceeds the breaking limit 1/7; T_p must be >="
-                f" {math.sqrt(2.0 * math.pi * hs / (GRAVITY * MAX_WAVE_STEEPNESS)):.3g} s"
-                " (check the units: m and s)",
-            )
-        if hs > MAX_HS_OVER_DEPTH * depth:
-            chk.fail(
-                f"{hs_at}.hs",
-                f"{hs_at}.hs = {hs!r} m is invalid in water_depth = {depth:g} m{what}: waves"
-                f" break above H/d = {MAX_HS_OVER_DEPTH:g} (H_s must be <="
-                f" {MAX_HS_OVER_DEPTH * depth:.3g} m; check environment.water_depth)",
-            )
-    for label, hs, tp, hs_at, tp_at in states:  # warnings after every error
-        what = f" ({label})" if label else ""
-        steep = 2.0 * math.pi * hs / (GRAVITY * tp**2) if tp * tp > 0.0 else math.inf
-        if steep > _steepness_limit(tp):
-            chk.warn(
-                f"{tp_at}.tp",
-                f"{tp_at}.tp = {tp:g} s is unusual with H_s = {hs:g} m{what}: the steepness"
-                f" {steep:.3g} exceeds the DNV-RP-C205 §3.5.5.4 limit"
-                f" {_steepness_limit(tp):.3g} of a design sea state",
-            )
-        if hs > USUAL_HS_OVER_DEPTH * depth:
-            chk.warn(
-                f"{hs_at}.hs",
-                f"{hs_at}.hs = {hs:g} m is unusual in water_depth = {depth:g} m{what}: above"
-                f" H_s/d = {USUAL_HS_OVER_DEPTH:g} the sea is depth-limited (surf zone) and"
-                " linear wave kinematics lose accuracy",
-            )
+        found += consistency.sea_state(
+            hs,
+            tp,
+            depth,
+            hs_field=f"{hs_at}.hs",
+            tp_field=f"{tp_at}.tp",
+            depth_field="environment.water_depth",
+            label=label,
+        )
+    if case.pipe.is_buildup:
+        found += consistency.youngs_modulus(case.pipe.youngs_modulus, field="pipe.youngs_modulus")
+    for i, layer in enumerate(case.pipe.layers):
+        found += consistency.layer_density(
+            layer.density, rho_w, field=f"pipe.layers[{i}].density", name=layer.name
+        )
+    if case.pipe.marine_growth is not None:
+        found += consistency.layer_density(
+            case.pipe.marine_growth.density,
+            rho_w,
+            field="pipe.marine_growth.density",
+            name=case.pipe.marine_growth.name,
+        )
+    found += consistency.current_speed(case.current.velocity, field="current.velocity")
+    for i, c in enumerate(getattr(case, "combinations", None) or []):
+        v = getattr(c, "current_velocity", None)
+        if v is not None:
+            found += consistency.current_speed(v, field=f"combinations[{i}].current_velocity")
+    angles = [("current.direction_deg", case.current.direction_deg)]
+    if case.waves is not None:
+        angles.append(("waves.direction_deg", case.waves.direction_deg))
+    for i, s in enumerate(getattr(getattr(case, "storm", None), "stages", None) or []):
+        if getattr(s, "direction_deg", None) is not None:
+            angles.append((f"storm.stages[{i}].direction_deg", s.direction_deg))
+    for name, value in angles:
+        found += consistency.angle_deg(value, field=name)
+    chk.apply(found)
 
     # -- current ----------------------------------------------------------------------------
     cur = case.current

@@ -177,7 +177,13 @@ def _select(
 ) -> set[str] | None:
     if only is None:
         return None
-    wanted = {o.strip() for o in only if o.strip()}
+    only = list(only)
+    if not only or any(not o.strip() for o in only):
+        raise InputError(
+            "only = '' is invalid: a section name is required (onbottom report --list shows"
+            " the names)"
+        )
+    wanted = {o.strip() for o in only}
     names = {s.name for s in sections}
     unknown = sorted(wanted - names)
     if unknown:
@@ -272,25 +278,74 @@ def _jsonable(rs: RenderedSection) -> dict[str, Any]:
     return d
 
 
+GENERATOR_MARK = '<meta name="generator" content="onbottom'
+"""How an ``index.html`` written by :func:`build_report` begins to identify itself."""
+
+
+def check_report_folder(out: str | os.PathLike, *, force: bool = False) -> Path:
+    """The output folder of a report, refused when writing there would do harm.
+
+    * a filesystem root or the home folder: always refused (a report writes index.html,
+      report.json, figures/ and tables/ into the folder);
+    * a folder holding an ``index.html`` that :func:`build_report` did not write (no
+      onbottom generator mark): refused unless ``force`` — a report never silently
+      overwrites someone else's page; an earlier onbottom report there is replaced.
+    """
+    p = Path(out).expanduser()
+    full = p.resolve()
+    if full.parent == full or full == Path.home().resolve():
+        err = InputError(
+            f"out = {str(p)!r} is invalid: a report needs a folder of its own, not"
+            f" {'the filesystem root' if full.parent == full else 'the home folder'}"
+            " (e.g. --out onbottom-report)"
+        )
+        err.field = "--out"  # type: ignore[attr-defined]
+        raise err
+    if p.exists() and not p.is_dir():
+        err = InputError(f"out = {str(p)!r} is invalid: it is a file, expected a folder")
+        err.field = "--out"  # type: ignore[attr-defined]
+        raise err
+    index = p / "index.html"
+    if index.is_file() and not force:
+        try:
+            with index.open("rb") as fh:
+                head = fh.read(4096).decode("utf-8", "replace")
+        except OSError:
+            head = ""
+        if GENERATOR_MARK not in head:
+            err = InputError(
+                f"out = {str(p)!r} is invalid: it holds an index.html that onbottom did not"
+                " write; choose another folder or pass --force to overwrite it"
+            )
+            err.field = "--out"  # type: ignore[attr-defined]
+            raise err
+    return p
+
+
 def build_report(
     out: str | os.PathLike,
     *,
     only: Iterable[str] | None = None,
     fast: bool = False,
     title: str = "onbottom validation report",
+    force: bool = False,
 ) -> ReportResult:
     """Run the report's sections and write ``index.html``, ``report.json``, figures, tables.
 
     Parameters
     ----------
     out : path
-        Output folder (created; files of an earlier report are overwritten).
+        Output folder (created; files of an earlier onbottom report are overwritten; see
+        :func:`check_report_folder`).
     only : iterable of str or None
         Section names to run (others are listed as "not run"); None runs all.
     fast : bool
         Leave out the sections marked slow (the calibration recovery, …).
     title : str
         Page title.
+    force : bool
+        Overwrite an ``index.html`` in ``out`` that onbottom did not write
+        (:func:`check_report_folder`; an earlier onbottom report is replaced without it).
 
     Returns
     -------
@@ -302,10 +357,10 @@ def build_report(
         A name in ``only`` is not a section.
     """
     t_start = time.perf_counter()
-    out_dir = Path(out)
-    out_dir.mkdir(parents=True, exist_ok=True)
     sections = load_sections()
     wanted = _select(sections, only)
+    out_dir = check_report_folder(out, force=force)
+    out_dir.mkdir(parents=True, exist_ok=True)
     root = repo_root()
     import matplotlib
 

@@ -90,7 +90,8 @@ class CurveSettings:
     Parameters
     ----------
     diameter : float
-        Pipe outer diameter D [m], > 0 (results are dimensionless; D sets the scale).
+        Pipe outer diameter D [m], in [0.005, 5] (results are dimensionless; D sets the
+        scale).
     seeds : int
         Storms per evaluation, >= 1; seeds first_seed, first_seed + 1, ...
     first_seed : int
@@ -140,7 +141,7 @@ class CurveSettings:
     force_model: ForceModel = field(default_factory=MorisonLift)
 
     def __post_init__(self) -> None:
-        positive("CurveSettings.diameter", self.diameter)
+        in_range("CurveSettings.diameter", self.diameter, 0.005, 5.0)  # mm typed as m
         if int(self.seeds) < 1 or int(self.first_seed) < 0:
             raise InputError(
                 f"CurveSettings.seeds = {self.seeds!r} / first_seed = {self.first_seed!r} are"
@@ -212,8 +213,9 @@ def _mean_max(
     us: float,
     target: float,
     s: CurveSettings,
-) -> tuple[bool, float, int, int]:
-    """(mean max |y|/D >= target?, mean over the seeds run, seeds run, seeds out of range)."""
+) -> tuple[bool, float, int, list[float], int]:
+    """(mean max |y|/D >= target?, mean over the seeds run, seeds run, max |y|/D per seed
+    run, seeds out of the soil model's range)."""
     d = s.diameter
     ws = weight_parameter * 0.5 * s.water_density * d * us * us
     pipe = Pipe(outer_diameter=d, submerged_weight=ws, seawater_density=s.water_density)
@@ -225,6 +227,7 @@ def _mean_max(
     red = LoadReductions(permeable_seabed=soil != "clay")
     n = len(kins)
     total = 0.0
+    per_seed: list[float] = []
     n_out = 0
     for i, kin in enumerate(kins):
         r = simulate_storm_section(
@@ -235,13 +238,14 @@ def _mean_max(
         elif not r.success:
             raise RuntimeError(f"seed {kin.seed}: {r.message}")
         total += r.max_displacement / d
+        per_seed.append(r.max_displacement / d)
         run = i + 1
         # decided already? (remaining seeds add between 0 and stop each)
         if total >= target * n:
-            return True, total / run, run, n_out
+            return True, total / run, run, per_seed, n_out
         if total + (n - run) * (stop + 0.1) < target * n:
-            return False, total / run, run, n_out
-    return total / n >= target, total / n, n, n_out
+            return False, total / run, run, per_seed, n_out
+    return total / n >= target, total / n, n, per_seed, n_out
 
 
 def find_weight_parameter(
@@ -266,15 +270,17 @@ def find_weight_parameter(
     storms = 0
     cache: dict[float, bool] = {}
     outside: dict[float, int] = {}
+    seeds_at: dict[float, list[float]] = {}
 
     def moves(lv: float) -> bool:
         nonlocal evals, storms
         if lv not in cache:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", OutOfRangeWarning)
-                above, _, ran, n_out = _mean_max(soil, lv, kins, us, target, s)
+                above, _, ran, per_seed, n_out = _mean_max(soil, lv, kins, us, target, s)
             cache[lv] = above
             outside[lv] = n_out
+            seeds_at[lv] = per_seed
             evals += 1
             storms += ran
         return cache[lv]
@@ -315,6 +321,10 @@ def find_weight_parameter(
             else:
                 hi = mid
     value = math.sqrt(lo * hi) if ok else math.nan
+    width = hi / lo - 1.0 if lo > 0.0 else math.inf
+    converged = bool(ok and width <= s.tolerance * (1.0 + 1e-9))
+    if ok and not converged:  # pragma: no cover - the bisection runs to the tolerance
+        message = f"bracket [{lo:.4g}, {hi:.4g}] wider than the tolerance {s.tolerance:g}"
     n_out = outside.get(lo, 0) + outside.get(hi, 0) if ok else sum(outside.values())
     if n_out:
         message += (
@@ -331,6 +341,10 @@ def find_weight_parameter(
         "L": value,
         "L_low": lo,
         "L_high": hi,
+        "bracket_width": width,
+        "converged": converged,
+        **_seed_spread("low", seeds_at.get(lo)),
+        **_seed_spread("high", seeds_at.get(hi)),
         "evaluations": evals,
         "storms": storms,
         "runtime_s": time.perf_counter() - t0,
@@ -340,6 +354,45 @@ def find_weight_parameter(
         "out_of_range": int(n_out),
         "message": message,
     }
+
+
+def _seed_spread(end: str, values: list[float] | None) -> dict[str, float]:
+    """Mean, smallest and largest max |y|/D over the seeds run at one end of the bracket."""
+    if not values:
+        return {
+            f"seed_mean_{end}": math.nan,
+            f"seed_min_{end}": math.nan,
+            f"seed_max_{end}": math.nan,
+        }
+    return {
+        f"seed_mean_{end}": float(np.mean(values)),
+        f"seed_min_{end}": float(np.min(values)),
+        f"seed_max_{end}": float(np.max(values)),
+    }
+
+
+POINT_FIELDS = (
+    "L",
+    "L_low",
+    "L_high",
+    "bracket_width",
+    "converged",
+    "seed_mean_low",
+    "seed_min_low",
+    "seed_max_low",
+    "seed_mean_high",
+    "seed_min_high",
+    "seed_max_high",
+    "evaluations",
+    "storms",
+    "runtime_s",
+)
+"""Numbers of one curve point stored per criterion in the dataset (``{criterion}_{field}``
+for the others than L)."""
+
+
+_VARIABLE = {"L_low": "bracket_low", "L_high": "bracket_high", "runtime_s": "runtime"}
+"""Dataset variable (after ``{criterion}_``) of a point field whose name differs."""
 
 
 @dataclass(frozen=True)
@@ -360,6 +413,10 @@ class _PointJob:
                 "L": math.nan,
                 "L_low": math.nan,
                 "L_high": math.nan,
+                "bracket_width": math.nan,
+                "converged": False,
+                **_seed_spread("low", None),
+                **_seed_spread("high", None),
                 "evaluations": 0,
                 "storms": 0,
                 "runtime_s": 0.0,
@@ -407,6 +464,20 @@ def stability_curves(
         over dimensions (soil, N, M, K); attributes: total storms, wall time, settings.
     """
     s = settings if settings is not None else CurveSettings()
+    for name, vals in (
+        ("k_values", k_values),
+        ("m_values", m_values),
+        ("n_values", n_values),
+        ("soils", soils),
+        ("criteria", criteria),
+    ):
+        if isinstance(vals, (str, bytes)) or not hasattr(vals, "__iter__"):
+            err = InputError(
+                f"{name} = {vals!r} is invalid: expected a sequence of values (a list), not"
+                " one value"
+            )
+            err.field = name  # type: ignore[attr-defined]
+            raise err
     for soil in soils:
         if soil not in SOILS:
             raise InputError(f"soils = {soil!r} is invalid: must be one of {SOILS}")
@@ -449,18 +520,7 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     idx = {(r["soil"], r["N"], r["M"], r["K"], r["criterion"]): r for r in rows}
     data: dict[str, Any] = {}
     for c in criteria:
-        arrs = {
-            name: np.full(shape, np.nan)
-            for name in (
-                "L",
-                "L_low",
-                "L_high",
-                "evaluations",
-                "storms",
-                "runtime_s",
-                "out_of_range",
-            )
-        }
+        arrs = {name: np.full(shape, np.nan) for name in (*POINT_FIELDS, "out_of_range")}
         for a, so in enumerate(soils):
             for b, n in enumerate(ns):
                 for i, m in enumerate(ms):
@@ -476,6 +536,11 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
         )
         data[f"{c}_bracket_low"] = (dims, arrs["L_low"])
         data[f"{c}_bracket_high"] = (dims, arrs["L_high"])
+        data[f"{c}_bracket_width"] = (dims, arrs["bracket_width"])
+        data[f"{c}_converged"] = (dims, np.nan_to_num(arrs["converged"]).astype(np.int8))
+        for name in POINT_FIELDS:
+            if name.startswith("seed_"):
+                data[f"{c}_{name}"] = (dims, arrs[name])
         data[f"{c}_evaluations"] = (dims, arrs["evaluations"])
         data[f"{c}_storms"] = (dims, arrs["storms"])
         data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
@@ -524,6 +589,21 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
             flag_values="0 1",
             flag_meanings="in_range out_of_range",
         )
+        ds[f"{c}_converged"].attrs.update(
+            long_name=f"1 if the bracket of {c} is within the tolerance asked for"
+            f" (relative width <= {s.tolerance:g}); 0: not converged, L is not reported",
+            units="1",
+        )
+        ds[f"{c}_bracket_width"].attrs.update(
+            long_name=f"relative width L_high/L_low - 1 of the final bracket of {c}", units="1"
+        )
+        for end in ("low", "high"):
+            for stat in ("mean", "min", "max"):
+                ds[f"{c}_seed_{stat}_{end}"].attrs.update(
+                    long_name=f"{stat} over the seeds run of max |y|/D at the {end} end of the"
+                    f" bracket of {c}",
+                    units="1",
+                )
     ds["out_of_range"] = sum(ds[f"{c}_out_of_range"] for c in criteria).clip(max=1)
     ds["out_of_range"] = ds["out_of_range"].astype(np.int8)
     ds["out_of_range"].attrs.update(
@@ -536,8 +616,11 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
 
 
 def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
-    """Rows soil, N, M, K, L_stable, L_10, their L/(2 + M)² forms and ``<criterion>
-    out_of_range`` (1: storms deciding the point left the soil model's range; for CSV)."""
+    """Rows soil, N, M, K, L_stable, L_10 and their L/(2 + M)² forms, and per criterion its
+    bracket (``_L_low``, ``_L_high``, ``_bracket_width``), ``_converged`` and the seeds' spread
+    at both ends of the bracket (``_seed_mean/min/max_low/high``, max |y|/D), ``_evaluations``,
+    ``_storms``, ``_runtime_s``, and ``<criterion>_out_of_range`` (1: storms deciding the point
+    left the soil model's range) (for CSV and JSON)."""
     rows = []
     crits = [c for c in CRITERIA if c in ds]
     for so in ds["soil"].values:
@@ -551,10 +634,16 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                         "K": float(k),
                     }
                     for c in crits:
-                        v = float(ds[c].sel(soil=so, N=n, M=m, K=k))
+                        at = {"soil": so, "N": n, "M": m, "K": k}
+                        v = float(ds[c].sel(**at))
                         row[c] = v
                         row[f"{c}/(2+M)^2"] = v / (2.0 + float(m)) ** 2
                         key = f"{c}_out_of_range"
                         row[key] = int(ds[key].sel(soil=so, N=n, M=m, K=k)) if key in ds else 0
+                        for name in POINT_FIELDS[1:]:
+                            var = _VARIABLE.get(name, name)
+                            if f"{c}_{var}" in ds:
+                                x = ds[f"{c}_{var}"].sel(**at).item()
+                                row[f"{c}_{name}"] = bool(x) if name == "converged" else float(x)
                     rows.append(row)
     return rows

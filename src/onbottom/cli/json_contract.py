@@ -1,0 +1,379 @@
+"""The JSON contract of ``onbottom … --json``: one registry of keys and their meaning.
+
+Every ``--json`` output is a JSON object carrying ``schema_version`` (:data:`SCHEMA_VERSION`,
+added by :func:`onbottom.cli._common.emit_json` and the error object); its other keys are
+listed here per command, with nested tables where they have fixed keys. ``docs/json.md`` is
+generated from this registry (``python -m onbottom.cli.json_contract > docs/json.md``) and
+``tests/unit/test_json_contract.py`` checks that the page is current and that the commands'
+actual keys are the documented ones.
+
+One meaning per key across commands: ``max_displacement_m`` is always the worst seed's
+maximum lateral displacement and ``mean_max_displacement_m`` the seed mean beside it (equal for
+one seed), for the pipe section and the pipeline alike.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["CONTRACT", "SCHEMA_VERSION", "Output", "documented_keys", "render_markdown"]
+
+SCHEMA_VERSION = 1
+"""Version of the JSON contract; incremented when a key changes meaning or disappears."""
+
+SCHEMA_KEY = {
+    "schema_version": "version of this JSON contract (an integer; see the top of this page)"
+}
+
+
+@dataclass(frozen=True)
+class Output:
+    """One kind of ``--json`` output: the command line that gives it, its top-level keys and
+    the keys of its nested tables (``"checks[]"``: the keys of each item of a list)."""
+
+    command: str
+    title: str
+    keys: dict[str, str]
+    nested: dict[str, dict[str, str]] = field(default_factory=dict)
+    open_keys: str = ""
+    """Where a table's keys are open-ended, what they are (then only listed keys are checked)."""
+
+
+_STORM_COMMON = {
+    "max_displacement_m": "largest lateral displacement |y| of the worst seed [m]",
+    "mean_max_displacement_m": "mean over the seeds of each seed's largest |y| [m] (one seed:"
+    " equal to max_displacement_m)",
+    "criteria": 'F109 dynamic criteria {"0.5D": bool, "10D": bool}',
+    "status": "solver status (1: ran to the end, 2: stopped at the runaway limit, 3: lift-off"
+    " stop; -3: ran to the end but the penetration left the soil model's range (z > D/2);"
+    " other < 0: failed; -9: some seeds failed or left the range)",
+    "success": "true if the run (every seed) produced a valid result",
+    "message": "one line: how the run ended",
+    "seeds": "number of storms run",
+    "diameter_m": "outer diameter D of the pipe [m]",
+    "netcdf": "result file(s) written",
+    "warnings": "unusual-input warnings (file, line, key, value, range)",
+}
+
+CONTRACT: dict[str, Output] = {
+    "error": Output(
+        "onbottom stability missing.toml --json",
+        "Any command that fails (exit status 1, 2, 3 or 70)",
+        {"error": "the error: {type, message, field}"},
+        {
+            "error": {
+                "type": "exception class (InputError, CaseFileError, BudgetError, UsageError, …)",
+                "message": "what is wrong: the key or option, its value and the allowed range",
+                "field": "the option or case-file key at fault (dotted), or null",
+            }
+        },
+    ),
+    "stability": Output(
+        "onbottom stability examples/stability_case.toml --json",
+        "DNV-RP-F109 design checks",
+        {
+            "case": "the case file",
+            "section": "the pipe section in its condition (D, w_s, s_g, EI, EA, masses)",
+            "checks": "one item per check and load combination",
+            "success": "false where the design solve has no solution or z_p/D > 0.5",
+            "message": "why success is false, else empty",
+            "all_pass": "true if every check passes",
+            "design": "the design solve ([design] solve_for): value, utilisation, …",
+            "warnings": "unusual-input warnings",
+        },
+        {
+            "checks[]": {
+                "name": "flotation, absolute_lateral, …",
+                "combination": "load combination name",
+                "condition": "pipe condition",
+                "utilisation": "utilisation (<= 1 passes), or null",
+                "pass": "verdict",
+                "details": "the numbers of the check (F109 equation inputs and outputs)",
+            }
+        },
+    ),
+    "loads": Output(
+        "onbottom loads examples/stability_case.toml --json",
+        "Morison + lift peak loads of a 3-h record per combination",
+        {
+            "case": "the case file",
+            "seed": "random-phase seed of the records",
+            "duration": "record duration [s]",
+            "coefficients": "{cd, cm, cl} used",
+            "combinations": "one item per load combination",
+            "success": "false where an embedment lies outside F109 validity",
+            "message": "why success is false, else empty",
+            "warnings": "unusual-input warnings",
+        },
+        {
+            "combinations[]": {
+                "combination": "name",
+                "condition": "pipe condition",
+                "hs": "H_s [m]",
+                "tp": "T_p [s]",
+                "submerged_weight": "w_s [N/m]",
+                "r_y": "lateral load reduction [-]",
+                "r_z": "vertical load reduction [-]",
+                "max_horizontal": "largest horizontal load [N/m]",
+                "min_vertical": "smallest vertical (downward +) load [N/m]",
+                "max_angle_deg": "largest load inclination [deg]",
+                "fraction_20_45": "fraction of cycles inclined 20–45° [-]",
+                "n_cycles": "load cycles in the record",
+            }
+        },
+    ),
+    "storm_section": Output(
+        "onbottom storm examples/storm_case.toml --json",
+        "Pipe section in one storm",
+        {
+            **_STORM_COMMON,
+            "final_displacement_m": "lateral displacement at the end [m]",
+            "max_displacement_over_D": "max_displacement_m / D [-]",
+            "summary": "solver counters: steps, rejected steps, time of the maximum, …",
+            "seed": "the storm's seed",
+            "plot": "figure written, or null",
+        },
+    ),
+    "storm_seeds": Output(
+        "onbottom storm examples/storm_case.toml --seeds 3 --json",
+        "Pipe section in several storms (seeds)",
+        {
+            **_STORM_COMMON,
+            "final_displacement_m": "mean |y| at the end over the seeds [m]",
+            "statistics": "of each seed's max |y| [m]: mean, std, min, max, fractile, …",
+            "failures": "seeds that failed: {seed, status, message}",
+        },
+        {
+            "statistics": {
+                "mean": "[m]",
+                "std": "[m]",
+                "min": "[m]",
+                "max": "[m] (= max_displacement_m)",
+                "fractile": "[m] at fractile_level",
+                "fractile_level": "[-] ([run] fractile)",
+                "n_seeds": "seeds run",
+                "n_failed": "seeds failed",
+                "n_out_of_range": "seeds whose penetration left the soil model's range (z > D/2;"
+                " status -3, counted in the statistics, listed with the failures)",
+                "mean_over_D": "mean / D [-]",
+            }
+        },
+    ),
+    "storm_pipeline": Output(
+        "onbottom storm examples/pipeline_case.toml --json",
+        "Whole pipeline FE in a storm ([pipeline] table)",
+        {
+            **_STORM_COMMON,
+            "max_displacement_over_D": "max_displacement_m / D [-]",
+            "max_strain": "largest bending + axial strain of any seed [-]",
+            "worst_node_x_m": "position along the line of the worst node [m]",
+            "strain_limit": "[pipeline] strain_limit, or null",
+            "strain_check": "strain verdict of every seed, or null",
+            "n_nodes": "FE nodes",
+            "plot": "figure written, or null",
+            "animation": "GIF written, or null",
+            "failures": "seeds that failed",
+            "per_seed": "one summary per seed",
+            "model": '"pipeline_fe"',
+        },
+    ),
+    "curves": Output(
+        "onbottom curves examples/curves_case.toml --json",
+        "Generalized-stability curves L_stable, L_10 from dynamic storms",
+        {
+            "points": "one item per soil, N, M, K",
+            "total_storms": "storms run",
+            "wall_time_s": "[s]",
+            "workers": "Dask workers",
+            "failures": "points whose runs failed",
+            "no_crossing": "points with no L in the bracket (message says why)",
+            "netcdf": "NetCDF written",
+            "csv": "CSV written (the points)",
+            "figure": "PNG written",
+            "warnings": "unusual-input warnings",
+        },
+        {
+            "points[]": {
+                "soil": "sand or clay",
+                "N": "[-]",
+                "M": "[-]",
+                "K": "[-]",
+                "{c}": "L at the criterion c (L_stable, L_10): the geometric mean of the final"
+                " bracket; NaN (null) where not converged",
+                "{c}/(2+M)^2": "L/(2 + M)² (the form of F109 Tables 3-9/3-10) [-]",
+                "{c}_L_low": "low end of the final bisection bracket [-]",
+                "{c}_L_high": "high end of the final bisection bracket [-]",
+                "{c}_bracket_width": "L_high/L_low - 1 [-]",
+                "{c}_converged": "true if the bracket is within the tolerance asked for",
+                "{c}_out_of_range": "1 if storms deciding the point buried the pipe beyond the"
+                " soil model's range (z > D/2): the point is marked, not trusted",
+                "{c}_seed_mean_low": "mean over the seeds of max |y|/D at L_low [-]",
+                "{c}_seed_min_low": "smallest seed max |y|/D at L_low [-]",
+                "{c}_seed_max_low": "largest seed max |y|/D at L_low [-]",
+                "{c}_seed_mean_high": "mean over the seeds of max |y|/D at L_high [-]",
+                "{c}_seed_min_high": "smallest seed max |y|/D at L_high [-]",
+                "{c}_seed_max_high": "largest seed max |y|/D at L_high [-]",
+                "{c}_evaluations": "bisection evaluations",
+                "{c}_storms": "storms run for the point",
+                "{c}_runtime_s": "[s]",
+            }
+        },
+    ),
+    "report": Output(
+        "onbottom report --only f114_reference --out DIR --json",
+        "Validation report",
+        {
+            "index": "index.html written",
+            "json": "report.json written",
+            "n_pass": "checks that pass",
+            "n_fail": "checks that fail",
+            "run_time": "[s]",
+            "sections": "one item per section: {name, state, n_pass, n_fail, run_time, reason}",
+        },
+    ),
+    "report_list": Output(
+        "onbottom report --list --json",
+        "Sections of the validation report",
+        {"sections": "one item per section: {name, title, slow, available}"},
+    ),
+    "sweep": Output(
+        "onbottom sweep examples/sweep_grid.toml -o sweep.nc --json",
+        "Parametric sweep of a registered function",
+        {
+            "success": "true if no run failed",
+            "output": "NetCDF written",
+            "dims": "grid dimensions and their sizes",
+            "variables": "variables of the result",
+            "n_points": "grid points",
+            "n_failed": "points whose run failed",
+            "errors": "up to 10 distinct error messages",
+            "wall_time": "[s]",
+        },
+    ),
+    "backbone": Output(
+        "onbottom backbone --diameter 1 --weight-kn 10.52 --gamma-kn 7.5 --json",
+        "Verley & Sotberg backbone",
+        {
+            "model": "soil model",
+            "parameters": "model parameters",
+            "vertical_load": "V [N/m]",
+            "backbone": "region limits and forces (SI)",
+            "success": "false where the embedment leaves the model's validity",
+            "message": "why success is false, else empty",
+            "warnings": "unusual-input warnings",
+        },
+    ),
+    "penetration": Output(
+        "onbottom penetration --diameter 0.5 --gamma-kn 16.7 --phi-deg 35 --json",
+        "DNVGL-RP-F114 vertical penetration",
+        {
+            "model": "F114 model",
+            "parameters": "model parameters",
+            "units": "units of the table's columns",
+            "table": "z, B, Q_v per embedment",
+            "embedment": "embedment under the given load, or null",
+            "bounds": "lower/upper bound parameters (where computed)",
+            "warnings": "unusual-input warnings",
+        },
+    ),
+    "simulate": Output(
+        "onbottom simulate examples/section_preset.toml --json",
+        "Pipe section under a load programme",
+        {
+            "success": "valid result",
+            "status": "solver status",
+            "message": "how the run ended",
+            "n_steps": "solver steps",
+            "cycles_to_limit": "load cycles to the displacement limit, or null",
+            "time_to_limit_s": "[s], or null",
+            "netcdf": "NetCDF written",
+            "plot": "figure written, or null",
+            "warnings": "unusual-input warnings",
+        },
+        open_keys="plus the solver summary (initial_penetration, max_penetration,"
+        " final_displacement, … [SI])",
+    ),
+    "calibrate": Output(
+        "onbottom calibrate RECORD --json",
+        "Calibration of the Verley & Sotberg factors",
+        {
+            "fits": "one fit per record (or one joint fit): success, parameters, misfit, …",
+            "recommended": "recommended values over the fits",
+        },
+    ),
+    "reproduce": Output(
+        "onbottom reproduce --json",
+        "Youssef & Cassidy (2014) centrifuge tests",
+        {"rows": "one row per test", "files": "files written", "wall_time_s": "[s]"},
+    ),
+    "reproduce_bands": Output(
+        "onbottom reproduce --bands --json",
+        "Sensitivity bands of the centrifuge cycle counts",
+        {
+            "bands": "one summary per test",
+            "n_runs": "runs",
+            "files": "files written",
+            "wall_time_s": "[s]",
+        },
+    ),
+}
+"""Every ``--json`` output (the DEM commands print the run summaries of
+``onbottom.dem.summary``; see docs/theory/dem.md)."""
+
+
+def documented_keys(output: str, table: str = "", criteria: tuple[str, ...] = ()) -> set[str]:
+    """The documented keys of ``output`` (top level, or the nested ``table``), with
+    ``schema_version`` at the top level and ``{c}`` expanded for ``criteria``."""
+    o = CONTRACT[output]
+    keys = o.nested[table] if table else {**SCHEMA_KEY, **o.keys}
+    out: set[str] = set()
+    for k in keys:
+        if "{c}" in k:
+            out.update(k.replace("{c}", c) for c in criteria)
+        else:
+            out.add(k)
+    return out
+
+
+def render_markdown() -> str:
+    """``docs/json.md``."""
+    lines = [
+        "# JSON output",
+        "",
+        "<!-- generated by `python -m onbottom.cli.json_contract > docs/json.md`; do not edit:"
+        " the registry is src/onbottom/cli/json_contract.py -->",
+        "",
+        "Every command takes `--json` and then prints one JSON object on stdout (errors"
+        " included: the `error` object below, with a non-zero exit status). Every object"
+        f" carries `schema_version` (now {SCHEMA_VERSION}), incremented when a key changes"
+        " meaning or disappears. NaN and infinity are written as `null`. Units are SI unless"
+        " a key carries a suffix (`_m`, `_s`, `_deg`).",
+        "",
+        "One meaning per key: `max_displacement_m` is always the worst seed's largest lateral"
+        " displacement, with `mean_max_displacement_m` (the seed mean) beside it, for the pipe"
+        " section and the pipeline alike.",
+        "",
+        "`tests/unit/test_json_contract.py` checks this page against the registry and the"
+        " commands' actual keys against the page. The DEM commands (`onbottom dem …`,"
+        " `onbottom dem-lammps …`) print the run summaries of `onbottom.dem.summary`"
+        " ([DEM theory](theory/dem.md)), with `schema_version` too.",
+        "",
+    ]
+    for name, o in CONTRACT.items():
+        lines += [f"## {o.title}", "", f"`{o.command}` ({name})", ""]
+        lines += ["| key | meaning |", "|---|---|"]
+        for k, v in {**SCHEMA_KEY, **o.keys}.items():
+            lines.append(f"| `{k}` | {v} |")
+        if o.open_keys:
+            lines += ["", f"Other keys: {o.open_keys}."]
+        for table, keys in o.nested.items():
+            lines += ["", f"`{table}`:", "", "| key | meaning |", "|---|---|"]
+            for k, v in keys.items():
+                shown = k.replace("|", "\\|")
+                lines.append(f"| `{shown}` | {v.replace('|', chr(92) + '|')} |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    print(render_markdown(), end="")
