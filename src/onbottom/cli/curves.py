@@ -339,7 +339,7 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
             clay_submerged_unit_weight=c.clay_submerged_unit_weight,
             clay_friction=c.clay_friction,
             water_density=cfg.environment.water_density if cfg.environment else 1025.0,
-            force_model=force_model_from_case(h, base_dir=case.resolve().parent),
+            force_model=force_model_from_case(h, base_dir=case.resolve().parent, default="wake"),
         )
     except InputError as exc:
         msg = str(exc)

@@ -125,15 +125,18 @@ def _fourier_table(value: Any, base_dir: str | Path | None, where: str) -> Any:
     return FourierTable.load(p)
 
 
-def force_model_from_case(hydro: Any, *, base_dir: str | Path | None = None) -> Any:
+def force_model_from_case(
+    hydro: Any, *, base_dir: str | Path | None = None, default: str = "morison"
+) -> Any:
     """The force model of a case file's ``[hydro]`` table.
 
-    ``model = "morison"`` (default) takes ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of
+    ``model`` not given (None) → ``default`` (the command's default model).
+    ``model = "morison"`` takes ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of
     ``[hydro]``; ``"wake"`` and ``"fourier"`` take their options from ``[hydro.wake]`` or
     ``[hydro.fourier]``. Options given for a model that is not selected are a named error (a
     sub-table that silently does nothing would be a silent wrong result).
     """
-    name = hydro.model
+    name = default if hydro.model is None else hydro.model
     force_model_class(name)
     for other in ("wake", "fourier"):
         if other != name and getattr(hydro, other):

@@ -217,10 +217,11 @@ class HydroTable(StrictModel):
     cl: float = Field(0.9, ge=0.0, le=10.0, description="lift coefficient C_L [-]")
     added_mass_coefficient: float = Field(2.29, ge=0.0, le=10.0, description="C_a [-]")
     reductions: bool = True
-    model: str = Field(
-        "morison",
+    model: str | None = Field(
+        None,
         min_length=1,
-        description="time-domain force model: morison, wake or fourier (hydro/registry.py) [-]",
+        description="time-domain force model: morison, wake or fourier (hydro/registry.py);"
+        " default: the command's (morison for storm and pipeline, wake for curves) [-]",
     )
     wake: dict[str, Any] = Field(
         default_factory=dict, description="options of the wake model (WakeModel fields)"

@@ -51,13 +51,14 @@ from onbottom.dynamics.storm_section import (
     simulate_storm_section,
 )
 from onbottom.errors import InputError, OutOfRangeWarning
-from onbottom.hydro.force_model import ForceModel, MorisonLift
+from onbottom.hydro.force_model import ForceModel
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import (
     StormKinematics,
     sea_state_for_velocity,
     storm_kinematics,
 )
+from onbottom.hydro.wake import WakeModel
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Sand
 from onbottom.inputs.storm import Storm
@@ -117,7 +118,9 @@ class CurveSettings:
         ρ_w [kg/m³].
     force_model : ForceModel
         Hydrodynamic force model (:mod:`onbottom.hydro.registry`: ``MorisonLift``,
-        ``WakeModel``, ``FourierModel``); default constant Morison C_D 0.7, C_M 3.29, C_L 0.9.
+        ``WakeModel``, ``FourierModel``); default the wake model with its F109-calibrated
+        constants (:class:`~onbottom.hydro.wake.WakeModel`; issue 30: constant Morison
+        coefficients give peak loads ~2.5x below F109's and unconservative curves).
     """
 
     diameter: float = 0.5
@@ -138,7 +141,7 @@ class CurveSettings:
     clay_submerged_unit_weight: float = 8.0e3
     clay_friction: float = 0.2
     water_density: float = RHO_SEAWATER
-    force_model: ForceModel = field(default_factory=MorisonLift)
+    force_model: ForceModel = field(default_factory=WakeModel)
 
     def __post_init__(self) -> None:
         in_range("CurveSettings.diameter", self.diameter, 0.005, 5.0)  # mm typed as m
