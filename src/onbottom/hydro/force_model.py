@@ -32,6 +32,7 @@ supply them per sea state with :meth:`MorisonLift.per_sea_state`.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol, runtime_checkable
@@ -39,7 +40,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 
 from onbottom._validate import non_negative
-from onbottom.errors import InputError
+from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro._force_dispatch import FORCE_MORISON
 from onbottom.hydro._morison_kernel import N_PARAMS, P_CD, P_CL, P_CM, P_LIFT_REL
 
@@ -106,9 +107,12 @@ def parameter_rows(
     if len(stage_parameters) == 0:
         # flow given without sea states (regular waves, hand-made kinematics): only a model
         # whose parameters do not depend on K and M can run
-        probe = np.asarray(
-            force_model.parameter_table(np.array([5.0, 40.0]), np.array([0.0, 2.0])), dtype=float
-        )
+        with warnings.catch_warnings():  # a probe, not a sea state: no range warnings
+            warnings.simplefilter("ignore", OutOfRangeWarning)
+            probe = np.asarray(
+                force_model.parameter_table(np.array([5.0, 40.0]), np.array([0.0, 2.0])),
+                dtype=float,
+            )
         if probe.ndim != 2 or not np.all(np.isfinite(probe)) or not np.all(probe == probe[:1]):
             raise InputError(
                 f"stage_parameters = [] is invalid for the sea-state dependent"
