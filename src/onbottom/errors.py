@@ -10,7 +10,14 @@
 
 from __future__ import annotations
 
-__all__ = ["InputError", "OnbottomError", "OutOfRangeWarning", "SolutionError"]
+__all__ = [
+    "InputError",
+    "OnbottomError",
+    "OutOfRangeWarning",
+    "ResultFileError",
+    "RunInterrupted",
+    "SolutionError",
+]
 
 
 class OnbottomError(Exception):
@@ -27,3 +34,22 @@ class SolutionError(OnbottomError, RuntimeError):
 
 class OutOfRangeWarning(UserWarning):
     """A value lies outside the range over which an empirical correlation was calibrated."""
+
+
+class ResultFileError(InputError):
+    """A result, partial-result or checkpoint file cannot be trusted: unreadable (corrupt,
+    truncated, not a result), marked ``run_status = "partial"`` (an interrupted run), or
+    written by another run (its run identity differs). The message names the file and says
+    how to start afresh (``--restart``)."""
+
+    def __init__(self, message: str, *, field: str = "output") -> None:
+        super().__init__(message)
+        self.field = field
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a run; the message says what was kept and how to resume.
+
+    A subclass of :class:`KeyboardInterrupt`, so code that lets interrupts through still
+    does; the command line turns it into one line on stderr and exit status 130.
+    """

@@ -24,6 +24,7 @@ from onbottom.cli._common import (
     emit_json,
     handle_errors,
     json_option,
+    log_to_stderr,
 )
 from onbottom.errors import InputError, OutOfRangeWarning
 
@@ -84,6 +85,11 @@ def _run_pipeline(case: Path, **options: Any) -> Any:
     help="Figure (png, pdf, svg): y–t, z–t, H–y and V–H (one seed only).",
 )
 @click.option("--quiet", is_flag=True, help="No progress bar.")
+@click.option(
+    "--restart",
+    is_flag=True,
+    help="Discard what an interrupted run kept (seeds done, pipeline checkpoint) and start afresh.",
+)
 @json_option
 @handle_errors
 def command(
@@ -94,6 +100,7 @@ def command(
     output: Path | None,
     plot: Path | None,
     quiet: bool,
+    restart: bool,
     as_json: bool,
 ) -> None:
     """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
@@ -103,7 +110,27 @@ def command(
     rock: Coulomb), [hydro] coefficients and F109 load reductions. Reports the maximum and
     final lateral displacement and the DNV-RP-F109 verdicts against 0.5D and 10D. See
     examples/storm_case.toml.
+
+    Interrupted (Ctrl-C, a kill), the same command resumes: with --seeds the finished seeds
+    are kept one file each in OUTPUT.tasks/, a pipeline run resumes from its checkpoint;
+    --restart starts afresh. Results are written under a temporary name and renamed when
+    complete.
     """
+    with log_to_stderr(not as_json):
+        _command(case, seeds, scheduler, workers, output, plot, quiet, restart, as_json)
+
+
+def _command(
+    case: Path,
+    seeds: int | None,
+    scheduler: str | None,
+    workers: int | None,
+    output: Path | None,
+    plot: Path | None,
+    quiet: bool,
+    restart: bool,
+    as_json: bool,
+) -> None:
     progress = not quiet and not as_json
     check_output_names(
         case,
@@ -124,6 +151,7 @@ def command(
                 plot=plot,
                 progress=progress,
                 as_json=as_json,
+                restart=restart,
             )
         notes = _split_warnings(caught, as_json)
         if isinstance(payload, dict):
@@ -156,10 +184,11 @@ def command(
             import matplotlib.pyplot as plt
 
             from onbottom.plotting.storm import plot_storm_result
+            from onbottom.results import save_figure
 
             check_output_path(plot, field="--plot")
             fig = plot_storm_result(res, title=f"{case.stem}: {res.message}")
-            fig.savefig(plot, dpi=110)
+            save_figure(fig, plot, dpi=110)
             plt.close(fig)
         payload = {
             **res.to_dict(),
@@ -175,9 +204,10 @@ def command(
             raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
-    from onbottom.results import save_dataset
+    from onbottom.results import TaskStore, save_dataset
     from onbottom.study.storm_seeds import run_storm_seeds
 
+    store = nc.with_name(nc.name + ".tasks")
     study = run_storm_seeds(
         setup.pipe,
         setup.soil,
@@ -187,9 +217,12 @@ def command(
         n_workers=workers,
         scheduler=scheduler,
         progress=progress,
+        store=store,
+        restart=restart,
         **setup.kwargs(),
     )
     save_dataset(study.data, nc)
+    TaskStore.delete(store)  # the result holds every seed now
     st = study.statistics
     d = setup.pipe.outer_diameter
     ok_rows = study.data["status"].values > 0

@@ -5,11 +5,19 @@ chunk the records are appended to a NetCDF file (dimension ``time`` unlimited) a
 checkpoint (all solver state) is written atomically, so an interrupted run resumes from its
 last chunk when called again with the same inputs (the run identity — a hash of the model,
 the settings and the kinematics — must match). Theory: docs/theory/pipeline_fe.md.
+
+Kill-safe files (issue 31): the growing file is ``<output>.part`` (``run_status =
+"partial"``); it takes the name ``output`` (``run_status = "complete"``) only when the run has
+ended, and the checkpoint is removed then. A resume checks that the checkpoint and the partial
+file carry this run's identity and agree on the rows written; a checkpoint of other inputs or
+an unreadable one, or an unreadable file under the output's name, is a
+:class:`~onbottom.errors.ResultFileError` with the ``--restart`` advice. A checkpoint whose
+partial file is missing or disagrees is not resumed (the run starts afresh), so no record of
+an earlier run can leak into a new file.
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import logging
 import math
@@ -27,9 +35,17 @@ from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
-from onbottom.errors import InputError
+from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro.short_crested import NodeKinematics
-from onbottom.results import annotate, provenance
+from onbottom.results import (
+    RESTART_ADVICE,
+    RUN_STATUS_COMPLETE,
+    RUN_STATUS_PARTIAL,
+    annotate,
+    check_result_file,
+    identity_hash,
+    provenance,
+)
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -226,25 +242,23 @@ class PipelineResult:
             return self.data
         if self.netcdf is None:
             raise InputError("PipelineResult has no records: run with record_interval set")
-        with xr.open_dataset(self.netcdf, engine="h5netcdf") as ds:
-            return ds.load()
+        from onbottom.results import load_dataset
+
+        return load_dataset(self.netcdf)
 
 
 def run_identity(
     model: PipelineModel, kinematics: NodeKinematics, settings: PipelineSettings, extra: Any = None
 ) -> str:
-    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics."""
-    h = hashlib.sha256()
+    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics
+    (:func:`onbottom.results.identity_hash`)."""
     meta = {
         "model": model.describe(),
         "settings": asdict(settings),
         "kinematics": [kinematics.t0, kinematics.dt, list(kinematics.velocity.shape)],
         "extra": extra,
     }
-    h.update(json.dumps(meta, sort_keys=True, default=str).encode())
-    h.update(np.ascontiguousarray(kinematics.velocity).tobytes())
-    h.update(np.ascontiguousarray(kinematics.acceleration).tobytes())
-    return h.hexdigest()
+    return identity_hash(meta, kinematics.velocity, kinematics.acceleration)
 
 
 def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSettings, r_perm_z):
@@ -282,21 +296,32 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     return st
 
 
-class _Writer:
-    """Appends records to a NetCDF file (h5netcdf; ``time`` unlimited)."""
+def partial_path(output: str | os.PathLike) -> Path:
+    """The growing file of a run writing ``output``: ``<output>.part``."""
+    p = Path(output)
+    return p.with_name(p.name + ".part")
 
-    def __init__(self, path: Path, x: np.ndarray, attrs: Mapping[str, Any], resume_rows: int):
+
+class _Writer:
+    """Appends records to the partial NetCDF file (h5netcdf; ``time`` unlimited); renames it
+    to the output's name (``run_status = "complete"``) at :meth:`finish`."""
+
+    def __init__(
+        self, path: Path, x: np.ndarray, attrs: Mapping[str, Any], resume_rows: int
+    ) -> None:
         import h5netcdf
 
         self.path = path
-        if resume_rows > 0 and path.exists():
-            self.f = h5netcdf.File(path, "a")
+        self.partial = partial_path(path)
+        if resume_rows > 0:
+            self.f = h5netcdf.File(self.partial, "a")
             if self.f.dimensions["time"].size != resume_rows:
                 self.f.resize_dimension("time", resume_rows)
             self.rows = resume_rows
             return
         path.parent.mkdir(parents=True, exist_ok=True)
-        self.f = h5netcdf.File(path, "w")
+        self.partial.unlink(missing_ok=True)
+        self.f = h5netcdf.File(self.partial, "w")
         n = x.size
         self.f.dimensions = {"time": None, "node": n}
         t = self.f.create_variable("time", ("time",), np.float64, chunks=(4096,))
@@ -310,6 +335,7 @@ class _Writer:
             v.attrs.update(long_name=long_name, units=units, coordinates="x")
         for k, v in attrs.items():
             self.f.attrs[k] = v
+        self.f.attrs["run_status"] = RUN_STATUS_PARTIAL
         self.rows = 0
 
     def append(self, t: np.ndarray, rec: np.ndarray) -> None:
@@ -333,19 +359,36 @@ class _Writer:
                 v.attrs.update(envelopes[name].attrs)
         for k, v in attrs.items():
             self.f.attrs[k] = v
+        self.f.attrs["run_status"] = RUN_STATUS_COMPLETE
         self.f.close()
+        os.chmod(self.partial, 0o666 & ~_umask())
+        os.replace(self.partial, self.path)
 
     def close(self) -> None:
         self.f.close()
 
 
-def _save_checkpoint(path: Path, run_id: str, rows: int, state: Mapping[str, np.ndarray]) -> None:
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _save_checkpoint(
+    path: Path, run_id: str, rows: int, last_time: float, state: Mapping[str, np.ndarray]
+) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
         with open(tmp, "wb") as fh:
-            np.savez(fh, run_id=np.array(run_id), rows=np.array(rows), **state)
+            np.savez(
+                fh,
+                run_id=np.array(run_id),
+                rows=np.array(rows),
+                last_time=np.array(last_time),
+                **state,
+            )
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
@@ -354,31 +397,68 @@ def _save_checkpoint(path: Path, run_id: str, rows: int, state: Mapping[str, np.
 
 def _load_checkpoint(
     path: Path, run_id: str, resume: str
-) -> tuple[int, dict[str, np.ndarray]] | None:
-    if resume == "never" or not path.exists():
+) -> tuple[int, float, dict[str, np.ndarray]] | None:
+    """(rows, time of the last row, state) of a checkpoint of this run, or None if there is
+    none; an unreadable checkpoint or one of other inputs is a :class:`ResultFileError`."""
+    if not path.exists():
         if resume == "require":
             raise InputError(f"checkpoint = {str(path)!r} is invalid: no such file to resume")
         return None
     try:
         with np.load(path) as z:
             found = str(z["run_id"])
-            state = {k: z[k].copy() for k in z.files if k not in ("run_id", "rows")}
+            skip = ("run_id", "rows", "last_time")
+            state = {k: z[k].copy() for k in z.files if k not in skip}
             rows = int(z["rows"])
-    except (OSError, ValueError, KeyError) as exc:
-        if resume == "require":
-            raise InputError(f"checkpoint = {str(path)!r} is invalid: unreadable ({exc})") from None
-        logger.warning("ignoring unreadable checkpoint %s (%s): starting anew", path, exc)
-        return None
+            last = float(z["last_time"]) if "last_time" in z.files else math.nan
+    except (OSError, ValueError, KeyError, EOFError) as exc:
+        raise ResultFileError(
+            f"checkpoint {str(path)!r} is unreadable (corrupt, truncated or not a checkpoint:"
+            f" {type(exc).__name__}); {RESTART_ADVICE}",
+            field="checkpoint",
+        ) from None
     if found != run_id:
-        msg = (
-            f"checkpoint = {str(path)!r} belongs to another run: its run identity"
-            f" {found[:12]}… differs from {run_id[:12]}… (other inputs)"
+        raise ResultFileError(
+            f"checkpoint {str(path)!r} belongs to another run: its run identity"
+            f" {found[:12]}… differs from {run_id[:12]}… (other inputs); {RESTART_ADVICE},"
+            " or give another --output",
+            field="checkpoint",
         )
-        if resume == "require":
-            raise InputError(msg)
-        logger.warning("%s; starting anew and overwriting the output", msg)
+    return rows, last, state
+
+
+def _partial_agrees(partial: Path, run_id: str, rows: int, last_time: float) -> str | None:
+    """None if the partial file carries ``run_id`` and at least ``rows`` records whose last
+    time is ``last_time``; otherwise why it cannot be resumed."""
+    if not partial.exists():
+        return "its partial output is missing"
+    try:
+        import h5netcdf
+
+        with h5netcdf.File(partial, "r") as f:
+            found = f.attrs.get("run_id")
+            n = f.dimensions["time"].size
+            t_last = float(f.variables["time"][rows - 1]) if 0 < rows <= n else math.nan
+    except Exception as exc:  # any damage of a file killed mid-write
+        return f"its partial output is unreadable ({type(exc).__name__})"
+    if str(found) != run_id:
+        return "its partial output belongs to another run"
+    if n < rows:
+        return f"its partial output holds {n} records, the checkpoint {rows}"
+    if rows > 0 and not (math.isnan(last_time) or t_last == last_time):
+        return "its partial output disagrees with it (other times)"
+    return None
+
+
+def _finished_output(path: Path, run_id: str) -> dict[str, Any] | None:
+    """Attributes of ``path`` when it is a complete result of this run; None if it is absent
+    or a complete result of another run; an unreadable file is a :class:`ResultFileError`."""
+    if not path.exists():
         return None
-    return rows, state
+    attrs = check_result_file(path, allow_partial=True, what="output", field="output")
+    if attrs.get("run_status") == RUN_STATUS_COMPLETE and str(attrs.get("run_id")) == run_id:
+        return attrs
+    return None
 
 
 def simulate_pipeline(
@@ -409,7 +489,10 @@ def simulate_pipeline(
         kept in memory (``result.data``).
     checkpoint : path or None
         Checkpoint file (npz); None with ``output`` → ``output`` + ".ckpt.npz". An existing
-        checkpoint with the same run identity is resumed; another identity is an error.
+        checkpoint with the same run identity is resumed (with the partial file
+        ``<output>.part`` it describes); another identity, or an unreadable checkpoint, is a
+        :class:`~onbottom.errors.ResultFileError` advising ``--restart``. The checkpoint is
+        removed when the run ends.
     progress : bool
         tqdm progress bar over chunks.
     attrs : mapping or None
@@ -417,9 +500,12 @@ def simulate_pipeline(
     identity_extra : any
         Extra JSON-able data folded into the run identity (e.g. the case file's text).
     resume : {"auto", "never", "require"}
-        "auto": resume a checkpoint with this run's identity, start anew (overwriting the
-        output) when there is none or it belongs to other inputs; "never": always start
-        anew; "require": resume or raise :class:`~onbottom.errors.InputError`.
+        "auto": return the finished ``output`` of this run (same identity) as it is, or
+        resume its checkpoint, or start anew (replacing an output of other inputs when the
+        run ends) when there is no checkpoint or its partial file is missing or damaged;
+        "never": discard any checkpoint and partial file and start anew (``--restart``);
+        "require": return or resume, or raise :class:`~onbottom.errors.InputError`.
+        Resuming logs "resuming <output> from t = … s" (logger ``onbottom``, level INFO).
 
     Returns
     -------
@@ -478,14 +564,49 @@ def simulate_pipeline(
         source="docs/theory/pipeline_fe.md",
         **dict(attrs or {}),
     )
-    # ---- state (fresh or resumed)
+    # ---- finished already, resumed, or fresh
     state = None
     rows = 0
     done = K.STATUS_CHUNK
-    if ckpt is not None:
+    if out_path is not None and resume != "never":
+        finished = _finished_output(out_path, run_id)
+        if finished is not None:
+            for stale in (ckpt, partial_path(out_path)):
+                if stale is not None:
+                    stale.unlink(missing_ok=True)
+            logger.info("%s is the finished result of this run: returned as it is", out_path)
+            return _result_from_file(out_path, finished, model, s, run_id)
+        if resume == "require" and out_path.exists() and (ckpt is None or not ckpt.exists()):
+            raise ResultFileError(
+                f"output {str(out_path)!r} belongs to another run (other inputs) and there is"
+                " no checkpoint of this run to resume",
+                field="output",
+            )
+    if ckpt is not None and resume == "never":
+        ckpt.unlink(missing_ok=True)
+    elif ckpt is not None:
         loaded = _load_checkpoint(ckpt, run_id, resume)
         if loaded is not None:
-            rows, state = loaded
+            rows, last_time, state = loaded
+            why = (
+                None
+                if out_path is None
+                else _partial_agrees(partial_path(out_path), run_id, rows, last_time)
+            )
+            if why is not None:
+                msg = f"checkpoint {str(ckpt)!r} cannot be resumed: {why}"
+                if resume == "require":
+                    raise ResultFileError(f"{msg}; {RESTART_ADVICE}", field="checkpoint")
+                logger.warning("%s; starting afresh", msg)
+                ckpt.unlink(missing_ok=True)
+                state, rows = None, 0
+            else:
+                logger.info(
+                    "resuming %s from t = %.6g s (checkpoint %s)",
+                    out_path if out_path is not None else "the run",
+                    float(state["scal"][K.SC_T]),
+                    ckpt,
+                )
     if state is None:
         vec = np.zeros((K.N_VEC, ndof))
         scal = np.zeros(K.N_SCAL)
@@ -554,6 +675,7 @@ def simulate_pipeline(
                     ckpt,
                     run_id,
                     writer.rows,
+                    float(rec_t[m - 1]) if m else _last_time(writer),
                     {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
                      "env": env, "status": np.array(status)},
                 )  # fmt: skip
@@ -584,12 +706,7 @@ def simulate_pipeline(
     vmax = float(env[K.E_ABS_V, k_worst])
     emax = float(np.max(env[K.E_STRAIN]))
     stopped = status == K.STATUS_LIMIT
-    criteria: dict[str, bool | None] = {
-        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
-                                         and s.stop_displacement_over_d <= f))
-        for k, f in CRITERIA_OVER_D.items()
-    }  # fmt: skip
-    criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
+    criteria = _criteria(vmax, emax, d, stopped, s)
     n_steps = float(scal[K.SC_NSTEP])
     lift_node = int(scal[K.SC_LIFT_NODE])
     summary = {
@@ -624,8 +741,11 @@ def simulate_pipeline(
     }
     data = None
     if writer is not None:
-        # the checkpoint is kept: a second call with the same inputs returns at once
+        # the result takes its name, then the checkpoint goes: a kill in between leaves a
+        # finished output of this run, which a second call returns at once
         writer.finish(env_ds, final_attrs)
+        if ckpt is not None:
+            ckpt.unlink(missing_ok=True)
     elif mem_t:
         tt = np.concatenate(mem_t)
         rr = np.concatenate(mem_r)
@@ -663,4 +783,54 @@ def _envelopes(x: np.ndarray, env: np.ndarray) -> xr.Dataset:
             for name, (k, ln, u) in ENVELOPES.items()
         },
         coords={"x": ("node", x, {"long_name": "position along the pipe", "units": "m"})},
+    )
+
+
+def _last_time(writer: _Writer) -> float:
+    n = writer.rows
+    return float(writer.f.variables["time"][n - 1]) if n > 0 else math.nan
+
+
+def _criteria(
+    vmax: float, emax: float, d: float, stopped: bool, s: PipelineSettings
+) -> dict[str, bool | None]:
+    criteria: dict[str, bool | None] = {
+        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
+                                         and s.stop_displacement_over_d <= f))
+        for k, f in CRITERIA_OVER_D.items()
+    }  # fmt: skip
+    criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
+    return criteria
+
+
+def _result_from_file(
+    path: Path, attrs: Mapping[str, Any], model: PipelineModel, s: PipelineSettings, run_id: str
+) -> PipelineResult:
+    """The :class:`PipelineResult` of a finished output file of this run."""
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        env_ds = xr.Dataset(
+            {name: ("node", ds[name].values.copy(), dict(ds[name].attrs)) for name in ENVELOPES},
+            coords={"x": ("node", model.x, {"long_name": "position along the pipe", "units": "m"})},
+        )
+    status = int(attrs["status"])
+    env_abs = env_ds["max_abs_y"].values
+    k_worst = int(np.argmax(env_abs))
+    vmax = float(env_abs[k_worst])
+    emax = float(np.max(env_ds["max_strain"].values))
+    d = model.pipe.outer_diameter
+    return PipelineResult(
+        success=status in (K.STATUS_END, K.STATUS_LIMIT),
+        status=status,
+        message=str(attrs["message"]),
+        diameter=d,
+        x=model.x,
+        max_displacement=vmax,
+        worst_node=k_worst,
+        max_strain=emax,
+        criteria=_criteria(vmax, emax, d, status == K.STATUS_LIMIT, s),
+        summary=json.loads(attrs["summary"]),
+        envelopes=env_ds,
+        data=None,
+        netcdf=path,
+        run_id=run_id,
     )
