@@ -30,6 +30,7 @@ import signal
 import sys
 import threading
 import time
+import warnings
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
@@ -176,7 +177,10 @@ def dask_client(
         raise InputError(f"n_workers = {n_workers!r} is invalid: must be >= 1 for a Dask cluster")
     if threads_per_worker < 1:
         raise InputError(f"threads_per_worker = {threads_per_worker!r} is invalid: must be >= 1")
-    with _sigint_ignored():  # the workers ignore Ctrl-C: only this process handles it
+    # the workers ignore Ctrl-C (only this process handles it); distributed's internal HTTP
+    # server moving off a busy default port is not worth a warning
+    with _sigint_ignored(), warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Port .* is already in use")
         cluster = LocalCluster(
             n_workers=n,
             threads_per_worker=threads_per_worker,

@@ -6,14 +6,16 @@ checkpoint (all solver state) is written atomically, so an interrupted run resum
 last chunk when called again with the same inputs (the run identity — a hash of the model,
 the settings and the kinematics — must match). Theory: docs/theory/pipeline_fe.md.
 
-Kill-safe files (issue 31): the growing file is ``<output>.part`` (``run_status =
-"partial"``); it takes the name ``output`` (``run_status = "complete"``) only when the run has
-ended, and the checkpoint is removed then. A resume checks that the checkpoint and the partial
-file carry this run's identity and agree on the rows written; a checkpoint of other inputs or
-an unreadable one, or an unreadable file under the output's name, is a
-:class:`~onbottom.errors.ResultFileError` with the ``--restart`` advice. A checkpoint whose
-partial file is missing or disagrees is not resumed (the run starts afresh), so no record of
-an earlier run can leak into a new file.
+Kill-safe files (issue 31): the records of each chunk go to their own small file in
+``<output>.part/`` (written atomically, with the run identity); when the run ends they are
+written with the envelopes to a temporary NetCDF file renamed to ``output`` (``run_status =
+"complete"``), and the checkpoint and the chunk files are removed. A growing HDF5 file is not
+used: a kill -9 leaves its metadata half-written. A resume checks that the checkpoint and
+the chunk files carry this run's identity and agree on the rows written, and logs "resuming
+… from t = …"; a checkpoint of other inputs or an unreadable one, or an unreadable file under
+the output's name, is a :class:`~onbottom.errors.ResultFileError` with the ``--restart``
+advice. A checkpoint whose chunks are missing or disagree is not resumed (the run starts
+afresh), so no record of an earlier run can leak into a new file.
 """
 
 from __future__ import annotations
@@ -40,7 +42,6 @@ from onbottom.hydro.short_crested import NodeKinematics
 from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
-    RUN_STATUS_PARTIAL,
     annotate,
     check_result_file,
     identity_hash,
@@ -297,109 +298,162 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
 
 
 def partial_path(output: str | os.PathLike) -> Path:
-    """The growing file of a run writing ``output``: ``<output>.part``."""
+    """The folder of the records of a run writing ``output``: ``<output>.part``."""
     p = Path(output)
     return p.with_name(p.name + ".part")
 
 
-class _Writer:
-    """Appends records to the partial NetCDF file (h5netcdf; ``time`` unlimited); renames it
-    to the output's name (``run_status = "complete"``) at :meth:`finish`."""
-
-    def __init__(
-        self, path: Path, x: np.ndarray, attrs: Mapping[str, Any], resume_rows: int
-    ) -> None:
-        import h5netcdf
-
-        self.path = path
-        self.partial = partial_path(path)
-        if resume_rows > 0:
-            self.f = h5netcdf.File(self.partial, "a")
-            if self.f.dimensions["time"].size != resume_rows:
-                self.f.resize_dimension("time", resume_rows)
-            self.rows = resume_rows
-            return
-        path.parent.mkdir(parents=True, exist_ok=True)
-        self.partial.unlink(missing_ok=True)
-        self.f = h5netcdf.File(self.partial, "w")
-        n = x.size
-        self.f.dimensions = {"time": None, "node": n}
-        t = self.f.create_variable("time", ("time",), np.float64, chunks=(4096,))
-        t.attrs.update(long_name="time", units="s")
-        xv = self.f.create_variable("x", ("node",), np.float64, data=x)
-        xv.attrs.update(long_name="position along the pipe", units="m")
-        for name, (_k, long_name, units) in FIELDS.items():
-            v = self.f.create_variable(
-                name, ("time", "node"), np.float32, chunks=(min(64, 4096), n)
-            )
-            v.attrs.update(long_name=long_name, units=units, coordinates="x")
-        for k, v in attrs.items():
-            self.f.attrs[k] = v
-        self.f.attrs["run_status"] = RUN_STATUS_PARTIAL
-        self.rows = 0
-
-    def append(self, t: np.ndarray, rec: np.ndarray) -> None:
-        m = t.size
-        if m == 0:
-            return
-        r0 = self.rows
-        self.f.resize_dimension("time", r0 + m)
-        self.f.variables["time"][r0 : r0 + m] = t
-        for name, (k, _l, _u) in FIELDS.items():
-            self.f.variables[name][r0 : r0 + m, :] = rec[:m, k, :].astype(np.float32)
-        self.rows = r0 + m
-        self.f.flush()
-
-    def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
-        for name in envelopes.data_vars:
-            if name in self.f.variables:
-                self.f.variables[name][:] = envelopes[name].values
-            else:
-                v = self.f.create_variable(name, ("node",), np.float64, data=envelopes[name].values)
-                v.attrs.update(envelopes[name].attrs)
-        for k, v in attrs.items():
-            self.f.attrs[k] = v
-        self.f.attrs["run_status"] = RUN_STATUS_COMPLETE
-        self.f.close()
-        os.chmod(self.partial, 0o666 & ~_umask())
-        os.replace(self.partial, self.path)
-
-    def close(self) -> None:
-        self.f.close()
+def _chunk_file(folder: Path, index: int) -> Path:
+    return folder / f"chunk_{index:06d}.npz"
 
 
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
-def _save_checkpoint(
-    path: Path, run_id: str, rows: int, last_time: float, state: Mapping[str, np.ndarray]
-) -> None:
+def _write_npz_atomic(path: Path, **arrays: np.ndarray) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
         with open(tmp, "wb") as fh:
-            np.savez(
-                fh,
-                run_id=np.array(run_id),
-                rows=np.array(rows),
-                last_time=np.array(last_time),
-                **state,
-            )
+            np.savez(fh, **arrays)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
 
 
+class _Writer:
+    """Keeps the records of a run as one small file per chunk in ``<output>.part/``; at
+    :meth:`finish` writes them with the envelopes into a temporary NetCDF file and renames it
+    to the output's name (``run_status = "complete"``).
+
+    Each chunk file is written atomically and carries the run identity, so a kill at any
+    moment leaves whole chunks (a growing HDF5 file does not survive a kill -9: its metadata
+    is left half-written, "bad object header version number"). :meth:`commit` is called
+    before each checkpoint, which records how many chunks belong to it.
+    """
+
+    def __init__(
+        self,
+        path: Path,
+        x: np.ndarray,
+        attrs: Mapping[str, Any],
+        run_id: str,
+        resume: tuple[int, int, float] = (0, 0, math.nan),
+    ) -> None:
+        self.path = path
+        self.folder = partial_path(path)
+        self.x = x
+        self.attrs = dict(attrs)
+        self.run_id = run_id
+        self.rows, self.chunks, self.last_time = resume
+        self._t: list[np.ndarray] = []
+        self._r: list[np.ndarray] = []
+        if self.folder.exists() and not self.folder.is_dir():
+            self.folder.unlink()
+        # chunks beyond the checkpoint (written before a kill) and temporaries go
+        for f in list(self.folder.glob("chunk_*")) if self.folder.is_dir() else []:
+            tail = f.name[len("chunk_") :].split(".", 1)[0]
+            if not tail.isdigit() or int(tail) >= self.chunks or f.suffix == ".tmp":
+                f.unlink(missing_ok=True)
+
+    def append(self, t: np.ndarray, rec: np.ndarray) -> None:
+        m = t.size
+        if m == 0:
+            return
+        ks = [k for (k, _l, _u) in FIELDS.values()]
+        self._t.append(np.array(t[:m], dtype=np.float64))
+        self._r.append(rec[:m][:, ks, :].astype(np.float32))
+
+    def commit(self) -> None:
+        """Write the rows appended since the last commit as the next chunk file."""
+        if not self._t:
+            return
+        t = np.concatenate(self._t)
+        r = np.concatenate(self._r)
+        _write_npz_atomic(
+            _chunk_file(self.folder, self.chunks), run_id=np.array(self.run_id), t=t, rec=r
+        )
+        self.chunks += 1
+        self.rows += t.size
+        self.last_time = float(t[-1])
+        self._t.clear()
+        self._r.clear()
+
+    def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
+        """Write the result file (temporary name, then rename)."""
+        import h5netcdf
+
+        from onbottom.results import atomic_write
+
+        self.commit()
+        x = self.x
+        n = x.size
+
+        def write(tmp: str) -> None:
+            with h5netcdf.File(tmp, "w") as f:
+                f.dimensions = {"time": self.rows, "node": n}
+                tv = f.create_variable("time", ("time",), np.float64)
+                tv.attrs.update(long_name="time", units="s")
+                xv = f.create_variable("x", ("node",), np.float64, data=x)
+                xv.attrs.update(long_name="position along the pipe", units="m")
+                for name, (_k, long_name, units) in FIELDS.items():
+                    v = f.create_variable(name, ("time", "node"), np.float32)
+                    v.attrs.update(long_name=long_name, units=units, coordinates="x")
+                r0 = 0
+                for i in range(self.chunks):
+                    with np.load(_chunk_file(self.folder, i)) as z:
+                        t, rec = z["t"], z["rec"]
+                    m = t.size
+                    f.variables["time"][r0 : r0 + m] = t
+                    for j, name in enumerate(FIELDS):
+                        f.variables[name][r0 : r0 + m, :] = rec[:, j, :]
+                    r0 += m
+                for name in envelopes.data_vars:
+                    v = f.create_variable(name, ("node",), np.float64, data=envelopes[name].values)
+                    v.attrs.update(envelopes[name].attrs)
+                for k, v in {**self.attrs, **attrs}.items():
+                    f.attrs[k] = v
+                f.attrs["run_status"] = RUN_STATUS_COMPLETE
+
+        atomic_write(self.path, write)
+
+    def discard(self) -> None:
+        """Remove the chunk files (once :meth:`finish` has renamed the result)."""
+        if self.folder.is_dir():
+            for f in self.folder.glob("chunk_*"):
+                f.unlink(missing_ok=True)
+            try:
+                self.folder.rmdir()
+            except OSError:
+                pass
+
+    def close(self) -> None:
+        """Nothing stays open between chunks (kept for the interrupt path)."""
+
+
+def _save_checkpoint(
+    path: Path,
+    run_id: str,
+    rows: int,
+    chunks: int,
+    last_time: float,
+    state: Mapping[str, np.ndarray],
+) -> None:
+    _write_npz_atomic(
+        path,
+        run_id=np.array(run_id),
+        rows=np.array(rows),
+        chunks=np.array(chunks),
+        last_time=np.array(last_time),
+        **state,
+    )
+
+
 def _load_checkpoint(
     path: Path, run_id: str, resume: str
-) -> tuple[int, float, dict[str, np.ndarray]] | None:
-    """(rows, time of the last row, state) of a checkpoint of this run, or None if there is
-    none; an unreadable checkpoint or one of other inputs is a :class:`ResultFileError`."""
+) -> tuple[int, int, float, dict[str, np.ndarray]] | None:
+    """(rows, chunks, time of the last row, state) of a checkpoint of this run, or None if
+    there is none; an unreadable checkpoint or one of other inputs is a
+    :class:`ResultFileError`."""
     if not path.exists():
         if resume == "require":
             raise InputError(f"checkpoint = {str(path)!r} is invalid: no such file to resume")
@@ -407,9 +461,10 @@ def _load_checkpoint(
     try:
         with np.load(path) as z:
             found = str(z["run_id"])
-            skip = ("run_id", "rows", "last_time")
+            skip = ("run_id", "rows", "chunks", "last_time")
             state = {k: z[k].copy() for k in z.files if k not in skip}
             rows = int(z["rows"])
+            chunks = int(z["chunks"]) if "chunks" in z.files else -1
             last = float(z["last_time"]) if "last_time" in z.files else math.nan
     except (OSError, ValueError, KeyError, EOFError) as exc:
         raise ResultFileError(
@@ -424,29 +479,37 @@ def _load_checkpoint(
             " or give another --output",
             field="checkpoint",
         )
-    return rows, last, state
+    return rows, chunks, last, state
 
 
-def _partial_agrees(partial: Path, run_id: str, rows: int, last_time: float) -> str | None:
-    """None if the partial file carries ``run_id`` and at least ``rows`` records whose last
-    time is ``last_time``; otherwise why it cannot be resumed."""
-    if not partial.exists():
-        return "its partial output is missing"
-    try:
-        import h5netcdf
-
-        with h5netcdf.File(partial, "r") as f:
-            found = f.attrs.get("run_id")
-            n = f.dimensions["time"].size
-            t_last = float(f.variables["time"][rows - 1]) if 0 < rows <= n else math.nan
-    except Exception as exc:  # any damage of a file killed mid-write
-        return f"its partial output is unreadable ({type(exc).__name__})"
-    if str(found) != run_id:
-        return "its partial output belongs to another run"
-    if n < rows:
-        return f"its partial output holds {n} records, the checkpoint {rows}"
+def _partial_agrees(
+    folder: Path, run_id: str, rows: int, chunks: int, last_time: float
+) -> str | None:
+    """None if the chunk files 0 … ``chunks`` − 1 of ``folder`` carry ``run_id`` and hold
+    ``rows`` records, the last at ``last_time``; otherwise why they cannot be resumed."""
+    if chunks < 0:
+        return "it was written by an older onbottom (no chunk count)"
+    n = 0
+    t_last = math.nan
+    for i in range(chunks):
+        f = _chunk_file(folder, i)
+        if not f.exists():
+            return f"its partial records {str(f)!r} are missing"
+        try:
+            with np.load(f) as z:
+                found = str(z["run_id"])
+                t = z["t"]
+        except Exception as exc:  # any damage
+            return f"its partial records {str(f)!r} are unreadable ({type(exc).__name__})"
+        if found != run_id:
+            return f"its partial records {str(f)!r} belong to another run"
+        n += t.size
+        if t.size:
+            t_last = float(t[-1])
+    if n != rows:
+        return f"its partial records hold {n} rows, the checkpoint {rows}"
     if rows > 0 and not (math.isnan(last_time) or t_last == last_time):
-        return "its partial output disagrees with it (other times)"
+        return "its partial records disagree with it (other times)"
     return None
 
 
@@ -566,7 +629,8 @@ def simulate_pipeline(
     )
     # ---- finished already, resumed, or fresh
     state = None
-    rows = 0
+    rows = chunks = 0
+    last_time = math.nan
     done = K.STATUS_CHUNK
     if out_path is not None and resume != "never":
         finished = _finished_output(out_path, run_id)
@@ -587,11 +651,11 @@ def simulate_pipeline(
     elif ckpt is not None:
         loaded = _load_checkpoint(ckpt, run_id, resume)
         if loaded is not None:
-            rows, last_time, state = loaded
+            rows, chunks, last_time, state = loaded
             why = (
                 None
                 if out_path is None
-                else _partial_agrees(partial_path(out_path), run_id, rows, last_time)
+                else _partial_agrees(partial_path(out_path), run_id, rows, chunks, last_time)
             )
             if why is not None:
                 msg = f"checkpoint {str(ckpt)!r} cannot be resumed: {why}"
@@ -599,7 +663,7 @@ def simulate_pipeline(
                     raise ResultFileError(f"{msg}; {RESTART_ADVICE}", field="checkpoint")
                 logger.warning("%s; starting afresh", msg)
                 ckpt.unlink(missing_ok=True)
-                state, rows = None, 0
+                state, rows, chunks = None, 0, 0
             else:
                 logger.info(
                     "resuming %s from t = %.6g s (checkpoint %s)",
@@ -636,7 +700,10 @@ def simulate_pipeline(
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
             state["env"],
         )  # fmt: skip
-    writer = None if out_path is None else _Writer(out_path, x, base_attrs, rows)
+    writer = None
+    if out_path is not None:
+        resumed = (rows, chunks, last_time) if state is not None else (0, 0, math.nan)
+        writer = _Writer(out_path, x, base_attrs, run_id, resumed)
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
     per_chunk = 1
@@ -670,12 +737,15 @@ def simulate_pipeline(
                     break
             if bar is not None:
                 bar.update(round(scal[K.SC_T]) - bar.n)
+            if writer is not None:
+                writer.commit()
             if ckpt is not None and writer is not None:
                 _save_checkpoint(
                     ckpt,
                     run_id,
                     writer.rows,
-                    float(rec_t[m - 1]) if m else _last_time(writer),
+                    writer.chunks,
+                    writer.last_time if writer.rows else math.nan,
                     {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
                      "env": env, "status": np.array(status)},
                 )  # fmt: skip
@@ -741,11 +811,12 @@ def simulate_pipeline(
     }
     data = None
     if writer is not None:
-        # the result takes its name, then the checkpoint goes: a kill in between leaves a
-        # finished output of this run, which a second call returns at once
+        # the result takes its name, then the checkpoint and the chunks go: a kill in between
+        # leaves a finished output of this run, which a second call returns at once
         writer.finish(env_ds, final_attrs)
         if ckpt is not None:
             ckpt.unlink(missing_ok=True)
+        writer.discard()
     elif mem_t:
         tt = np.concatenate(mem_t)
         rr = np.concatenate(mem_r)
@@ -784,11 +855,6 @@ def _envelopes(x: np.ndarray, env: np.ndarray) -> xr.Dataset:
         },
         coords={"x": ("node", x, {"long_name": "position along the pipe", "units": "m"})},
     )
-
-
-def _last_time(writer: _Writer) -> float:
-    n = writer.rows
-    return float(writer.f.variables["time"][n - 1]) if n > 0 else math.nan
 
 
 def _criteria(
