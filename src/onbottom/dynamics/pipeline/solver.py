@@ -466,7 +466,7 @@ def _load_checkpoint(
             rows = int(z["rows"])
             chunks = int(z["chunks"]) if "chunks" in z.files else -1
             last = float(z["last_time"]) if "last_time" in z.files else math.nan
-    except (OSError, ValueError, KeyError, EOFError) as exc:
+    except Exception as exc:  # any damage (a zip error, a missing array, ...)
         raise ResultFileError(
             f"checkpoint {str(path)!r} is unreadable (corrupt, truncated or not a checkpoint:"
             f" {type(exc).__name__}); {RESTART_ADVICE}",
