@@ -402,3 +402,28 @@ def test_a_process_dies_with_its_parent_even_while_busy(tmp_path):
     else:
         os.kill(child_pid, signal.SIGKILL)
         pytest.fail("the child survived its parent")
+
+
+def test_storm_command_names_a_corrupt_output_and_restart_recovers(tmp_path, capsys):
+    """The issue's report: a corrupt NetCDF under the final name (an older onbottom killed
+    mid-write) is a named error advising --restart; --restart replaces it."""
+    from onbottom.cli.main import main
+
+    text = (Path(__file__).resolve().parents[2] / "examples" / "pipeline_case.toml").read_text(
+        encoding="utf-8"
+    )
+    lines = []
+    for line in text.splitlines():
+        key = line.split("=")[0].strip()
+        lines.append({"length": "length = 40.0", "peak_hours": "peak_hours = 0.01"}.get(key, line))
+    case = tmp_path / "p.toml"
+    case.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    out = tmp_path / "p.nc"
+    out.write_bytes(b"\x89HDF\r\n\x1a\n" + os.urandom(2000))
+    assert main(["storm", str(case), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    assert "p.nc' is unreadable" in err and "--restart" in err
+    assert main(["storm", str(case), "--quiet", "--restart"]) == 0
+    capsys.readouterr()
+    assert load_dataset(out).attrs["run_status"] == "complete"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["p.nc", "p.toml"]

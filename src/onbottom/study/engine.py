@@ -93,10 +93,15 @@ def die_with_parent(parent_pid: int | None = None) -> None:
 
 
 def dask_setup(worker: Any = None) -> None:
-    """Preload hook of the embedded workers: die with the process that started the cluster."""
+    """Preload hook of the embedded workers: die with the process that started the cluster,
+    and ignore Ctrl-C (also in a worker the nanny restarts later)."""
     pid = os.environ.get(PARENT_PID_ENV)
     if pid and pid.isdigit():
         die_with_parent(int(pid))
+        try:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+        except ValueError:  # pragma: no cover - preload outside the main thread
+            pass
 
 
 @contextmanager
