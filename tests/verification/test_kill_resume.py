@@ -1,9 +1,9 @@
 """kill -9 at random moments of a pipeline run, a storm-seeds run and a curves run (issue 31).
 
 Each test runs the command once uninterrupted (the reference, and the measure T of its wall
-time), then a few times killed with SIGKILL after a delay drawn from a seeded RNG in
-[0, 1.1 T] — during start-up, mid-run, while writing the result, or after it ended — and
-then once more to completion. Whatever the kill time:
+time), then a few times killed with SIGKILL after a delay drawn from a seeded RNG, one in each
+slice of [0, 1.1 T], or after the first chunk or task was kept — during start-up, mid-run, while
+writing the result, or after it ended — and then once more to completion. Whatever the kill time:
 
 * a file under the final name is whole: a complete result equal to the reference (never a
   corrupt or partial file that a later run or reader would take for a result);
@@ -50,9 +50,10 @@ def _run(args: list[str], cwd: Path) -> tuple[subprocess.CompletedProcess, float
     return p, time.perf_counter() - t0
 
 
-def _kill_after(args: list[str], cwd: Path, delay: float) -> None:
-    """Start the command, SIGKILL it (the parent only) after ``delay`` s; check that its
-    child processes (Dask workers) die with it."""
+def _kill_after(args: list[str], cwd: Path, delay: float, after=None) -> None:
+    """Start the command, SIGKILL it (the parent only) ``delay`` s after its start — or after
+    ``after()`` first holds (e.g. a first chunk kept: a kill mid-run) —; check that its child
+    processes (Dask workers) die with it."""
     proc = subprocess.Popen(
         _command(args),
         cwd=cwd,
@@ -61,6 +62,11 @@ def _kill_after(args: list[str], cwd: Path, delay: float) -> None:
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
+    if after is not None:
+        for _ in range(3000):  # until the event (a hang guard of 300 s, no timing check)
+            if after() or proc.poll() is not None:
+                break
+            time.sleep(0.1)
     try:
         proc.wait(timeout=delay)
         return  # finished before the kill: a valid state too
@@ -78,8 +84,18 @@ def _kill_after(args: list[str], cwd: Path, delay: float) -> None:
     assert not alive, f"{len(alive)} worker process(es) survived their killed parent"
 
 
-def _delays(t_ref: float, n: int) -> list[float]:
-    return list(np.random.default_rng(RNG_SEED).uniform(0.0, 1.1 * t_ref, n))
+def _kills(t_ref: float, n_start: int, n_event: int) -> list[tuple[float, bool]]:
+    """Random kill times (seeded): ``n_start`` counted from the start, one in each equal
+    slice of [0, 1.1 T]; ``n_event`` counted from the first kept chunk or task, in
+    [0, 0.3 T]. (delay, from the event?) pairs."""
+    rng = np.random.default_rng(RNG_SEED)
+    u = rng.uniform(0.0, 1.0, n_start)
+    out = [(1.1 * t_ref * (i + u[i]) / n_start, False) for i in range(n_start)]
+    return out + [(float(x), True) for x in rng.uniform(0.0, 0.3 * t_ref, n_event)]
+
+
+def _any_file(folder: Path, pattern: str):
+    return lambda: folder.is_dir() and any(folder.glob(pattern))
 
 
 def _assert_same_dataset(path: Path, ref: xr.Dataset, attrs: tuple[str, ...] = ()) -> None:
@@ -110,7 +126,7 @@ def _pipeline_case(folder: Path) -> Path:
         if key == "length":
             line = "length = 60.0"
         elif key == "peak_hours":
-            line = "peak_hours = 0.25"
+            line = "peak_hours = 0.5"
         elif key == "record_interval":
             line = "record_interval = 1.0\nchunk_duration = 20.0"
         lines.append(line)
@@ -125,11 +141,14 @@ def test_pipeline_run_killed_at_random_moments(tmp_path):
     assert ref_run.returncode == 0, ref_run.stderr
     ref = _load(tmp_path / "ref.nc")
     out = tmp_path / "p.nc"
-    for delay in _delays(t_ref, 3):
-        _kill_after(["storm", case.name, "--quiet"], tmp_path, delay)
+    for delay, mid in _kills(t_ref, 2, 2):
+        event = _any_file(tmp_path / "p.nc.part", "chunk_*.npz") if mid else None
+        _kill_after(["storm", case.name, "--quiet"], tmp_path, delay, event)
         if out.exists():  # only ever a whole result of this run
             _assert_same_dataset(out, ref, ("summary", "run_id", "status"))
         had_checkpoint = (tmp_path / "p.nc.ckpt.npz").exists() and not out.exists()
+        left = _leftovers(tmp_path, {"p.toml", "ref.nc"})
+        print(f"kill at {delay:.1f} of {t_ref:.1f} s: left {left}")
         rerun, _ = _run(["storm", case.name, "--quiet"], tmp_path)
         assert rerun.returncode == 0, rerun.stderr
         if had_checkpoint:
@@ -151,21 +170,22 @@ def _storm_case(folder: Path, peak_hours: float) -> Path:
 
 @pytest.mark.dask
 def test_storm_seeds_run_killed_at_random_moments(tmp_path):
-    case = _storm_case(tmp_path, 0.5)
-    args = ["storm", case.name, "--seeds", "12", "--workers", "2", "--quiet"]
+    case = _storm_case(tmp_path, 1.0)
+    args = ["storm", case.name, "--seeds", "16", "--workers", "2", "--quiet"]
     ref_run, t_ref = _run([*args, "-o", "ref.nc"], tmp_path)
     assert ref_run.returncode == 0, ref_run.stderr
     ref = _load(tmp_path / "ref.nc")
     out, store = tmp_path / "s.nc", tmp_path / "s.nc.tasks"
-    for delay in _delays(t_ref, 2):
-        _kill_after(args, tmp_path, delay)
+    for delay, mid in _kills(t_ref, 1, 2):
+        _kill_after(args, tmp_path, delay, _any_file(store, "*.json") if mid else None)
         if out.exists():
             _assert_same_dataset(out, ref, ("stat_mean", "stat_max"))
         kept = len(list(store.glob("*.json"))) if store.is_dir() else 0
+        print(f"kill at {delay:.1f} of {t_ref:.1f} s: {kept} seeds kept, final {out.exists()}")
         rerun, _ = _run(args, tmp_path)
         assert rerun.returncode == 0, rerun.stderr
         if kept:
-            assert f"resuming: {kept} of 12 seeds already done" in rerun.stderr
+            assert f"resuming: {kept} of 16 seeds already done" in rerun.stderr
         _assert_same_dataset(out, ref, ("stat_mean", "stat_max"))
         assert _leftovers(tmp_path, {"s.toml", "ref.nc", "s.nc"}) == []
         out.unlink()
@@ -235,14 +255,16 @@ def test_curves_run_killed_at_random_moments(tmp_path):
     ref = _load(tmp_path / "ref.nc")
     ref_csv = (tmp_path / "ref.csv").read_text(encoding="utf-8")
     keep = {"c.toml", "ref.nc", "ref.csv", "ref.png"}
-    for delay in _delays(t_ref, 2):
-        _kill_after(args, tmp_path, delay)
+    for delay, mid in _kills(t_ref, 1, 1):
+        event = _any_file(tmp_path / "c.nc.tasks", "*.json") if mid else None
+        _kill_after(args, tmp_path, delay, event)
         variables = [v for v in ref.data_vars if not v.endswith("_runtime")]
         if (tmp_path / "c.nc").exists():
             _assert_same_dataset_vars(tmp_path / "c.nc", ref, variables)
         if (tmp_path / "c.csv").exists():
             assert (tmp_path / "c.csv").read_text(encoding="utf-8") == ref_csv
         kept = len(list((tmp_path / "c.nc.tasks").glob("*.json")))
+        print(f"kill at {delay:.1f} of {t_ref:.1f} s: {kept} points kept")
         rerun, _ = _run(args, tmp_path)
         assert rerun.returncode == 0, rerun.stderr
         if kept:
