@@ -278,7 +278,7 @@ def check_result_file(
             attrs = dict(ds.attrs)
     except FileNotFoundError:
         raise
-    except (OSError, ValueError, KeyError, RuntimeError) as exc:
+    except Exception as exc:  # any damage: never a traceback
         raise _unreadable(path, exc, what, field) from None
     if attrs.get("run_status") == RUN_STATUS_PARTIAL and not allow_partial:
         raise ResultFileError(
@@ -302,7 +302,7 @@ def load_dataset(path: str | os.PathLike, *, allow_partial: bool = False) -> xr.
             return ds.load()
     except FileNotFoundError:
         raise
-    except (OSError, ValueError, KeyError, RuntimeError) as exc:
+    except Exception as exc:  # any damage: never a traceback
         raise _unreadable(path, exc, "result file", "output") from None
 
 
