@@ -1,8 +1,8 @@
 """Time-domain solver of the pipeline FE model in a storm (implicit HHT-α, Newton, banded).
 
 :func:`simulate_pipeline` runs :func:`._pipeline_kernel.integrate` chunk by chunk; after each
-chunk the records are appended to a NetCDF file (dimension ``time`` unlimited) and a
-checkpoint (all solver state) is written atomically, so an interrupted run resumes from its
+chunk the records are kept (one file per chunk) and a checkpoint (all solver state) is
+written atomically, so an interrupted run resumes from its
 last chunk when called again with the same inputs (the run identity — a hash of the model,
 the settings and the kinematics — must match). Theory: docs/theory/pipeline_fe.md.
 
@@ -548,8 +548,9 @@ def simulate_pipeline(
         Simulated time [s], > 0; None → the end of the kinematics.
     settings : PipelineSettings or None
     output : path or None
-        NetCDF file for the records and envelopes, appended chunk by chunk; None → records
-        kept in memory (``result.data``).
+        NetCDF file for the records and envelopes, written under a temporary name when the
+        run ends (the records are kept chunk by chunk in ``<output>.part/`` meanwhile);
+        None → records kept in memory (``result.data``).
     checkpoint : path or None
         Checkpoint file (npz); None with ``output`` → ``output`` + ".ckpt.npz". An existing
         checkpoint with the same run identity is resumed (with the partial file
