@@ -39,10 +39,11 @@ class OutOfRangeWarning(UserWarning):
 class ResultFileError(InputError):
     """A result, partial-result or checkpoint file cannot be trusted: unreadable (corrupt,
     truncated, not a result), marked ``run_status = "partial"`` (an interrupted run), or
-    written by another run (its run identity differs). The message names the file and says
-    how to start afresh (``--restart``)."""
+    written by another run (its run identity differs). The message names the file and, where
+    a run writes it, says how to start afresh (``--restart``); ``field`` names the option or
+    file at fault ("output", "checkpoint") or is None."""
 
-    def __init__(self, message: str, *, field: str = "output") -> None:
+    def __init__(self, message: str, *, field: str | None = None) -> None:
         super().__init__(message)
         self.field = field
 

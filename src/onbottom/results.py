@@ -250,11 +250,13 @@ def save_figure(fig: Any, path: str | os.PathLike, **savefig_kw: Any) -> Path:
     return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw))
 
 
-def _unreadable(path: Any, exc: BaseException, what: str, field: str) -> ResultFileError:
+def _unreadable(
+    path: Any, exc: BaseException, what: str, field: str | None, advice: str | None
+) -> ResultFileError:
     reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
     return ResultFileError(
         f"{what} {str(path)!r} is unreadable (corrupt, truncated or not a NetCDF result:"
-        f" {reason}); {RESTART_ADVICE}, or remove the file",
+        f" {reason})" + (f"; {advice}" if advice else ""),
         field=field,
     )
 
@@ -264,14 +266,16 @@ def check_result_file(
     *,
     allow_partial: bool = False,
     what: str = "result file",
-    field: str = "output",
+    field: str | None = None,
+    advice: str | None = None,
 ) -> dict[str, Any]:
     """Attributes of the NetCDF result ``path``; refuse an unreadable or partial file by name.
 
-    Raises :class:`~onbottom.errors.ResultFileError` (naming ``field``) when the file cannot
-    be opened as NetCDF, or when it carries ``run_status = "partial"`` (an interrupted run)
-    and ``allow_partial`` is false. A file without ``run_status`` (written before the
-    attribute existed) is accepted.
+    Raises :class:`~onbottom.errors.ResultFileError` (its ``field`` set to ``field``; None
+    lets the caller name it) when the file cannot be opened as NetCDF, or when it carries
+    ``run_status = "partial"`` (an interrupted run) and ``allow_partial`` is false; ``advice``
+    (e.g. :data:`RESTART_ADVICE` where a run writes the file) ends the message. A file
+    without ``run_status`` (written before the attribute existed) is accepted.
     """
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
@@ -279,12 +283,12 @@ def check_result_file(
     except FileNotFoundError:
         raise
     except Exception as exc:  # any damage: never a traceback
-        raise _unreadable(path, exc, what, field) from None
+        raise _unreadable(path, exc, what, field, advice) from None
     if attrs.get("run_status") == RUN_STATUS_PARTIAL and not allow_partial:
         raise ResultFileError(
             f"{what} {str(path)!r} is partial (run_status = 'partial': written by a run that"
-            " was interrupted); rerun the command to resume or complete it, or"
-            f" {RESTART_ADVICE}",
+            " was interrupted, not a result); run the command that writes it again to"
+            " complete it" + (f"; {advice}" if advice else ""),
             field=field,
         )
     return attrs
@@ -303,7 +307,7 @@ def load_dataset(path: str | os.PathLike, *, allow_partial: bool = False) -> xr.
     except FileNotFoundError:
         raise
     except Exception as exc:  # any damage: never a traceback
-        raise _unreadable(path, exc, "result file", "output") from None
+        raise _unreadable(path, exc, "result file", None, None) from None
 
 
 # ---------------------------------------------------------------------------------------------

@@ -518,7 +518,9 @@ def _finished_output(path: Path, run_id: str) -> dict[str, Any] | None:
     or a complete result of another run; an unreadable file is a :class:`ResultFileError`."""
     if not path.exists():
         return None
-    attrs = check_result_file(path, allow_partial=True, what="output", field="output")
+    attrs = check_result_file(
+        path, allow_partial=True, what="output", field="output", advice=RESTART_ADVICE
+    )
     if attrs.get("run_status") == RUN_STATUS_COMPLETE and str(attrs.get("run_id")) == run_id:
         return attrs
     return None
