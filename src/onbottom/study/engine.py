@@ -118,6 +118,24 @@ def _sigint_ignored() -> Iterator[None]:
         signal.signal(signal.SIGINT, old)
 
 
+_POLL_S = 0.1
+"""Interval at which :class:`ParallelMap` looks for finished tasks and for a Ctrl-C [s]."""
+
+
+@contextmanager
+def _sigint_sets(flag: threading.Event) -> Iterator[None]:
+    """SIGINT sets ``flag`` instead of raising (main thread only; elsewhere nothing changes)."""
+    try:
+        old = signal.signal(signal.SIGINT, lambda signum, frame: flag.set())
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
 @contextmanager
 def _quiet_distributed() -> Iterator[None]:
     """Silence the distributed/tornado loggers (closing a cluster after an interrupt)."""
@@ -281,20 +299,35 @@ class ParallelMap:
             return []
         size = self.batch_size or max(1, math.ceil(len(items) / (4 * self._slots())))
         batches = _chunks(items, size)
-        futures = self.client.map(
-            _apply_batch, [func] * len(batches), batches, pure=False, key=None
-        )
-        index = {f.key: i for i, f in enumerate(futures)}
-        out: list[list[Any] | None] = [None] * len(batches)
+        stop = threading.Event()
+        futures: list[Any] = []
         try:
-            with tqdm(total=len(items), disable=not self.progress, unit="run") as bar:
-                for fut in as_completed(futures):
-                    i = index[fut.key]
-                    out[i] = fut.result()
-                    if self.on_result is not None:
-                        for item, value in zip(batches[i], out[i] or [], strict=True):
-                            self.on_result(item, value)
-                    bar.update(len(batches[i]))
+            # Ctrl-C sets a flag checked between polls: a KeyboardInterrupt raised inside
+            # distributed's own waiting (its sync()) logs a traceback from its event loop
+            with _sigint_sets(stop):
+                futures = self.client.map(
+                    _apply_batch, [func] * len(batches), batches, pure=False, key=None
+                )
+                index = {f.key: i for i, f in enumerate(futures)}
+                out: list[list[Any] | None] = [None] * len(batches)
+                left = len(batches)
+                with tqdm(total=len(items), disable=not self.progress, unit="run") as bar:
+                    ac = as_completed(futures)
+                    while left:
+                        if stop.is_set():
+                            raise KeyboardInterrupt
+                        done = ac.next_batch(block=False)
+                        if not done:
+                            stop.wait(_POLL_S)
+                            continue
+                        for fut in done:
+                            i = index[fut.key]
+                            out[i] = fut.result()
+                            left -= 1
+                            if self.on_result is not None:
+                                for item, value in zip(batches[i], out[i] or [], strict=True):
+                                    self.on_result(item, value)
+                            bar.update(len(batches[i]))
         except BaseException as exc:
             # do not leave the rest running on the cluster
             with (
