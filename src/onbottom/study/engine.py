@@ -119,14 +119,20 @@ def _sigint_ignored() -> Iterator[None]:
 
 
 _POLL_S = 0.1
-"""Interval at which :class:`ParallelMap` looks for finished tasks and for a Ctrl-C [s]."""
+"""Longest wait of :class:`ParallelMap` between looks for finished tasks and a Ctrl-C [s]
+(a finished task or a Ctrl-C wakes it at once)."""
 
 
 @contextmanager
-def _sigint_sets(flag: threading.Event) -> Iterator[None]:
-    """SIGINT sets ``flag`` instead of raising (main thread only; elsewhere nothing changes)."""
+def _sigint_sets(*flags: threading.Event) -> Iterator[None]:
+    """SIGINT sets ``flags`` instead of raising (main thread only; elsewhere nothing changes)."""
+
+    def handler(signum: int, frame: Any) -> None:
+        for f in flags:
+            f.set()
+
     try:
-        old = signal.signal(signal.SIGINT, lambda signum, frame: flag.set())
+        old = signal.signal(signal.SIGINT, handler)
     except ValueError:  # not the main thread
         yield
         return
@@ -299,15 +305,18 @@ class ParallelMap:
             return []
         size = self.batch_size or max(1, math.ceil(len(items) / (4 * self._slots())))
         batches = _chunks(items, size)
-        stop = threading.Event()
+        stop = threading.Event()  # Ctrl-C
+        wake = threading.Event()  # a task finished, or Ctrl-C
         futures: list[Any] = []
         try:
             # Ctrl-C sets a flag checked between polls: a KeyboardInterrupt raised inside
             # distributed's own waiting (its sync()) logs a traceback from its event loop
-            with _sigint_sets(stop):
+            with _sigint_sets(stop, wake):
                 futures = self.client.map(
                     _apply_batch, [func] * len(batches), batches, pure=False, key=None
                 )
+                for f in futures:
+                    f.add_done_callback(lambda _f: wake.set())
                 index = {f.key: i for i, f in enumerate(futures)}
                 out: list[list[Any] | None] = [None] * len(batches)
                 left = len(batches)
@@ -318,7 +327,8 @@ class ParallelMap:
                             raise KeyboardInterrupt
                         done = ac.next_batch(block=False)
                         if not done:
-                            stop.wait(_POLL_S)
+                            wake.wait(_POLL_S)
+                            wake.clear()
                             continue
                         for fut in done:
                             i = index[fut.key]
