@@ -22,6 +22,8 @@ __all__ = [
     "OnbottomError",
     "OutOfRangeWarning",
     "PhysicalConsistencyWarning",
+    "ResultFileError",
+    "RunInterrupted",
     "ShallowWaterWarning",
     "SolutionError",
     "UnitSlipWarning",
@@ -58,3 +60,23 @@ class UnitSlipWarning(PhysicalConsistencyWarning):
 
 class BudgetError(InputError):
     """The estimated run time or memory of a run exceeds the stated budget (``--force``)."""
+
+
+class ResultFileError(InputError):
+    """A result, partial-result or checkpoint file cannot be trusted: unreadable (corrupt,
+    truncated, not a result), marked ``run_status = "partial"`` (an interrupted run), or
+    written by another run (its run identity differs). The message names the file and, where
+    a run writes it, says how to start afresh (``--restart``); ``field`` names the option or
+    file at fault ("output", "checkpoint") or is None."""
+
+    def __init__(self, message: str, *, field: str | None = None) -> None:
+        super().__init__(message)
+        self.field = field
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a run; the message says what was kept and how to resume.
+
+    A subclass of :class:`KeyboardInterrupt`, so code that lets interrupts through still
+    does; the command line turns it into one line on stderr and exit status 130.
+    """

@@ -1,17 +1,29 @@
-"""Result conventions: variable names and units, provenance, atomic NetCDF files.
+"""Result conventions: variable names and units, provenance, kill-safe result files.
 
 Every xarray Dataset that onbottom returns takes the ``long_name`` and ``units`` of its
 variables from :data:`VARIABLES` (add an entry when you add a variable) and carries
 provenance attributes made by :func:`provenance`.
+
+Kill-safe files (issue 31): every result file is written under a temporary name and renamed
+when complete (:func:`save_dataset`, :func:`write_text_atomic`, :func:`write_csv_atomic`,
+:func:`save_figure`), so a file under its final name is always whole; a NetCDF result carries
+``run_status = "complete"`` (``"partial"`` in the growing file of a chunked writer, which never
+carries the final name) and :func:`load_dataset` refuses a partial or unreadable file by name.
+Runs that resume hash their inputs into a *run identity* (:func:`identity_hash`); runs of many
+independent tasks keep each finished task in a :class:`TaskStore` (one small JSON file per
+task) so an interrupted run resumes without repeating them.
 """
 
 from __future__ import annotations
 
 import datetime as _dt
+import hashlib
 import json
+import logging
 import os
+import re
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -19,16 +31,38 @@ import numpy as np
 import xarray as xr
 
 from onbottom._version import __version__
+from onbottom.errors import ResultFileError
 
 __all__ = [
+    "RESTART_ADVICE",
+    "RUN_STATUS_COMPLETE",
+    "RUN_STATUS_PARTIAL",
     "VARIABLES",
+    "TaskStore",
     "annotate",
+    "atomic_write",
+    "check_result_file",
     "clean_stale_temporaries",
+    "identity_hash",
     "load_dataset",
     "provenance",
     "save_dataset",
+    "save_figure",
+    "write_csv_atomic",
     "write_text_atomic",
 ]
+
+logger = logging.getLogger(__name__)
+
+RUN_STATUS_COMPLETE = "complete"
+"""``run_status`` attribute of a finished result file."""
+RUN_STATUS_PARTIAL = "partial"
+"""``run_status`` attribute of the growing file of an interrupted or running chunked writer."""
+
+RESTART_ADVICE = (
+    "rerun with --restart to discard it and start afresh (Python: delete the file, or pass"
+    " resume='never' / restart=True)"
+)
 
 VARIABLES: dict[str, tuple[str, str]] = {
     # name: (long_name, units)
@@ -164,14 +198,29 @@ def _atomic_write(path: Path, write: Any) -> Path:
     return path
 
 
-def save_dataset(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+def atomic_write(path: str | os.PathLike, write: Any) -> Path:
+    """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
+
+    For writers the helpers below do not cover (a GIF, a binary format); ``tmp`` ends in
+    ``.tmp``. The folder is created if needed; a temporary file left by a killed writer is
+    removed the next time the same file is written.
+    """
+    return _atomic_write(Path(path), write)
+
+
+def save_dataset(
+    ds: xr.Dataset, path: str | os.PathLike, *, run_status: str = RUN_STATUS_COMPLETE
+) -> Path:
     """Write ``ds`` to NetCDF atomically (temporary file in the same folder, then rename).
 
     A reader never sees a half-written file, even if the process is killed mid-write; a
     temporary file left by a killed writer is removed the next time the same file is written.
-    Permissions: 0666 less the umask (0644 usually); the folder is created if needed.
+    The file carries the attribute ``run_status`` (default ``"complete"``; ``ds`` itself is
+    not modified). Permissions: 0666 less the umask (0644 usually); the folder is created if
+    needed.
     """
-    return _atomic_write(Path(path), lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+    out = ds.assign_attrs(run_status=run_status)
+    return _atomic_write(Path(path), lambda tmp: out.to_netcdf(tmp, engine="h5netcdf"))
 
 
 def write_text_atomic(path: str | os.PathLike, text: str) -> Path:
@@ -179,7 +228,223 @@ def write_text_atomic(path: str | os.PathLike, text: str) -> Path:
     return _atomic_write(Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
 
-def load_dataset(path: str | os.PathLike) -> xr.Dataset:
-    """Load a NetCDF file written by :func:`save_dataset` fully into memory."""
-    with xr.open_dataset(path, engine="h5netcdf") as ds:
-        return ds.load()
+def write_csv_atomic(
+    path: str | os.PathLike, rows: Sequence[Mapping[str, Any]], fieldnames: Sequence[str]
+) -> Path:
+    """Write ``rows`` as a CSV table (header ``fieldnames``) atomically."""
+    import csv
+
+    def write(tmp: str) -> None:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(fieldnames))
+            w.writeheader()
+            w.writerows(rows)
+
+    return _atomic_write(Path(path), write)
+
+
+def save_figure(fig: Any, path: str | os.PathLike, **savefig_kw: Any) -> Path:
+    """``fig.savefig(path, **savefig_kw)`` atomically (the format follows the suffix)."""
+    p = Path(path)
+    fmt = savefig_kw.pop("format", None) or (p.suffix[1:].lower() or None)
+    return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw))
+
+
+def _unreadable(
+    path: Any, exc: BaseException, what: str, field: str | None, advice: str | None
+) -> ResultFileError:
+    reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return ResultFileError(
+        f"{what} {str(path)!r} is unreadable (corrupt, truncated or not a NetCDF result:"
+        f" {reason})" + (f"; {advice}" if advice else ""),
+        field=field,
+    )
+
+
+def check_result_file(
+    path: str | os.PathLike,
+    *,
+    allow_partial: bool = False,
+    what: str = "result file",
+    field: str | None = None,
+    advice: str | None = None,
+) -> dict[str, Any]:
+    """Attributes of the NetCDF result ``path``; refuse an unreadable or partial file by name.
+
+    Raises :class:`~onbottom.errors.ResultFileError` (its ``field`` set to ``field``; None
+    lets the caller name it) when the file cannot be opened as NetCDF, or when it carries
+    ``run_status = "partial"`` (an interrupted run) and ``allow_partial`` is false; ``advice``
+    (e.g. :data:`RESTART_ADVICE` where a run writes the file) ends the message. A file
+    without ``run_status`` (written before the attribute existed) is accepted.
+    """
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            attrs = dict(ds.attrs)
+    except FileNotFoundError:
+        raise
+    except Exception as exc:  # any damage: never a traceback
+        raise _unreadable(path, exc, what, field, advice) from None
+    if attrs.get("run_status") == RUN_STATUS_PARTIAL and not allow_partial:
+        raise ResultFileError(
+            f"{what} {str(path)!r} is partial (run_status = 'partial': written by a run that"
+            " was interrupted, not a result); run the command that writes it again to"
+            " complete it" + (f"; {advice}" if advice else ""),
+            field=field,
+        )
+    return attrs
+
+
+def load_dataset(path: str | os.PathLike, *, allow_partial: bool = False) -> xr.Dataset:
+    """Load a NetCDF result fully into memory; refuse an unreadable or partial file.
+
+    Raises :class:`~onbottom.errors.ResultFileError` as :func:`check_result_file` (a file
+    marked ``run_status = "partial"`` is refused unless ``allow_partial``).
+    """
+    check_result_file(path, allow_partial=allow_partial)
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            return ds.load()
+    except FileNotFoundError:
+        raise
+    except Exception as exc:  # any damage: never a traceback
+        raise _unreadable(path, exc, "result file", None, None) from None
+
+
+# ---------------------------------------------------------------------------------------------
+# run identity and per-task stores
+# ---------------------------------------------------------------------------------------------
+_ADDRESS = re.compile(r" at 0x[0-9a-fA-F]+")
+
+
+def identity_hash(meta: Any, *arrays: Any) -> str:
+    """SHA-256 (hex) of ``meta`` as canonical JSON, then of the bytes of ``arrays``.
+
+    The run identity of every resumable result: ``meta`` holds the inputs (JSON-able; other
+    objects count by ``str``, memory addresses removed), ``arrays`` large numeric inputs
+    (hashed by their bytes in C order). Equal inputs give equal hashes in any process.
+    """
+    h = hashlib.sha256()
+    text = json.dumps(meta, sort_keys=True, default=str)
+    h.update(_ADDRESS.sub("", text).encode())
+    for a in arrays:
+        h.update(np.ascontiguousarray(a).tobytes())
+    return h.hexdigest()
+
+
+def _task_name(key: Any) -> str:
+    text = json.dumps(key, sort_keys=True, default=str)
+    safe = re.sub(r"[^A-Za-z0-9._=-]+", "_", text).strip("_")[:60]
+    return f"{safe}-{hashlib.sha256(text.encode()).hexdigest()[:12]}.json"
+
+
+class TaskStore:
+    """Finished tasks of a run of many independent tasks: one small JSON file per task.
+
+    Each finished task is written (atomically) to ``folder/<key>.json`` with its result and
+    the task's run identity (:func:`identity_hash` of the run's ``identity`` and the task
+    key), the moment it finishes; a run interrupted at any moment (Ctrl-C, kill -9) resumes
+    with :meth:`load`, which returns the tasks already done. A file of another run (other
+    inputs) or an unreadable one is a :class:`~onbottom.errors.ResultFileError` with the
+    ``--restart`` advice; ``restart=True`` empties the folder first. :meth:`remove` deletes
+    the folder once the run's result file is written.
+
+    Parameters
+    ----------
+    folder : path
+        The store (created on the first :meth:`put`).
+    identity : any
+        JSON-able inputs of the run (e.g. the case file's text and the options).
+    restart : bool
+        Discard what the folder holds.
+    what : str
+        Name of a task in messages ("seed", "curve point").
+    """
+
+    def __init__(
+        self, folder: str | os.PathLike, identity: Any, *, restart: bool = False, what="task"
+    ):
+        self.folder = Path(folder)
+        self.identity = identity_hash({"onbottom_version": __version__, "run": identity})
+        self.what = what
+        if self.folder.exists() and not self.folder.is_dir():
+            raise ResultFileError(
+                f"task store {str(self.folder)!r} is invalid: it is a file, expected a folder;"
+                f" {RESTART_ADVICE}",
+                field="output",
+            )
+        if restart:
+            self.clear()
+
+    def _task_identity(self, key: Any) -> str:
+        return identity_hash({"run": self.identity, "task": key})
+
+    def _files(self) -> list[Path]:
+        return sorted(self.folder.glob("*.json")) if self.folder.is_dir() else []
+
+    def load(self, keys: Iterable[Any]) -> dict[int, Any]:
+        """``{index in keys: result}`` of the tasks of ``keys`` already finished."""
+        out: dict[int, Any] = {}
+        for i, key in enumerate(keys):
+            f = self.folder / _task_name(key)
+            if not f.exists():
+                continue
+            try:
+                doc = json.loads(f.read_text(encoding="utf-8"))
+                ident, result = doc["identity"], doc["result"]
+            except (OSError, ValueError, KeyError, TypeError) as exc:
+                raise ResultFileError(
+                    f"{self.what} file {str(f)!r} is unreadable ({type(exc).__name__});"
+                    f" {RESTART_ADVICE}",
+                    field="output",
+                ) from None
+            if ident != self._task_identity(key):
+                raise ResultFileError(
+                    f"{self.what} file {str(f)!r} belongs to another run (its run identity"
+                    f" {str(ident)[:12]}… differs from {self._task_identity(key)[:12]}…: other"
+                    f" inputs); {RESTART_ADVICE}, or give another --output",
+                    field="output",
+                )
+            out[i] = result
+        return out
+
+    def put(self, key: Any, result: Any) -> Path:
+        """Record the finished task ``key`` (atomic write of one small file)."""
+        doc = {"identity": self._task_identity(key), "key": key, "result": result}
+        text = json.dumps(doc, default=_json_default, allow_nan=True)
+        return write_text_atomic(self.folder / _task_name(key), text)
+
+    def clear(self) -> None:
+        """Remove every task file (and temporaries) of the folder."""
+        if not self.folder.is_dir():
+            return
+        for f in list(self.folder.glob("*.json")) + list(self.folder.glob("*.tmp")):
+            f.unlink(missing_ok=True)
+
+    def remove(self) -> None:
+        """Delete the folder and its task files (after the run's result is written)."""
+        TaskStore.delete(self.folder)
+
+    @staticmethod
+    def delete(folder: str | os.PathLike) -> None:
+        """Delete the task files of ``folder`` (and the folder when nothing else is in it)."""
+        f = Path(folder)
+        if not f.is_dir():
+            return
+        for x in list(f.glob("*.json")) + list(f.glob("*.tmp")):
+            x.unlink(missing_ok=True)
+        try:
+            f.rmdir()
+        except OSError:
+            pass  # something else lives there: leave it
+
+
+def _json_default(obj: Any) -> Any:
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.floating):
+        return float(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    return str(obj)

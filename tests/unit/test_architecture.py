@@ -20,7 +20,7 @@ ALLOWED: dict[str, set[str]] = {
     "constants": set(),
     "_validate": {"errors"},
     "_casefile": {"errors"},
-    "results": {"_version"},
+    "results": {"_version", "errors"},
     "inputs": BASE,
     "hydro": BASE | {"inputs"},
     "soil": BASE | {"inputs"},

@@ -9,7 +9,8 @@ Exit codes of every command:
 * 2 — a command-line usage error (unknown option, missing argument, a value click rejects);
 * 3 — the command ran but its result is not valid (solver did not converge, a result left its
   model's validity, some runs of a sweep failed);
-* 70 — an internal error (a bug: the traceback goes to stderr).
+* 70 — an internal error (a bug: the traceback goes to stderr);
+* 130 — interrupted (Ctrl-C): one line on stderr says what was kept and how to resume.
 
 With ``--json`` every error is the JSON object ``{"error": {"type", "message", "field"}}`` on
 stdout (``field`` is the option or key at fault, or null), so scripts never parse tracebacks.
@@ -29,11 +30,12 @@ from typing import Any, NoReturn
 import click
 import numpy as np
 
-from onbottom.errors import InputError, OnbottomError, SolutionError
+from onbottom.errors import InputError, OnbottomError, RunInterrupted, SolutionError
 
 __all__ = [
     "EXIT_INPUT",
     "EXIT_INTERNAL",
+    "EXIT_INTERRUPTED",
     "EXIT_INVALID_RESULT",
     "EXIT_USAGE",
     "JsonErrorGroup",
@@ -43,6 +45,7 @@ __all__ = [
     "error_payload",
     "handle_errors",
     "json_option",
+    "log_to_stderr",
     "plain_numbers",
     "report_click_error",
 ]
@@ -51,6 +54,7 @@ EXIT_INPUT = 1
 EXIT_USAGE = 2
 EXIT_INVALID_RESULT = 3
 EXIT_INTERNAL = 70
+EXIT_INTERRUPTED = 130
 
 json_option = click.option(
     "--json", "as_json", is_flag=True, help="Print machine-readable JSON instead of a table."
@@ -191,6 +195,14 @@ def handle_errors(fn: Callable) -> Callable:
         except (InputError, SolutionError, OnbottomError) as exc:
             emit_error(exc, as_json=as_json)
             raise ReportedError(plain_numbers(str(exc))) from exc
+        except KeyboardInterrupt as exc:  # Ctrl-C: one line, no traceback, status 130
+            msg = str(exc) if isinstance(exc, RunInterrupted) and str(exc) else "interrupted"
+            if as_json:
+                payload = {"error": {"type": "Interrupted", "message": msg, "field": None}}
+                click.echo(json.dumps(payload, indent=2))
+            else:
+                click.echo(msg, err=True)
+            raise ReportedError(msg).with_exit(EXIT_INTERRUPTED) from None
         except OSError as exc:
             err = InputError(plain_numbers(_os_message(exc)))
             err.field = exc.filename  # type: ignore[attr-defined]
@@ -360,3 +372,34 @@ def check_output_names(case: Any, outputs: Sequence[tuple[str, Any, Sequence[str
         for other, q, _ in given[i + 1 :]:
             if p.resolve() == q.resolve():
                 fail(field, f"{field} = {str(p)!r} is invalid: the same file as {other}")
+
+
+class log_to_stderr:
+    """Show the INFO messages of the ``onbottom`` loggers on stderr ("resuming from t = …").
+
+    Solvers never print: they log; a command shows what they log with this context manager
+    (``enabled`` false: nothing is added, e.g. with ``--json``).
+    """
+
+    def __init__(self, enabled: bool = True) -> None:
+        import logging
+
+        self.enabled = enabled
+        self.logger = logging.getLogger("onbottom")
+        self.handler = logging.StreamHandler(sys.stderr)
+        self.handler.setFormatter(logging.Formatter("%(message)s"))
+        self.level = self.logger.level
+
+    def __enter__(self) -> log_to_stderr:
+        import logging
+
+        if self.enabled:
+            self.logger.addHandler(self.handler)
+            if self.logger.getEffectiveLevel() > logging.INFO:
+                self.logger.setLevel(logging.INFO)
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        if self.enabled:
+            self.logger.removeHandler(self.handler)
+            self.logger.setLevel(self.level)

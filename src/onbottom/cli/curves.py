@@ -17,7 +17,6 @@ Case file::
 
 from __future__ import annotations
 
-import csv
 import time
 import warnings
 from pathlib import Path
@@ -35,6 +34,7 @@ from onbottom.cli._common import (
     emit_json,
     handle_errors,
     json_option,
+    log_to_stderr,
 )
 from onbottom.errors import OutOfRangeWarning
 from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
@@ -138,6 +138,11 @@ class CurvesCase(StrictModel):
     help="Run even when the estimated time or memory exceeds the budget"
     " (onbottom.study.budget: 12 h, 8 GB).",
 )
+@click.option(
+    "--restart",
+    is_flag=True,
+    help="Discard the points an interrupted run kept (OUTPUT.tasks/) and start afresh.",
+)
 @json_option
 @handle_errors
 def command(
@@ -147,6 +152,7 @@ def command(
     workers: int | None,
     quiet: bool,
     force: bool,
+    restart: bool,
     as_json: bool,
 ) -> None:
     """Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).
@@ -154,8 +160,26 @@ def command(
     For each soil, N, M and K, bisects the weight parameter L = w_s/(½ρDU_s²) at which the
     seed-averaged maximum displacement of a storm is 0.5D and 10D; writes NetCDF, CSV and a
     figure of L/(2 + M)² against K (the form of DNV-RP-F109's tables).
+
+    Each finished point is kept at once in OUTPUT.tasks/ (one small file per point), so an
+    interrupted run (Ctrl-C, a kill) resumes without repeating it; --restart starts afresh.
+    Results are written under a temporary name and renamed when complete.
     """
-    from onbottom.results import save_dataset
+    with log_to_stderr(not as_json):
+        _command(case, output, scheduler, workers, quiet, force, restart, as_json)
+
+
+def _command(
+    case: Path,
+    output: Path | None,
+    scheduler: str | None,
+    workers: int | None,
+    quiet: bool,
+    force: bool,
+    restart: bool,
+    as_json: bool,
+) -> None:
+    from onbottom.results import TaskStore, save_dataset, save_figure, write_csv_atomic
     from onbottom.study.stability_curves import curves_table, stability_curves
 
     nc = output if output is not None else case.with_suffix(".nc")
@@ -175,6 +199,7 @@ def command(
             click.echo(f"warning: {note}", err=True)
     check_output_path(nc, field="--output")
     _check_budget(c, workers=workers, force=force)
+    store = nc.with_name(nc.name + ".tasks")
     t0 = time.perf_counter()
     ds = stability_curves(
         c.K,
@@ -186,14 +211,13 @@ def command(
         n_workers=workers,
         scheduler=scheduler,
         progress=not quiet and not as_json,
+        store=store,
+        restart=restart,
     )
     save_dataset(ds, nc)
     rows = curves_table(ds)
     csv_path = nc.with_suffix(".csv")
-    with open(csv_path, "w", newline="", encoding="utf-8") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    write_csv_atomic(csv_path, rows, list(rows[0]))
     import matplotlib.pyplot as plt
 
     from onbottom.plotting.storm import plot_stability_curves
@@ -202,8 +226,9 @@ def command(
         ds, title=f"{case.stem}: {c.seeds} seeds, {c.build_up_hours:g} h + {c.peak_hours:g} h"
     )
     png = nc.with_suffix(".png")
-    fig.savefig(png, dpi=110)
+    save_figure(fig, png, dpi=110)
     plt.close(fig)
+    TaskStore.delete(store)  # the NetCDF, CSV and figure hold every point now
     failures = ds.attrs.get("failures", "[]")
     import json
 

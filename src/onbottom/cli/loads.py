@@ -224,8 +224,9 @@ def command(
             [c["combination"] for c in payload["combinations"]],
             title=f"{case.stem}: peak loads per wave cycle, seed {payload['seed']}",
         )
-        plot.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(plot, dpi=110)
+        from onbottom.results import save_figure
+
+        save_figure(fig, plot, dpi=110)
         payload["plot"] = str(plot)
     if output is not None:
         from onbottom.cli._common import check_output_path

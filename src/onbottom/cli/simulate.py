@@ -69,8 +69,9 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
             cycle_period=cp if isinstance(cp, float) else None,
             displacement_limit=lim if isinstance(lim, float) else None,
         )
-        plot.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(plot, dpi=110)
+        from onbottom.results import save_figure
+
+        save_figure(fig, plot, dpi=110)
         plt.close(fig)
     payload = {
         "success": res.success,

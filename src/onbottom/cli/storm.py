@@ -23,6 +23,7 @@ from onbottom.cli._common import (
     emit_json,
     handle_errors,
     json_option,
+    log_to_stderr,
 )
 from onbottom.errors import InputError, OutOfRangeWarning
 
@@ -91,6 +92,11 @@ def _run_pipeline(case: Path, **options: Any) -> Any:
     help="Run even when the estimated time or memory of the seeds exceeds the budget"
     " (onbottom.study.budget: 12 h, 8 GB).",
 )
+@click.option(
+    "--restart",
+    is_flag=True,
+    help="Discard what an interrupted run kept (seeds done, pipeline checkpoint) and start afresh.",
+)
 @json_option
 @handle_errors
 def command(
@@ -102,6 +108,7 @@ def command(
     plot: Path | None,
     quiet: bool,
     force: bool,
+    restart: bool,
     as_json: bool,
 ) -> None:
     """Simulate a pipe section on the seabed through a storm (CASE: TOML file).
@@ -113,7 +120,29 @@ def command(
     F109 load reductions. Reports the maximum and final lateral displacement and the
     DNV-RP-F109 verdicts against 0.5D and 10D; a run whose penetration left the soil model's
     range (z > D/2) is flagged (status -3, exit code 3). See examples/storm_case.toml.
+
+
+    Interrupted (Ctrl-C, a kill), the same command resumes: with --seeds the finished seeds
+    are kept one file each in OUTPUT.tasks/, a pipeline run resumes from its checkpoint;
+    --restart starts afresh. Results are written under a temporary name and renamed when
+    complete.
     """
+    with log_to_stderr(not as_json):
+        _command(case, seeds, scheduler, workers, output, plot, quiet, force, restart, as_json)
+
+
+def _command(
+    case: Path,
+    seeds: int | None,
+    scheduler: str | None,
+    workers: int | None,
+    output: Path | None,
+    plot: Path | None,
+    quiet: bool,
+    force: bool,
+    restart: bool,
+    as_json: bool,
+) -> None:
     progress = not quiet and not as_json
     check_output_names(
         case,
@@ -136,6 +165,7 @@ def command(
                 plot=plot,
                 progress=progress,
                 as_json=as_json,
+                restart=restart,
             )
         notes = _split_warnings(caught, as_json)
         if isinstance(payload, dict):
@@ -174,10 +204,11 @@ def command(
             import matplotlib.pyplot as plt
 
             from onbottom.plotting.storm import plot_storm_result
+            from onbottom.results import save_figure
 
             check_output_path(plot, field="--plot")
             fig = plot_storm_result(res, title=f"{case.stem}: {res.message}")
-            fig.savefig(plot, dpi=110)
+            save_figure(fig, plot, dpi=110)
             plt.close(fig)
         payload = {
             **res.to_dict(),
@@ -194,7 +225,7 @@ def command(
             raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
-    from onbottom.results import save_dataset
+    from onbottom.results import TaskStore, save_dataset
     from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
 
@@ -210,6 +241,7 @@ def command(
         field="--seeds",
     )
 
+    store = nc.with_name(nc.name + ".tasks")
     study = run_storm_seeds(
         setup.pipe,
         setup.soil,
@@ -219,9 +251,12 @@ def command(
         n_workers=workers,
         scheduler=scheduler,
         progress=progress,
+        store=store,
+        restart=restart,
         **setup.kwargs(),
     )
     save_dataset(study.data, nc)
+    TaskStore.delete(store)  # the result holds every seed now
     st = study.statistics
     d = setup.pipe.outer_diameter
     ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)

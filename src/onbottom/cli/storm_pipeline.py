@@ -475,8 +475,9 @@ STATUS_ERROR = -9
 class _SeedJob:
     """One seed of a pipeline case (picklable: workers re-read the case file)."""
 
-    def __init__(self, path: str, base: str, n: int, progress: bool) -> None:
+    def __init__(self, path: str, base: str, n: int, progress: bool, restart: bool = False) -> None:
         self.path, self.base, self.n, self.progress = path, base, n, progress
+        self.restart = restart
 
     def output(self, seed: int) -> Path:
         b = Path(self.base)
@@ -507,6 +508,7 @@ class _SeedJob:
             progress=self.progress,
             attrs={"case_file": str(self.path), "seed": int(seed)},
             identity_extra={"case": run["text"], "seed": int(seed)},
+            resume="never" if self.restart else "auto",
         )
 
     def __call__(self, seed: int) -> dict[str, Any]:
@@ -536,6 +538,7 @@ def run_pipeline_case(
     as_json: bool = False,
     scheduler: str | None = None,
     workers: int | None = None,
+    restart: bool = False,
     **_ignored: Any,
 ) -> dict[str, Any]:
     """Run the pipeline FE for a case file; return the JSON payload of ``onbottom storm``.
@@ -551,14 +554,17 @@ def run_pipeline_case(
         process); a seed that raises is recorded (status −9), never dropped.
     output : path or None
         NetCDF file (default: CASE with suffix .nc; with several seeds ``stem.seedN.nc``),
-        appended during the run; its checkpoint ``<output>.ckpt.npz`` resumes an interrupted
-        run of the same case.
+        written as ``<output>.part`` during the run and renamed when complete; its checkpoint
+        ``<output>.ckpt.npz`` resumes an interrupted run of the same case (removed at the
+        end). A finished output of the same case is returned as it is.
     plot : path or None
         Figure of the envelopes, deflected-shape snapshots and worst-node histories.
     animation : path or None
         GIF of the line in the storm (default ``[pipeline] animation``).
     progress, as_json : bool
         Progress bar; JSON output (the payload is returned either way).
+    restart : bool
+        Discard checkpoints and partial files of an earlier run and start afresh.
 
     Returns
     -------
@@ -583,20 +589,28 @@ def run_pipeline_case(
     base = Path(output) if output is not None else p.with_suffix(".nc")
     if n > 1 and (plot is not None or animation is not None):
         raise InputError("--plot/animation are for one seed: run the seed of interest alone")
-    job = _SeedJob(str(p), str(base), n, progress and n == 1)
+    job = _SeedJob(str(p), str(base), n, progress and n == 1, restart)
     first = setup.storm.seed
-    if n == 1:
-        res = job.run(first)
-        rows = [{"seed": int(first), **res.to_dict()}]
-    elif workers == 0:
-        rows = [job(first + k) for k in range(n)]
-    else:
-        from onbottom.study.engine import ParallelMap, dask_client
+    try:
+        if n == 1:
+            res = job.run(first)
+            rows = [{"seed": int(first), **res.to_dict()}]
+        elif workers == 0:
+            rows = [job(first + k) for k in range(n)]
+        else:
+            from onbottom.study.engine import ParallelMap, dask_client
 
-        with dask_client(scheduler_address=scheduler, n_workers=workers) as client:
-            rows = ParallelMap(client, batch_size=1, progress=progress)(
-                job, [first + k for k in range(n)]
-            )
+            with dask_client(scheduler_address=scheduler, n_workers=workers) as client:
+                rows = ParallelMap(client, batch_size=1, progress=progress)(
+                    job, [first + k for k in range(n)]
+                )
+    except KeyboardInterrupt:
+        from onbottom.errors import RunInterrupted
+
+        raise RunInterrupted(
+            "interrupted: finished seeds and the checkpoints of unfinished ones are kept"
+            f" beside {base}: run the same command again to resume"
+        ) from None
     ok = [r for r in rows if r["success"]]
     failures = [
         {"seed": r["seed"], "status": r["status"], "message": r["message"]}
@@ -611,10 +625,10 @@ def run_pipeline_case(
             import matplotlib.pyplot as plt
 
             from onbottom.plotting.pipeline import plot_pipeline_result
+            from onbottom.results import save_figure
 
             fig = plot_pipeline_result(res, title=f"{p.stem}: {res.message}")
-            Path(plot).parent.mkdir(parents=True, exist_ok=True)
-            fig.savefig(plot, dpi=110)
+            save_figure(fig, plot, dpi=110)
             plt.close(fig)
             plot_file = str(plot)
         anim = animation if animation is not None else table.animation

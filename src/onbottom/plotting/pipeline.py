@@ -134,8 +134,14 @@ def animate_pipeline(
         return (line, label)
 
     anim = FuncAnimation(fig, update, frames=frames, blit=False)
+    from onbottom.results import atomic_write
+
     out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    anim.save(out, writer=PillowWriter(fps=fps), dpi=dpi)
+
+    def write(tmp: str) -> None:  # Pillow picks the format by the suffix: save as .gif first
+        anim.save(tmp + ".gif", writer=PillowWriter(fps=fps), dpi=dpi)
+        os.replace(tmp + ".gif", tmp)
+
+    atomic_write(out, write)  # kill-safe: a GIF under its name is always whole
     plt.close(fig)
     return out

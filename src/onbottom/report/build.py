@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import csv
 import datetime as _dt
+import io
 import json
 import os
 import platform
@@ -222,11 +223,13 @@ def _write_tables(rs: RenderedSection, out: Path) -> list[Path]:
     for i, table in enumerate(rs.content.tables, start=1):
         rel = Path("tables") / f"{rs.name}_{i}.csv"
         path = out / rel
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with path.open("w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh)
-            w.writerow(table.columns)
-            w.writerows(["" if c is None else c for c in row] for row in table.rows)
+        from onbottom.results import write_text_atomic
+
+        buf = io.StringIO(newline="")
+        w = csv.writer(buf)
+        w.writerow(table.columns)
+        w.writerows(["" if c is None else c for c in row] for row in table.rows)
+        write_text_atomic(path, buf.getvalue())  # kill-safe: whole or absent
         rs.table_files.append(rel.as_posix())
         files.append(path)
     return files
@@ -422,10 +425,11 @@ def build_report(
             n_info=sum(sum(c.status == "info" for c in s.content.checks) for s in rendered),
         )
     )
-    index = out_dir / "index.html"
-    index.write_text(html, encoding="utf-8")
+    from onbottom.results import write_text_atomic
+
     json_path = out_dir / "report.json"
-    json_path.write_text(
+    write_text_atomic(
+        json_path,
         json.dumps(
             _finite(
                 {
@@ -440,8 +444,9 @@ def build_report(
             default=str,
             allow_nan=False,
         ),
-        encoding="utf-8",
     )
+    index = out_dir / "index.html"  # last: a whole index.html means a whole report
+    write_text_atomic(index, html)
     return ReportResult(
         index=index,
         json_path=json_path,

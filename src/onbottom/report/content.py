@@ -238,8 +238,9 @@ class SectionContext:
         """
         rel = Path("figures") / f"{_slug(self.name)}_{_slug(name)}.png"
         path = self.out_dir / rel
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=dpi, bbox_inches="tight")
+        from onbottom.results import save_figure
+
+        save_figure(fig, path, dpi=dpi, bbox_inches="tight")
         import matplotlib.pyplot as plt
 
         plt.close(fig)

@@ -29,10 +29,14 @@ Construction of a point (our choices; F109 and PONDUS do not publish theirs):
   left the range: its L rests on the model outside its calibration.
 
 Each point is one task on Dask (:mod:`onbottom.study.engine`); seeds run inside the task.
+With ``store`` (a folder; ``onbottom curves`` uses ``<output>.tasks``) every finished point is
+written at once to its own small file (:class:`onbottom.results.TaskStore`), so an interrupted
+sweep resumes without repeating the points it finished.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 import warnings
@@ -50,7 +54,7 @@ from onbottom.dynamics.storm_section import (
     StormSolverSettings,
     simulate_storm_section,
 )
-from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.errors import InputError, OutOfRangeWarning, RunInterrupted
 from onbottom.hydro.force_model import ForceModel
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import (
@@ -62,11 +66,11 @@ from onbottom.hydro.wake import WakeModel
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Sand
 from onbottom.inputs.storm import Storm
-from onbottom.results import annotate, provenance
+from onbottom.results import TaskStore, annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
 from onbottom.soil.verley_lund import VerleyLund
 from onbottom.soil.verley_sotberg import VerleySotberg
-from onbottom.study.engine import ParallelMap, SerialMap, dask_client
+from onbottom.study.engine import ParallelMap, dask_client
 
 __all__ = [
     "CRITERIA",
@@ -77,6 +81,8 @@ __all__ = [
     "point_kinematics",
     "stability_curves",
 ]
+
+logger = logging.getLogger(__name__)
 
 CRITERIA: dict[str, float] = {"L_stable": 0.5, "L_10": 10.0}
 """Criterion name → target seed-averaged maximum displacement over D."""
@@ -443,6 +449,9 @@ def stability_curves(
     scheduler: str | None = None,
     client: Any = None,
     progress: bool = False,
+    store: Any = None,
+    restart: bool = False,
+    identity: Any = None,
 ) -> xr.Dataset:
     """L_stable and L_10 on a grid of soil × N × M × K (module docstring).
 
@@ -459,6 +468,14 @@ def stability_curves(
         Address of a Dask scheduler.
     client : distributed.Client or None
     progress : bool
+    store : path or None
+        Folder keeping each finished point (one JSON file per point, written as it finishes);
+        points found there with this run's identity are not computed again.
+    restart : bool
+        Empty ``store`` first (start afresh).
+    identity : any
+        JSON-able description of the inputs for the run identity of the stored points
+        (default: the text of the settings).
 
     Returns
     -------
@@ -502,20 +519,56 @@ def stability_curves(
     items = [(so, k, m, n, c) for so in soils for n in ns for m in ms for k in ks for c in criteria]
     job = _PointJob(s)
     t0 = time.perf_counter()
-    if n_workers == 0 and scheduler is None and client is None:
-        if progress:
-            from tqdm.auto import tqdm
+    ts = None
+    done: dict[int, dict[str, Any]] = {}
+    if store is not None:
+        ident = identity if identity is not None else repr(s)
+        ts = TaskStore(
+            store, {"study": "stability_curves", "inputs": ident}, restart=restart, what="point"
+        )
+        done = ts.load([_point_key(x) for x in items])
+        if done:
+            logger.info(
+                "resuming: %d of %d points already done in %s", len(done), len(items), store
+            )
+    todo = [x for i, x in enumerate(items) if i not in done]
+    new: dict[tuple, dict[str, Any]] = {}
 
-            rows = [job(x) for x in tqdm(items, unit="point")]
+    def keep(item: tuple, row: dict[str, Any]) -> None:
+        new[tuple(item)] = row
+        if ts is not None and not row["error"]:  # an exception may be transient
+            ts.put(_point_key(item), row)
+
+    workers = 1
+    try:
+        if not todo:
+            pass
+        elif n_workers == 0 and scheduler is None and client is None:
+            it = todo
+            if progress:
+                from tqdm.auto import tqdm
+
+                it = tqdm(todo, unit="point")
+            for x in it:
+                keep(x, job(x))
         else:
-            rows = SerialMap()(job, items)
-        workers = 1
-    else:
-        with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
-            workers = max(1, sum(c.nthreads().values()))
-            rows = ParallelMap(c, batch_size=1, progress=progress)(job, items)
+            with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
+                workers = max(1, sum(c.nthreads().values()))
+                ParallelMap(c, batch_size=1, progress=progress, on_result=keep)(job, todo)
+    except KeyboardInterrupt:
+        raise RunInterrupted(
+            _interrupted(
+                len(done) + sum(1 for r in new.values() if not r["error"]), len(items), store
+            )
+        ) from None
+    rows = [done[i] if i in done else new[tuple(x)] for i, x in enumerate(items)]
     wall = time.perf_counter() - t0
     return _to_dataset(rows, list(soils), ns, ms, ks, list(criteria), s, wall, workers)
+
+
+def _point_key(item: tuple) -> dict[str, Any]:
+    soil, k, m, n, crit = item
+    return {"soil": soil, "K": float(k), "M": float(m), "N": float(n), "criterion": crit}
 
 
 def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Dataset:
@@ -650,3 +703,13 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                                 row[f"{c}_{name}"] = bool(x) if name == "converged" else float(x)
                     rows.append(row)
     return rows
+
+
+def _interrupted(kept: int, total: int, store: Any) -> str:
+    """The one-line message of an interrupted run."""
+    head = f"interrupted after {kept} of {total} points"
+    if store is None:
+        return head + " (nothing kept: no store)"
+    if kept == 0:
+        return head + "; run the same command again to start"
+    return head + f"; they are kept in {store}: run the same command again to resume"

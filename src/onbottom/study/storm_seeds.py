@@ -7,10 +7,17 @@ single-threaded worker processes, or a remote scheduler) or in this process (``n
 A seed whose run raises is recorded with status −9 and its message, never dropped. The result
 of a seed depends only on its inputs and seed, not on the worker that ran it: the same seeds
 give bitwise the same numbers on 1 and on 2 workers (tested).
+
+With ``store`` (a folder; ``onbottom storm --seeds`` uses ``<output>.tasks``) every finished
+seed is written at once to its own small file (:class:`onbottom.results.TaskStore`, with the
+run identity of its inputs), so a run interrupted at any moment — Ctrl-C, kill -9 — resumes
+without repeating the seeds it finished; Ctrl-C raises :class:`onbottom.errors.RunInterrupted`
+saying how many seeds are kept.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 import traceback
 from collections.abc import Sequence
@@ -26,14 +33,16 @@ from onbottom.dynamics.storm_section import (
     StormSolverSettings,
     simulate_storm_section,
 )
-from onbottom.errors import InputError
+from onbottom.errors import InputError, RunInterrupted
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Storm
-from onbottom.results import annotate, provenance
+from onbottom.results import TaskStore, annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
-from onbottom.study.engine import ParallelMap, SerialMap, dask_client
+from onbottom.study.engine import ParallelMap, dask_client
 
 __all__ = ["STATUS_ERROR", "SeedStudy", "run_storm_seeds", "seed_list"]
+
+logger = logging.getLogger(__name__)
 
 STATUS_ERROR = -9
 """Status recorded for a seed whose run raised an exception."""
@@ -195,6 +204,9 @@ def run_storm_seeds(
     scheduler: str | None = None,
     client: Any = None,
     progress: bool = False,
+    store: Any = None,
+    restart: bool = False,
+    identity: Any = None,
     **kwargs: Any,
 ) -> SeedStudy:
     """Run ``storm`` with many seeds and summarise the maximum displacement.
@@ -217,6 +229,14 @@ def run_storm_seeds(
         An open client to use.
     progress : bool
         tqdm progress bar over seeds.
+    store : path or None
+        Folder keeping each finished seed (one JSON file per seed, written as it finishes);
+        seeds found there with this run's identity are not run again. None → nothing kept.
+    restart : bool
+        Empty ``store`` first (start afresh).
+    identity : any
+        JSON-able description of the inputs for the run identity of the stored seeds
+        (default: the text of pipe, soil, storm and kwargs).
     **kwargs
         depth, current, z0, sample_interval, force_model, reductions, settings (the
         ``record_interval`` is forced to None: summaries only).
@@ -236,16 +256,62 @@ def run_storm_seeds(
         "scheduler": scheduler or ("in-process" if n_workers == 0 else "local"),
         "soil_model": soil.name,
     }
-    if n_workers == 0 and scheduler is None and client is None:
-        if progress:
-            from tqdm.auto import tqdm
-
-            rows = [job(x) for x in tqdm(seed_values, unit="storm")]
-        else:
-            rows = SerialMap()(job, seed_values)
-        return _collect(rows, pipe.outer_diameter, fractile, attrs)
-    with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
-        rows = ParallelMap(c, batch_size=1 if len(seed_values) < 64 else None, progress=progress)(
-            job, seed_values
+    ts = None
+    done: dict[int, dict[str, Any]] = {}
+    if store is not None:
+        ident = identity if identity is not None else repr((pipe, soil, storm, kwargs))
+        ts = TaskStore(
+            store, {"study": "storm_seeds", "inputs": ident}, restart=restart, what="seed"
         )
+        done = {seed_values[i]: r for i, r in ts.load([{"seed": x} for x in seed_values]).items()}
+        if done:
+            logger.info(
+                "resuming: %d of %d seeds already done in %s", len(done), len(seed_values), store
+            )
+    todo = [x for x in seed_values if x not in done]
+    rows_new: dict[int, dict[str, Any]] = {}
+
+    def keep(seed: int, row: dict[str, Any]) -> None:
+        rows_new[int(seed)] = row
+        if ts is not None and row["status"] != STATUS_ERROR:  # an exception may be transient
+            ts.put({"seed": int(seed)}, row)
+
+    try:
+        if not todo:
+            pass
+        elif n_workers == 0 and scheduler is None and client is None:
+            it = todo
+            if progress:
+                from tqdm.auto import tqdm
+
+                it = tqdm(todo, unit="storm")
+            for x in it:
+                keep(x, job(x))
+        else:
+            with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
+                ParallelMap(
+                    c,
+                    batch_size=1 if len(todo) < 64 else None,
+                    progress=progress,
+                    on_result=keep,
+                )(job, todo)
+    except KeyboardInterrupt:
+        raise RunInterrupted(
+            _interrupted(
+                len(done) + sum(1 for r in rows_new.values() if r["status"] != STATUS_ERROR),
+                len(seed_values),
+                store,
+            )
+        ) from None
+    rows = [done[x] if x in done else rows_new[x] for x in seed_values]
     return _collect(rows, pipe.outer_diameter, fractile, attrs)
+
+
+def _interrupted(kept: int, total: int, store: Any) -> str:
+    """The one-line message of an interrupted run."""
+    head = f"interrupted after {kept} of {total} seeds"
+    if store is None:
+        return head + " (nothing kept: no store)"
+    if kept == 0:
+        return head + "; run the same command again to start"
+    return head + f"; they are kept in {store}: run the same command again to resume"

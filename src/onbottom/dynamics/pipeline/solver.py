@@ -1,15 +1,25 @@
 """Time-domain solver of the pipeline FE model in a storm (implicit HHT-α, Newton, banded).
 
 :func:`simulate_pipeline` runs :func:`._pipeline_kernel.integrate` chunk by chunk; after each
-chunk the records are appended to a NetCDF file (dimension ``time`` unlimited) and a
-checkpoint (all solver state) is written atomically, so an interrupted run resumes from its
+chunk the records are kept (one file per chunk) and a checkpoint (all solver state) is
+written atomically, so an interrupted run resumes from its
 last chunk when called again with the same inputs (the run identity — a hash of the model,
 the settings and the kinematics — must match). Theory: docs/theory/pipeline_fe.md.
+
+Kill-safe files (issue 31): the records of each chunk go to their own small file in
+``<output>.part/`` (written atomically, with the run identity); when the run ends they are
+written with the envelopes to a temporary NetCDF file renamed to ``output`` (``run_status =
+"complete"``), and the checkpoint and the chunk files are removed. A growing HDF5 file is not
+used: a kill -9 leaves its metadata half-written. A resume checks that the checkpoint and
+the chunk files carry this run's identity and agree on the rows written, and logs "resuming
+… from t = …"; a checkpoint of other inputs or an unreadable one, or an unreadable file under
+the output's name, is a :class:`~onbottom.errors.ResultFileError` with the ``--restart``
+advice. A checkpoint whose chunks are missing or disagree is not resumed (the run starts
+afresh), so no record of an earlier run can leak into a new file.
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import logging
 import math
@@ -28,11 +38,18 @@ from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
-from onbottom.errors import InputError
+from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro._force_contract import N_FORCE_STATE
 from onbottom.hydro.force_model import parameter_rows
 from onbottom.hydro.short_crested import NodeKinematics
-from onbottom.results import annotate, provenance
+from onbottom.results import (
+    RESTART_ADVICE,
+    RUN_STATUS_COMPLETE,
+    annotate,
+    check_result_file,
+    identity_hash,
+    provenance,
+)
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -232,8 +249,9 @@ class PipelineResult:
             return self.data
         if self.netcdf is None:
             raise InputError("PipelineResult has no records: run with record_interval set")
-        with xr.open_dataset(self.netcdf, engine="h5netcdf") as ds:
-            return ds.load()
+        from onbottom.results import load_dataset
+
+        return load_dataset(self.netcdf)
 
 
 def run_identity(
@@ -243,24 +261,22 @@ def run_identity(
     extra: Any = None,
     force_parameters: np.ndarray | None = None,
 ) -> str:
-    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics.
+    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics
+    (:func:`onbottom.results.identity_hash`).
 
     ``force_parameters``: the force model's parameter rows; folded in only when they change
     along the storm (per sea state), so a constant model keeps the identity of earlier runs.
     """
-    h = hashlib.sha256()
     meta = {
         "model": model.describe(),
         "settings": asdict(settings),
         "kinematics": [kinematics.t0, kinematics.dt, list(kinematics.velocity.shape)],
         "extra": extra,
     }
-    h.update(json.dumps(meta, sort_keys=True, default=str).encode())
-    h.update(np.ascontiguousarray(kinematics.velocity).tobytes())
-    h.update(np.ascontiguousarray(kinematics.acceleration).tobytes())
+    arrays = [kinematics.velocity, kinematics.acceleration]
     if force_parameters is not None and force_parameters.shape[0] > 1:
-        h.update(np.ascontiguousarray(force_parameters).tobytes())
-    return h.hexdigest()
+        arrays.append(force_parameters)
+    return identity_hash(meta, *arrays)
 
 
 def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSettings, r_perm_z):
@@ -305,103 +321,233 @@ def _penetration_limit(model: PipelineModel) -> float:
     return math.inf
 
 
-class _Writer:
-    """Appends records to a NetCDF file (h5netcdf; ``time`` unlimited)."""
-
-    def __init__(self, path: Path, x: np.ndarray, attrs: Mapping[str, Any], resume_rows: int):
-        import h5netcdf
-
-        self.path = path
-        if resume_rows > 0 and path.exists():
-            self.f = h5netcdf.File(path, "a")
-            if self.f.dimensions["time"].size != resume_rows:
-                self.f.resize_dimension("time", resume_rows)
-            self.rows = resume_rows
-            return
-        path.parent.mkdir(parents=True, exist_ok=True)
-        self.f = h5netcdf.File(path, "w")
-        n = x.size
-        self.f.dimensions = {"time": None, "node": n}
-        t = self.f.create_variable("time", ("time",), np.float64, chunks=(4096,))
-        t.attrs.update(long_name="time", units="s")
-        xv = self.f.create_variable("x", ("node",), np.float64, data=x)
-        xv.attrs.update(long_name="position along the pipe", units="m")
-        for name, (_k, long_name, units) in FIELDS.items():
-            v = self.f.create_variable(
-                name, ("time", "node"), np.float32, chunks=(min(64, 4096), n)
-            )
-            v.attrs.update(long_name=long_name, units=units, coordinates="x")
-        for k, v in attrs.items():
-            self.f.attrs[k] = v
-        self.rows = 0
-
-    def append(self, t: np.ndarray, rec: np.ndarray) -> None:
-        m = t.size
-        if m == 0:
-            return
-        r0 = self.rows
-        self.f.resize_dimension("time", r0 + m)
-        self.f.variables["time"][r0 : r0 + m] = t
-        for name, (k, _l, _u) in FIELDS.items():
-            self.f.variables[name][r0 : r0 + m, :] = rec[:m, k, :].astype(np.float32)
-        self.rows = r0 + m
-        self.f.flush()
-
-    def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
-        for name in envelopes.data_vars:
-            if name in self.f.variables:
-                self.f.variables[name][:] = envelopes[name].values
-            else:
-                v = self.f.create_variable(name, ("node",), np.float64, data=envelopes[name].values)
-                v.attrs.update(envelopes[name].attrs)
-        for k, v in attrs.items():
-            self.f.attrs[k] = v
-        self.f.close()
-
-    def close(self) -> None:
-        self.f.close()
+def partial_path(output: str | os.PathLike) -> Path:
+    """The folder of the records of a run writing ``output``: ``<output>.part``."""
+    p = Path(output)
+    return p.with_name(p.name + ".part")
 
 
-def _save_checkpoint(path: Path, run_id: str, rows: int, state: Mapping[str, np.ndarray]) -> None:
+def _chunk_file(folder: Path, index: int) -> Path:
+    return folder / f"chunk_{index:06d}.npz"
+
+
+def _write_npz_atomic(path: Path, **arrays: np.ndarray) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
         with open(tmp, "wb") as fh:
-            np.savez(fh, run_id=np.array(run_id), rows=np.array(rows), **state)
+            np.savez(fh, **arrays)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
 
 
+class _Writer:
+    """Keeps the records of a run as one small file per chunk in ``<output>.part/``; at
+    :meth:`finish` writes them with the envelopes into a temporary NetCDF file and renames it
+    to the output's name (``run_status = "complete"``).
+
+    Each chunk file is written atomically and carries the run identity, so a kill at any
+    moment leaves whole chunks (a growing HDF5 file does not survive a kill -9: its metadata
+    is left half-written, "bad object header version number"). :meth:`commit` is called
+    before each checkpoint, which records how many chunks belong to it.
+    """
+
+    def __init__(
+        self,
+        path: Path,
+        x: np.ndarray,
+        attrs: Mapping[str, Any],
+        run_id: str,
+        resume: tuple[int, int, float] = (0, 0, math.nan),
+    ) -> None:
+        self.path = path
+        self.folder = partial_path(path)
+        self.x = x
+        self.attrs = dict(attrs)
+        self.run_id = run_id
+        self.rows, self.chunks, self.last_time = resume
+        self._t: list[np.ndarray] = []
+        self._r: list[np.ndarray] = []
+        if self.folder.exists() and not self.folder.is_dir():
+            self.folder.unlink()
+        # chunks beyond the checkpoint (written before a kill) and temporaries go
+        for f in list(self.folder.glob("chunk_*")) if self.folder.is_dir() else []:
+            tail = f.name[len("chunk_") :].split(".", 1)[0]
+            if not tail.isdigit() or int(tail) >= self.chunks or f.suffix == ".tmp":
+                f.unlink(missing_ok=True)
+
+    def append(self, t: np.ndarray, rec: np.ndarray) -> None:
+        m = t.size
+        if m == 0:
+            return
+        ks = [k for (k, _l, _u) in FIELDS.values()]
+        self._t.append(np.array(t[:m], dtype=np.float64))
+        self._r.append(rec[:m][:, ks, :].astype(np.float32))
+
+    def commit(self) -> None:
+        """Write the rows appended since the last commit as the next chunk file."""
+        if not self._t:
+            return
+        t = np.concatenate(self._t)
+        r = np.concatenate(self._r)
+        _write_npz_atomic(
+            _chunk_file(self.folder, self.chunks), run_id=np.array(self.run_id), t=t, rec=r
+        )
+        self.chunks += 1
+        self.rows += t.size
+        self.last_time = float(t[-1])
+        self._t.clear()
+        self._r.clear()
+
+    def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
+        """Write the result file (temporary name, then rename)."""
+        import h5netcdf
+
+        from onbottom.results import atomic_write
+
+        self.commit()
+        x = self.x
+        n = x.size
+
+        def write(tmp: str) -> None:
+            with h5netcdf.File(tmp, "w") as f:
+                f.dimensions = {"time": self.rows, "node": n}
+                tv = f.create_variable("time", ("time",), np.float64)
+                tv.attrs.update(long_name="time", units="s")
+                xv = f.create_variable("x", ("node",), np.float64, data=x)
+                xv.attrs.update(long_name="position along the pipe", units="m")
+                for name, (_k, long_name, units) in FIELDS.items():
+                    v = f.create_variable(name, ("time", "node"), np.float32)
+                    v.attrs.update(long_name=long_name, units=units, coordinates="x")
+                r0 = 0
+                for i in range(self.chunks):
+                    with np.load(_chunk_file(self.folder, i)) as z:
+                        t, rec = z["t"], z["rec"]
+                    m = t.size
+                    f.variables["time"][r0 : r0 + m] = t
+                    for j, name in enumerate(FIELDS):
+                        f.variables[name][r0 : r0 + m, :] = rec[:, j, :]
+                    r0 += m
+                for name in envelopes.data_vars:
+                    v = f.create_variable(name, ("node",), np.float64, data=envelopes[name].values)
+                    v.attrs.update(envelopes[name].attrs)
+                for k, v in {**self.attrs, **attrs}.items():
+                    f.attrs[k] = v
+                f.attrs["run_status"] = RUN_STATUS_COMPLETE
+
+        atomic_write(self.path, write)
+
+    def discard(self) -> None:
+        """Remove the chunk files (once :meth:`finish` has renamed the result)."""
+        if self.folder.is_dir():
+            for f in self.folder.glob("chunk_*"):
+                f.unlink(missing_ok=True)
+            try:
+                self.folder.rmdir()
+            except OSError:
+                pass
+
+    def close(self) -> None:
+        """Nothing stays open between chunks (kept for the interrupt path)."""
+
+
+def _save_checkpoint(
+    path: Path,
+    run_id: str,
+    rows: int,
+    chunks: int,
+    last_time: float,
+    state: Mapping[str, np.ndarray],
+) -> None:
+    _write_npz_atomic(
+        path,
+        run_id=np.array(run_id),
+        rows=np.array(rows),
+        chunks=np.array(chunks),
+        last_time=np.array(last_time),
+        **state,
+    )
+
+
 def _load_checkpoint(
     path: Path, run_id: str, resume: str
-) -> tuple[int, dict[str, np.ndarray]] | None:
-    if resume == "never" or not path.exists():
+) -> tuple[int, int, float, dict[str, np.ndarray]] | None:
+    """(rows, chunks, time of the last row, state) of a checkpoint of this run, or None if
+    there is none; an unreadable checkpoint or one of other inputs is a
+    :class:`ResultFileError`."""
+    if not path.exists():
         if resume == "require":
             raise InputError(f"checkpoint = {str(path)!r} is invalid: no such file to resume")
         return None
     try:
         with np.load(path) as z:
             found = str(z["run_id"])
-            state = {k: z[k].copy() for k in z.files if k not in ("run_id", "rows")}
+            skip = ("run_id", "rows", "chunks", "last_time")
+            state = {k: z[k].copy() for k in z.files if k not in skip}
             rows = int(z["rows"])
-    except (OSError, ValueError, KeyError) as exc:
-        if resume == "require":
-            raise InputError(f"checkpoint = {str(path)!r} is invalid: unreadable ({exc})") from None
-        logger.warning("ignoring unreadable checkpoint %s (%s): starting anew", path, exc)
-        return None
+            chunks = int(z["chunks"]) if "chunks" in z.files else -1
+            last = float(z["last_time"]) if "last_time" in z.files else math.nan
+    except Exception as exc:  # any damage (a zip error, a missing array, ...)
+        raise ResultFileError(
+            f"checkpoint {str(path)!r} is unreadable (corrupt, truncated or not a checkpoint:"
+            f" {type(exc).__name__}); {RESTART_ADVICE}",
+            field="checkpoint",
+        ) from None
     if found != run_id:
-        msg = (
-            f"checkpoint = {str(path)!r} belongs to another run: its run identity"
-            f" {found[:12]}… differs from {run_id[:12]}… (other inputs)"
+        raise ResultFileError(
+            f"checkpoint {str(path)!r} belongs to another run: its run identity"
+            f" {found[:12]}… differs from {run_id[:12]}… (other inputs); {RESTART_ADVICE},"
+            " or give another --output",
+            field="checkpoint",
         )
-        if resume == "require":
-            raise InputError(msg)
-        logger.warning("%s; starting anew and overwriting the output", msg)
+    return rows, chunks, last, state
+
+
+def _partial_agrees(
+    folder: Path, run_id: str, rows: int, chunks: int, last_time: float
+) -> str | None:
+    """None if the chunk files 0 … ``chunks`` − 1 of ``folder`` carry ``run_id`` and hold
+    ``rows`` records, the last at ``last_time``; otherwise why they cannot be resumed."""
+    if chunks < 0:
+        return "it was written by an older onbottom (no chunk count)"
+    n = 0
+    t_last = math.nan
+    for i in range(chunks):
+        f = _chunk_file(folder, i)
+        if not f.exists():
+            return f"its partial records {str(f)!r} are missing"
+        try:
+            with np.load(f) as z:
+                found = str(z["run_id"])
+                t = z["t"]
+        except Exception as exc:  # any damage
+            return f"its partial records {str(f)!r} are unreadable ({type(exc).__name__})"
+        if found != run_id:
+            return f"its partial records {str(f)!r} belong to another run"
+        n += t.size
+        if t.size:
+            t_last = float(t[-1])
+    if n != rows:
+        return f"its partial records hold {n} rows, the checkpoint {rows}"
+    if rows > 0 and not (math.isnan(last_time) or t_last == last_time):
+        return "its partial records disagree with it (other times)"
+    return None
+
+
+def _finished_output(path: Path, run_id: str) -> dict[str, Any] | None:
+    """Attributes of ``path`` when it is a complete result of this run; None if it is absent
+    or a complete result of another run; an unreadable file is a :class:`ResultFileError`."""
+    if not path.exists():
         return None
-    return rows, state
+    attrs = check_result_file(
+        path, allow_partial=True, what="output", field="output", advice=RESTART_ADVICE
+    )
+    if attrs.get("run_status") == RUN_STATUS_COMPLETE and str(attrs.get("run_id")) == run_id:
+        return attrs
+    return None
 
 
 def simulate_pipeline(
@@ -428,11 +574,15 @@ def simulate_pipeline(
         Simulated time [s], > 0; None → the end of the kinematics.
     settings : PipelineSettings or None
     output : path or None
-        NetCDF file for the records and envelopes, appended chunk by chunk; None → records
-        kept in memory (``result.data``).
+        NetCDF file for the records and envelopes, written under a temporary name when the
+        run ends (the records are kept chunk by chunk in ``<output>.part/`` meanwhile);
+        None → records kept in memory (``result.data``).
     checkpoint : path or None
         Checkpoint file (npz); None with ``output`` → ``output`` + ".ckpt.npz". An existing
-        checkpoint with the same run identity is resumed; another identity is an error.
+        checkpoint with the same run identity is resumed (with the partial file
+        ``<output>.part`` it describes); another identity, or an unreadable checkpoint, is a
+        :class:`~onbottom.errors.ResultFileError` advising ``--restart``. The checkpoint is
+        removed when the run ends.
     progress : bool
         tqdm progress bar over chunks.
     attrs : mapping or None
@@ -440,9 +590,12 @@ def simulate_pipeline(
     identity_extra : any
         Extra JSON-able data folded into the run identity (e.g. the case file's text).
     resume : {"auto", "never", "require"}
-        "auto": resume a checkpoint with this run's identity, start anew (overwriting the
-        output) when there is none or it belongs to other inputs; "never": always start
-        anew; "require": resume or raise :class:`~onbottom.errors.InputError`.
+        "auto": return the finished ``output`` of this run (same identity) as it is, or
+        resume its checkpoint, or start anew (replacing an output of other inputs when the
+        run ends) when there is no checkpoint or its partial file is missing or damaged;
+        "never": discard any checkpoint and partial file and start anew (``--restart``);
+        "require": return or resume, or raise :class:`~onbottom.errors.InputError`.
+        Resuming logs "resuming <output> from t = … s" (logger ``onbottom``, level INFO).
 
     Returns
     -------
@@ -508,14 +661,50 @@ def simulate_pipeline(
         source="docs/theory/pipeline_fe.md",
         **dict(attrs or {}),
     )
-    # ---- state (fresh or resumed)
+    # ---- finished already, resumed, or fresh
     state = None
-    rows = 0
+    rows = chunks = 0
+    last_time = math.nan
     done = K.STATUS_CHUNK
-    if ckpt is not None:
+    if out_path is not None and resume != "never":
+        finished = _finished_output(out_path, run_id)
+        if finished is not None:
+            for stale in (ckpt, partial_path(out_path)):
+                if stale is not None:
+                    stale.unlink(missing_ok=True)
+            logger.info("%s is the finished result of this run: returned as it is", out_path)
+            return _result_from_file(out_path, finished, model, s, run_id)
+        if resume == "require" and out_path.exists() and (ckpt is None or not ckpt.exists()):
+            raise ResultFileError(
+                f"output {str(out_path)!r} belongs to another run (other inputs) and there is"
+                " no checkpoint of this run to resume",
+                field="output",
+            )
+    if ckpt is not None and resume == "never":
+        ckpt.unlink(missing_ok=True)
+    elif ckpt is not None:
         loaded = _load_checkpoint(ckpt, run_id, resume)
         if loaded is not None:
-            rows, state = loaded
+            rows, chunks, last_time, state = loaded
+            why = (
+                None
+                if out_path is None
+                else _partial_agrees(partial_path(out_path), run_id, rows, chunks, last_time)
+            )
+            if why is not None:
+                msg = f"checkpoint {str(ckpt)!r} cannot be resumed: {why}"
+                if resume == "require":
+                    raise ResultFileError(f"{msg}; {RESTART_ADVICE}", field="checkpoint")
+                logger.warning("%s; starting afresh", msg)
+                ckpt.unlink(missing_ok=True)
+                state, rows, chunks = None, 0, 0
+            else:
+                logger.info(
+                    "resuming %s from t = %.6g s (checkpoint %s)",
+                    out_path if out_path is not None else "the run",
+                    float(state["scal"][K.SC_T]),
+                    ckpt,
+                )
     if state is None:
         vec = np.zeros((K.N_VEC, ndof))
         scal = np.zeros(K.N_SCAL)
@@ -550,7 +739,10 @@ def simulate_pipeline(
         )  # fmt: skip
         # checkpoints written before the force state existed: Morison only, no state
         fstate = state.get("fstate", np.zeros((n, N_FORCE_STATE)))
-    writer = None if out_path is None else _Writer(out_path, x, base_attrs, rows)
+    writer = None
+    if out_path is not None:
+        resumed = (rows, chunks, last_time) if state is not None else (0, 0, math.nan)
+        writer = _Writer(out_path, x, base_attrs, run_id, resumed)
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
     per_chunk = 1
@@ -584,11 +776,15 @@ def simulate_pipeline(
                     break
             if bar is not None:
                 bar.update(round(scal[K.SC_T]) - bar.n)
+            if writer is not None:
+                writer.commit()
             if ckpt is not None and writer is not None:
                 _save_checkpoint(
                     ckpt,
                     run_id,
                     writer.rows,
+                    writer.chunks,
+                    writer.last_time if writer.rows else math.nan,
                     {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
                      "fstate": fstate, "env": env, "status": np.array(status)},
                 )  # fmt: skip
@@ -619,12 +815,7 @@ def simulate_pipeline(
     vmax = float(env[K.E_ABS_V, k_worst])
     emax = float(np.max(env[K.E_STRAIN]))
     stopped = status == K.STATUS_LIMIT
-    criteria: dict[str, bool | None] = {
-        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
-                                         and s.stop_displacement_over_d <= f))
-        for k, f in CRITERIA_OVER_D.items()
-    }  # fmt: skip
-    criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
+    criteria = _criteria(vmax, emax, d, stopped, s)
     n_steps = float(scal[K.SC_NSTEP])
     lift_node = int(scal[K.SC_LIFT_NODE])
     summary = {
@@ -679,8 +870,12 @@ def simulate_pipeline(
     }
     data = None
     if writer is not None:
-        # the checkpoint is kept: a second call with the same inputs returns at once
+        # the result takes its name, then the checkpoint and the chunks go: a kill in between
+        # leaves a finished output of this run, which a second call returns at once
         writer.finish(env_ds, final_attrs)
+        if ckpt is not None:
+            ckpt.unlink(missing_ok=True)
+        writer.discard()
     elif mem_t:
         tt = np.concatenate(mem_t)
         rr = np.concatenate(mem_r)
@@ -718,4 +913,49 @@ def _envelopes(x: np.ndarray, env: np.ndarray) -> xr.Dataset:
             for name, (k, ln, u) in ENVELOPES.items()
         },
         coords={"x": ("node", x, {"long_name": "position along the pipe", "units": "m"})},
+    )
+
+
+def _criteria(
+    vmax: float, emax: float, d: float, stopped: bool, s: PipelineSettings
+) -> dict[str, bool | None]:
+    criteria: dict[str, bool | None] = {
+        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
+                                         and s.stop_displacement_over_d <= f))
+        for k, f in CRITERIA_OVER_D.items()
+    }  # fmt: skip
+    criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
+    return criteria
+
+
+def _result_from_file(
+    path: Path, attrs: Mapping[str, Any], model: PipelineModel, s: PipelineSettings, run_id: str
+) -> PipelineResult:
+    """The :class:`PipelineResult` of a finished output file of this run."""
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        env_ds = xr.Dataset(
+            {name: ("node", ds[name].values.copy(), dict(ds[name].attrs)) for name in ENVELOPES},
+            coords={"x": ("node", model.x, {"long_name": "position along the pipe", "units": "m"})},
+        )
+    status = int(attrs["status"])
+    env_abs = env_ds["max_abs_y"].values
+    k_worst = int(np.argmax(env_abs))
+    vmax = float(env_abs[k_worst])
+    emax = float(np.max(env_ds["max_strain"].values))
+    d = model.pipe.outer_diameter
+    return PipelineResult(
+        success=status in (K.STATUS_END, K.STATUS_LIMIT),
+        status=status,
+        message=str(attrs["message"]),
+        diameter=d,
+        x=model.x,
+        max_displacement=vmax,
+        worst_node=k_worst,
+        max_strain=emax,
+        criteria=_criteria(vmax, emax, d, status == K.STATUS_LIMIT, s),
+        summary=json.loads(attrs["summary"]),
+        envelopes=env_ds,
+        data=None,
+        netcdf=path,
+        run_id=run_id,
     )
