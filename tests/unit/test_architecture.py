@@ -12,10 +12,11 @@ import pathlib
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
-BASE = {"_version", "errors", "constants", "_validate", "_casefile", "results"}
+BASE = {"_version", "errors", "constants", "_validate", "_casefile", "results", "_lazy"}
 
 ALLOWED: dict[str, set[str]] = {
     "_version": set(),
+    "_lazy": set(),
     "errors": set(),
     "constants": set(),
     "_validate": {"errors"},

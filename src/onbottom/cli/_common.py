@@ -27,7 +27,6 @@ from functools import wraps
 from typing import Any, NoReturn
 
 import click
-import numpy as np
 
 from onbottom.errors import InputError, OnbottomError, SolutionError
 
@@ -58,6 +57,8 @@ json_option = click.option(
 
 
 def _jsonable(obj: Any) -> Any:
+    import numpy as np  # here, not at the top: `onbottom --help` does not load numpy
+
     if isinstance(obj, Mapping):
         return {str(k): _jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -282,6 +283,8 @@ class Number(click.ParamType):
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
         if isinstance(value, bool):
             self.fail(f"{value!r} is not a {self.name}", param, ctx)
+        import numpy as np
+
         if isinstance(value, (int, float, np.integer, np.floating)):
             x = float(value)
             text = repr(value)

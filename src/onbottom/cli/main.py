@@ -1,7 +1,8 @@
 """``onbottom`` command-line entry point.
 
 Each command group lives in its own module of this package and exposes ``command`` (a click
-command or group); :data:`COMMAND_MODULES` lists them in help order.
+command or group); :data:`COMMANDS` names them with their short help, and a command's module
+is imported only when it runs (``onbottom --help`` imports none).
 """
 
 from __future__ import annotations
@@ -10,30 +11,103 @@ import importlib
 import sys
 
 import click
+from click.utils import make_default_short_help
 
 from onbottom._version import __version__
 from onbottom.cli._common import JsonErrorGroup, report_click_error
 
-COMMAND_MODULES: tuple[str, ...] = (
-    "reproduce",
-    "simulate",
-    "calibrate",
-    "sweep",
-    "backbone",
-    "penetration",
-    "dem",
-    "dem_lammps",
-    "report",
-    "stability",
-    "loads",
-    "storm",
-    "curves",
-)
+COMMANDS: dict[str, tuple[str, str]] = {
+    "reproduce": (
+        "reproduce",
+        "Reproduce the seven Youssef (2012) centrifuge tests (Youssef & Cassidy 2014).",
+    ),
+    "simulate": ("simulate", "Simulate a pipe section under a load programme (CASE: TOML file)."),
+    "calibrate": (
+        "calibrate",
+        "Fit the calcareous Verley & Sotberg parameters to test RECORDS (CSV or NetCDF).",
+    ),
+    "sweep": ("sweep", "Run the sweep of GRID_FILE (TOML) and write the results to NetCDF."),
+    "backbone": (
+        "backbone",
+        "Backbone of the Verley & Sotberg model: region limits, forces, penetrations.",
+    ),
+    "penetration": (
+        "penetration",
+        "DNVGL-RP-F114 vertical penetration resistance Q_v(z) and the embedment for a load.",
+    ),
+    "dem": ("dem", "2D DEM of a pipe pushed into sand (model scale SI; prototype = ×N)."),
+    "dem-lammps": (
+        "dem_lammps",
+        "Run the pipe-penetration experiment with LAMMPS (cross-check of 'onbottom dem').",
+    ),
+    "report": (
+        "report",
+        "Validation report: every comparison with the papers and the standards on one page.",
+    ),
+    "stability": (
+        "stability",
+        "DNV-RP-F109 design checks of CASE (TOML): flotation (Eq 3.1), absolute lateral static"
+        " stability (Eqs 3.38/3.39) per load combination, and the minimum concrete thickness or"
+        " submerged weight ([design] solve_for).",
+    ),
+    "loads": (
+        "loads",
+        "Peak hydrodynamic loads of every wave cycle of each load combination of CASE (TOML),"
+        " in V–H space (H = |F_Y|, V = w_s − F_Z), and the fraction of cycles whose load angle"
+        " from the V axis lies between 20° and 45° (Youssef & Cassidy 2014, Fig.",
+    ),
+    "storm": ("storm", "Simulate a pipe section on the seabed through a storm (CASE: TOML file)."),
+    "curves": (
+        "curves",
+        "Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).",
+    ),
+}
+"""Command name → (module of ``onbottom.cli`` defining it as ``command``, its short help).
+
+The short help is the command's own (``command.get_short_help_str()``), kept here so that
+``onbottom --help`` lists every command without importing any; a command's module is imported
+only when that command runs. ``tests/unit/test_cli_lazy.py`` checks the table against the
+commands.
+"""
+
+COMMAND_MODULES: tuple[str, ...] = tuple(module for module, _ in COMMANDS.values())
 """Modules of ``onbottom.cli`` that each define ``command``."""
 
 
+class LazyGroup(JsonErrorGroup):
+    """Root group whose commands (:data:`COMMANDS`) are imported when they are invoked."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(COMMANDS) | set(self.commands))
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name in self.commands or cmd_name not in COMMANDS:
+            return super().get_command(ctx, cmd_name)
+        module = importlib.import_module(f"onbottom.cli.{COMMANDS[cmd_name][0]}")
+        command = module.command
+        self.add_command(command, cmd_name)
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The command list of ``--help`` from :data:`COMMANDS` (no command imported)."""
+        names = self.list_commands(ctx)
+        if not names:
+            return
+        limit = formatter.width - 6 - max(len(name) for name in names)
+        rows = []
+        for name in names:
+            if name in COMMANDS:
+                rows.append((name, make_default_short_help(COMMANDS[name][1], limit)))
+            else:
+                cmd = self.commands[name]
+                if not cmd.hidden:
+                    rows.append((name, cmd.get_short_help_str(limit)))
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
 @click.group(
-    cls=JsonErrorGroup,
+    cls=LazyGroup,
     context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
 )
 @click.version_option(__version__, prog_name="onbottom")
@@ -48,11 +122,6 @@ def cli() -> None:
     Every command accepts --json for scripting. Input errors exit with status 1 and a message
     naming the field, its value and the allowed range.
     """
-
-
-for _name in COMMAND_MODULES:
-    _mod = importlib.import_module(f"onbottom.cli.{_name}")
-    cli.add_command(_mod.command)
 
 
 def main(argv: list[str] | None = None) -> int:
