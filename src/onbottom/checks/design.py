@@ -28,7 +28,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.checks.absolute import absolute_lateral_stability
@@ -324,6 +323,8 @@ def _minimum_passing(
     else:
         a, b = float(xs[i - 1]), float(xs[i])
         if math.isfinite(us[i - 1]):
+            from scipy.optimize import brentq  # here: the checks alone do not load scipy
+
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", OutOfRangeWarning)
                 x = brentq(lambda t: util(t) - 1.0, a, b, xtol=xtol)
