@@ -101,3 +101,45 @@ def test_command_runs_and_unknown_command_is_a_usage_error(capsys):
     # a subcommand of a group command resolves through the lazy group
     assert main(["dem", "--help"]) == 0
     assert "Commands:" in capsys.readouterr().out
+
+
+def test_compile_notice_says_once_and_sums_the_outermost_compiles():
+    import io
+
+    from onbottom.cli.main import CompileNotice
+
+    stream = io.StringIO()
+    notice = CompileNotice(stream)
+    assert notice.summary() is None
+    for _ in range(2):  # two top-level compiles, the first with a nested one
+        notice.on_start(None)
+        notice.on_start(None)
+        notice.on_end(None)
+        notice.on_end(None)
+    assert stream.getvalue().count("\n") == 1
+    assert "compiling the numba kernels" in stream.getvalue()
+    assert notice.summary().startswith("onbottom: compiled 4 kernel specialisations in ")
+
+
+def test_compile_notice_hears_numba_once_it_is_imported():
+    """The import watch registers the notice when numba loads, then leaves sys.meta_path."""
+    probe = (
+        "import io, sys\n"
+        "from onbottom.cli.main import CompileNotice, _NumbaWatch\n"
+        "notice = CompileNotice(io.StringIO())\n"
+        "watch = _NumbaWatch(notice)\n"
+        "sys.meta_path.insert(0, watch)\n"
+        "import numba\n"
+        "assert watch not in sys.meta_path\n"
+        "f = numba.njit(lambda x: x + 1.0)\n"
+        "f(1.0)\n"
+        "print(notice.count, 'compiling' in notice.stream.getvalue())\n"
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", probe],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={"PYTHONPATH": str(SRC), "PATH": "", "NUMBA_DISABLE_JIT": "0"},
+    )
+    assert proc.stdout.split() == ["1", "True"]

@@ -8,7 +8,11 @@ is imported only when it runs (``onbottom --help`` imports none).
 from __future__ import annotations
 
 import importlib
+import importlib.abc
+import importlib.util
 import sys
+import time
+from typing import Any, TextIO
 
 import click
 from click.utils import make_default_short_help
@@ -124,8 +128,108 @@ def cli() -> None:
     """
 
 
+class CompileNotice:
+    """Says on ``stream`` when numba starts compiling, and how long it took (first run only).
+
+    numba compiles each kernel on its first call and caches it (``cache=True``), so the first
+    run of a command after an install pays tens of seconds of compiling with no other sign of
+    life. Registered as a listener of numba's ``numba:compile`` events.
+    """
+
+    def __init__(self, stream: TextIO) -> None:
+        self.stream = stream
+        self.depth = 0
+        self.count = 0
+        self.seconds = 0.0
+        self._t0 = 0.0
+
+    def on_start(self, event: Any) -> None:
+        if self.depth == 0:
+            if self.count == 0:
+                self.stream.write(
+                    "onbottom: compiling the numba kernels (first run after an install or an"
+                    " update; later runs load them from the cache) ...\n"
+                )
+                self.stream.flush()
+            self._t0 = time.perf_counter()
+        self.depth += 1
+        self.count += 1
+
+    def on_end(self, event: Any) -> None:
+        self.depth -= 1
+        if self.depth == 0:
+            self.seconds += time.perf_counter() - self._t0
+
+    def summary(self) -> str | None:
+        """``"compiled N kernels in T s"``, or None when nothing was compiled."""
+        if self.count == 0:
+            return None
+        return f"onbottom: compiled {self.count} kernel specialisations in {self.seconds:.1f} s"
+
+
+class _NumbaWatch(importlib.abc.MetaPathFinder):
+    """Registers a :class:`CompileNotice` once numba is imported (no cost if it never is)."""
+
+    def __init__(self, notice: CompileNotice) -> None:
+        self.notice = notice
+
+    def find_spec(self, fullname: str, path: Any = None, target: Any = None) -> Any:
+        if fullname != "numba":
+            return None
+        sys.meta_path.remove(self)
+        spec = importlib.util.find_spec("numba")
+        if spec is None or spec.loader is None:
+            return spec
+        exec_module = spec.loader.exec_module
+        notice = self.notice
+
+        def exec_and_listen(module: Any) -> None:
+            exec_module(module)
+            try:
+                from numba.core import event
+
+                event.register("numba:compile", _listener(notice))
+            except Exception:  # an older or newer numba without the event API: no notice
+                pass
+
+        spec.loader.exec_module = exec_and_listen  # type: ignore[method-assign]
+        return spec
+
+
+def _listener(notice: CompileNotice) -> Any:
+    from numba.core import event
+
+    class Listener(event.Listener):
+        def on_start(self, ev: Any) -> None:
+            notice.on_start(ev)
+
+        def on_end(self, ev: Any) -> None:
+            notice.on_end(ev)
+
+    return Listener()
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; returns the exit code (for tests, ``main([...])``)."""
+    """Run the CLI; returns the exit code (for tests, ``main([...])``).
+
+    On a terminal (and without ``--quiet``) a line on stderr says when numba compiles.
+    """
+    args = list(sys.argv[1:] if argv is None else argv)
+    if "--quiet" in args or not sys.stderr.isatty() or "numba" in sys.modules:
+        return _main(argv)
+    notice = CompileNotice(sys.stderr)
+    watch = _NumbaWatch(notice)
+    sys.meta_path.insert(0, watch)
+    try:
+        return _main(argv)
+    finally:
+        if watch in sys.meta_path:
+            sys.meta_path.remove(watch)
+        if notice.summary():
+            click.echo(notice.summary(), err=True)
+
+
+def _main(argv: list[str] | None) -> int:
     try:
         rv = cli.main(args=argv, prog_name="onbottom", standalone_mode=False)
     except click.exceptions.Abort:
