@@ -2,7 +2,8 @@
 
 Whole-process runs, ``hyperfine`` style: each command is run ``--runs`` times (after one
 unmeasured warm-up run) and the median and the minimum wall time are printed against the
-target. On a shared machine the minimum is the better estimate of the cost on an idle one.
+target, with the CPU time (user + system) of the same runs. On a shared machine the minimum
+and the CPU time are the better estimates of the cost on an idle one.
 
 * ``onbottom --help`` (target ≤ 0.5 s);
 * ``python -c "import onbottom"`` (no target of its own; numba, scipy, xarray and dask must
@@ -30,6 +31,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -70,14 +72,23 @@ def _env(src: Path, pycache: Path | None, numba_cache: Path | None = None) -> di
     return env
 
 
-def _run(args: list[str], env: dict[str, str], cwd: Path) -> float:
+CPU: dict[str, list[float]] = {}
+"""CPU seconds (user + system) of each measured run, by label: less sensitive to the load."""
+
+
+def _run(args: list[str], env: dict[str, str], cwd: Path, label: str = "") -> float:
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.run(
         [sys.executable, *args], env=env, cwd=cwd, capture_output=True, text=True, check=False
     )
     elapsed = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode not in (0, 3):  # 3: ran, result not valid (a check fails)
         raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}:\n{proc.stderr[-2000:]}")
+    if label:
+        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+        CPU.setdefault(label, []).append(cpu)
     return elapsed
 
 
@@ -102,13 +113,19 @@ def startup(trees: dict[str, Path], runs: int, bytecode: bool) -> None:
             for env in envs.values():  # warm-up: file cache, .pyc files
                 _run(args, env, ROOT)
             loads = []
+            CPU.clear()
             for _ in range(runs):
                 for label, env in envs.items():  # alternate: A B A B ...
-                    times[label].append(_run(args, env, ROOT))
+                    times[label].append(_run(args, env, ROOT, label))
                 loads.append(os.getloadavg()[0])
             print(f"{name}   (load average {min(loads):.2f}–{max(loads):.2f})")
             for label in trees:
-                print(f"  {label:>6}: {_fmt(times[label], target)}")
+                cpu = CPU[label]
+                print(
+                    f"  {label:>6}: {_fmt(times[label], target)}\n"
+                    f"          CPU (user + system) median {statistics.median(cpu):6.3f} s"
+                    f"  min {min(cpu):6.3f} s"
+                )
 
 
 def first_run(label: str, src: Path) -> None:
