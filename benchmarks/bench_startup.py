@@ -146,14 +146,18 @@ def first_run(label: str, src: Path) -> None:
             if cmd[0] == "storm":
                 args += ["--output", str(out / f"{Path(cmd[1]).stem}.nc"), "--workers", "0"]
             load0 = os.getloadavg()[0]
-            cold = _run(args, env, ROOT)
+            CPU.clear()
+            cold = _run(args, env, ROOT, "cold")
             files = sum(1 for p in cache.rglob("*.nbc"))
-            warm = min(_run(args, env, ROOT) for _ in range(2))
+            warm = min(_run(args, env, ROOT, "warm") for _ in range(2))
             load1 = os.getloadavg()[0]
+            cpu_cold, cpu_warm = CPU["cold"][0], min(CPU["warm"])
             print(
                 f"  {name:<17} first {cold:6.1f} s  warm {warm:5.1f} s"
                 f"  compile {cold - warm:5.1f} s"
-                f"  ({files} compiled specialisations cached; load {load0:.2f}–{load1:.2f})"
+                f"  ({files} compiled specialisations cached; load {load0:.2f}–{load1:.2f})\n"
+                f"  {'':<17} CPU: first {cpu_cold:6.1f} s  warm {cpu_warm:5.1f} s"
+                f"  compile {cpu_cold - cpu_warm:5.1f} s"
             )
             shutil.rmtree(cache, ignore_errors=True)
 
