@@ -11,34 +11,38 @@ stays light (numba, scipy and xarray load only when a model is used).
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
-
+from onbottom._lazy import attach
 from onbottom._version import __version__
 from onbottom.errors import InputError, OnbottomError, OutOfRangeWarning, SolutionError
 from onbottom.inputs import Clay, Layer, Pipe, Rock, Sand
 
-_LAZY: dict[str, str] = {
-    "CoulombFriction": "onbottom.soil",
-    "VerleyLund": "onbottom.soil",
-    "VerleySotberg": "onbottom.soil",
-    "lateral_model": "onbottom.soil",
-    "penetration_curve": "onbottom.soil",
-    "solve_embedment": "onbottom.soil",
-    "LoadProgramme": "onbottom.dynamics",
-    "inclined_cyclic": "onbottom.dynamics",
-    "run_centrifuge_test": "onbottom.dynamics",
-    "simulate_section": "onbottom.dynamics",
-    "PipeBuildUp": "onbottom.inputs.pipe_buildup",
-    "absolute_lateral_stability": "onbottom.checks",
-    "design_concrete_thickness": "onbottom.checks.design",
-    "significant_bed_velocity": "onbottom.hydro.design_sea_state",
-    "SeaState": "onbottom.inputs.storm",
-    "Storm": "onbottom.inputs.storm",
-    "Current": "onbottom.inputs.storm",
-    "simulate_storm_section": "onbottom.dynamics.storm_section",
-    "run_storm_seeds": "onbottom.study.storm_seeds",
-    "stability_curves": "onbottom.study.stability_curves",
+_EXPORTS: dict[str, tuple[str, ...]] = {
+    "onbottom.soil": (
+        "CoulombFriction",
+        "VerleyLund",
+        "VerleySotberg",
+        "lateral_model",
+        "penetration_curve",
+        "solve_embedment",
+    ),
+    "onbottom.dynamics": (
+        "LoadProgramme",
+        "inclined_cyclic",
+        "run_centrifuge_test",
+        "simulate_section",
+    ),
+    "onbottom.inputs.pipe_buildup": ("PipeBuildUp",),
+    "onbottom.checks": ("absolute_lateral_stability",),
+    "onbottom.checks.design": ("design_concrete_thickness",),
+    "onbottom.hydro.design_sea_state": ("significant_bed_velocity",),
+    "onbottom.inputs.storm": (
+        "SeaState",
+        "Storm",
+        "Current",
+    ),
+    "onbottom.dynamics.storm_section": ("simulate_storm_section",),
+    "onbottom.study.storm_seeds": ("run_storm_seeds",),
+    "onbottom.study.stability_curves": ("stability_curves",),
 }
 
 __all__ = [
@@ -52,17 +56,8 @@ __all__ = [
     "Sand",
     "SolutionError",
     "__version__",
-    *sorted(_LAZY),
+    *sorted(name for names in _EXPORTS.values() for name in names),
 ]
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        value = getattr(importlib.import_module(_LAZY[name]), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'onbottom' has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = attach(__name__, _EXPORTS)

@@ -6,12 +6,24 @@ multi-test summaries (:mod:`.summary`) and the Youssef & Cassidy (2014) workflow
 (:mod:`.paper`). Guide: docs/calibration.md.
 """
 
-from onbottom.calibration.fit import CalibrationResult, calibrate, grid_search, misfit_slices
-from onbottom.calibration.objective import HISTORY_ONLY, Misfit, MisfitWeights, evaluate_misfit
-from onbottom.calibration.parameters import Parameter
-from onbottom.calibration.records import TestRecord, load_record, record_from_result, save_record
-from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
-from onbottom.calibration.summary import fit_each, parameter_table, recommend
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.calibration.fit import CalibrationResult, calibrate, grid_search, misfit_slices
+    from onbottom.calibration.objective import HISTORY_ONLY, Misfit, MisfitWeights, evaluate_misfit
+    from onbottom.calibration.parameters import Parameter
+    from onbottom.calibration.records import (
+        TestRecord,
+        load_record,
+        record_from_result,
+        save_record,
+    )
+    from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
+    from onbottom.calibration.summary import fit_each, parameter_table, recommend
 
 __all__ = [
     "HISTORY_ONLY",
@@ -33,3 +45,37 @@ __all__ = [
     "record_from_result",
     "save_record",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.calibration.fit": (
+            "CalibrationResult",
+            "calibrate",
+            "grid_search",
+            "misfit_slices",
+        ),
+        "onbottom.calibration.objective": (
+            "HISTORY_ONLY",
+            "Misfit",
+            "MisfitWeights",
+            "evaluate_misfit",
+        ),
+        "onbottom.calibration.parameters": ("Parameter",),
+        "onbottom.calibration.records": (
+            "TestRecord",
+            "load_record",
+            "record_from_result",
+            "save_record",
+        ),
+        "onbottom.calibration.simulators": (
+            "CentrifugeSimulator",
+            "RecordedLoadSimulator",
+        ),
+        "onbottom.calibration.summary": (
+            "fit_each",
+            "parameter_table",
+            "recommend",
+        ),
+    },
+)

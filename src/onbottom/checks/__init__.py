@@ -5,13 +5,20 @@
 * :mod:`onbottom.checks.f109_tables` — C*_Y, C*_Z, γ_SC.
 """
 
-from onbottom.checks.absolute import (
-    AbsoluteStabilityResult,
-    absolute_lateral_stability,
-    absolute_stability_of_sea_state,
-)
-from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
-from onbottom.checks.vertical import VerticalStabilityResult, vertical_stability
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.checks.absolute import (
+        AbsoluteStabilityResult,
+        absolute_lateral_stability,
+        absolute_stability_of_sea_state,
+    )
+    from onbottom.checks.f109_tables import peak_load_coefficients, safety_factor
+    from onbottom.checks.vertical import VerticalStabilityResult, vertical_stability
 
 __all__ = [
     "AbsoluteStabilityResult",
@@ -22,3 +29,22 @@ __all__ = [
     "safety_factor",
     "vertical_stability",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.checks.absolute": (
+            "AbsoluteStabilityResult",
+            "absolute_lateral_stability",
+            "absolute_stability_of_sea_state",
+        ),
+        "onbottom.checks.f109_tables": (
+            "peak_load_coefficients",
+            "safety_factor",
+        ),
+        "onbottom.checks.vertical": (
+            "VerticalStabilityResult",
+            "vertical_stability",
+        ),
+    },
+)

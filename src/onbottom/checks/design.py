@@ -14,7 +14,8 @@ smallest thickness of one coating layer in ``[t_min, t_max]`` for which every ro
 
 Method (both): the governing utilisation u(x) = max over rows is evaluated on ``n_scan``
 equally spaced values; the first passing value x_i and its predecessor bracket the root of
-u(x) − 1, which :func:`scipy.optimize.brentq` refines to ``xtol``. A thicker coat adds weight
+u(x) − 1, which Brent's method (:func:`onbottom._roots.brentq`, the criterion of
+``scipy.optimize.brentq`` without importing scipy) refines to ``xtol``. A thicker coat adds weight
 but also diameter and load, so u(x) need not be monotone: the answer is the smallest passing
 value to the resolution of the scan. If no scanned value passes, :class:`NoFeasibleDesignError`
 (a :class:`~onbottom.errors.SolutionError`) names the range and the lowest utilisation found.
@@ -28,8 +29,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
+from onbottom import _roots
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.checks.absolute import absolute_lateral_stability
 from onbottom.checks.f109_tables import REGIONS, SAFETY_CLASSES
@@ -326,7 +327,7 @@ def _minimum_passing(
         if math.isfinite(us[i - 1]):
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", OutOfRangeWarning)
-                x = brentq(lambda t: util(t) - 1.0, a, b, xtol=xtol)
+                x = _roots.brentq(lambda t: util(t) - 1.0, a, b, xtol=xtol)
                 # brentq's root may sit a hair on the failing side: step to the passing side
                 x = min(x + xtol, b) if util(x) > 1.0 else x
         else:

@@ -28,7 +28,6 @@ from functools import wraps
 from typing import Any, NoReturn
 
 import click
-import numpy as np
 
 from onbottom.errors import InputError, OnbottomError, RunInterrupted, SolutionError
 
@@ -62,6 +61,8 @@ json_option = click.option(
 
 
 def _jsonable(obj: Any) -> Any:
+    import numpy as np  # here, not at the top: `onbottom --help` does not load numpy
+
     if isinstance(obj, Mapping):
         return {str(k): _jsonable(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
@@ -304,6 +305,8 @@ class Number(click.ParamType):
     def convert(self, value: Any, param: click.Parameter | None, ctx: click.Context | None) -> Any:
         if isinstance(value, bool):
             self.fail(f"{value!r} is not a {self.name}", param, ctx)
+        import numpy as np
+
         if isinstance(value, (int, float, np.integer, np.floating)):
             x = float(value)
             text = repr(value)

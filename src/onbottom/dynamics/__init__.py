@@ -3,30 +3,37 @@
 See docs/theory/section_dynamics.md and docs/validation/youssef_cassidy_2014.md.
 """
 
-from onbottom.dynamics.centrifuge import (
-    RECOMMENDED,
-    TESTS,
-    CentrifugeTest,
-    ParameterSet,
-    build_programme,
-    build_soil,
-    get_test,
-    run_centrifuge_test,
-)
-from onbottom.dynamics.programmes import (
-    LoadProgramme,
-    from_arrays,
-    from_toml,
-    inclined_cyclic,
-    irregular_wave_current_groups,
-    regular_wave_current_groups,
-)
-from onbottom.dynamics.section import (
-    SectionResult,
-    SolverSettings,
-    section_mass,
-    simulate_section,
-)
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.dynamics.centrifuge import (
+        RECOMMENDED,
+        TESTS,
+        CentrifugeTest,
+        ParameterSet,
+        build_programme,
+        build_soil,
+        get_test,
+        run_centrifuge_test,
+    )
+    from onbottom.dynamics.programmes import (
+        LoadProgramme,
+        from_arrays,
+        from_toml,
+        inclined_cyclic,
+        irregular_wave_current_groups,
+        regular_wave_current_groups,
+    )
+    from onbottom.dynamics.section import (
+        SectionResult,
+        SolverSettings,
+        section_mass,
+        simulate_section,
+    )
 
 __all__ = [
     "RECOMMENDED",
@@ -48,3 +55,33 @@ __all__ = [
     "section_mass",
     "simulate_section",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.dynamics.centrifuge": (
+            "RECOMMENDED",
+            "TESTS",
+            "CentrifugeTest",
+            "ParameterSet",
+            "build_programme",
+            "build_soil",
+            "get_test",
+            "run_centrifuge_test",
+        ),
+        "onbottom.dynamics.programmes": (
+            "LoadProgramme",
+            "from_arrays",
+            "from_toml",
+            "inclined_cyclic",
+            "irregular_wave_current_groups",
+            "regular_wave_current_groups",
+        ),
+        "onbottom.dynamics.section": (
+            "SectionResult",
+            "SolverSettings",
+            "section_mass",
+            "simulate_section",
+        ),
+    },
+)

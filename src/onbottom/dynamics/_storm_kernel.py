@@ -339,7 +339,8 @@ def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dy
         dyn[D_T_LIFTOFF] = dyn[D_T]
     n = 0
     if rec.shape[0] > 0:
-        _write(rec, 0, dyn[D_T], dyn[D_Y], dyn[D_YD], fy, fz, v, u0, ry, rz, dyn, out)
+        # np.int64(0), not 0: a literal argument compiles a second specialisation of _write
+        _write(rec, np.int64(0), dyn[D_T], dyn[D_Y], dyn[D_YD], fy, fz, v, u0, ry, rz, dyn, out)
         n = 1
     dyn[D_NEXT_REC] = dyn[D_T] + settings[ST_REC_INTERVAL]
     return n

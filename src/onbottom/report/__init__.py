@@ -5,9 +5,23 @@
 HTML page with its figures and tables beside it (``onbottom report --out DIR``).
 """
 
-from onbottom.report.build import ReportResult, build_report, provenance
-from onbottom.report.content import Check, FigureRef, SectionContent, SectionContext, Table, within
-from onbottom.report.registry import REGISTRY, SECTION_MODULES, load_sections, section
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.report.build import ReportResult, build_report, provenance
+    from onbottom.report.content import (
+        Check,
+        FigureRef,
+        SectionContent,
+        SectionContext,
+        Table,
+        within,
+    )
+    from onbottom.report.registry import REGISTRY, SECTION_MODULES, load_sections, section
 
 __all__ = [
     "REGISTRY",
@@ -24,3 +38,28 @@ __all__ = [
     "section",
     "within",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.report.build": (
+            "ReportResult",
+            "build_report",
+            "provenance",
+        ),
+        "onbottom.report.content": (
+            "Check",
+            "FigureRef",
+            "SectionContent",
+            "SectionContext",
+            "Table",
+            "within",
+        ),
+        "onbottom.report.registry": (
+            "REGISTRY",
+            "SECTION_MODULES",
+            "load_sections",
+            "section",
+        ),
+    },
+)

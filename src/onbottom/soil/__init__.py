@@ -5,21 +5,28 @@ Verley & Sotberg sand (silica, calcareous, DNV-RP-F109 variant), Verley & Lund c
 Vertical: DNVGL-RP-F114 penetration resistance and the embedment solver.
 """
 
-from onbottom.soil.coulomb import CoulombFriction
-from onbottom.soil.factory import lateral_model
-from onbottom.soil.penetration_f114 import (
-    DrainedBounds,
-    DrainedPenetration,
-    UndrainedModel1,
-    UndrainedModel2,
-    lay_factor,
-    penetration_curve,
-    resistance_model,
-    solve_embedment,
-)
-from onbottom.soil.response import path_response
-from onbottom.soil.verley_lund import VerleyLund
-from onbottom.soil.verley_sotberg import VerleySotberg
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.soil.coulomb import CoulombFriction
+    from onbottom.soil.factory import lateral_model
+    from onbottom.soil.penetration_f114 import (
+        DrainedBounds,
+        DrainedPenetration,
+        UndrainedModel1,
+        UndrainedModel2,
+        lay_factor,
+        penetration_curve,
+        resistance_model,
+        solve_embedment,
+    )
+    from onbottom.soil.response import path_response
+    from onbottom.soil.verley_lund import VerleyLund
+    from onbottom.soil.verley_sotberg import VerleySotberg
 
 __all__ = [
     "CoulombFriction",
@@ -36,3 +43,24 @@ __all__ = [
     "resistance_model",
     "solve_embedment",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.soil.coulomb": ("CoulombFriction",),
+        "onbottom.soil.factory": ("lateral_model",),
+        "onbottom.soil.penetration_f114": (
+            "DrainedBounds",
+            "DrainedPenetration",
+            "UndrainedModel1",
+            "UndrainedModel2",
+            "lay_factor",
+            "penetration_curve",
+            "resistance_model",
+            "solve_embedment",
+        ),
+        "onbottom.soil.response": ("path_response",),
+        "onbottom.soil.verley_lund": ("VerleyLund",),
+        "onbottom.soil.verley_sotberg": ("VerleySotberg",),
+    },
+)

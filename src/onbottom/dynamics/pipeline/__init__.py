@@ -5,14 +5,21 @@ Morison loads with relative velocity from short-crested kinematics, HHT-α with 
 and an O(n) banded solve. Theory: docs/theory/pipeline_fe.md.
 """
 
-from onbottom.dynamics.pipeline.model import END_CONDITIONS, PipelineModel, SoilSection
-from onbottom.dynamics.pipeline.solver import (
-    CRITERIA_OVER_D,
-    PipelineResult,
-    PipelineSettings,
-    run_identity,
-    simulate_pipeline,
-)
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from onbottom._lazy import attach
+
+if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
+    from onbottom.dynamics.pipeline.model import END_CONDITIONS, PipelineModel, SoilSection
+    from onbottom.dynamics.pipeline.solver import (
+        CRITERIA_OVER_D,
+        PipelineResult,
+        PipelineSettings,
+        run_identity,
+        simulate_pipeline,
+    )
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -24,3 +31,21 @@ __all__ = [
     "run_identity",
     "simulate_pipeline",
 ]
+
+__getattr__, __dir__ = attach(
+    __name__,
+    {
+        "onbottom.dynamics.pipeline.model": (
+            "END_CONDITIONS",
+            "PipelineModel",
+            "SoilSection",
+        ),
+        "onbottom.dynamics.pipeline.solver": (
+            "CRITERIA_OVER_D",
+            "PipelineResult",
+            "PipelineSettings",
+            "run_identity",
+            "simulate_pipeline",
+        ),
+    },
+)

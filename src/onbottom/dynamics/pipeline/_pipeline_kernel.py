@@ -303,7 +303,9 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
         scratch[j] = 0.0
         for k in range(ab.shape[1]):
             ab[j, k] = 0.0
-    assemble_internal(d1, props, scratch, ab, True, fe, ke, mom, nax)
+    # np.bool_(True), not the literal True: numba compiles a separate specialisation of the
+    # callee for each literal argument (issue 33: first-run compile cost)
+    assemble_internal(d1, props, scratch, ab, np.bool_(True), fe, ke, mom, nax)
     for j in range(ndof):
         ab[j, 0] += spring[j]
     for i in range(kt_u.shape[0]):
@@ -340,7 +342,7 @@ def initial_acceleration(
     out = np.empty(OUT_SIZE)
     ok = evaluate(
         settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-        t, vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, False,
+        t, vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, np.bool_(False),
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
         fout, np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
@@ -477,7 +479,7 @@ def integrate(
     v0 = vec[V_V]
     a0 = vec[V_A]
     pn = vec[V_P]
-    n_rec = 0
+    n_rec = np.int64(0)  # not the literal 0: one specialisation of _record, not two
     cap = rec.shape[0]
     n_out = t_out.shape[0]
     # initial record when the first output time is the current time
@@ -682,7 +684,7 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
                 for k in range(HALF_BAND + 1):
                     ab[j, k] = 0.0
                 ab[j, 0] = spring[j]
-            assemble_internal(d, props, f, ab, True, fe, ke, mom, nax)
+            assemble_internal(d, props, f, ab, np.bool_(True), fe, ke, mom, nax)
             rmax = 0.0
             for j in range(ndof):
                 if fixed[j] != 0.0:
@@ -719,9 +721,8 @@ def tangent_band(props, fixed, spring, d):
     f = np.zeros(ndof)
     fe = np.empty(6)
     ke = np.empty((6, 6))
-    assemble_internal(
-        d, props, f, ab, True, fe, ke, np.empty(ndof // NDOF_NODE), np.empty(ndof // NDOF_NODE)
-    )
+    nn = ndof // NDOF_NODE
+    assemble_internal(d, props, f, ab, np.bool_(True), fe, ke, np.empty(nn), np.empty(nn))
     for j in range(ndof):
         ab[j, 0] += spring[j]
     return ab
