@@ -130,3 +130,54 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
     if title:
         fig.suptitle(title, fontsize=10)
     return fig
+
+
+def plot_curves_against_m(
+    sweeps: dict[str, xr.Dataset], *, criterion: str = "L_stable", n_value: float | None = None
+) -> Figure:
+    """L against M, one line per K and one line style per sweep (force model), one panel per soil.
+
+    The form in which DNV-RP-F109's generalized method is usually discussed: at K >= 10 L rises
+    with M to a peak near M ≈ 0.8–1 and settles toward a current-dominated value; at low M it
+    falls as K grows. ``sweeps`` maps a label (e.g. the force model) to a curve dataset of
+    :func:`onbottom.study.stability_curves.stability_curves`; ``n_value`` picks N (default the
+    first). Points outside the soil model's range: open red markers.
+    """
+    first = next(iter(sweeps.values()))
+    soils = [str(s) for s in first["soil"].values]
+    n = float(first["N"].values[0]) if n_value is None else float(n_value)
+    fig, axes = plt.subplots(
+        1, len(soils), figsize=(5.2 * len(soils), 3.8), squeeze=False, layout="constrained"
+    )
+    styles = ("-", "--", ":", "-.")
+    for i, soil in enumerate(soils):
+        ax = axes[0, i]
+        for s_idx, (label, ds) in enumerate(sweeps.items()):
+            if criterion not in ds:
+                continue
+            m = ds["M"].values
+            for k_idx, k in enumerate(ds["K"].values):
+                y = ds[criterion].sel(soil=soil, N=n, K=k).values
+                ax.plot(
+                    m,
+                    y,
+                    marker="o",
+                    ms=3,
+                    color=f"C{k_idx}",
+                    ls=styles[s_idx % 4],
+                    label=f"{label}, K = {k:g}",
+                )
+                flag = f"{criterion}_out_of_range"
+                if flag in ds:
+                    out = ds[flag].sel(soil=soil, N=n, K=k).values == 1
+                    if out.any():
+                        ax.plot(m[out], y[out], ls="none", marker="o", ms=7, mfc="white",
+                                mec="red", mew=1.2)  # fmt: skip
+        ax.set_xscale("symlog", linthresh=0.2)
+        ax.set_yscale("log")
+        ax.set_xlabel("M = V / U_s [-]")
+        ax.set_ylabel(f"{criterion} = w_s / (½ρ D U_s²) [-]")
+        ax.set_title(f"{soil}, N = {n:g}: {criterion}", fontsize=9)
+        ax.grid(True, which="both", lw=0.3)
+        ax.legend(fontsize=6, ncol=2)
+    return fig

@@ -1,7 +1,8 @@
 """Report section: generalized-stability curves from dynamic storm runs, when committed.
 
 A curve sweep (:mod:`onbottom.study.stability_curves`, ``onbottom curves CASE``) needs of the
-order of 10⁴ storms: hours on 2 cores, too long for a report run. The report shows the sweeps
+order of 10⁴ storms (the committed 256-point sweeps: tens of minutes of CPU on 2 cores), too
+long for a report run. The report shows the sweeps
 committed as NetCDF files (written by ``onbottom curves``) in ``docs/validation/
 stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the curves. Without
 such a file the section says so. There is no pass/fail: F109's tables are DNV content and are
@@ -71,6 +72,21 @@ def build(ctx: SectionContext) -> SectionContent:
                     path.stem,
                     f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
                     " markers: points outside the soil model's range.",
+                )
+            )
+    if plot_stability_curves is not None and len(files) > 1:
+        from onbottom.plotting.storm import plot_curves_against_m
+
+        sweeps = {p.stem: load_dataset(p) for p in files}
+        for crit in ("L_stable", "L_10"):
+            figures.append(
+                ctx.save_figure(
+                    plot_curves_against_m(sweeps, criterion=crit),
+                    f"curves_against_M_{crit}",
+                    f"{crit} against M, one colour per K, one line style per committed sweep"
+                    f" ({', '.join(sweeps)}): the form in which F109's generalized method is"
+                    " discussed (at K >= 10 L rises with M to a peak near M ≈ 0.8–1, then"
+                    " settles; at low M L falls as K grows).",
                 )
             )
     return SectionContent(
