@@ -122,3 +122,82 @@ def test_wake_switched_off_in_a_case_equals_morison_with_the_same_coefficients(t
     a = simulate_storm_section(off.pipe, off.soil, off.storm, **off.kwargs()).data
     b = simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).data
     np.testing.assert_array_equal(a["y"].values, b["y"].values)
+
+
+def _table(tmp_path: Path, body: str) -> Path:
+    p = tmp_path / "coefficients.csv"
+    p.write_text(body, encoding="utf-8")
+    return p
+
+
+GOOD = (
+    "# test table\nK,M,C_D,C_M,C_L\n-,-,-,-,-\n"
+    "5,0,1.0,3.0,1.0\n5,1,0.8,3.0,0.8\n20,0,2.0,2.0,2.0\n20,1,1.6,2.0,1.6\n"
+)
+WIDE = (
+    "K,M,C_D,C_M,C_L\n-,-,-,-,-\n"
+    "1,0,1.0,3.0,1.0\n1,5,0.8,3.0,0.8\n500,0,2.0,2.0,2.0\n500,5,1.6,2.0,1.6\n"
+)
+
+
+def test_morison_coefficient_table_interpolates_bilinearly_and_warns_outside(tmp_path):
+    from onbottom.errors import OutOfRangeWarning
+    from onbottom.hydro.morison_table import MorisonCoefficientTable
+
+    t = MorisonCoefficientTable.from_csv(_table(tmp_path, GOOD))
+    # hand value: at K 12.5 (midway) and M 0.5 (midway) C_D = mean(1.0, 0.8, 2.0, 1.6) = 1.35
+    cd, cm, cl = t(12.5, 0.5)
+    assert cd == pytest.approx(1.35) and cm == pytest.approx(2.5) and cl == pytest.approx(1.35)
+    with pytest.warns(OutOfRangeWarning, match="outside the Morison coefficient table"):
+        assert t(40.0, 0.0)[0] == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize(
+    ("body", "match"),
+    [
+        ("K,M,C_D,C_M\n-,-,-,-\n5,0,1,1\n", "header"),
+        ("K,M,C_D,C_M,C_L\nm,-,-,-,-\n5,0,1,1,1\n", "units"),
+        ("K,M,C_D,C_M,C_L\n-,-,-,-,-\n5,0,1,1,1\n5,1,1,1,1\n20,0,1,1,1\n", "missing"),
+        ("K,M,C_D,C_M,C_L\n-,-,-,-,-\n20,0,1,1,1\n5,0,1,1,1\n", "sorted"),
+        ("K,M,C_D,C_M,C_L\n-,-,-,-,-\n5,0,11,1,1\n", r"\[0, 10\]"),
+        ("K,M,C_D,C_M,C_L\n-,-,-,-,-\n5,0,x,1,1\n", "not a number"),
+    ],
+)
+def test_morison_coefficient_table_errors_are_named(tmp_path, body, match):
+    from onbottom.hydro.morison_table import MorisonCoefficientTable
+
+    with pytest.raises(InputError, match=match):
+        MorisonCoefficientTable.from_csv(_table(tmp_path, body))
+
+
+def test_storm_case_runs_morison_per_sea_state_from_a_table(tmp_path):
+    """Per-sea-state Morison from a case file; a table constant at the [hydro] values gives the
+    same run as the constant model, bit for bit."""
+    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.dynamics.storm_section import simulate_storm_section
+
+    const = "K,M,C_D,C_M,C_L\n-,-,-,-,-\n1,0,0.7,3.29,0.9\n1,5,0.7,3.29,0.9\n"
+    const += "500,0,0.7,3.29,0.9\n500,5,0.7,3.29,0.9\n"
+    _table(tmp_path, const)
+    tab = load_storm_case(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
+    assert tab.force_model.rule is not None
+    mor = load_storm_case(_case(tmp_path, ""))
+    a = simulate_storm_section(tab.pipe, tab.soil, tab.storm, **tab.kwargs()).data
+    b = simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).data
+    np.testing.assert_array_equal(a["y"].values, b["y"].values)
+    _table(tmp_path, WIDE)
+    var = load_storm_case(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
+    r = simulate_storm_section(var.pipe, var.soil, var.storm, **var.kwargs())
+    assert r.success and r.max_displacement != pytest.approx(
+        simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).max_displacement
+    )
+
+
+def test_coefficient_table_outside_the_case_folder_or_with_another_model_is_refused(tmp_path):
+    from onbottom.dynamics.storm_case import load_storm_case
+
+    with pytest.raises(InputError, match="leaves the case file's folder"):
+        load_storm_case(_case(tmp_path, 'coefficient_table = "../coefficients.csv"'))
+    _table(tmp_path, GOOD)
+    with pytest.raises(InputError, match="coefficient_table is given but hydro.model = 'wake'"):
+        load_storm_case(_case(tmp_path, 'model = "wake"\ncoefficient_table = "coefficients.csv"'))

@@ -117,12 +117,21 @@ def _fourier_table(value: Any, base_dir: str | Path | None, where: str) -> Any:
         raise InputError(f"{where} = {value!r} is invalid: expected a path or 'example'")
     if value == "example":
         return FourierTable.example()
+    return FourierTable.load(_case_file(value, base_dir, where))
+
+
+def _case_file(value: str, base_dir: str | Path | None, where: str) -> Path:
+    """A file named in a case file: relative to (and contained in) the case file's folder."""
+    from onbottom._casefile import contained
+
     p = Path(value)
-    if not p.is_absolute() and base_dir is not None:
-        p = Path(base_dir) / p
+    if base_dir is not None:
+        if not p.is_absolute():
+            p = Path(base_dir) / p
+        p = contained(value, p, folder=base_dir, field=where)
     if not p.is_file():
         raise InputError(f"{where} = {value!r} is invalid: no such file ({p})")
-    return FourierTable.load(p)
+    return p
 
 
 def force_model_from_case(
@@ -130,11 +139,13 @@ def force_model_from_case(
 ) -> Any:
     """The force model of a case file's ``[hydro]`` table.
 
-    ``model`` not given (None) → ``default`` (the command's default model).
-    ``model = "morison"`` takes ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of
-    ``[hydro]``; ``"wake"`` and ``"fourier"`` take their options from ``[hydro.wake]`` or
-    ``[hydro.fourier]``. Options given for a model that is not selected are a named error (a
-    sub-table that silently does nothing would be a silent wrong result).
+    ``model`` not given (None) → ``default`` (the command's default model). ``model =
+    "morison"`` with ``coefficient_table`` (a CSV of C_D, C_M, C_L over K, M:
+    :mod:`onbottom.hydro.morison_table`) is Morison per sea state; without it, it takes
+    ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of ``[hydro]``; ``"wake"`` and
+    ``"fourier"`` take their options from ``[hydro.wake]`` or ``[hydro.fourier]``. Options
+    given for a model that is not selected are a named error (a sub-table that silently does
+    nothing would be a silent wrong result).
     """
     name = default if hydro.model is None else hydro.model
     force_model_class(name)
@@ -144,9 +155,22 @@ def force_model_from_case(
                 f"[hydro.{other}] is given but hydro.model = {name!r}: set model = {other!r}"
                 f" or remove [hydro.{other}]"
             )
+    table = getattr(hydro, "coefficient_table", None)
+    if table is not None and name != "morison":
+        raise InputError(
+            f"hydro.coefficient_table is given but hydro.model = {name!r}: a coefficient table"
+            " is for model = 'morison' (per-sea-state C_D, C_M, C_L)"
+        )
     if name == "morison":
         from onbottom.hydro.force_model import MorisonLift
 
+        if table is not None:
+            from onbottom.hydro.morison_table import MorisonCoefficientTable
+
+            rule = MorisonCoefficientTable.from_csv(
+                _case_file(table, base_dir, "hydro.coefficient_table")
+            )
+            return MorisonLift.per_sea_state(rule, added_mass=hydro.added_mass_coefficient)
         return MorisonLift(
             cd=hydro.cd, cm=hydro.cm, cl=hydro.cl, added_mass=hydro.added_mass_coefficient
         )

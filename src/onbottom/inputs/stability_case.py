@@ -223,6 +223,12 @@ class HydroTable(StrictModel):
         description="time-domain force model: morison, wake or fourier (hydro/registry.py);"
         " default: the command's (morison for storm and pipeline, wake for curves) [-]",
     )
+    coefficient_table: str | None = Field(
+        None,
+        min_length=1,
+        description="CSV of C_D, C_M, C_L over (K, M) for Morison per sea state"
+        " (hydro/morison_table.py), relative to the case file [-]",
+    )
     wake: dict[str, Any] = Field(
         default_factory=dict, description="options of the wake model (WakeModel fields)"
     )
