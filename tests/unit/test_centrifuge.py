@@ -44,8 +44,11 @@ def test_names_are_tolerant():
 def test_alpha_inference_brackets_the_chosen_values():
     lo, hi = alpha_range_from_limit_equilibrium(0.75, 11.12e3, 3.75e3)
     assert lo < TESTS["Inclined 4"].alpha_deg <= hi
+    # the ranges the module docstring states (issue 31: they once said 22.8° and 63.7°)
+    assert (round(lo, 1), round(hi, 1)) == (25.6, 31.5)
     lo, hi = alpha_range_from_limit_equilibrium(0.85, 11.71e3, 7.5e3)
     assert lo < TESTS["Inclined 5"].alpha_deg <= hi
+    assert (round(lo, 1), round(hi, 1)) == (63.6, 69.0)
     # tests 1-3 (α = 30° given by the paper) fall in their own ranges only with passive help
     lo, hi = alpha_range_from_limit_equilibrium(0.48, 10.52e3, 3.5e3, max_passive=1.0e3)
     assert lo < 30.0 <= hi

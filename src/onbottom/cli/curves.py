@@ -39,9 +39,10 @@ from onbottom.cli._common import (
 from onbottom.errors import OutOfRangeWarning
 from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
 
-#: Grid ranges [I]: F109's generalized-stability tables span K from 5 to 160 (DNV-RP-F109
-#: Tables 3-9/3-10); K up to 1000 and M up to 100 are accepted for exploration, and every
-#: (K, N) must give a sea state with H_s <= 30 m and T_p <= 40 s (checked before running).
+#: Grid ranges [I]: F109's generalized-stability tables (§3.5; Tables 3-9/3-10 are the
+#: absolute method's peak-load coefficients, not these) span K from 5 to 160; K up to 1000 and
+#: M up to 100 are accepted for exploration, and every (K, N) must give a sea state with
+#: H_s <= 30 m and T_p <= 40 s (checked before running).
 KValue = Annotated[float, Field(gt=0.0, le=1000.0)]
 MValue = Annotated[float, Field(ge=0.0, le=100.0)]
 NValue = Annotated[float, Field(gt=0.0, le=0.2)]

@@ -14,9 +14,9 @@ each and the reproduction reports the sensitivity):
    (:func:`alpha_range_from_limit_equilibrium`): the friction-only sliding load
    H_f = μV_i/(1 + μ/tan α) must not exceed the amplitude of the last load cycle
    (n_last·ΔH) and the passive part (at most ~0.5 kN/m for A ≤ 0.45) must make up the rest.
-   Test 4 (μ = 0.75, cycle 15, 3.75 kN/m): α ∈ (22.8°, 31.5°] → **α = 30°**, the angle of
+   Test 4 (μ = 0.75, cycle 15, 3.75 kN/m): α ∈ (25.6°, 31.5°] → **α = 30°**, the angle of
    tests 1–3. Test 5 (μ = 0.85, cycle 30, 7.5 kN/m; the ±8 kN/m H axis of Fig. 15 confirms
-   the large loads): α ∈ (63.7°, 69.0°] → **α = 65°**. This lies outside the 20°–45°
+   the large loads): α ∈ (63.6°, 69.0°] → **α = 65°**. This lies outside the 20°–45°
    hydrodynamic envelope of the paper's Fig. 4, so test 5 is flagged as inferred with low
    confidence.
 2. **Submerged unit weight γ'** (not given in the paper): one value for all tests,
