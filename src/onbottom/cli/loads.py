@@ -256,6 +256,13 @@ def command(
             f"{c['combination'][:40]:<40} {c['n_cycles']:>6d} {100 * c['fraction_20_45']:>6.1f}%"
             f" {mh:>13.3f} {mv:>13.3f}"
         )
+    click.echo(
+        "note: these are Morison peaks of a 3-h record with the [hydro] coefficients (default"
+        " C_D 0.7, C_L 0.9); F109's absolute check uses its peak-load coefficients C*_Y, C*_Z"
+        " (Tables 3-9/3-10, derived with a wake model) at the design oscillation U*, which are"
+        " about 2.5x larger at K* 50-80 (docs/theory/storm_section.md, 'Absolute check vs"
+        ' dynamic storm\'); [hydro] model = "wake" gives F109-calibrated peaks in `storm`.'
+    )
     if plot is not None:
         click.echo(f"figure: {plot}")
     if output is not None:

@@ -101,6 +101,11 @@ def command(
         )
         return
     click.echo((out / "table.md").read_text(encoding="utf-8"))
+    click.echo(
+        "Regular and Irregular fall outside the paper's cycle counts: why, and the sensitivity"
+        " to every unstated choice, in docs/validation/youssef_cassidy_2014.md (and"
+        " `onbottom reproduce --bands`)."
+    )
     click.echo(f"{len(res['files'])} files written under {out} in {wall:.1f} s")
 
 
