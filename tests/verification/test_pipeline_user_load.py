@@ -43,14 +43,16 @@ def _ramped_uniform(n_nodes, q_y, q_x, ramp, dt=0.5, hold=20.0):
 
 
 def _static_run(ends, q_y, q_x):
-    # μ = 1e-6: the friction μW_s = 6e-4 N/m is 6e-5 of the load; the first lateral period
-    # (pinned, 50 m) is ≈ 4 s against a 100-s ramp: the response is static within 1e-3
+    # μ = 1e-7: the friction μW_s = 6e-5 N/m is 6e-5 of the lateral load (1 N/m); the first
+    # lateral period (pinned, 50 m) is ≈ 4 s against a 100-s ramp: the response is static
+    # within 1e-3. The lateral load is small (y ≈ 1.6 mm pinned) so that the membrane tension
+    # of the axially held ends stiffens by < 1e-4 (6e-3 at 10 N/m)
     soil = (
         SoilSection(
             start=0.0,
             end=L,
-            model=CoulombFriction(friction_coefficient=1e-6),
-            axial_friction_coefficient=1e-6,
+            model=CoulombFriction(friction_coefficient=1e-7),
+            axial_friction_coefficient=1e-7,
         ),
     )
     n = round(L / 2.5) + 1  # 20 elements: a node at midspan
@@ -69,7 +71,7 @@ def _static_run(ends, q_y, q_x):
 
 @pytest.mark.parametrize("ends", ["pinned", "fixed"])
 def test_slowly_ramped_uniform_lateral_load_gives_the_static_beam_deflection(ends):
-    q = 10.0
+    q = 1.0
     x, data = _static_run(ends, q, 0.0)
     y = data["y"].values
     mid = x.size // 2
