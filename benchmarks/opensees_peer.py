@@ -43,6 +43,7 @@ def main() -> None:
     ap.add_argument(
         "--opensees-tolerance", type=float, default=1e-10, help="NormDispIncr [m] (default 1e-10)"
     )
+    ap.add_argument("--save", help="write x and both envelopes of the last pair to this .npz")
     args = ap.parse_args()
     import_opensees()
     model = peer_model(args.elements, length=args.length)
@@ -95,6 +96,8 @@ def main() -> None:
         f" (onbottom); largest difference over nodes / max |y| = {diff:.2e}"
     )
     print(f"load average at the end: {os.getloadavg()[0]:.2f}")
+    if args.save:
+        np.savez(args.save, x=model.x, onbottom=env_ob, opensees=env_os, alpha=args.alpha)
 
 
 if __name__ == "__main__":

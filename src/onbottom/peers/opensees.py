@@ -256,7 +256,7 @@ def run_onbottom(
         n_nodes=model.x.size,
         info={
             "n_rejected": int(res.summary["n_rejected"]),
-            "mean_newton_iterations": res.summary["mean_newton_iterations"],
+            "mean_newton_iterations": round(float(res.summary["mean_newton_iterations"]), 3),
             "n_factorisations": int(res.summary["n_factorisations"]),
         },
     )
