@@ -64,6 +64,10 @@ def test_the_peer_build_refuses_what_it_does_not_model():
     with pytest.raises(InputError, match="CoulombFriction"):
         check_model(PipelineModel(**{**_fields(model), "soil": vs}))
     assert isinstance(model.sections[0].model, CoulombFriction)
+    from onbottom.peers.opensees import run_onbottom
+
+    with pytest.raises(InputError, match="whole number of steps"):
+        run_onbottom(model, 1.05, dt=0.1)
 
 
 def _fields(model):

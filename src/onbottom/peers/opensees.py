@@ -213,6 +213,17 @@ def check_model(model: PipelineModel) -> TravellingSineLoad:
     return load
 
 
+def _n_steps(duration: float, dt: float) -> int:
+    positive("duration", duration)
+    positive("dt", dt)
+    n = round(duration / dt)
+    if n < 1 or abs(n * dt - duration) > 1e-9 * duration:
+        raise InputError(
+            f"duration = {duration!r} s is invalid: must be a whole number of steps dt = {dt!r} s"
+        )
+    return n
+
+
 def _settings(dt: float, alpha: float, force_tolerance: float) -> PipelineSettings:
     # a fixed step: no cut-back on displacement, no growth
     return PipelineSettings(
@@ -239,8 +250,7 @@ def run_onbottom(
     residual over W_s·ℓ_e [-] (default 1e-9, far below the differences compared; the solver's
     own default is 1e-6)."""
     check_model(model)
-    positive("duration", duration)
-    positive("dt", dt)
+    _n_steps(duration, dt)
     in_range("alpha", alpha, -1.0 / 3.0, 0.0)
     kin = still_water(model.x.size, duration)
     c0 = time.process_time()
@@ -338,11 +348,9 @@ def run_opensees(
     NewtonLineSearch (fixed Δt, as onbottom's run).
     """
     load = check_model(model)
-    positive("duration", duration)
-    positive("dt", dt)
+    n_steps = _n_steps(duration, dt)
     in_range("alpha", alpha, -1.0 / 3.0, 0.0)
     ops = import_opensees()
-    n_steps = round(duration / dt)
     n = model.x.size
     with tempfile.TemporaryDirectory(prefix="onbottom_opensees_") as tmp:
         env_file = Path(tmp) / "envelope.out"
