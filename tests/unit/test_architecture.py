@@ -34,6 +34,8 @@ ALLOWED: dict[str, set[str]] = {
     "reliability": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "metocean"},
     "study": BASE | {"inputs", "hydro", "soil", "dynamics", "checks"},
     "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},
+    # peers: other programs (OpenSees) solving onbottom's problems, for standing comparisons
+    "peers": BASE | {"inputs", "hydro", "soil", "dynamics"},
     "plotting": BASE
     | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study", "metocean"}
     | {"reliability"},

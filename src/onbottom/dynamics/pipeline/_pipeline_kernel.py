@@ -77,7 +77,21 @@ ST_EI = 21  # reference EI for strain [N·m²]
 ST_PREDICTOR = 22  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
 ST_CTOL = 23  # Newton correction [m] below which a step is accepted (displacement resolution)
 ST_Z_LIMIT = 24  # penetration beyond the soil models' range [m] (inf: none)
-N_SETTINGS = 25
+# user load q(x, t) (user_load.py; add_user_load)
+ST_UL_KIND = 25  # UL_NONE, UL_SINE, UL_TABLE
+ST_UL_AMP_Y = 26  # sine: lateral amplitude [N/m]
+ST_UL_AMP_X = 27  # sine: axial amplitude [N/m]
+ST_UL_WAVENUMBER = 28  # sine: 2π/λ [rad/m]
+ST_UL_OMEGA = 29  # sine: 2π/T [rad/s]
+ST_UL_RAMP = 30  # sine: half-cosine ramp duration [s]
+ST_UL_START = 31  # sine: switch-on time [s]
+ST_UL_T0 = 32  # table: time of the first row [s]
+ST_UL_DT = 33  # table: row interval [s]
+N_SETTINGS = 34
+
+UL_NONE = 0
+UL_SINE = 1
+UL_TABLE = 2
 
 # ---- node columns --------------------------------------------------------------------------
 ND_X0 = 0  # initial position along the axis [m]
@@ -97,7 +111,7 @@ V_D = 0
 V_V = 1
 V_A = 2
 V_P = 3  # committed net force P_n
-V_FH = 4  # committed hydrodynamic nodal force
+V_FH = 4  # committed external nodal force (hydrodynamic + user load)
 V_FS = 5  # committed soil nodal force (lateral + axial)
 N_VEC = 6
 
@@ -107,7 +121,7 @@ SC_DT = 1
 SC_NSTEP = 2
 SC_NREJ = 3
 SC_NITER = 4
-SC_W_HYD = 5  # work of the hydrodynamic loads [J]
+SC_W_HYD = 5  # work of the external loads (hydrodynamic + user load) [J]
 SC_W_SOIL = 6  # work of the soil forces [J] (negative: dissipated)
 SC_N_LIFT = 7  # node-steps with lift-off (V <= 0)
 SC_T_LIFT = 8  # first lift-off time [s] (nan: none)
@@ -294,6 +308,62 @@ def evaluate(
 
 
 @njit(cache=True)
+def add_user_load(settings, uload, nodes, t, p, fext):
+    """Add the user load's nodal forces ℓ·q(x, t) at time t to ``p`` and ``fext``.
+
+    Kinds (``settings[ST_UL_KIND]``, :mod:`.user_load`): none; the travelling sinusoid
+    q = r(t)·A·sin(kx − ω(t − t_s)), r the half-cosine ramp; the table ``uload[t_k, (y, x),
+    node]`` linear in time, held outside. Lateral on v, axial on u. Independent of the motion.
+    """
+    kind = int(settings[ST_UL_KIND])
+    if kind == UL_NONE:
+        return
+    n_nodes = nodes.shape[0]
+    if kind == UL_SINE:
+        tau = t - settings[ST_UL_START]
+        if tau <= 0.0:
+            return
+        ramp = settings[ST_UL_RAMP]
+        r = 1.0
+        if tau < ramp:
+            r = 0.5 * (1.0 - math.cos(math.pi * tau / ramp))
+        ay = r * settings[ST_UL_AMP_Y]
+        ax = r * settings[ST_UL_AMP_X]
+        kw = settings[ST_UL_WAVENUMBER]
+        om = settings[ST_UL_OMEGA]
+        for i in range(n_nodes):
+            sn = math.sin(kw * nodes[i, ND_X0] - om * tau) * nodes[i, ND_TRIB]
+            iu = NDOF_NODE * i
+            p[iu] += ax * sn
+            fext[iu] += ax * sn
+            p[iu + 1] += ay * sn
+            fext[iu + 1] += ay * sn
+        return
+    nt = uload.shape[0]
+    s = (t - settings[ST_UL_T0]) / settings[ST_UL_DT]
+    i0 = 0
+    f = 0.0
+    if nt > 1:
+        if s >= nt - 1:
+            i0 = nt - 2
+            f = 1.0
+        elif s > 0.0:
+            i0 = int(s)
+            f = s - i0
+    i1 = i0 + 1 if nt > 1 else i0
+    g = 1.0 - f
+    for i in range(n_nodes):
+        ell = nodes[i, ND_TRIB]
+        qy = (g * uload[i0, 0, i] + f * uload[i1, 0, i]) * ell
+        qx = (g * uload[i0, 1, i] + f * uload[i1, 1, i]) * ell
+        iu = NDOF_NODE * i
+        p[iu] += qx
+        fext[iu] += qx
+        p[iu + 1] += qy
+        fext[iu + 1] += qy
+
+
+@njit(cache=True)
 def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch):
     """K_T at d₁ into ``ab`` from the beam and the nodal tangents stored by :func:`evaluate`
     at the same d₁ (same band as ``evaluate(..., want_k=True)``, without re-running the soil
@@ -316,9 +386,10 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
 @njit(cache=True)
 def initial_acceleration(
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-    kin_u, kin_a, vec, scal, nodal,
+    kin_u, kin_a, uload, vec, scal, nodal,
 ):  # fmt: skip
-    """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_hyd, f_soil at the start."""
+    """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_ext (hydrodynamic + user load),
+    f_soil at the start."""
     n_nodes = nodes.shape[0]
     ndof = NDOF_NODE * n_nodes
     uk = np.empty(n_nodes)
@@ -346,6 +417,7 @@ def initial_acceleration(
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
         fout, np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
     )  # fmt: skip
+    add_user_load(settings, uload, nodes, t, vec[V_P], vec[V_FH])
     for i in range(n_nodes):
         for c in range(3):
             j = NDOF_NODE * i + c
@@ -418,7 +490,7 @@ def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
 @njit(cache=True)
 def integrate(
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-    kin_u, kin_a, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+    kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
 ):  # fmt: skip
     """Advance from scal[SC_T] to t_stop (a chunk end), t_end, an event or a full buffer.
 
@@ -541,6 +613,7 @@ def integrate(
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
+            add_user_load(settings, uload, nodes, t1, p1, fh1)
             rmax = 0.0
             for j in range(ndof):
                 if fixed[j] != 0.0:

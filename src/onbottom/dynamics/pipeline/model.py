@@ -17,6 +17,7 @@ import numpy as np
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
+from onbottom.dynamics.pipeline.user_load import UserLoad
 from onbottom.errors import InputError
 from onbottom.hydro.force_model import ForceModel, MorisonLift
 from onbottom.hydro.reductions import LoadReductions
@@ -117,6 +118,10 @@ class PipelineModel:
     strain_fibre_distance : float or None
         Distance of the outer steel fibre from the axis c [m], > 0; None → D_steel/2 from the
         layers when known, else D/2 (conservative).
+    user_load : UserLoad or None
+        A user-given distributed load q(x, t) [N/m] added to the hydrodynamic load
+        (:class:`~onbottom.dynamics.pipeline.user_load.TravellingSineLoad`,
+        :class:`~onbottom.dynamics.pipeline.user_load.TableLoad`); None → none.
     """
 
     pipe: Pipe
@@ -134,6 +139,7 @@ class PipelineModel:
     current: float = 0.0
     relative_velocity: bool = True
     strain_fibre_distance: float | None = None
+    user_load: UserLoad | None = None
 
     def __post_init__(self) -> None:
         c = "PipelineModel"
@@ -166,6 +172,13 @@ class PipelineModel:
             )
         if self.strain_fibre_distance is not None:
             positive(f"{c}.strain_fibre_distance", self.strain_fibre_distance)
+        if self.user_load is not None:
+            if not isinstance(self.user_load, UserLoad):
+                raise InputError(
+                    f"{c}.user_load = {type(self.user_load).__name__} is invalid: expected a"
+                    " UserLoad (TravellingSineLoad or TableLoad)"
+                )
+            self.user_load.check_nodes(self.n_elements + 1)
         sections = self.sections
         if abs(sections[0].start) > 1e-9 or abs(sections[-1].end - self.length) > 1e-6:
             raise InputError(
@@ -275,6 +288,8 @@ class PipelineModel:
                 for s in self.sections
             ],
             **self.force_model.describe(),
+            # only with a load, so that runs without one keep their run identity
+            **({} if self.user_load is None else {"user_load": self.user_load.describe()}),
         }
 
     # ---- kernel arrays ------------------------------------------------------------------
@@ -346,6 +361,7 @@ class PipelineModel:
             "sstate": sstate,
             "axst": np.zeros((n, 2)),
             "r_perm_z": np.array([r_perm_z]),
+            "uload": np.zeros((1, 2, 1)) if self.user_load is None else self.user_load.table(n),
         }
 
 

@@ -37,6 +37,7 @@ from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
+from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
 from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro._force_contract import N_FORCE_STATE
@@ -310,6 +311,7 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     st[K.ST_PREDICTOR] = _PREDICTOR
     st[K.ST_CTOL] = 1e-9 * d
     st[K.ST_Z_LIMIT] = _penetration_limit(model)
+    st[K.ST_UL_KIND :] = user_load_settings(model.user_load)
     return st
 
 
@@ -726,7 +728,7 @@ def simulate_pipeline(
         env[K.E_MIN_VCONT] = math.inf
         ok = K.initial_acceleration(
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
-            arr["sparams"], sstate, axst, fparams, fstate, ku, ka, vec, scal, nodal,
+            arr["sparams"], sstate, axst, fparams, fstate, ku, ka, arr["uload"], vec, scal, nodal,
         )  # fmt: skip
         if not ok:
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
@@ -764,7 +766,7 @@ def simulate_pipeline(
                 m, status = K.integrate(
                     st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
                     arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
-                    vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+                    arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
                 )  # fmt: skip
                 if writer is not None:
                     writer.append(rec_t[:m].copy(), rec[:m])
