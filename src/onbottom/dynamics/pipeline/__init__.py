@@ -20,6 +20,12 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         run_identity,
         simulate_pipeline,
     )
+    from onbottom.dynamics.pipeline.user_load import (
+        TableLoad,
+        TravellingSineLoad,
+        UserLoad,
+        still_water,
+    )
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -28,8 +34,12 @@ __all__ = [
     "PipelineResult",
     "PipelineSettings",
     "SoilSection",
+    "TableLoad",
+    "TravellingSineLoad",
+    "UserLoad",
     "run_identity",
     "simulate_pipeline",
+    "still_water",
 ]
 
 __getattr__, __dir__ = attach(
@@ -46,6 +56,12 @@ __getattr__, __dir__ = attach(
             "PipelineSettings",
             "run_identity",
             "simulate_pipeline",
+        ),
+        "onbottom.dynamics.pipeline.user_load": (
+            "TableLoad",
+            "TravellingSineLoad",
+            "UserLoad",
+            "still_water",
         ),
     },
 )
