@@ -32,6 +32,8 @@ ALLOWED: dict[str, set[str]] = {
     "reliability": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "metocean"},
     "study": BASE | {"inputs", "hydro", "soil", "dynamics", "checks"},
     "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},
+    # assess: a route through every F109 level (onbottom assess); its report is its own
+    "assess": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study"},
     "plotting": BASE
     | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study", "metocean"}
     | {"reliability"},
@@ -41,7 +43,7 @@ ALLOWED: dict[str, set[str]] = {
     | {"plotting", "metocean", "reliability"},
     "cli": BASE
     | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "report", "metocean", "reliability"},
+    | {"plotting", "report", "metocean", "reliability", "assess"},
 }
 
 
