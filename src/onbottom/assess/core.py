@@ -166,6 +166,33 @@ def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -
                 "governing_check": None, "message": str(exc)}  # fmt: skip
 
 
+def _generalized_design(variable, section, seabed, env, combos, options, sc, files, case,
+                        levels) -> dict:  # fmt: skip
+    """Minimum of the design variable with every combination's generalized utilisation <= 1
+    (the same scan + brentq as the static design), raised to the flotation minimum; a trial
+    whose point leaves the curves' grid counts as failing (nothing is extrapolated)."""
+    import math as _m
+
+    from onbottom.assess.generalized import generalized_rows
+    from onbottom.checks.design import CheckRow, run_checks
+
+    def evaluate(s: Any) -> list:
+        rows = run_checks(s, seabed, env, combos, options)
+        gen = generalized_rows(sc, rows, list(files), case.dynamic.allowable)
+        return [
+            CheckRow(g["name"], g["combination"], g["condition"],
+                     g["utilisation"] if g["covered"] else _m.inf,
+                     bool(g["covered"] and g["pass"]), {})
+            for g in gen
+        ]  # fmt: skip
+
+    res = _design(variable, section, seabed, env, combos, options, sc.design, evaluate)
+    vert = levels.get("vertical", {}).get("value")
+    if res["success"] and vert is not None and vert > res["value"]:
+        res |= {"value": vert, "governing_check": "flotation (F109 Eq 3.1)"}
+    return res
+
+
 def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[str, Any]:
     from onbottom._casefile import parse_case
     from onbottom.assess import dynamic as dyn
@@ -211,16 +238,19 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
         checks += [_clean(g) for g in gen]
         covered = [g for g in gen if g["covered"]]
         levels["generalized"] = {
-            "success": bool(covered) and len(covered) == len(gen),
+            "success": False,
             "value": None,
             "covered": len(covered),
             "points": len(gen),
             "message": "not covered: " + gen[0]["message"]
             if not covered and gen
-            else f"{len(covered)} of {len(gen)} combinations covered; the minimum weight"
-            " from the curves is not solved in this version (utilisation at the given"
-            " weight only)",
+            else f"{len(covered)} of {len(gen)} combinations covered; a minimum needs every"
+            " combination covered",
         }
+        if gen and len(covered) == len(gen) and variable != "none":
+            levels["generalized"] |= _generalized_design(
+                variable, section, seabed, env, combos, options, sc, curve_files, case, levels
+            )
 
     # -- dynamic ---------------------------------------------------------------------------
     dynamic: dict[str, Any] = {}
@@ -296,7 +326,9 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     candidates = {
         k: v["value"]
         for k, v in levels.items()
-        if k in ("absolute", "dynamic") and v.get("success") and v.get("value") is not None
+        if k in ("absolute", "generalized", "dynamic")
+        and v.get("success")
+        and v.get("value") is not None
     }
     gov_level = min(candidates, key=candidates.get) if candidates else None
     worst = max(

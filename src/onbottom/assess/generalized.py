@@ -18,6 +18,7 @@ mean over D, normal to the pipe).
 
 from __future__ import annotations
 
+import functools
 import math
 from pathlib import Path
 from typing import Any
@@ -39,6 +40,17 @@ def default_curve_files() -> list[str]:
     return [str(p) for f in folders if f.is_dir() for p in sorted(f.glob("*.nc"))]
 
 
+@functools.lru_cache(maxsize=16)
+def _load(path: str) -> Any:
+    """A sweep read once per process (None if unreadable: reported as not covered)."""
+    from onbottom.results import load_dataset
+
+    try:
+        return load_dataset(path)
+    except Exception:
+        return None
+
+
 def _soil_label(model: str) -> str | None:
     return {"sand": "sand", "clay": "clay"}.get(model)
 
@@ -48,15 +60,7 @@ def generalized_rows(sc: Any, rows: list[Any], files: list[str], allowable: str 
     ``message``; where covered, ``utilisation`` and the point (K, M, N, L)."""
     out = []
     lat = [r for r in rows if r.name == "absolute_lateral" and "us" in r.details]
-    sweeps = []
-    if files:
-        from onbottom.results import load_dataset
-
-        for f in files:
-            try:
-                sweeps.append((f, load_dataset(f)))
-            except Exception:  # an unreadable file is reported, not fatal
-                continue
+    sweeps = [(f, ds) for f in files if (ds := _load(f)) is not None]
     crit = CRITERION.get(allowable)
     rho = sc.environment.water_density
     for r in lat:

@@ -289,7 +289,12 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
         ws = s.get("weight_saved") or {}
         u = s["max_utilisation"]
         gen = lv.get("generalized")
-        gtxt = "not run" if gen is None else ("not covered" if not gen["covered"] else "covered")
+        if gen is None:
+            gtxt = "not run"
+        elif gen.get("value") is not None:
+            gtxt = _value(gen["value"], var)
+        else:
+            gtxt = "not covered" if not gen["covered"] else "partly covered"
         out.append(
             f"<tr><td><a href='#s{s['index']}'>{e(s['name'])}</a></td>"
             f"<td>{s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g}</td>"
