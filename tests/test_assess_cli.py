@@ -89,6 +89,12 @@ def test_outputs_written_case_untouched(run, capsys):
     assert rc == 0
     again = json.loads(capsys.readouterr().out)
     assert again["provenance"]["sections_reused"] == ["section 0", "section 1"]
+    # the JSON contract (cli/json_contract.py, docs/json.md)
+    from onbottom.cli.json_contract import documented_keys
+
+    assert set(again) == documented_keys("assess")
+    for row in again["summary"]:
+        assert set(row) == documented_keys("assess", "summary[]")
 
 
 def test_bad_case_named_error(tmp_path, capsys):
