@@ -130,3 +130,15 @@ def test_report_opens_in_chromium(run, tmp_path):
         rep = browser_check.check_page(b, out / "report.html", tmp_path / "assess.png")
     assert rep.ok, "\n".join(rep.problems())
     assert rep.title.startswith("On-bottom stability assessment")
+
+
+def test_no_design_in_range_exits_3(tmp_path, capsys):
+    doc = route_document()
+    doc["levels"] = {"generalized": False, "dynamic": False}
+    doc["design"]["thickness_max"] = 0.002  # the absolute method needs far more
+    case = tmp_path / "narrow.toml"
+    case.write_text(_toml(doc), encoding="utf-8")
+    rc = main(["assess", str(case), "--out", str(tmp_path / "o"), "--quiet", "--no-pdf"])
+    assert rc == 3
+    assert "no solution" in capsys.readouterr().out
+    assert (tmp_path / "o" / "report.html").is_file()  # the outputs are still written

@@ -62,6 +62,12 @@ def test_one_section_equals_storm_command(one_section, tmp_path):
         )
         assert base["max_displacement"] == ref.data["max_displacement"].values.tolist()
         assert base["seeds"] == ref.data["seed"].values.tolist()
+        # the report's history is the worst seed's same run, recorded
+        h = base["history"]
+        k = base["seeds"].index(h["seed"])
+        assert h["seed"] == base["seeds"][int(np.argmax(base["max_displacement"]))]
+        assert h["y"][-1] == base["final_displacement"][k]
+        assert max(abs(v) for v in h["y"]) <= base["max_displacement"][k]
 
 
 def _harsh_case():

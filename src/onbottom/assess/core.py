@@ -279,7 +279,9 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
             }
             for n in names
         }
-        for n, b in dynamic["base"].items():
+        for n, b in dynamic["base"].items():  # the worst seed's history, for the report
+            worst = b["seeds"][int(np.argmax(b["max_displacement"]))]
+            b["history"] = {"seed": worst} | dyn.history(case.storm_document(i, n), worst)
             checks.append(
                 _clean({
                     "name": "dynamic_lateral", "combination": n, "condition": b["condition"],

@@ -32,7 +32,7 @@ import numpy as np
 
 from onbottom._casefile import parse_case
 
-__all__ = ["bisect_dynamic", "dynamic_ratio", "run_seeds", "scan_dynamic"]
+__all__ = ["bisect_dynamic", "dynamic_ratio", "history", "run_seeds", "scan_dynamic"]
 
 
 def _setup(doc: dict[str, Any]) -> Any:
@@ -78,6 +78,27 @@ def run_seeds(
         if allowable is not None and r.max_displacement > allowable:
             break
     return rows
+
+
+def history(doc: dict[str, Any], seed: int, *, points: int = 400) -> dict[str, list[float]]:
+    """Time history of one seed of the storm case ``doc`` (the same run as in
+    :func:`run_seeds`, recorded every ``record_interval`` = peak duration / ``points``):
+    ``time`` [s], ``y`` lateral displacement [m], ``z`` penetration [m]."""
+    from onbottom.dynamics.storm_section import simulate_storm_section
+
+    setup = _setup(doc)
+    total = 3600.0 * (doc["storm"]["build_up_hours"] + doc["storm"]["peak_hours"])
+    settings = replace(setup.settings, record_interval=max(total / points, 0.1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = simulate_storm_section(
+            setup.pipe, setup.soil, setup.storm.with_seed(int(seed)),
+            **(setup.kwargs() | {"settings": settings}),
+        )  # fmt: skip
+    if r.data is None:  # pragma: no cover - records were asked for
+        return {"time": [], "y": [], "z": []}
+    return {k: [float(v) for v in r.data[name].values]
+            for k, name in (("time", "time"), ("y", "y"), ("z", "z"))}  # fmt: skip
 
 
 def _trial_pipe(pipe_doc: dict[str, Any], variable: str, layer: str, x: float) -> dict:

@@ -233,7 +233,7 @@ def _strip_svg(base: dict[str, Any]) -> str:
         f'<text x="{xpos(1.0) + 3:.1f}" y="15" font-size="11" fill="#c00">allowable</text>',
         f'<line x1="{left}" y1="{h - 25}" x2="{w - 20}" y2="{h - 25}" stroke="#333"/>',
         f'<text x="{left}" y="{h - 8}" font-size="11">0</text>',
-        f'<text x="{w - 60}" y="{h - 8}" font-size="11">{top:.2g} × allowable</text>',
+        f'<text x="{w - 130}" y="{h - 8}" font-size="11">{top:.2g} × allowable</text>',
     ]
     for k, n in enumerate(names):
         y = 20 + k * row
@@ -248,6 +248,35 @@ def _strip_svg(base: dict[str, Any]) -> str:
             )
     parts.append("</svg>")
     return "".join(parts)
+
+
+def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
+    """Inline SVG: y(t) of the worst seed with the ±allowable lines."""
+    t, y = h.get("time") or [], h.get("y") or []
+    if len(t) < 2:
+        return ""
+    w, hh, left, pad = 640, 160, 50, 18
+    top = max(max(abs(v) for v in y), allowable) * 1.1 or 1.0
+    tx = lambda v: left + (w - left - 10) * (v - t[0]) / (t[-1] - t[0])  # noqa: E731
+    ty = lambda v: hh / 2 - (hh / 2 - pad) * v / top  # noqa: E731
+    pts = " ".join(f"{tx(a):.1f},{ty(b):.1f}" for a, b in zip(t, y, strict=True))
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{hh + 14}" role="img"'
+        f' aria-label="lateral displacement history, seed {h["seed"]}">'
+        f'<text x="{left}" y="12" font-size="11">{html.escape(name)} — seed {h["seed"]}'
+        f" (worst): y(t) [m], dashed ±allowable</text>"
+        f'<line x1="{left}" y1="{ty(0):.1f}" x2="{w - 10}" y2="{ty(0):.1f}" stroke="#999"/>'
+        + "".join(
+            f'<line x1="{left}" y1="{ty(s * allowable):.1f}" x2="{w - 10}"'
+            f' y2="{ty(s * allowable):.1f}" stroke="#c00" stroke-dasharray="4 3"/>'
+            for s in (1, -1)
+        )
+        + f'<polyline fill="none" stroke="#06c" stroke-width="1" points="{pts}"/>'
+        f'<text x="2" y="{ty(top / 1.1) + 4:.1f}" font-size="10">{top / 1.1:.2g}</text>'
+        f'<text x="2" y="{ty(0) + 4:.1f}" font-size="10">0</text>'
+        f'<text x="{left}" y="{hh + 12}" font-size="10">t = {t[0]:.0f} s</text>'
+        f'<text x="{w - 80}" y="{hh + 12}" font-size="10">{t[-1]:.0f} s</text></svg>'
+    )
 
 
 _SEA_STATE_KEYS = (
@@ -384,6 +413,9 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                     f"<td>{ys}</td><td>{e(str(sorted(set(b['status']))))}</td></tr>"
                 )
             out.append("</table>")
+            for n, b in dyn["base"].items():
+                if b.get("history"):
+                    out.append(_history_svg(n, b["history"], b["allowable"]))
         if dyn.get("bisection"):
             tr = "; ".join(f"{_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
             out.append(

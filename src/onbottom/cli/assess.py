@@ -13,7 +13,13 @@ from typing import Any
 
 import click
 
-from onbottom.cli._common import Number, emit_json, handle_errors, json_option
+from onbottom.cli._common import (
+    EXIT_INVALID_RESULT,
+    Number,
+    emit_json,
+    handle_errors,
+    json_option,
+)
 
 __all__ = ["EXAMPLE", "command"]
 
@@ -92,7 +98,9 @@ def command(
     sections already done (same inputs). See examples/assess_route.toml.
 
     --json prints the results.json document (keys: schema, provenance, route, summary,
-    sections, comparison, validity, clauses) plus "files" and "pdf".
+    sections, comparison, validity, clauses) plus "files" and "pdf". A section with no
+    passing design at any level run (the range is too narrow) exits 3 after writing the
+    outputs; failing checks at the given design are a result (exit 0); input errors exit 1.
     """
     from onbottom.assess.case import load_route_case
     from onbottom.assess.core import assess
@@ -123,7 +131,13 @@ def command(
 
         payload: dict[str, Any] = results_payload(a, text) | written
         emit_json(payload)
-        return
+    else:
+        _print(a, out, written)
+    if route.solve_for != "none" and any(s["governing_level"] is None for s in a.sections):
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _print(a: Any, out: Path, written: dict[str, Any]) -> None:
     click.echo(_table(a))
     click.echo(f"wrote {', '.join(written['files'])}")
     if written["pdf"]:
