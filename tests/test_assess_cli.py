@@ -138,7 +138,9 @@ def test_no_design_in_range_exits_3(tmp_path, capsys):
     doc["design"]["thickness_max"] = 0.002  # the absolute method needs far more
     case = tmp_path / "narrow.toml"
     case.write_text(_toml(doc), encoding="utf-8")
-    rc = main(["assess", str(case), "--out", str(tmp_path / "o"), "--quiet", "--no-pdf"])
+    rc = main(
+        ["assess", str(case), "--out", str(tmp_path / "o"), "--workers", "0", "--quiet", "--no-pdf"]
+    )
     assert rc == 3
     assert "no solution" in capsys.readouterr().out
     assert (tmp_path / "o" / "report.html").is_file()  # the outputs are still written
