@@ -36,6 +36,7 @@ import itertools
 import json
 import math
 import os
+import re
 import warnings
 from pathlib import Path
 from typing import Any, Literal
@@ -355,24 +356,30 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
 
     for i, s in enumerate(sections):
         key = f"route.sections[{i}]"
+        label = f"<{key}>"
         try:
             doc = case.stability_document(i)
-            sc = parse_case(StabilityCase, doc, file=f"{file} [{key}]")
-            _check_section(sc, _Checker(f"{file} [{key}: {s.name}]", None))
+            sc = parse_case(StabilityCase, doc, file=label)
+            _check_section(sc, _Checker(label, None))
             if case.levels.dynamic:
                 for name in case.combination_names(i):
                     with warnings.catch_warnings():
                         warnings.simplefilter("ignore")
                         build_setup(
-                            parse_case(StormCase, case.storm_document(i, name), file=file),
+                            parse_case(StormCase, case.storm_document(i, name), file=label),
                             None,
                         )
         except CaseFileError as exc:
-            field = getattr(exc, "field", None) or ""
+            route_key = _route_key(case, i, getattr(exc, "field", None) or "")
+            inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
+                           str(exc))  # fmt: skip
+            line = _line_of(text, route_key)
+            where = f"{file}{f', line {line}' if line else ''}"
             raise CaseFileError(
-                f"{file}: {key} ({s.name!r}): {_section_field(field)}: {exc}",
-                field=f"{key}.{_section_field(field)}" if field else key,
+                f"{where}: {key} ({s.name!r}) -> {route_key}: {inner}",
+                field=route_key,
                 file=file,
+                line=line,
             ) from None
         except InputError as exc:
             raise CaseFileError(
@@ -380,11 +387,32 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             ) from None
 
 
-def _section_field(field: str) -> str:
-    """The route key of a single-section case key (environment.water_depth → water_depth)."""
+def _route_key(case: RouteCase, i: int, field: str) -> str:
+    """The route-file key of a key of section ``i``'s single-section case."""
+    key = f"route.sections[{i}]"
+    if not field:
+        return key
+    top = field.split(".", 1)[0].split("[", 1)[0]
     if field == "environment.water_depth":
-        return "water_depth"
-    return field
+        return f"{key}.water_depth"
+    if top in ("pipe", "environment", "design", "hydro"):
+        return field  # shared tables of the route file
+    name = case.route.sections[i].metocean
+    if top in ("waves", "current", "combinations") and name is not None:
+        return f"metocean.{name}.{field}"
+    return f"{key}.{field}"
+
+
+def _line_of(text: str | None, field: str) -> int | None:
+    if not text:
+        return None
+    loc: list[Any] = []
+    for part in field.split("."):
+        name, _, idx = part.partition("[")
+        loc.append(name)
+        if idx:
+            loc.append(int(idx.rstrip("]")))
+    return _find_line(text, loc)
 
 
 def parse_route_case(
