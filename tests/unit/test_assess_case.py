@@ -86,3 +86,22 @@ def test_metocean_reference_and_own_tables_exclusive():
         del s[k]
     case = parse_route_case(copy.deepcopy(doc))
     assert case.stability_document(0)["waves"]["hs"] == 4.0
+
+
+def test_error_names_the_route_key():
+    doc = route_document()
+    doc["metocean"] = {"open": {"waves": {"hs": 4.0, "tp": 10.0}}}
+    s = doc["route"]["sections"][0]
+    for k in ("waves", "current", "combinations"):
+        del s[k]
+    s["metocean"] = "open"
+    s["water_depth"] = 4.0  # H_s = 4 m breaks in 4 m of water
+    with pytest.raises(CaseFileError) as err:
+        parse_route_case(doc)
+    assert err.value.field == "metocean.open.waves.hs"
+    assert "route.sections[0] ('section 0')" in str(err.value)
+    doc = route_document()
+    doc["route"]["sections"][0]["seabed"]["initial_penetration"] = 0.9  # deeper than D
+    with pytest.raises(CaseFileError) as err:
+        parse_route_case(doc)
+    assert err.value.field == "route.sections[0].seabed.initial_penetration"
