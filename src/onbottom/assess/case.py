@@ -12,7 +12,9 @@ file, the line and the nearest valid key):
 * ``[pipe]`` — the pipe and its build-up with its conditions (the stability case's ``[pipe]``);
 * ``[environment]`` — ``water_density``, ``kinematic_viscosity`` (the depth is per section);
 * ``[hydro]`` — the force model of the dynamic level (``model = "morison" | "wake" |
-  "fourier"``, :mod:`onbottom.hydro.registry`; default: ``onbottom storm``'s, Morison);
+  "fourier"``, :mod:`onbottom.hydro.registry`; default :data:`DEFAULT_FORCE_MODEL`, the wake
+  model, as for the curves — the storm documents then name it, so ``onbottom storm`` on them
+  runs the same model);
 * ``[design]`` — safety class, region, flotation conditions, and the design variable:
   ``solve_for = "auto"`` (concrete thickness of ``layer`` for a build-up pipe, submerged
   weight for a simple pipe), with its range;
@@ -66,6 +68,11 @@ __all__ = [
     "load_route_case",
     "parse_route_case",
 ]
+
+DEFAULT_FORCE_MODEL = "wake"
+"""Force model of the dynamic level when ``[hydro] model`` is unset: the wake model, as for
+the curves (``onbottom curves``; issue 30: constant Morison coefficients give peak loads about
+2.5 times below F109's C*_Y, C*_Z, so a design weight from them would be unconservative)."""
 
 ALLOWABLE_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
 """Allowable lateral displacement of the dynamic level as a multiple of D (F109 §3.5)."""
@@ -285,6 +292,7 @@ class RouteCase(StrictModel):
             "solver": {"record_interval": 0.0},
             "run": {"seeds": d.seeds if seeds is None else seeds},
         }
+        doc["hydro"].setdefault("model", DEFAULT_FORCE_MODEL)
         if not doc["hydro"].get("wake"):
             doc["hydro"].pop("wake", None)
         if not doc["hydro"].get("fourier"):

@@ -62,12 +62,13 @@ VALIDITY: list[str] = [
     "Verley & Sotberg sand model: the penetration-from-work law (Eq 6) and the maximum"
     " penetration law (Eq 8) are reconstructions (onbottom.soil.verley_sotberg); the dynamic"
     " level on sand rests on them.",
-    "Wake force model (hydro/wake.py, when [hydro] model = 'wake'): a reconstruction of"
-    " Lambrakos et al. (1987) / Wake II calibrated only to F109's C*_Y, C*_Z (Tables 3-9/3-10).",
-    "Morison + lift with constant coefficients (the default force model of the dynamic level,"
-    " as `onbottom storm`): without wake effects the drift under wave + current is"
-    " overpredicted (Chao, Lambrakos & Verley, OTC 6060, 1989) — conservative for the dynamic"
-    " weight.",
+    "Wake force model (hydro/wake.py; the default of the dynamic level, as of `onbottom"
+    " curves`): a reconstruction of Lambrakos et al. (1987) / Wake II calibrated only to F109's"
+    " peak-load coefficients C*_Y, C*_Z (Tables 3-9/3-10), not to measured force histories.",
+    "Morison + lift with constant coefficients ([hydro] model = 'morison'): its peak loads"
+    " are about 2.5 times below F109's C*_Y, C*_Z (issue 30), so a dynamic design weight from"
+    " it is unconservative; without wake effects it also misses the reduced drift under"
+    " opposing wave and current (Chao, Lambrakos & Verley, OTC 6060, 1989).",
     "F109 tables (C*_Y, C*_Z, γ_SC) as in two agreeing public transcriptions"
     " (checks/f109_tables.py); check against the standard.",
     "The generalized level uses only the tool's own committed curve sweeps and never"
@@ -148,9 +149,9 @@ def comparison(a: Assessment) -> list[dict[str, Any]]:
             why = (
                 "the dynamic level asks for more weight than the absolute method here: the"
                 " absolute method is meant to be conservative, so this points at the dynamic"
-                " model's assumptions (force model without wake effects overpredicts drift"
-                " under current; the soil model's calibration range; every seed, not the mean,"
-                " must pass) or at a small number of seeds — treat it as a finding to review"
+                " model's assumptions (the force model and its calibration, the soil model's"
+                " range, every seed rather than the mean must pass) or at a small number of"
+                " seeds — treat it as a finding to review"
             )
         else:
             verdict, why = "equal", "both levels give the same design"
