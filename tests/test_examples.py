@@ -22,6 +22,7 @@ EXPECTED = {
     "ex08_f109_design.py": r"absolute lateral stability: utilisation 4\.\d+ \(fails\)",
     "ex09_storm_section.py": r"max \|y\| = 0\.\d{3} m = 0\.\d{3}D",
     "ex10_metocean_reliability.py": r"importance sampling: p per storm = 0\.000[89]\d\d \(CV",
+    "ex11_route_assessment.py": r"mid-route\s+35\s+1\.373",
 }
 
 

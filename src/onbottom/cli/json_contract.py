@@ -177,6 +177,46 @@ CONTRACT: dict[str, Output] = {
             "model": '"pipeline_fe"',
         },
     ),
+    "assess": Output(
+        "onbottom assess --json",
+        "A route through every F109 level: design per KP section (results.json)",
+        {
+            "schema": "document schema of results.json (onbottom.assess/1)",
+            "provenance": "version, git commit, date, machine, case source and SHA-256, run"
+            " identity, wall time, sections reused from a previous run",
+            "route": "{name, sections, variable, allowable}",
+            "summary": "one item per KP section",
+            "sections": "everything per section: checks with details, levels, per-seed dynamic"
+            " results and bisection trials, notes, the section's stability case document",
+            "comparison": "per section: absolute and dynamic designs, which is heavier, why",
+            "validity": "assumptions and reconstructed models",
+            "clauses": "check name -> F109 clause and equation",
+            "files": "files written in --out",
+            "pdf": "why report.pdf was not written, or null",
+        },
+        {
+            "summary[]": {
+                "section": "section name",
+                "kp_start_m": "KP start [m]",
+                "kp_end_m": "KP end [m]",
+                "water_depth_m": "[m]",
+                "seabed": "soil model",
+                "governing_check": "check / combination of the largest utilisation at the"
+                " given design",
+                "max_utilisation": "largest utilisation at the given design [-]",
+                "variable": "concrete_thickness [m] or submerged_weight [N/m]",
+                "vertical_value": "flotation minimum of the variable, or null",
+                "absolute_value": "absolute-method minimum, or null (no solution / not run)",
+                "generalized_value": "generalized minimum where the curves cover every"
+                " combination, else null",
+                "dynamic_value": "dynamic minimum (every seed within the allowable), or null",
+                "governing_level": "the level of the design value (the lightest passing)",
+                "design_value": "the design value of the variable, or null",
+                "saved_submerged_weight_n_per_m": "submerged weight saved by the dynamic level"
+                " against the absolute one [N/m] (negative: it needs more), or null",
+            }
+        },
+    ),
     "curves": Output(
         "onbottom curves examples/curves_case.toml --json",
         "Generalized-stability curves L_stable, L_10 from dynamic storms",

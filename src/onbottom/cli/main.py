@@ -77,6 +77,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "with confidence intervals (POT/GPD, pyextremes), the DNV-RP-C205 H_s–T_p model "
         "and IFORM contours (virocon), and the DNV-RP-F109 design table per sector.",
     ),
+    "assess": (
+        "assess",
+        "On-bottom stability of a whole route (CASE: route TOML; none: the embedded example).",
+    ),
 }
 """Command name → (module of ``onbottom.cli`` defining it as ``command``, its short help).
 

@@ -1,0 +1,29 @@
+"""A whole route through every F109 level: the minimum concrete per KP section.
+
+Loads the embedded example route (shore approach, mid-route, deep end; ``onbottom assess
+--example`` prints it), shortens its storms and seeds so that the example runs in about a
+minute in one process, and runs :func:`onbottom.assess.assess`: per section the flotation,
+absolute and dynamic levels and their minimum concrete thickness, the governing design and
+the weight the dynamic level saves. The full study with its report is
+``onbottom assess --out assess_results``.
+Run: ``python examples/ex11_route_assessment.py``.
+"""
+
+from __future__ import annotations
+
+from onbottom._casefile import read_toml
+from onbottom.assess import assess, parse_route_case
+from onbottom.cli.assess import example_path
+
+doc, _ = read_toml(example_path())
+doc["dynamic"].update(seeds=2, build_up_hours=0.1, peak_hours=0.5)  # short, for the gallery
+case = parse_route_case(doc)
+a = assess(case, n_workers=0)
+table = a.summary[
+    ["section", "water_depth_m", "max_utilisation", "absolute_value", "dynamic_value",
+     "governing_level", "saved_submerged_weight_n_per_m"]
+]  # fmt: skip
+print(table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+for s in a.sections:
+    trials = s["dynamic"]["bisection"]["trials"]
+    print(f"{s['name']}: {len(trials)} bisection trials, {s['levels']['dynamic']['message']}")

@@ -1,0 +1,451 @@
+"""Route case file of ``onbottom assess``: one pipe, a route of KP sections, every F109 level.
+
+Strict TOML tables (:class:`onbottom._casefile.StrictModel`; unknown keys are errors naming the
+file, the line and the nearest valid key):
+
+* ``[route]`` — ``name`` and ``[[route.sections]]``: each section has a ``name``, its KP range
+  (``kp_start_km``/``kp_end_km`` or ``kp_start_m``/``kp_end_m``), ``water_depth`` [m],
+  ``[route.sections.seabed]`` (the stability case's ``[seabed]``: soil model and parameters,
+  optional trench ``trench_depth``/``trench_angle_deg``) and its metocean: either the stability
+  case's ``waves``, ``current`` and ``[[...combinations]]`` tables, or ``metocean = "NAME"``
+  referring to a shared ``[metocean.NAME]`` table holding them;
+* ``[pipe]`` — the pipe and its build-up with its conditions (the stability case's ``[pipe]``);
+* ``[environment]`` — ``water_density``, ``kinematic_viscosity`` (the depth is per section);
+* ``[hydro]`` — the force model of the dynamic level (``model = "morison" | "wake" |
+  "fourier"``, :mod:`onbottom.hydro.registry`; default :data:`DEFAULT_FORCE_MODEL`, the wake
+  model, as for the curves — the storm documents then name it, so ``onbottom storm`` on them
+  runs the same model);
+* ``[design]`` — safety class, region, flotation conditions, and the design variable:
+  ``solve_for = "auto"`` (concrete thickness of ``layer`` for a build-up pipe, submerged
+  weight for a simple pipe), with its range;
+* ``[levels]`` — ``absolute``, ``generalized``, ``dynamic`` (booleans) and ``pipeline_fe``
+  (false; the pipeline FE run of the governing section is not part of this version);
+* ``[dynamic]`` — seeds, the allowable displacement (``allowable = "0.5D" | "10D" | "user"``
+  with ``allowable_displacement_m``), the storm (build-up, peak, time step) and the
+  bisection tolerance.
+
+Each section is turned into the case files of the single-section commands
+(:meth:`RouteCase.stability_document` → ``onbottom stability``,
+:meth:`RouteCase.storm_document` → ``onbottom storm``) and validated by their own loaders
+before any work, so a route of one section runs exactly what those commands run; an error is
+re-raised under the route key it came from (``route.sections[1].water_depth``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import os
+import re
+import warnings
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import Field, model_validator
+
+from onbottom._casefile import CaseFileError, StrictModel, _find_line, parse_case, read_toml
+from onbottom.errors import InputError
+from onbottom.inputs.stability_case import (
+    CombinationTable,
+    CurrentTable,
+    DesignTable,
+    HydroTable,
+    PipeTable,
+    SeabedTable,
+    StabilityCase,
+    WavesTable,
+    _check_section,
+    _Checker,
+)
+
+__all__ = [
+    "ALLOWABLE_OVER_D",
+    "RouteCase",
+    "RouteSection",
+    "case_identity",
+    "load_route_case",
+    "parse_route_case",
+]
+
+DEFAULT_FORCE_MODEL = "wake"
+"""Force model of the dynamic level when ``[hydro] model`` is unset: the wake model, as for
+the curves (``onbottom curves``; issue 30: constant Morison coefficients give peak loads about
+2.5 times below F109's C*_Y, C*_Z, so a design weight from them would be unconservative)."""
+
+ALLOWABLE_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
+"""Allowable lateral displacement of the dynamic level as a multiple of D (F109 §3.5)."""
+
+
+class MetoceanTable(StrictModel):
+    """Sea states and currents of a section: the stability case's ``[waves]``, ``[current]``
+    and ``[[combinations]]`` (return-period combinations with directions)."""
+
+    waves: WavesTable
+    current: CurrentTable = CurrentTable()
+    combinations: list[CombinationTable] = Field(default_factory=list)
+
+
+class RouteSection(StrictModel):
+    """One KP section of the route."""
+
+    name: str = Field(min_length=1, description="label, e.g. shore approach [-]")
+    kp_start_km: float | None = Field(None, ge=0.0, le=1.0e4, description="KP start [km]")
+    kp_end_km: float | None = Field(None, ge=0.0, le=1.0e4, description="KP end [km]")
+    kp_start_m: float | None = Field(None, ge=0.0, le=1.0e7, description="KP start [m]")
+    kp_end_m: float | None = Field(None, ge=0.0, le=1.0e7, description="KP end [m]")
+    water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
+    seabed: SeabedTable
+    metocean: str | None = Field(None, min_length=1, description="name of a [metocean.NAME] [-]")
+    waves: WavesTable | None = None
+    current: CurrentTable | None = None
+    combinations: list[CombinationTable] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _kp_and_metocean(self) -> RouteSection:
+        km = self.kp_start_km is not None or self.kp_end_km is not None
+        m = self.kp_start_m is not None or self.kp_end_m is not None
+        if km and m:
+            raise ValueError("give kp_start_km/kp_end_km or kp_start_m/kp_end_m, not both")
+        if not km and not m:
+            raise ValueError("give the KP range: kp_start_km and kp_end_km (or _m)")
+        lo, hi = self.kp_start, self.kp_end
+        if math.isnan(lo) or math.isnan(hi):
+            raise ValueError("give both ends of the KP range (start and end)")
+        if hi <= lo:
+            raise ValueError(f"the KP end ({hi:g} m) must lie after the KP start ({lo:g} m)")
+        own = self.waves is not None or self.current is not None or bool(self.combinations)
+        if self.metocean is not None and own:
+            raise ValueError(
+                "give metocean = NAME (a shared [metocean.NAME] table) or the section's own"
+                " waves/current/combinations, not both"
+            )
+        if self.metocean is None and self.waves is None:
+            raise ValueError("give the section's [waves] (and [current]) or metocean = NAME")
+        return self
+
+    @property
+    def kp_start(self) -> float:
+        """KP start [m]."""
+        if self.kp_start_m is not None:
+            return self.kp_start_m
+        return math.nan if self.kp_start_km is None else self.kp_start_km * 1.0e3
+
+    @property
+    def kp_end(self) -> float:
+        """KP end [m]."""
+        if self.kp_end_m is not None:
+            return self.kp_end_m
+        return math.nan if self.kp_end_km is None else self.kp_end_km * 1.0e3
+
+
+class RouteTable(StrictModel):
+    name: str = Field("route", min_length=1, description="label of the route [-]")
+    sections: list[RouteSection] = Field(min_length=1)
+
+
+class RouteEnvironmentTable(StrictModel):
+    water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
+    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
+
+
+class RouteDesignTable(DesignTable):
+    solve_for: Literal["auto", "concrete_thickness", "submerged_weight", "none"] = "auto"
+
+
+class LevelsTable(StrictModel):
+    absolute: bool = True
+    generalized: bool = True
+    dynamic: bool = True
+    pipeline_fe: bool = False
+    generalized_curves: str | None = Field(
+        None,
+        min_length=1,
+        description="folder or NetCDF file of `onbottom curves` sweeps (relative to the case)",
+    )
+
+
+class DynamicTable(StrictModel):
+    seeds: int = Field(5, ge=1, le=1000, description="storms per evaluation [-]")
+    first_seed: int = Field(0, ge=0, description="first random-phase seed [-]")
+    allowable: Literal["0.5D", "10D", "user"] = "0.5D"
+    allowable_displacement_m: float | None = Field(
+        None, gt=0.0, le=1000.0, description="user allowable displacement [m]"
+    )
+    build_up_hours: float = Field(0.5, ge=0.0, le=100.0, description="storm build-up [h]")
+    peak_hours: float = Field(3.0, gt=0.0, le=100.0, description="storm peak duration [h]")
+    time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest solver step [s]")
+    thickness_tolerance_m: float = Field(
+        1.0e-3, gt=0.0, le=0.05, description="bisection bracket on the thickness [m]"
+    )
+    weight_tolerance_n_per_m: float = Field(
+        5.0, gt=0.0, le=1.0e3, description="bisection bracket on the submerged weight [N/m]"
+    )
+
+    @model_validator(mode="after")
+    def _user(self) -> DynamicTable:
+        if self.allowable == "user" and self.allowable_displacement_m is None:
+            raise ValueError("allowable = 'user' needs allowable_displacement_m [m]")
+        if self.allowable != "user" and self.allowable_displacement_m is not None:
+            raise ValueError(
+                f"allowable_displacement_m is for allowable = 'user', not {self.allowable!r}"
+            )
+        return self
+
+    def allowable_for(self, diameter: float) -> float:
+        """Allowable max lateral displacement [m] of a pipe of outer diameter D [m]."""
+        if self.allowable == "user":
+            return float(self.allowable_displacement_m)
+        return ALLOWABLE_OVER_D[self.allowable] * diameter
+
+
+class RouteCase(StrictModel):
+    """Top level of a route case file."""
+
+    route: RouteTable
+    pipe: PipeTable
+    environment: RouteEnvironmentTable = RouteEnvironmentTable()
+    hydro: HydroTable = HydroTable()
+    design: RouteDesignTable = RouteDesignTable()
+    levels: LevelsTable = LevelsTable()
+    dynamic: DynamicTable = DynamicTable()
+    metocean: dict[str, MetoceanTable] = Field(default_factory=dict)
+
+    # ---- per-section metocean ---------------------------------------------------------------
+    def section_metocean(self, i: int) -> MetoceanTable:
+        s = self.route.sections[i]
+        if s.metocean is not None:
+            return self.metocean[s.metocean]
+        return MetoceanTable(
+            waves=s.waves, current=s.current or CurrentTable(), combinations=s.combinations
+        )
+
+    @property
+    def solve_for(self) -> str:
+        """The design variable: concrete_thickness, submerged_weight or none."""
+        if self.design.solve_for != "auto":
+            return self.design.solve_for
+        return "concrete_thickness" if self.pipe.is_buildup else "submerged_weight"
+
+    # ---- the single-section case files ------------------------------------------------------
+    def stability_document(self, i: int) -> dict[str, Any]:
+        """Section ``i`` as an ``onbottom stability`` case document (JSON-ready)."""
+        s = self.route.sections[i]
+        met = self.section_metocean(i)
+        design = _dump(self.design)
+        design["solve_for"] = self.solve_for
+        doc = {
+            "pipe": _dump(self.pipe),
+            "seabed": _dump(s.seabed),
+            "environment": {"water_depth": s.water_depth, **_dump(self.environment)},
+            "waves": _dump(met.waves),
+            "current": _dump(met.current),
+            "design": design,
+        }
+        if met.combinations:
+            doc["combinations"] = [_dump(c) for c in met.combinations]
+        return doc
+
+    def combination_names(self, i: int) -> list[str]:
+        met = self.section_metocean(i)
+        return [c.name for c in met.combinations] or ["design"]
+
+    def storm_document(
+        self, i: int, combination: str, *, seeds: int | None = None, pipe: dict | None = None
+    ) -> dict[str, Any]:
+        """Section ``i`` in ``combination`` as an ``onbottom storm`` case document: the
+        combination's sea state as the storm peak, its current, the pipe in its condition;
+        ``pipe`` replaces the ``[pipe]`` table (a trial design)."""
+        s = self.route.sections[i]
+        met = self.section_metocean(i)
+        combo = next((c for c in met.combinations if c.name == combination), None)
+        if combo is None and combination != "design":
+            raise InputError(f"combination = {combination!r} is invalid: not in section {i}")
+        waves = _dump(met.waves)
+        current = _dump(met.current)
+        p = dict(_dump(self.pipe) if pipe is None else pipe)
+        if combo is not None:
+            for key in ("hs", "tp", "gamma"):
+                if getattr(combo, key) is not None:
+                    waves[key] = getattr(combo, key)
+            if combo.current_velocity is not None:
+                current["velocity"] = combo.current_velocity
+            if combo.condition is not None:
+                p["condition"] = combo.condition
+        seabed = _dump(s.seabed)
+        seabed.pop("initial_penetration", None)  # the storm's soil model sets it from w_s
+        d = self.dynamic
+        doc = {
+            "pipe": p,
+            "seabed": seabed,
+            "environment": {"water_depth": s.water_depth, **_dump(self.environment)},
+            "waves": waves,
+            "current": current,
+            "hydro": _dump(self.hydro),
+            "storm": {
+                "seed": d.first_seed,
+                "build_up_hours": d.build_up_hours,
+                "peak_hours": d.peak_hours,
+                "time_step": d.time_step,
+            },
+            "solver": {"record_interval": 0.0},
+            "run": {"seeds": d.seeds if seeds is None else seeds},
+        }
+        doc["hydro"].setdefault("model", DEFAULT_FORCE_MODEL)
+        if not doc["hydro"].get("wake"):
+            doc["hydro"].pop("wake", None)
+        if not doc["hydro"].get("fourier"):
+            doc["hydro"].pop("fourier", None)
+        return doc
+
+
+def _dump(model: StrictModel) -> dict[str, Any]:
+    """A table as plain data without unset optional keys (a valid case-file table)."""
+    return json.loads(model.model_dump_json(exclude_none=True))
+
+
+# ---- loading and checks ----------------------------------------------------------------------
+def _fail(file: str, text: str | None, field: str, message: str) -> None:
+    loc: list[Any] = []
+    for part in field.split("."):
+        name, _, idx = part.partition("[")
+        loc.append(name)
+        if idx:
+            loc.append(int(idx.rstrip("]")))
+    line = _find_line(text, loc) if text else None
+    where = f"{file}{f', line {line}' if line else ''}: "
+    raise CaseFileError(where + message, field=field, file=file, line=line)
+
+
+def _check_route(case: RouteCase, file: str, text: str | None) -> None:
+    """Rules across tables; then each section through the single-section loaders."""
+    sections = case.route.sections
+    names = [s.name for s in sections]
+    for i, name in enumerate(names):
+        if names.index(name) != i:
+            _fail(file, text, f"route.sections[{i}].name", f"route.sections[{i}].name ="
+                  f" {name!r} is invalid: section names must be unique")  # fmt: skip
+    order = sorted(range(len(sections)), key=lambda k: sections[k].kp_start)
+    for a, b in itertools.pairwise(order):
+        if sections[b].kp_start < sections[a].kp_end - 1e-9:
+            _fail(
+                file,
+                text,
+                f"route.sections[{b}].kp_start_km",
+                f"route.sections[{b}] ({sections[b].name!r}) is invalid: its KP range"
+                f" [{sections[b].kp_start:g}, {sections[b].kp_end:g}] m overlaps section"
+                f" {sections[a].name!r} [{sections[a].kp_start:g}, {sections[a].kp_end:g}] m",
+            )
+    for i, s in enumerate(sections):
+        if s.metocean is not None and s.metocean not in case.metocean:
+            _fail(
+                file,
+                text,
+                f"route.sections[{i}].metocean",
+                f"route.sections[{i}].metocean = {s.metocean!r} is invalid: no [metocean."
+                f"{s.metocean}] table (tables: {', '.join(map(repr, case.metocean)) or 'none'})",
+            )
+    if case.levels.pipeline_fe:
+        _fail(
+            file,
+            text,
+            "levels.pipeline_fe",
+            "levels.pipeline_fe = true is invalid: the pipeline FE run of the governing section"
+            " is not part of this version of onbottom assess (run `onbottom storm` on a"
+            " pipeline case); set it to false",
+        )
+    if not (case.levels.absolute or case.levels.generalized or case.levels.dynamic):
+        _fail(file, text, "levels", "levels: every level is switched off; nothing to run")
+    if case.levels.dynamic and case.solve_for == "none":
+        pass  # dynamic runs at the given weight only
+    # each section through the stability and storm loaders (their checks, their messages)
+    from onbottom.dynamics.storm_case import StormCase, build_setup
+
+    for i, s in enumerate(sections):
+        key = f"route.sections[{i}]"
+        label = f"<{key}>"
+        try:
+            doc = case.stability_document(i)
+            sc = parse_case(StabilityCase, doc, file=label)
+            _check_section(sc, _Checker(label, None))
+            if case.levels.dynamic:
+                for name in case.combination_names(i):
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")
+                        build_setup(
+                            parse_case(StormCase, case.storm_document(i, name), file=label),
+                            None,
+                        )
+        except CaseFileError as exc:
+            route_key = _route_key(case, i, getattr(exc, "field", None) or "")
+            inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
+                           str(exc))  # fmt: skip
+            line = _line_of(text, route_key)
+            where = f"{file}{f', line {line}' if line else ''}"
+            raise CaseFileError(
+                f"{where}: {key} ({s.name!r}) -> {route_key}: {inner}",
+                field=route_key,
+                file=file,
+                line=line,
+            ) from None
+        except InputError as exc:
+            raise CaseFileError(
+                f"{file}: {key} ({s.name!r}): {exc}", field=key, file=file
+            ) from None
+
+
+def _route_key(case: RouteCase, i: int, field: str) -> str:
+    """The route-file key of a key of section ``i``'s single-section case."""
+    key = f"route.sections[{i}]"
+    if not field:
+        return key
+    top = field.split(".", 1)[0].split("[", 1)[0]
+    if field == "environment.water_depth":
+        return f"{key}.water_depth"
+    if top in ("pipe", "environment", "design", "hydro"):
+        return field  # shared tables of the route file
+    name = case.route.sections[i].metocean
+    if top in ("waves", "current", "combinations") and name is not None:
+        return f"metocean.{name}.{field}"
+    return f"{key}.{field}"
+
+
+def _line_of(text: str | None, field: str) -> int | None:
+    if not text:
+        return None
+    loc: list[Any] = []
+    for part in field.split("."):
+        name, _, idx = part.partition("[")
+        loc.append(name)
+        if idx:
+            loc.append(int(idx.rstrip("]")))
+    return _find_line(text, loc)
+
+
+def parse_route_case(
+    doc: dict[str, Any], *, file: str | os.PathLike = "<route>", text: str | None = None
+) -> RouteCase:
+    """Validate a parsed route document (schema, cross-table rules, every section)."""
+    case = parse_case(RouteCase, doc, file=file, text=text)
+    _check_route(case, str(file), text)
+    return case
+
+
+def load_route_case(path: str | os.PathLike) -> RouteCase:
+    """Read and validate a route case file (TOML).
+
+    Every bad input is a :class:`~onbottom._casefile.CaseFileError` (an
+    :class:`~onbottom.errors.InputError`) naming the key, its value and range, before any
+    work: the schema, unique section names, KP ranges that do not overlap, metocean
+    references, and each section through the ``onbottom stability`` and ``onbottom storm``
+    loaders (physical consistency of :mod:`onbottom.inputs.consistency`).
+    """
+    doc, text = read_toml(path)
+    return parse_route_case(doc, file=Path(path), text=text)
+
+
+def case_identity(case: RouteCase) -> str:
+    """SHA-256 of the validated case (canonical JSON): the run identity of a study."""
+    blob = json.dumps(json.loads(case.model_dump_json()), sort_keys=True).encode()
+    return hashlib.sha256(blob).hexdigest()

@@ -1,0 +1,562 @@
+"""``assess(case) -> Assessment``: every F109 level on every KP section of a route.
+
+For each section (one task on Dask, :mod:`onbottom.study.engine`), in every load combination
+(each in its pipe condition):
+
+* **vertical** — F109 (2017) §3.3 Eq 3.1 (flotation, γ_W) in every ``design.vertical_conditions``;
+* **absolute** — F109 §3.6 Eqs 3.38 (lateral) and 3.39 (vertical), with the minimum concrete
+  thickness (or submerged weight) that passes every static check
+  (:func:`onbottom.checks.design.design_concrete_thickness`), as ``onbottom stability`` does;
+* **generalized** — from the tool's own committed dynamic curves where they cover the point
+  (:mod:`onbottom.assess.generalized`), else "not covered" with the reason;
+* **dynamic** — storms on the section over seeds at the given weight (as ``onbottom storm
+  --seeds N``) and the minimum weight for which every seed stays within the allowable
+  displacement (:mod:`onbottom.assess.dynamic`), never below the flotation minimum (Eq 3.1).
+
+The governing (design) value per section is the smallest weight among the levels run that
+passes — each level is a complete F109 design method on its own (§3.4 dynamic, §3.6 absolute);
+the dynamic and generalized values are raised to the flotation minimum. The report states the
+weight the dynamic level saves against the absolute one (negative: it needs more).
+
+Resumable: each finished section writes ``sections/NN-<slug>.json`` in the output folder
+(atomic rename) holding the run identity (SHA-256 of the section's inputs, the levels and
+options, and the onbottom version); a rerun reuses a section whose identity matches and runs
+the others. The case file is only read.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import re
+import time
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from onbottom._version import __version__
+from onbottom.assess.case import RouteCase
+from onbottom.results import annotate, provenance, write_text_atomic
+
+__all__ = ["Assessment", "assess", "section_identity"]
+
+SECTION_FOLDER = "sections"
+
+
+def section_identity(case: RouteCase, i: int) -> str:
+    """SHA-256 of everything section ``i``'s results depend on."""
+    blob = {
+        "stability": case.stability_document(i),
+        "storms": {
+            n: case.storm_document(i, n) for n in case.combination_names(i)
+        },  # the dynamic inputs
+        "levels": json.loads(case.levels.model_dump_json()),
+        "dynamic": json.loads(case.dynamic.model_dump_json()),
+        "version": __version__,
+    }
+    return hashlib.sha256(json.dumps(blob, sort_keys=True).encode()).hexdigest()
+
+
+def _slug(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9]+", "-", name).strip("-").lower() or "section"
+
+
+def section_file(out: Path, i: int, name: str) -> Path:
+    return out / SECTION_FOLDER / f"{i:02d}-{_slug(name)}.json"
+
+
+@dataclass(frozen=True)
+class _SectionJob:
+    """A picklable section task: the route case as JSON, the index, the output folder."""
+
+    case_json: str
+    index: int
+    out: str | None
+    identity: str
+    curve_files: tuple[str, ...] = ()
+
+    def __call__(self, _: Any = None) -> dict[str, Any]:
+        case = RouteCase.model_validate_json(self.case_json)
+        t0 = time.perf_counter()
+        result = _run_section(case, self.index, self.curve_files)
+        result["wall_time_s"] = time.perf_counter() - t0
+        result["identity"] = self.identity
+        if self.out is not None:
+            path = section_file(Path(self.out), self.index, case.route.sections[self.index].name)
+            write_text_atomic(path, json.dumps(result, indent=1, default=_jsonable))
+        return result
+
+
+def _jsonable(x: Any) -> Any:
+    if isinstance(x, (np.floating, np.integer)):
+        return x.item()
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    return str(x)
+
+
+def _clean(x: Any) -> Any:
+    """JSON-safe numbers (inf/nan → None)."""
+    if isinstance(x, dict):
+        return {str(k): _clean(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_clean(v) for v in x]
+    if isinstance(x, (np.floating, np.integer)):
+        x = x.item()
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, (str, int, float, bool)) or x is None:
+        return x
+    return str(x)
+
+
+def _check_options(sc: Any) -> Any:
+    from onbottom.checks.design import CheckOptions
+
+    d = sc.design
+    return CheckOptions(
+        safety_class=d.safety_class,
+        region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        penetration=sc.seabed.initial_penetration,
+        trench_depth=sc.seabed.trench_depth,
+        trench_angle_deg=sc.seabed.trench_angle_deg,
+        permeable=d.permeable,
+    )
+
+
+def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -> dict:
+    """Minimum of ``variable`` passing the rows of ``evaluate`` (default every static check)."""
+    from onbottom.checks import design as dz
+    from onbottom.inputs.pipe_buildup import PipeBuildUp
+
+    try:
+        if evaluate is None:
+            if variable == "concrete_thickness":
+                res = dz.design_concrete_thickness(
+                    section, seabed, env, combos, options, layer=d.layer,
+                    thickness_min=d.thickness_min, thickness_max=d.thickness_max,
+                )  # fmt: skip
+            else:
+                res = dz.design_submerged_weight(
+                    section, seabed, env, combos, options,
+                    weight_min=d.weight_min, weight_max=d.weight_max,
+                )  # fmt: skip
+        else:
+            from dataclasses import replace
+
+            if isinstance(section, PipeBuildUp):
+                build = lambda t: section.with_layer_thickness(d.layer, t)  # noqa: E731
+                lo, hi, tol, unit = d.thickness_min, d.thickness_max, 1.0e-5, "m"
+            else:
+                build = lambda w: replace(section, submerged_weight=w, mass=None)  # noqa: E731
+                lo, hi, tol, unit = d.weight_min, d.weight_max, 0.1, "N/m"
+            res = dz._minimum_passing(build, evaluate, lo, hi, 51, tol, variable, unit)
+        return {"success": True, "value": res.value, "utilisation": res.utilisation,
+                "governing_check": res.governing_check, "message": res.message}  # fmt: skip
+    except dz.NoFeasibleDesignError as exc:
+        return {"success": False, "value": None, "utilisation": exc.best_utilisation,
+                "governing_check": None, "message": str(exc)}  # fmt: skip
+
+
+def _generalized_design(variable, section, seabed, env, combos, options, sc, files, case,
+                        levels) -> dict:  # fmt: skip
+    """Minimum of the design variable with every combination's generalized utilisation <= 1
+    (the same scan + brentq as the static design), raised to the flotation minimum; a trial
+    whose point leaves the curves' grid counts as failing (nothing is extrapolated)."""
+    import math as _m
+
+    from onbottom.assess.generalized import generalized_rows
+    from onbottom.checks.design import CheckRow, run_checks
+
+    def evaluate(s: Any) -> list:
+        rows = run_checks(s, seabed, env, combos, options)
+        gen = generalized_rows(sc, rows, list(files), case.dynamic.allowable)
+        return [
+            CheckRow(g["name"], g["combination"], g["condition"],
+                     g["utilisation"] if g["covered"] else _m.inf,
+                     bool(g["covered"] and g["pass"]), {})
+            for g in gen
+        ]  # fmt: skip
+
+    res = _design(variable, section, seabed, env, combos, options, sc.design, evaluate)
+    vert = levels.get("vertical", {}).get("value")
+    if res["success"] and vert is not None and vert > res["value"]:
+        res |= {"value": vert, "governing_check": "flotation (F109 Eq 3.1)"}
+    return res
+
+
+def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[str, Any]:
+    from onbottom._casefile import parse_case
+    from onbottom.assess import dynamic as dyn
+    from onbottom.assess.generalized import generalized_rows
+    from onbottom.checks.design import run_checks
+    from onbottom.errors import OutOfRangeWarning
+    from onbottom.inputs.consistency import warnings_reported_by_case
+    from onbottom.inputs.stability_case import StabilityCase, penetration_outside_validity
+
+    sec = case.route.sections[i]
+    sc = parse_case(StabilityCase, case.stability_document(i))
+    section, seabed, env = sc.section(), sc.seabed.seabed(), sc.environment_object()
+    combos = sc.load_combinations()
+    options = _check_options(sc)
+    variable = case.solve_for
+    notes: list[str] = []
+    with warnings.catch_warnings(record=True) as caught, warnings_reported_by_case():
+        warnings.simplefilter("always", OutOfRangeWarning)
+        rows = run_checks(section, seabed, env, combos, options)
+        levels: dict[str, Any] = {}
+        vertical_rows = lambda s: [  # noqa: E731
+            r for r in run_checks(s, seabed, env, combos, options) if r.name == "vertical_stability"
+        ]
+        if variable != "none":
+            levels["vertical"] = _design(
+                variable, section, seabed, env, combos, options, sc.design, vertical_rows
+            )
+            if case.levels.absolute:
+                levels["absolute"] = _design(
+                    variable, section, seabed, env, combos, options, sc.design
+                )
+    notes += sorted({str(w.message) for w in caught if issubclass(w.category, Warning)})
+    notes += penetration_outside_validity(rows)
+    checks = [
+        _clean({k: v for k, v in r.as_dict().items() if k != "details"} | {"level": "absolute"
+               if r.name.startswith("absolute") else "vertical", "details": r.details})
+        for r in rows
+    ]  # fmt: skip
+
+    # -- generalized ---------------------------------------------------------------------
+    if case.levels.generalized:
+        gen = generalized_rows(sc, rows, list(curve_files), case.dynamic.allowable)
+        checks += [_clean(g) for g in gen]
+        covered = [g for g in gen if g["covered"]]
+        levels["generalized"] = {
+            "success": False,
+            "value": None,
+            "covered": len(covered),
+            "points": len(gen),
+            "message": "not covered: " + gen[0]["message"]
+            if not covered and gen
+            else f"{len(covered)} of {len(gen)} combinations covered; a minimum needs every"
+            " combination covered",
+        }
+        if gen and len(covered) == len(gen) and variable != "none":
+            levels["generalized"] |= _generalized_design(
+                variable, section, seabed, env, combos, options, sc, curve_files, case, levels
+            )
+
+    # -- dynamic ---------------------------------------------------------------------------
+    dynamic: dict[str, Any] = {}
+    if case.levels.dynamic:
+        d = case.dynamic
+        seeds = list(range(d.first_seed, d.first_seed + d.seeds))
+        names = case.combination_names(i)
+        base = {}
+        for name in names:
+            doc = case.storm_document(i, name)
+            base[name] = dyn.run_seeds(doc, seeds)
+        allow = {
+            n: d.allowable_for(base[n][0]["diameter"]) for n in names if base[n]
+        }  # D of the given design
+        dynamic["base"] = {
+            n: {
+                "seeds": [r["seed"] for r in base[n]],
+                "max_displacement": [r["max_displacement"] for r in base[n]],
+                "final_displacement": [r["final_displacement"] for r in base[n]],
+                "status": [r["status"] for r in base[n]],
+                "diameter": base[n][0]["diameter"],
+                "submerged_weight": base[n][0]["submerged_weight"],
+                "allowable": allow[n],
+                "utilisation": max(r["max_displacement"] for r in base[n]) / allow[n],
+                "condition": case.storm_document(i, n)["pipe"]["condition"],
+            }
+            for n in names
+        }
+        for n, b in dynamic["base"].items():  # the worst seed's history, for the report
+            worst = b["seeds"][int(np.argmax(b["max_displacement"]))]
+            b["history"] = {"seed": worst} | dyn.history(case.storm_document(i, n), worst)
+            checks.append(
+                _clean({
+                    "name": "dynamic_lateral", "combination": n, "condition": b["condition"],
+                    "utilisation": b["utilisation"], "pass": b["utilisation"] <= 1.0,
+                    "level": "dynamic",
+                    "details": {"allowable": b["allowable"], "seeds": len(b["seeds"]),
+                                "max_over_seeds": max(b["max_displacement"]),
+                                "mean_over_seeds": float(np.mean(b["max_displacement"]))},
+                })
+            )  # fmt: skip
+        if variable != "none":
+            pipe_doc = json.loads(case.pipe.model_dump_json(exclude_none=True))
+
+            def docs(trial: dict[str, Any]) -> list[dict[str, Any]]:
+                return [case.storm_document(i, n, pipe=trial) for n in names]
+
+            def evaluate(x: float) -> tuple[float, int]:
+                return dyn.dynamic_ratio(
+                    docs, pipe_doc, variable, case.design.layer, x, seeds, d.allowable_for
+                )
+
+            lo, hi, tol = (
+                (case.design.thickness_min, case.design.thickness_max, d.thickness_tolerance_m)
+                if variable == "concrete_thickness"
+                else (case.design.weight_min, case.design.weight_max, d.weight_tolerance_n_per_m)
+            )
+            b = dyn.bisect_dynamic(evaluate, lo, hi, tol)
+            dynamic["bisection"] = b
+            vert = levels.get("vertical", {}).get("value")
+            value = b["value"]
+            governed = "dynamic lateral (every seed <= allowable)"
+            if value is not None and vert is not None and vert > value:
+                value, governed = vert, "flotation (F109 Eq 3.1)"
+            levels["dynamic"] = {
+                "success": value is not None,
+                "value": value,
+                "utilisation": None,
+                "governing_check": governed if value is not None else None,
+                "message": b["message"],
+                "storms": b["storms"],
+            }
+
+    # -- governing -------------------------------------------------------------------------
+    candidates = {
+        k: v["value"]
+        for k, v in levels.items()
+        if k in ("absolute", "generalized", "dynamic")
+        and v.get("success")
+        and v.get("value") is not None
+    }
+    gov_level = min(candidates, key=candidates.get) if candidates else None
+    worst = max(
+        (c for c in checks if c.get("utilisation") is not None), key=lambda c: c["utilisation"]
+    )
+    saved = None
+    if "absolute" in candidates and "dynamic" in candidates:
+        saved = _weight_saved(case, sc, candidates["absolute"], candidates["dynamic"])
+    return _clean({
+        "index": i, "name": sec.name, "kp_start_m": sec.kp_start, "kp_end_m": sec.kp_end,
+        "water_depth": sec.water_depth, "seabed_model": sec.seabed.model,
+        "variable": variable, "checks": checks, "levels": levels, "dynamic": dynamic,
+        "governing_level": gov_level,
+        "design_value": candidates.get(gov_level) if gov_level else None,
+        "governing_check": f"{worst['name']} / {worst['combination']}",
+        "max_utilisation": worst["utilisation"],
+        "weight_saved": saved, "notes": notes,
+        "stability_document": case.stability_document(i),
+        "sea_states": [{"combination": c.name, "condition": c.condition,
+                        "hs": c.sea_state.hs, "tp": c.sea_state.tp,
+                        "gamma": c.sea_state.gamma,
+                        "wave_direction_deg": c.sea_state.direction_deg,
+                        "spreading_s": c.sea_state.spreading_s,
+                        "current_velocity": c.current.velocity,
+                        "current_reference_height": c.current.reference_height,
+                        "current_direction_deg": c.current.direction_deg} for c in combos],
+    })  # fmt: skip
+
+
+def _weight_saved(case: RouteCase, sc: Any, x_abs: float, x_dyn: float) -> dict[str, Any]:
+    """Submerged weight [N/m] (operation condition of the pipe) at both designs, and the
+    difference absolute − dynamic (positive: the dynamic level saves weight)."""
+    from dataclasses import replace
+
+    from onbottom.inputs.pipe_buildup import PipeBuildUp
+
+    section = sc.section()
+    cond = case.pipe.condition
+
+    def ws(x: float) -> float:
+        if isinstance(section, PipeBuildUp):
+            designed = section.with_layer_thickness(case.design.layer, x)
+            return designed.properties(cond).submerged_weight
+        return replace(section, submerged_weight=x, mass=None).submerged_weight
+
+    wa, wd = ws(x_abs), ws(x_dyn)
+    return {"condition": cond, "absolute_submerged_weight": wa, "dynamic_submerged_weight": wd,
+            "saved_submerged_weight": wa - wd, "saved_fraction": (wa - wd) / wa,
+            "absolute_value": x_abs, "dynamic_value": x_dyn}  # fmt: skip
+
+
+# ---- the study ----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Assessment:
+    """Results of :func:`assess`.
+
+    Attributes
+    ----------
+    case : RouteCase
+        The validated route case.
+    sections : list of dict
+        Per section: name, KP range [m], checks (rows), levels (per level: success, value,
+        governing check, message), dynamic (per-seed results at the given design and the
+        bisection), governing_level, design_value, weight_saved, notes.
+    identity : str
+        SHA-256 of the validated case.
+    wall_time_s : float
+        Wall time of the study [s]; ``reused`` lists the sections taken from a previous run.
+    """
+
+    case: RouteCase
+    sections: list[dict[str, Any]]
+    identity: str
+    wall_time_s: float
+    reused: list[str] = field(default_factory=list)
+    source: str = ""
+
+    @property
+    def summary(self) -> pd.DataFrame:
+        """One row per KP section: governing check and utilisation at the given design,
+        required value per level, the governing level and value, the weight saved."""
+        rows = []
+        for s in self.sections:
+            lv = s["levels"]
+            ws = s.get("weight_saved") or {}
+            rows.append({
+                "section": s["name"], "kp_start_m": s["kp_start_m"], "kp_end_m": s["kp_end_m"],
+                "water_depth_m": s["water_depth"], "seabed": s["seabed_model"],
+                "governing_check": s["governing_check"], "max_utilisation": s["max_utilisation"],
+                "variable": s["variable"],
+                **{f"{k}_value": (lv.get(k) or {}).get("value")
+                   for k in ("vertical", "absolute", "generalized", "dynamic")},
+                "governing_level": s["governing_level"], "design_value": s["design_value"],
+                "saved_submerged_weight_n_per_m": ws.get("saved_submerged_weight"),
+            })  # fmt: skip
+        return pd.DataFrame(rows)
+
+    @property
+    def checks(self) -> pd.DataFrame:
+        """Every check row of every section (level, name, combination, condition,
+        utilisation, pass)."""
+        rows = [
+            {"section": s["name"], **{k: v for k, v in c.items() if k != "details"}}
+            for s in self.sections
+            for c in s["checks"]
+        ]
+        return pd.DataFrame(rows)
+
+    def dynamic_dataset(self) -> xr.Dataset:
+        """Per-seed results of the dynamic runs at the given design: dims (section,
+        combination, seed); max/final displacement [m], status, allowable [m]."""
+        secs = [s for s in self.sections if s.get("dynamic", {}).get("base")]
+        if not secs:
+            return xr.Dataset(attrs=provenance("onbottom.assess", None))
+        combos = sorted({n for s in secs for n in s["dynamic"]["base"]})
+        seeds = sorted(
+            {sd for s in secs for b in s["dynamic"]["base"].values() for sd in b["seeds"]}
+        )
+        shape = (len(secs), len(combos), len(seeds))
+        ymax, yfin = np.full(shape, np.nan), np.full(shape, np.nan)
+        status = np.full(shape, -99, dtype=np.int64)
+        allow = np.full(shape[:2], np.nan)
+        for a, s in enumerate(secs):
+            for b, n in enumerate(combos):
+                base = s["dynamic"]["base"].get(n)
+                if not base:
+                    continue
+                allow[a, b] = base["allowable"]
+                for sd, y, f, st in zip(
+                    base["seeds"],
+                    base["max_displacement"],
+                    base["final_displacement"],
+                    base["status"],
+                    strict=True,
+                ):
+                    c = seeds.index(sd)
+                    ymax[a, b, c], yfin[a, b, c], status[a, b, c] = y, f, st  # fmt: skip
+        ds = xr.Dataset(
+            {
+                "max_displacement": (("section", "combination", "seed"), ymax),
+                "final_displacement": (("section", "combination", "seed"), yfin),
+                "status": (("section", "combination", "seed"), status),
+                "allowable": (("section", "combination"), allow),
+            },
+            coords={"section": [s["name"] for s in secs], "combination": combos, "seed": seeds},
+            attrs=provenance("onbottom.assess", None, case_identity=self.identity,
+                             source=self.source),
+        )  # fmt: skip
+        for k, u in (("max_displacement", "m"), ("final_displacement", "m"),
+                     ("allowable", "m"), ("status", "1")):  # fmt: skip
+            ds[k].attrs.setdefault("units", u)
+        return annotate(ds)
+
+
+def assess(
+    case: RouteCase,
+    *,
+    out: str | Path | None = None,
+    n_workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+    curve_files: list[str] | None = None,
+    source: str = "",
+) -> Assessment:
+    """Run every level of every section of a route (see the module docstring).
+
+    Parameters
+    ----------
+    case : RouteCase
+        From :func:`onbottom.assess.case.load_route_case`.
+    out : path or None
+        Output folder of the per-section JSON files (resume); None: nothing written.
+    n_workers : int or None
+        Local Dask workers (None: one per core; 0: in this process, no Dask).
+    scheduler : str or None
+        Address of a Dask scheduler.
+    progress : bool
+        A progress bar over the sections.
+    curve_files : list of str or None
+        NetCDF curve sweeps for the generalized level (None: the default search,
+        :func:`onbottom.assess.generalized.default_curve_files`).
+    source : str
+        Where the case came from (a path, or "embedded example").
+    """
+    from onbottom.assess.case import case_identity
+    from onbottom.assess.generalized import default_curve_files
+
+    t0 = time.perf_counter()
+    files = tuple(default_curve_files() if curve_files is None else curve_files)
+    case_json = case.model_dump_json()
+    outp = None if out is None else Path(out)
+    results: dict[int, dict[str, Any]] = {}
+    jobs = []
+    reused = []
+    for i, s in enumerate(case.route.sections):
+        ident = section_identity(case, i)
+        if outp is not None:
+            f = section_file(outp, i, s.name)
+            if f.is_file():
+                try:
+                    old = json.loads(f.read_text(encoding="utf-8"))
+                except (OSError, ValueError):
+                    old = None
+                if old and old.get("identity") == ident:
+                    results[i] = old
+                    reused.append(s.name)
+                    continue
+        jobs.append(_SectionJob(case_json, i, None if outp is None else str(outp), ident, files))
+    if jobs:
+        if n_workers == 0 and scheduler is None:
+            from tqdm.auto import tqdm
+
+            done = [job() for job in tqdm(jobs, disable=not progress, unit="section")]
+        else:
+            from onbottom.study.engine import ParallelMap, dask_client
+
+            workers = n_workers if n_workers is None else max(1, min(n_workers, len(jobs)))
+            with dask_client(None, scheduler_address=scheduler, n_workers=workers) as c:
+                done = ParallelMap(c, batch_size=1, progress=progress)(_call, jobs)
+        for r in done:
+            results[r["index"]] = r
+    sections = [results[i] for i in range(len(case.route.sections))]
+    return Assessment(case=case, sections=sections, identity=case_identity(case),
+                      wall_time_s=time.perf_counter() - t0, reused=reused,
+                      source=source)  # fmt: skip
+
+
+def _call(job: _SectionJob) -> dict[str, Any]:
+    return job()

@@ -1,0 +1,466 @@
+"""Outputs of ``onbottom assess``: ``results.json``, ``dynamic.nc``, ``report.html`` (+ PDF).
+
+Every file is written under a temporary name and renamed when complete
+(:mod:`onbottom.results`); the case file is only read.
+
+``results.json`` keys (:data:`RESULTS_KEYS`): ``schema`` ("onbottom.assess/1"),
+``provenance`` (onbottom version, git commit, date, machine, case source and SHA-256 of its
+text, run identity), ``route`` (name, sections count), ``summary`` (one row per section:
+section, kp_start_m, kp_end_m, water_depth_m, seabed, governing_check, max_utilisation at
+the given design, variable, vertical_value / absolute_value / generalized_value /
+dynamic_value — the minimum of the design variable per level, m or N/m, null where the level
+has no solution or was not run — governing_level, design_value, saved_submerged_weight_n_per_m),
+``sections`` (everything per section: checks with details, levels, per-seed dynamic results
+and the bisection trials, notes, the section's ``onbottom stability`` case document),
+``comparison`` (per section: which of the absolute and dynamic designs is heavier, and why),
+``validity`` (notes on reconstructed models), ``clauses`` (equation → clause reference).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import html
+import json
+import math
+import platform
+import subprocess
+from pathlib import Path
+from typing import Any
+
+from onbottom._version import __version__
+from onbottom.assess.core import Assessment
+from onbottom.results import _atomic_write, save_dataset, write_text_atomic
+
+__all__ = ["CLAUSES", "RESULTS_KEYS", "VALIDITY", "provenance_block", "write_outputs"]
+
+RESULTS_KEYS = (
+    "schema",
+    "provenance",
+    "route",
+    "summary",
+    "sections",
+    "comparison",
+    "validity",
+    "clauses",
+)
+
+CLAUSES: dict[str, str] = {
+    "vertical_stability": "DNV-RP-F109 (2017) §3.3, Eq 3.1 (flotation, γ_W = 1.1)",
+    "absolute_lateral": "DNV-RP-F109 (2017) §3.6, Eq 3.38 (with C*_Y Table 3-9, γ_SC Tables"
+    " 3-5 to 3-8, load reductions Eqs 3.17–3.22)",
+    "absolute_vertical": "DNV-RP-F109 (2017) §3.6, Eq 3.39 (with C*_Z Table 3-10)",
+    "generalized_lateral": "DNV-RP-F109 (2017) §3.5 (groups K, M, N, L); L from the tool's own"
+    " `onbottom curves` sweeps, not from F109's tables",
+    "dynamic_lateral": "DNV-RP-F109 (2017) §3.4 (dynamic lateral stability analysis;"
+    " allowable displacement §3.4.1); storm section solver docs/theory/storm_section.md",
+    "design_sea_state": "DNV-RP-F109 (2017) §3.4.3 (JONSWAP, transfer to the seabed, U_s,"
+    " T_u; directional spreading R_D)",
+}
+
+VALIDITY: list[str] = [
+    "Verley & Sotberg sand model: the penetration-from-work law (Eq 6) and the maximum"
+    " penetration law (Eq 8) are reconstructions (onbottom.soil.verley_sotberg); the dynamic"
+    " level on sand rests on them.",
+    "Wake force model (hydro/wake.py; the default of the dynamic level, as of `onbottom"
+    " curves`): a reconstruction of Lambrakos et al. (1987) / Wake II calibrated only to F109's"
+    " peak-load coefficients C*_Y, C*_Z (Tables 3-9/3-10), not to measured force histories.",
+    "Morison + lift with constant coefficients ([hydro] model = 'morison'): its peak loads"
+    " are about 2.5 times below F109's C*_Y, C*_Z (issue 30), so a dynamic design weight from"
+    " it is unconservative; without wake effects it also misses the reduced drift under"
+    " opposing wave and current (Chao, Lambrakos & Verley, OTC 6060, 1989).",
+    "F109 tables (C*_Y, C*_Z, γ_SC) as in two agreeing public transcriptions"
+    " (checks/f109_tables.py); check against the standard.",
+    "The generalized level uses only the tool's own committed curve sweeps and never"
+    " extrapolates; where none covers the point it says 'not covered'.",
+    "The pipeline FE of the governing section is not run in this version.",
+]
+
+
+def _git_commit() -> str:
+    try:
+        r = subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            cwd=Path(__file__).resolve().parent,
+            capture_output=True,
+            text=True,
+            timeout=5,
+            check=False,
+        )
+        return r.stdout.strip() if r.returncode == 0 and r.stdout.strip() else "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def provenance_block(a: Assessment, case_text: str | None) -> dict[str, Any]:
+    """Version, commit, date, machine, case source and hash, run identity."""
+    return {
+        "onbottom_version": __version__,
+        "git_commit": _git_commit(),
+        "date": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "machine": f"{platform.node()} ({platform.platform()}, {platform.processor() or '?'})",
+        "python": platform.python_version(),
+        "case_source": a.source,
+        "case_sha256": None
+        if case_text is None
+        else hashlib.sha256(case_text.encode("utf-8")).hexdigest(),
+        "run_identity": a.identity,
+        "wall_time_s": a.wall_time_s,
+        "sections_reused": a.reused,
+    }
+
+
+def comparison(a: Assessment) -> list[dict[str, Any]]:
+    """Per section: absolute vs dynamic design, which is heavier, and the reason stated."""
+    out = []
+    for s in a.sections:
+        lv = s["levels"]
+        xa = (lv.get("absolute") or {}).get("value")
+        xd = (lv.get("dynamic") or {}).get("value")
+        if "absolute" not in lv or "dynamic" not in lv:
+            continue
+        if xa is None and xd is None:
+            verdict, why = "neither", "no design in the range at either level"
+        elif xa is None:
+            verdict = "absolute"
+            why = (
+                "the absolute method finds no design in the range while storms on the section"
+                " stay within the allowable: it requires zero movement under the single design"
+                " oscillation (U*, T*) with peak load coefficients, whereas the dynamic level"
+                " lets the soil resistance build up with penetration and allows the"
+                " displacement"
+            )
+        elif xd is None:
+            verdict = "dynamic"
+            why = (
+                "the dynamic level finds no design in the range: some seed exceeds the"
+                " allowable even at the upper bound (check the storm and the soil model)"
+            )
+        elif xd < xa:
+            verdict = "absolute"
+            why = (
+                "the absolute method (F109 §3.6) is conservative by design: it asks for no"
+                " movement at all under the design single oscillation and ignores the"
+                " resistance gained by penetration; the dynamic level allows movement up to the"
+                " allowable displacement"
+            )
+        elif xd > xa:
+            verdict = "dynamic"
+            why = (
+                "the dynamic level asks for more weight than the absolute method here: the"
+                " absolute method is meant to be conservative, so this points at the dynamic"
+                " model's assumptions (the force model and its calibration, the soil model's"
+                " range, every seed rather than the mean must pass) or at a small number of"
+                " seeds — treat it as a finding to review"
+            )
+        else:
+            verdict, why = "equal", "both levels give the same design"
+        out.append({"section": s["name"], "absolute_value": xa, "dynamic_value": xd,
+                    "heavier": verdict, "reason": why})  # fmt: skip
+    return out
+
+
+def _json_safe(x: Any) -> Any:
+    if isinstance(x, dict):
+        return {str(k): _json_safe(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if hasattr(x, "item") and not isinstance(x, (str, bytes)):
+        try:
+            return _json_safe(x.item())
+        except (TypeError, ValueError):
+            return str(x)
+    return x
+
+
+def results_payload(a: Assessment, case_text: str | None) -> dict[str, Any]:
+    """The ``results.json`` document (keys: :data:`RESULTS_KEYS`)."""
+    summary = a.summary
+    return _json_safe({
+        "schema": "onbottom.assess/1",
+        "provenance": provenance_block(a, case_text),
+        "route": {"name": a.case.route.name, "sections": len(a.sections),
+                  "variable": a.case.solve_for,
+                  "allowable": a.case.dynamic.allowable
+                  if a.case.dynamic.allowable != "user"
+                  else f"{a.case.dynamic.allowable_displacement_m} m"},
+        "summary": summary.astype(object).where(summary.notna(), None).to_dict("records"),
+        "sections": a.sections,
+        "comparison": comparison(a),
+        "validity": VALIDITY,
+        "clauses": CLAUSES,
+    })  # fmt: skip
+
+
+# ---- HTML ------------------------------------------------------------------------------------
+def _fmt(x: Any, unit: str = "", digits: int = 3) -> str:
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "—"
+    if isinstance(x, bool):
+        return "pass" if x else "FAIL"
+    if isinstance(x, (int, float)):
+        return f"{x:.{digits}g}{(' ' + unit) if unit else ''}"
+    return html.escape(str(x))
+
+
+def _value(x: Any, variable: str) -> str:
+    if x is None:
+        return "no solution"
+    if variable == "concrete_thickness":
+        return f"{1e3 * x:.1f} mm"
+    return f"{x:.0f} N/m"
+
+
+def _strip_svg(base: dict[str, Any]) -> str:
+    """Inline SVG: every seed's max |y| / allowable per combination (a strip plot)."""
+    names = list(base)
+    if not names:
+        return ""
+    ratios = {n: [y / base[n]["allowable"] for y in base[n]["max_displacement"]] for n in names}
+    top = max(1.2, max(max(v) for v in ratios.values()) * 1.1)
+    w, row, left = 640, 28, 230
+    h = row * len(names) + 40
+
+    def xpos(r: float) -> float:
+        return left + (w - left - 20) * min(r, top) / top
+
+    parts = [
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" role="img"'
+        ' aria-label="max displacement over allowable per seed">',
+        f'<line x1="{xpos(1.0):.1f}" y1="5" x2="{xpos(1.0):.1f}" y2="{h - 25}" stroke="#c00"'
+        ' stroke-dasharray="4 3"/>',
+        f'<text x="{xpos(1.0) + 3:.1f}" y="15" font-size="11" fill="#c00">allowable</text>',
+        f'<line x1="{left}" y1="{h - 25}" x2="{w - 20}" y2="{h - 25}" stroke="#333"/>',
+        f'<text x="{left}" y="{h - 8}" font-size="11">0</text>',
+        f'<text x="{w - 130}" y="{h - 8}" font-size="11">{top:.2g} × allowable</text>',
+    ]
+    for k, n in enumerate(names):
+        y = 20 + k * row
+        parts.append(
+            f'<text x="5" y="{y + 4}" font-size="11">{html.escape(n[:34])}</text>'
+            f'<line x1="{left}" y1="{y}" x2="{w - 20}" y2="{y}" stroke="#ddd"/>'
+        )
+        for r in ratios[n]:
+            color = "#c00" if r > 1.0 else "#06c"
+            parts.append(
+                f'<circle cx="{xpos(r):.1f}" cy="{y}" r="4" fill="{color}" fill-opacity="0.7"/>'
+            )
+    parts.append("</svg>")
+    return "".join(parts)
+
+
+def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
+    """Inline SVG: y(t) of the worst seed with the ±allowable lines."""
+    t, y = h.get("time") or [], h.get("y") or []
+    if len(t) < 2:
+        return ""
+    w, hh, left, pad = 640, 160, 50, 18
+    top = max(max(abs(v) for v in y), allowable) * 1.1 or 1.0
+    tx = lambda v: left + (w - left - 10) * (v - t[0]) / (t[-1] - t[0])  # noqa: E731
+    ty = lambda v: hh / 2 - (hh / 2 - pad) * v / top  # noqa: E731
+    pts = " ".join(f"{tx(a):.1f},{ty(b):.1f}" for a, b in zip(t, y, strict=True))
+    return (
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{hh + 14}" role="img"'
+        f' aria-label="lateral displacement history, seed {h["seed"]}">'
+        f'<text x="{left}" y="12" font-size="11">{html.escape(name)} — seed {h["seed"]}'
+        f" (worst): y(t) [m], dashed ±allowable</text>"
+        f'<line x1="{left}" y1="{ty(0):.1f}" x2="{w - 10}" y2="{ty(0):.1f}" stroke="#999"/>'
+        + "".join(
+            f'<line x1="{left}" y1="{ty(s * allowable):.1f}" x2="{w - 10}"'
+            f' y2="{ty(s * allowable):.1f}" stroke="#c00" stroke-dasharray="4 3"/>'
+            for s in (1, -1)
+        )
+        + f'<polyline fill="none" stroke="#06c" stroke-width="1" points="{pts}"/>'
+        f'<text x="2" y="{ty(top / 1.1) + 4:.1f}" font-size="10">{top / 1.1:.2g}</text>'
+        f'<text x="2" y="{ty(0) + 4:.1f}" font-size="10">0</text>'
+        f'<text x="{left}" y="{hh + 12}" font-size="10">t = {t[0]:.0f} s</text>'
+        f'<text x="{w - 80}" y="{hh + 12}" font-size="10">{t[-1]:.0f} s</text></svg>'
+    )
+
+
+_SEA_STATE_KEYS = (
+    "combination", "condition", "hs", "tp", "gamma", "wave_direction_deg", "spreading_s",
+    "current_velocity", "current_reference_height", "current_direction_deg",
+)  # fmt: skip
+
+_CSS = """
+body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:70em;color:#222}
+h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-top:1em}
+table{border-collapse:collapse;margin:.5em 0 1em}td,th{border:1px solid #bbb;padding:3px 7px;
+font-size:.9em;text-align:left}th{background:#eef}.fail{color:#b00;font-weight:bold}
+.pass{color:#070}.note{font-size:.9em;color:#444}code{background:#f4f4f4}
+@media print{.section{page-break-before:always}}
+"""
+
+
+def report_html(a: Assessment, payload: dict[str, Any]) -> str:
+    """The design report (self-contained HTML: inline CSS and SVG, no external resource)."""
+    var = a.case.solve_for
+    e = html.escape
+    out = [
+        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+        f"<title>On-bottom stability assessment — {e(a.case.route.name)}</title>",
+        f"<style>{_CSS}</style></head><body>",
+        f"<h1>On-bottom stability assessment — {e(a.case.route.name)}</h1>",
+        f"<p class='note'>onbottom {e(__version__)} · design variable: {e(var)} · allowable"
+        f" displacement of the dynamic level: {e(str(payload['route']['allowable']))} (every"
+        f" seed) · {a.case.dynamic.seeds} seeds · storms {a.case.dynamic.build_up_hours:g} h"
+        f" build-up + {a.case.dynamic.peak_hours:g} h peak.</p>",
+        "<h2 id='summary'>Summary per KP section</h2><table><tr><th>Section</th><th>KP [km]"
+        "</th><th>Depth [m]</th><th>Seabed</th><th>Governing check (given design)</th>"
+        "<th>Utilisation</th><th>Flotation min.</th><th>Absolute min.</th><th>Generalized</th>"
+        "<th>Dynamic min.</th><th>Design (level)</th><th>Weight saved by dynamic [N/m]</th>"
+        "</tr>",
+    ]
+    for s in a.sections:
+        lv = s["levels"]
+        ws = s.get("weight_saved") or {}
+        u = s["max_utilisation"]
+        gen = lv.get("generalized")
+        if gen is None:
+            gtxt = "not run"
+        elif gen.get("value") is not None:
+            gtxt = _value(gen["value"], var)
+        else:
+            gtxt = "not covered" if not gen["covered"] else "partly covered"
+        out.append(
+            f"<tr><td><a href='#s{s['index']}'>{e(s['name'])}</a></td>"
+            f"<td>{s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g}</td>"
+            f"<td>{s['water_depth']:g}</td><td>{e(s['seabed_model'])}</td>"
+            f"<td>{e(s['governing_check'])}</td>"
+            f"<td class='{'fail' if u and u > 1 else 'pass'}'>{_fmt(u)}</td>"
+            + "".join(
+                f"<td>{_value((lv.get(k) or {}).get('value'), var) if k in lv else 'not run'}</td>"
+                for k in ("vertical", "absolute")
+            )
+            + f"<td>{gtxt}</td>"
+            + f"<td>{_value(lv['dynamic']['value'], var) if 'dynamic' in lv else 'not run'}</td>"
+            + f"<td>{_value(s['design_value'], var) if s['governing_level'] else 'no solution'}"
+            f" ({e(str(s['governing_level']))})</td>"
+            f"<td>{_fmt(ws.get('saved_submerged_weight'), digits=4)}</td></tr>"
+        )
+    out.append("</table>")
+    out.append(
+        "<p class='note'>Design: the lightest design among the levels run that passes (each is"
+        " a complete F109 method); the dynamic value is never below the flotation minimum."
+        " Weight saved: submerged weight (pipe condition of [pipe]) at the absolute design"
+        " minus at the dynamic design.</p>"
+    )
+    out.append("<h2 id='comparison'>Absolute against dynamic</h2><table><tr><th>Section</th>"
+               "<th>Absolute</th><th>Dynamic</th><th>Heavier</th><th>Why</th></tr>")  # fmt: skip
+    for c in payload["comparison"]:
+        out.append(
+            f"<tr><td>{e(c['section'])}</td><td>{_value(c['absolute_value'], var)}</td>"
+            f"<td>{_value(c['dynamic_value'], var)}</td><td>{e(c['heavier'])}</td>"
+            f"<td>{e(c['reason'])}</td></tr>"
+        )
+    out.append("</table>")
+    for s in a.sections:
+        out.append(f"<div class='section'><h2 id='s{s['index']}'>Section {e(s['name'])}"
+                   f" (KP {s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g} km)</h2>")  # fmt: skip
+        doc = s["stability_document"]
+        out.append(
+            "<h3>Inputs</h3><pre>"
+            + e(json.dumps({k: doc[k] for k in ("environment", "seabed")}, indent=1))
+            + "</pre>"
+        )
+        out.append("<h3>Design sea states and currents</h3><table><tr><th>Combination</th>"
+                   "<th>Condition</th><th>H_s [m]</th><th>T_p [s]</th><th>γ</th>"
+                   "<th>Wave dir. [deg]</th><th>Spreading s</th><th>Current [m/s]</th>"
+                   "<th>at z_r [m]</th><th>Current dir. [deg]</th></tr>")  # fmt: skip
+        for ss in s["sea_states"]:
+            out.append(
+                "<tr>" + "".join(f"<td>{_fmt(ss[k])}</td>" for k in _SEA_STATE_KEYS) + "</tr>"
+            )
+        out.append(f"</table><p class='note'>{e(CLAUSES['design_sea_state'])}</p>")
+        out.append("<h3>Checks at the given design</h3><table><tr><th>Level</th><th>Check</th>"
+                   "<th>Combination</th><th>Condition</th><th>Utilisation</th><th>Verdict</th>"
+                   "<th>Clause / note</th></tr>")  # fmt: skip
+        for c in s["checks"]:
+            note = CLAUSES.get(c["name"], "")
+            if c["level"] == "generalized":
+                note = f"{note}. {c.get('message', '')}"
+            verdict = "not covered" if c.get("pass") is None else ("pass" if c["pass"] else "FAIL")
+            out.append(
+                f"<tr><td>{e(c['level'])}</td><td>{e(c['name'])}</td>"
+                f"<td>{e(str(c['combination']))}</td><td>{e(str(c['condition']))}</td>"
+                f"<td>{_fmt(c.get('utilisation'))}</td>"
+                f"<td class='{'fail' if verdict == 'FAIL' else 'pass'}'>{verdict}</td>"
+                f"<td class='note'>{e(note)}</td></tr>"
+            )
+        out.append("</table><h3>Minimum design per level</h3><table><tr><th>Level</th>"
+                   "<th>Minimum</th><th>Governed by</th><th>Message</th></tr>")  # fmt: skip
+        for k, v in s["levels"].items():
+            out.append(
+                f"<tr><td>{e(k)}</td><td>{_value(v.get('value'), var)}</td>"
+                f"<td>{e(str(v.get('governing_check') or '—'))}</td>"
+                f"<td class='note'>{e(str(v.get('message', '')))}</td></tr>"
+            )
+        out.append("</table>")
+        dyn = s.get("dynamic") or {}
+        if dyn.get("base"):
+            out.append("<h3>Dynamic level: max displacement over seeds (given design)</h3>")
+            out.append(_strip_svg(dyn["base"]))
+            out.append("<table><tr><th>Combination</th><th>D [m]</th><th>w_s [N/m]</th>"
+                       "<th>Allowable [m]</th><th>max |y| per seed [m]</th><th>Status</th>"
+                       "</tr>")  # fmt: skip
+            for n, b in dyn["base"].items():
+                ys = ", ".join(f"{y:.3g}" for y in b["max_displacement"])
+                out.append(
+                    f"<tr><td>{e(n)}</td><td>{b['diameter']:.4g}</td>"
+                    f"<td>{b['submerged_weight']:.4g}</td><td>{b['allowable']:.3g}</td>"
+                    f"<td>{ys}</td><td>{e(str(sorted(set(b['status']))))}</td></tr>"
+                )
+            out.append("</table>")
+            for n, b in dyn["base"].items():
+                if b.get("history"):
+                    out.append(_history_svg(n, b["history"], b["allowable"]))
+        if dyn.get("bisection"):
+            tr = "; ".join(f"{_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
+            out.append(
+                "<p class='note'>Bisection on the design variable (g = max over combinations"
+                f" and seeds of max |y| / allowable; pass at g ≤ 1): {e(tr)}.</p>"
+            )
+        if s["notes"]:
+            out.append("<h3>Notes</h3><ul>")
+            out += [f"<li class='note'>{e(n)}</li>" for n in s["notes"]]
+            out.append("</ul>")
+        out.append("</div>")
+    out.append("<h2 id='validity'>Assumptions and validity</h2><ul>")
+    out += [f"<li>{e(v)}</li>" for v in VALIDITY]
+    out.append("</ul><h2 id='clauses'>Clause references</h2><table>")
+    out += [f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in CLAUSES.items()]
+    out.append("</table><h2 id='provenance'>Provenance</h2><table>")
+    out += [f"<tr><td>{e(k)}</td><td>{e(str(v))}</td></tr>"
+            for k, v in payload["provenance"].items()]  # fmt: skip
+    out.append("</table></body></html>")
+    return "\n".join(out)
+
+
+def write_outputs(
+    a: Assessment, out: str | Path, *, case_text: str | None = None, pdf: bool = True
+) -> dict[str, Any]:
+    """Write results.json, dynamic.nc, report.html and (WeasyPrint installed) report.pdf into
+    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``."""
+    outp = Path(out)
+    payload = results_payload(a, case_text)
+    files = [write_text_atomic(outp / "results.json", json.dumps(payload, indent=1))]
+    ds = a.dynamic_dataset()
+    if ds.data_vars:
+        files.append(save_dataset(ds, outp / "dynamic.nc"))
+    text = report_html(a, payload)
+    files.append(write_text_atomic(outp / "report.html", text))
+    why = None
+    if pdf:
+        try:
+            from weasyprint import HTML  # optional: onbottom[pdf]
+        except (ImportError, OSError) as exc:
+            why = f"report.pdf not written: WeasyPrint is not available ({type(exc).__name__})"
+        else:
+            _atomic_write(outp / "report.pdf", lambda tmp: HTML(string=text).write_pdf(tmp))
+            files.append(outp / "report.pdf")
+    else:
+        why = "report.pdf not asked for"
+    return {"files": [str(f) for f in files], "pdf": why}
