@@ -347,3 +347,39 @@ class ParallelMap:
                 self.client.cancel(futures)
             raise
         return [x for batch in out for x in (batch or [])]
+
+
+def run_streamed(
+    job: Callable[[Any], Any],
+    todo: Sequence[Any],
+    keep: Callable[[Any, Any], None],
+    *,
+    n_workers: int | None = None,
+    scheduler: str | None = None,
+    client: Any = None,
+    progress: bool = False,
+    unit: str = "task",
+    batch_size: int | None = 1,
+) -> int:
+    """Run ``job`` on every item of ``todo`` and hand each result to ``keep(item, result)`` as
+    it finishes (so a caller can stream it to disk); returns the number of worker threads.
+
+    ``n_workers == 0`` without a scheduler or client runs in this process (with a tqdm bar when
+    ``progress``); otherwise on Dask (:func:`dask_client`, :class:`ParallelMap`). A
+    :class:`KeyboardInterrupt` propagates: the caller says what was kept.
+    """
+    if not todo:
+        return 1
+    if n_workers == 0 and scheduler is None and client is None:
+        it: Any = todo
+        if progress:
+            from tqdm.auto import tqdm
+
+            it = tqdm(todo, unit=unit)
+        for x in it:
+            keep(x, job(x))
+        return 1
+    with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
+        workers = max(1, sum(c.nthreads().values()))
+        ParallelMap(c, batch_size=batch_size, progress=progress, on_result=keep)(job, todo)
+    return workers

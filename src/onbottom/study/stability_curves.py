@@ -70,7 +70,6 @@ from onbottom.results import TaskStore, annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
 from onbottom.soil.verley_lund import VerleyLund
 from onbottom.soil.verley_sotberg import VerleySotberg
-from onbottom.study.engine import ParallelMap, dask_client
 
 __all__ = [
     "CRITERIA",
@@ -539,22 +538,19 @@ def stability_curves(
         if ts is not None and not row["error"]:  # an exception may be transient
             ts.put(_point_key(item), row)
 
-    workers = 1
-    try:
-        if not todo:
-            pass
-        elif n_workers == 0 and scheduler is None and client is None:
-            it = todo
-            if progress:
-                from tqdm.auto import tqdm
+    from onbottom.study.engine import run_streamed
 
-                it = tqdm(todo, unit="point")
-            for x in it:
-                keep(x, job(x))
-        else:
-            with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
-                workers = max(1, sum(c.nthreads().values()))
-                ParallelMap(c, batch_size=1, progress=progress, on_result=keep)(job, todo)
+    try:
+        workers = run_streamed(
+            job,
+            todo,
+            keep,
+            n_workers=n_workers,
+            scheduler=scheduler,
+            client=client,
+            progress=progress,
+            unit="point",
+        )
     except KeyboardInterrupt:
         raise RunInterrupted(
             _interrupted(

@@ -38,7 +38,6 @@ from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Storm
 from onbottom.results import TaskStore, annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
-from onbottom.study.engine import ParallelMap, dask_client
 
 __all__ = ["STATUS_ERROR", "SeedStudy", "run_storm_seeds", "seed_list"]
 
@@ -276,25 +275,20 @@ def run_storm_seeds(
         if ts is not None and row["status"] != STATUS_ERROR:  # an exception may be transient
             ts.put({"seed": int(seed)}, row)
 
-    try:
-        if not todo:
-            pass
-        elif n_workers == 0 and scheduler is None and client is None:
-            it = todo
-            if progress:
-                from tqdm.auto import tqdm
+    from onbottom.study.engine import run_streamed
 
-                it = tqdm(todo, unit="storm")
-            for x in it:
-                keep(x, job(x))
-        else:
-            with dask_client(client, scheduler_address=scheduler, n_workers=n_workers) as c:
-                ParallelMap(
-                    c,
-                    batch_size=1 if len(todo) < 64 else None,
-                    progress=progress,
-                    on_result=keep,
-                )(job, todo)
+    try:
+        run_streamed(
+            job,
+            todo,
+            keep,
+            n_workers=n_workers,
+            scheduler=scheduler,
+            client=client,
+            progress=progress,
+            unit="storm",
+            batch_size=1 if len(todo) < 64 else None,
+        )
     except KeyboardInterrupt:
         raise RunInterrupted(
             _interrupted(
