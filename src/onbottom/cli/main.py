@@ -30,6 +30,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "curves",
     "fourier_fit",
     "metocean",
+    "reliability",
 )
 """Modules of ``onbottom.cli`` that each define ``command``."""
 

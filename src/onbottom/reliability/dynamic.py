@@ -115,6 +115,9 @@ class ExceedanceEstimate:
         ``"FORM alpha^2 (seed frozen)"`` or ``"SRRC^2 (rank regression, first block)"``.
     design_point : dict of str to float
         FORM design point (importance sampling only).
+    upper_bound : bool
+        Subset simulation stopped at ``max_storms`` before its levels reached the limit:
+        ``probability`` is then an upper bound (the last level's), with no CV.
     """
 
     label: str
@@ -133,6 +136,7 @@ class ExceedanceEstimate:
     importance: dict[str, float] = field(default_factory=dict)
     importance_kind: str = ""
     design_point: dict[str, float] = field(default_factory=dict)
+    upper_bound: bool = False
 
     def to_dict(self) -> dict[str, Any]:
         """Plain numbers (JSON)."""
@@ -157,6 +161,7 @@ class ExceedanceEstimate:
             "importance": self.importance,
             "importance_kind": self.importance_kind,
             "design_point": self.design_point,
+            "upper_bound": self.upper_bound,
         }
 
 
@@ -323,17 +328,27 @@ def estimate_exceedance(
         algo.setMaximumOuterSampling(max(1, n_max // block))
         algo.setMaximumCoefficientOfVariation(target_cv)
         algo.setConvergenceStrategy(ot.Full())
-    algo.run()
-    r = algo.getResult()
-    p = float(r.getProbabilityEstimate())
-    cv = float(r.getCoefficientOfVariation()) if p > 0.0 else math.inf
+    bound = False
+    try:
+        algo.run()
+    except RuntimeError as exc:  # subset: the levels reached the minimum probability
+        if method != "subset" or "too small" not in str(exc):
+            raise
+        bound = True
+    if bound:  # P < the last level's probability: an upper bound, no CV
+        p = float(list(algo.getProbabilityEstimatePerStep())[-1])
+        cv = math.nan
+    else:
+        r = algo.getResult()
+        p = float(r.getProbabilityEstimate())
+        cv = float(r.getCoefficientOfVariation()) if p > 0.0 else math.inf
     if method == "subset":
         probs = list(algo.getProbabilityEstimatePerStep())
         thr = list(algo.getThresholdPerStep())
         for i, (pk, tk) in enumerate(zip(probs, thr, strict=True)):
             history.append((block * (i + 1), float(pk), math.nan))
             curve.append((float(limit * (1.0 - max(tk, 0.0))), float(pk)))
-        if history:
+        if history and not bound:
             history[-1] = (history[-1][0], history[-1][1], cv)
     else:
         h = algo.getConvergenceStrategy().getSample()
@@ -361,4 +376,5 @@ def estimate_exceedance(
         importance=importance,
         importance_kind=kind,
         design_point=design,
+        upper_bound=bound,
     )
