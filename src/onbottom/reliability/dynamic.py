@@ -250,8 +250,8 @@ def estimate_exceedance(
     target_cv : float
         Stop at this CV (Monte Carlo, importance sampling), in (0, 1].
     max_storms : int
-        Most storms of the estimate, in [10, 10⁹] (subset: the levels' count follows:
-        a level costs ``block_size``).
+        Most storms of the estimate, in [10, 10⁹] (subset: max(2, max_storms // block_size)
+        levels of ``block_size`` storms; the last level's probability bounds the estimate).
     block_size : int
         Storms per block (per level for subset simulation), in [10, 10⁶].
     seed : int
@@ -321,7 +321,8 @@ def estimate_exceedance(
     else:
         algo = ot.SubsetSampling(event)
         algo.setConditionalProbability(0.1)
-        algo.setMinimumProbability(0.1 ** max(1, n_max // block))
+        # openturns runs one level past the minimum probability: L levels = max_storms/block
+        algo.setMinimumProbability(0.1 ** max(1, n_max // block - 1))
         algo.setMaximumOuterSampling(1)  # block_size storms per level
     algo.setBlockSize(block)
     if method != "subset":
