@@ -4,10 +4,11 @@ workers, parallel efficiency, memory, and the extrapolated cost of 10⁵ and 10�
 The storms are those of ``examples/reliability_case.toml`` (1 h peak, 0.25 h build-up, a
 Verley & Sotberg sand, sea states from the synthetic hindcast's storm climate), drawn by Monte
 Carlo and run through :class:`onbottom.reliability.campaign.Campaign` (Zarr store, task
-identity, bounded tasks in flight) — the path of ``onbottom reliability``. Each configuration
-starts from an empty store. The peak resident memory of this process (the scheduler side: the
-workers are separate processes) is read after each configuration, and the store's size on
-disk per storm.
+identity, bounded tasks in flight) — the path of ``onbottom reliability`` — in two blocks.
+Each configuration starts from an empty store. The resident memory of this process (the
+client side: the workers are separate processes) is read before, after the first half and
+after all storms (flat: it does not grow with the storms run), and the store's size on disk
+per storm.
 
     python benchmarks/reliability_campaign.py [--storms N] [--task-size K]
 
@@ -20,7 +21,6 @@ where one task of K storms costs one scheduler round trip, ≈ 1 ms, against K·
 from __future__ import annotations
 
 import argparse
-import resource
 import shutil
 import tempfile
 import time
@@ -70,21 +70,32 @@ def main() -> None:
     x, seeds = rows(model, params, a.storms, 0)
     warm = Campaign(model, Path(tempfile.mkdtemp()) / "w.zarr", n_workers=0)
     warm.evaluate(x[:1], seeds[:1] + 10**9)  # numba compile in this process
+    import psutil
+
+    me = psutil.Process()
     rate = {}
     for workers in (1, 2):
         tmp = Path(tempfile.mkdtemp())
         with Campaign(model, tmp / "s.zarr", n_workers=workers, task_size=a.task_size) as c:
             c.evaluate(x[:workers], seeds[:workers] + 10**9)  # start and compile the workers
+            rss0 = me.memory_info().rss
             t0 = time.perf_counter()
-            c.evaluate(x, seeds)
+            half = a.storms // 2
+            for lo, hi in ((0, half), (half, a.storms)):  # blocks, as an estimator asks
+                c.evaluate(x[lo:hi], seeds[lo:hi])
+                if lo == 0:
+                    rss_half = me.memory_info().rss
             dt = time.perf_counter() - t0
+            rss1 = me.memory_info().rss
         size = sum(f.stat().st_size for f in (tmp / "s.zarr").rglob("*") if f.is_file())
-        rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
         rate[workers] = a.storms / dt
+        mib = 1024.0**2
         print(
             f"{workers} worker(s): {a.storms} storms in {dt:.1f} s = {rate[workers]:.2f} storms/s;"
             f" compute {c.stats.compute_seconds / c.stats.computed:.3f} s/storm in the workers;"
-            f" store {size / a.storms:.0f} B/storm; peak RSS here {rss:.0f} MiB"
+            f" store {size / a.storms:.0f} B/storm; RSS of this process {rss0 / mib:.0f} MiB"
+            f" before, {rss_half / mib:.0f} after {half} storms, {rss1 / mib:.0f} after"
+            f" {a.storms}"
         )
         shutil.rmtree(tmp, ignore_errors=True)
     eff = rate[2] / (2.0 * rate[1])

@@ -36,6 +36,7 @@ exceedances (conservative) and are counted in ``failed_runs``.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -321,8 +322,9 @@ def estimate_exceedance(
     else:
         algo = ot.SubsetSampling(event)
         algo.setConditionalProbability(0.1)
-        # openturns runs one level past the minimum probability: L levels = max_storms/block
-        algo.setMinimumProbability(0.1 ** max(1, n_max // block - 1))
+        # L = max_storms/block levels: openturns stops once the level probability 0.1^k falls
+        # below the minimum; half of 0.1^(L-1) stops after level L (away from round-off ties)
+        algo.setMinimumProbability(0.5 * 0.1 ** (max(2, n_max // block) - 1))
         algo.setMaximumOuterSampling(1)  # block_size storms per level
     algo.setBlockSize(block)
     if method != "subset":
@@ -336,9 +338,17 @@ def estimate_exceedance(
         if method != "subset" or "too small" not in str(exc):
             raise
         bound = True
-    if bound:  # P < the last level's probability: an upper bound, no CV
-        p = float(list(algo.getProbabilityEstimatePerStep())[-1])
-        cv = math.nan
+    if bound:
+        probs = list(algo.getProbabilityEstimatePerStep())
+        p = float(probs[-1])
+        if float(list(algo.getThresholdPerStep())[-1]) <= 0.0:
+            # the last level reached the limit (openturns stops on p < minimum even then):
+            # an estimate, with the CV of independent levels (Au & Beck 2001, Eq. 18, γ = 0)
+            bound = False
+            cond = [probs[0]] + [b / a for a, b in itertools.pairwise(probs)]
+            cv = math.sqrt(sum((1.0 - q) / (q * block) for q in cond if q > 0.0))
+        else:  # P < the last level's probability: an upper bound, no CV
+            cv = math.nan
     else:
         r = algo.getResult()
         p = float(r.getProbabilityEstimate())
