@@ -19,8 +19,8 @@ integer seed is ⌊S·2³¹⌋. g is then a deterministic function of (X, S), an
 * importance sampling centres a unit normal on (u*_X, 0): u_S keeps its own distribution, so its
   weight factor is 1 and the estimator stays unbiased. The design point u*_X comes from FORM on
   the continuous inputs with the seed **frozen** (common random numbers: one storm realisation,
-  which makes g continuous in X). A poor u*_X costs efficiency (a larger CV, reported), never
-  bias;
+  which makes g continuous in X) or, when FORM fails, the failing storm nearest the origin of a
+  pilot Monte Carlo sample. A poor u*_X costs efficiency (a larger CV, reported), never bias;
 * FORM alone is not offered for the dynamic limit state: with the seed frozen it answers for
   one realisation of the phases, not for the storm.
 
@@ -113,7 +113,8 @@ class ExceedanceEstimate:
     importance : dict of str to float
         Sensitivity of the result to each input (see ``importance_kind``).
     importance_kind : str
-        ``"FORM alpha^2 (seed frozen)"`` or ``"SRRC^2 (rank regression, first block)"``.
+        ``"FORM alpha^2 (seed frozen)"``, ``"SRRC^2 (rank regression, first block)"`` or,
+        when FORM fails, ``"pilot centre u_i^2/|u|^2 (FORM did not converge)"``.
     design_point : dict of str to float
         FORM design point (importance sampling only).
     upper_bound : bool
@@ -219,6 +220,23 @@ class _LimitState:
         return np.where(np.isfinite(g), g, -1.0)
 
 
+def _pilot_centre(ls: _LimitState, cont, n: int, seed: int) -> tuple[list[float], int]:
+    """Importance sampling's centre when FORM fails: of ``n`` Monte Carlo storms (seed free),
+    the failing one nearest the origin in the standard space of X (Melchers & Beck 2018 §5.4:
+    a design-point estimate from samples); the origin when none fails."""
+    rng = np.random.default_rng([seed, 7])
+    d = cont.getDimension()
+    u = rng.standard_normal((n, d))
+    x = np.asarray(cont.getInverseIsoProbabilisticTransformation()(u))
+    s = rng.uniform(size=(n, 1))
+    g = ls(np.hstack([x, s]))
+    fail = np.flatnonzero(g <= 0.0)
+    if not fail.size:
+        return [0.0] * d, n
+    k = fail[np.argmin(np.sum(u[fail] ** 2, axis=1))]
+    return [float(v) for v in u[k]], n
+
+
 def estimate_exceedance(
     campaign: Campaign,
     parameters: Sequence[UncertainParameter],
@@ -298,20 +316,35 @@ def estimate_exceedance(
 
     event = make_event(ls, allp)
     if method == "importance":
-        frozen = _LimitState(campaign, limit, frozen_seed=_SEED_SPAN // 2)
-        form = estimate_failure_probability(
-            frozen,
-            list(parameters),
-            method="form",
-            form_max_calls=integer("form_storms", form_storms, 10, 10**5),
-            form_tolerance=1e-3,
-            form_strict=False,
-        )
-        importance, design = form.importance, form.design_point
-        form_calls = frozen.calls
-        kind = "FORM alpha^2 (seed frozen)"
         cont = ot.JointDistribution([p.openturns() for p in parameters])
-        u_x = list(cont.getIsoProbabilisticTransformation()([design[n] for n in names]))
+        n_form = integer("form_storms", form_storms, 10, 10**5)
+        frozen = _LimitState(campaign, limit, frozen_seed=_SEED_SPAN // 2)
+        try:
+            form = estimate_failure_probability(
+                frozen,
+                list(parameters),
+                method="form",
+                form_max_calls=n_form,
+                form_tolerance=1e-3,
+                form_strict=False,
+            )
+        except RuntimeError:  # the optimiser's point is off g = 0: a pilot sample instead
+            form = None
+        form_calls = frozen.calls
+        if form is not None:
+            importance, design = form.importance, form.design_point
+            kind = "FORM alpha^2 (seed frozen)"
+            u_x = list(cont.getIsoProbabilisticTransformation()([design[n] for n in names]))
+        else:
+            u_x, pilot = _pilot_centre(ls, cont, n_form, seed)
+            form_calls += pilot
+            norm2 = sum(v * v for v in u_x)
+            if norm2 > 0.0:
+                importance = {n: v * v / norm2 for n, v in zip(names, u_x, strict=True)}
+            kind = "pilot centre u_i^2/|u|^2 (FORM did not converge)"
+            design = dict(
+                zip(names, cont.getInverseIsoProbabilisticTransformation()(u_x), strict=True)
+            )
         ot.RandomGenerator.SetSeed(seed)
         inst = ot.Normal(ot.Point([*u_x, 0.0]), ot.CovarianceMatrix(len(allp)))
         algo = ot.ProbabilitySimulationAlgorithm(
