@@ -211,3 +211,18 @@ def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
     # H_s drives the response more than μ; the seed's share is substantial
     assert mc.importance["hs"] > mc.importance["friction_coefficient"]
     assert mc.importance["storm_seed and interactions"] > 0.05
+
+
+def test_a_store_killed_while_being_created_starts_afresh_and_a_foreign_group_is_kept(tmp_path):
+    import zarr
+
+    half = tmp_path / "half.zarr"
+    zarr.open_group(str(half), mode="w").create_array("inputs", shape=(0, 2), dtype="float64")
+    with Campaign(FrictionModel(), half, n_workers=0) as c:  # no attributes yet: recreated
+        c.evaluate(np.array([[0.6, 400.0]]), np.array([1]))
+    assert len(ResultStore(half, FrictionModel().identity(), ("a", "b"), ("y",))) == 1
+    other = tmp_path / "other.zarr"
+    zarr.open_group(str(other), mode="w").create_array("data", shape=(3,), dtype="float64")
+    with pytest.raises(Exception, match="not an onbottom campaign store"):
+        Campaign(FrictionModel(), other, n_workers=0)
+    assert "data" in zarr.open_group(str(other), mode="r")

@@ -64,6 +64,7 @@ STATUS_RAISED = -9
 """Status of a run whose model raised an exception (recorded, never fatal)."""
 
 _FORMAT = "onbottom-campaign-1"
+_ARRAYS = ("inputs", "seed", "outputs", "status", "task", "task_key", "task_start", "task_rows")
 
 
 class CampaignModel(Protocol):
@@ -152,6 +153,10 @@ class ResultStore:
         chunk = integer("chunk_rows", chunk_rows, 64, 10**6)
         d, k = len(self.input_names), len(self.output_names)
         fresh = not (self.path / "zarr.json").exists()
+        if not fresh:  # a kill while this store was being created: no attributes yet, and
+            # only (some of) its arrays — anything else is not overwritten
+            g0 = zarr.open_group(str(self.path), mode="r")
+            fresh = not dict(g0.attrs) and set(g0.keys()) <= set(_ARRAYS)
         if fresh:
             self.path.mkdir(parents=True, exist_ok=True)
             g = zarr.open_group(str(self.path), mode="w")
