@@ -30,7 +30,7 @@ ALLOWED: dict[str, set[str]] = {
     "dynamics": BASE | {"inputs", "hydro", "soil"},
     "dem": BASE,  # never soil/ or hydro/
     "metocean": BASE | {"inputs"},  # hindcast statistics: no physics of the pipe
-    # reliability: estimators now; the storm campaign (dynamics, study, metocean) to come
+    # reliability: estimators, the storm campaign (dynamics, study, metocean)
     "reliability": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "metocean"},
     "study": BASE | {"inputs", "hydro", "soil", "dynamics", "checks"},
     "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},

@@ -81,6 +81,14 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "assess",
         "On-bottom stability of a whole route (CASE: route TOML; none: the embedded example).",
     ),
+    "reliability": (
+        "reliability",
+        "Long-term reliability of CASE (a storm case with a [reliability] table; see "
+        "examples/reliability_case.toml and docs/theory/reliability.md): P[max lateral "
+        "displacement in a storm > limit] per storm, year and design life, with its CV "
+        "and the importance of the inputs; the response-based design on an environmental "
+        "contour.",
+    ),
 }
 """Command name → (module of ``onbottom.cli`` defining it as ``command``, its short help).
 

@@ -1,20 +1,31 @@
-"""onbottom.reliability — probability that a pipe exceeds a limit (issue 34, items 3 and 6).
+"""onbottom.reliability — probability that a pipe exceeds a limit (issue 34, items 2–6).
 
-So far: uncertain inputs (:mod:`~onbottom.reliability.distributions`) and the estimators of a
+Uncertain inputs (:mod:`~onbottom.reliability.distributions`) and the estimators of a
 failure probability with openturns — Monte Carlo, FORM, importance sampling at the FORM design
 point, subset simulation — with their coefficients of variation and FORM importance factors
 (:mod:`~onbottom.reliability.estimators`), verified on closed-form limit states, and the storm
-climate of a hindcast as standard normal inputs (:mod:`~onbottom.reliability.climate`). The campaign
-over storms (Dask, Zarr, resume) is still to come. openturns is the optional extra
-``onbottom[reliability]``, imported only when an estimate runs. Theory:
+climate of a hindcast as standard normal inputs (:mod:`~onbottom.reliability.climate`); the
+dynamic limit state of a storm on a pipe section with the seed as an input
+(:mod:`~onbottom.reliability.dynamic`, :mod:`~onbottom.reliability.storm_model`), run as a
+campaign on Dask streamed to a resumable Zarr store (:mod:`~onbottom.reliability.campaign`),
+the response-based design on an environmental contour (:mod:`~onbottom.reliability.design`)
+and the case files of ``onbottom reliability`` (:mod:`~onbottom.reliability.case`,
+:mod:`~onbottom.reliability.run`). openturns and zarr are is the optional extra
+``onbottom[reliability]``, imported only when an estimate or a store is made. Theory:
 ``docs/theory/reliability.md``.
 """
 
+from onbottom.reliability.campaign import Campaign, ResultStore
 from onbottom.reliability.climate import StormClimate
 from onbottom.reliability.distributions import (
     DISTRIBUTIONS,
     UncertainParameter,
     parameter_from_table,
+)
+from onbottom.reliability.dynamic import (
+    DYNAMIC_METHODS,
+    ExceedanceEstimate,
+    estimate_exceedance,
 )
 from onbottom.reliability.estimators import (
     METHODS,
@@ -22,13 +33,20 @@ from onbottom.reliability.estimators import (
     estimate_failure_probability,
     lifetime_probability,
 )
+from onbottom.reliability.storm_model import StormModel
 
 __all__ = [
     "DISTRIBUTIONS",
+    "DYNAMIC_METHODS",
     "METHODS",
+    "Campaign",
+    "ExceedanceEstimate",
     "FailureProbability",
+    "ResultStore",
     "StormClimate",
+    "StormModel",
     "UncertainParameter",
+    "estimate_exceedance",
     "estimate_failure_probability",
     "lifetime_probability",
     "parameter_from_table",

@@ -1,0 +1,110 @@
+"""Throughput of the reliability campaign (issue 34 item 4): storms per second on 1 and 2 Dask
+workers, parallel efficiency, memory, and the extrapolated cost of 10⁵ and 10⁷ storms.
+
+The storms are those of ``examples/reliability_case.toml`` (1 h peak, 0.25 h build-up, a
+Verley & Sotberg sand, sea states from the synthetic hindcast's storm climate), drawn by Monte
+Carlo and run through :class:`onbottom.reliability.campaign.Campaign` (Zarr store, task
+identity, bounded tasks in flight) — the path of ``onbottom reliability`` — in two blocks.
+Each configuration starts from an empty store. The resident memory of this process (the
+client side: the workers are separate processes) is read before, after the first half and
+after all storms (flat: it does not grow with the storms run), and the store's size on disk
+per storm.
+
+    python benchmarks/reliability_campaign.py [--storms N] [--task-size K]
+
+N defaults to 10⁵ (the issue's figure); on a loaded 2-core machine use a few hundred and read
+the extrapolation. Cost model: T(N, W) = N·t_storm/(W·e) with t_storm the measured seconds per
+storm on one worker and e the measured efficiency (assumed to hold on a cluster of W workers,
+where one task of K storms costs one scheduler round trip, ≈ 1 ms, against K·t_storm).
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from onbottom.reliability.campaign import Campaign
+from onbottom.reliability.case import load_reliability_case
+from onbottom.reliability.climate import StormClimate
+from onbottom.reliability.dynamic import seeds_from_uniform
+from onbottom.reliability.storm_model import StormModel
+
+CASE = Path(__file__).resolve().parents[1] / "examples" / "reliability_case.toml"
+
+
+def rows(model: StormModel, params, n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    cols = []
+    for p in params:
+        if p.name.startswith("u_"):
+            cols.append(rng.standard_normal(n))
+        else:
+            d = p.openturns()
+            cols.append(np.asarray(d.getSample(n)).reshape(-1))
+    return np.column_stack(cols), seeds_from_uniform(rng.uniform(size=n))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--storms", type=int, default=100_000)
+    ap.add_argument("--task-size", type=int, default=4)
+    a = ap.parse_args()
+    from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
+
+    setup = load_reliability_case(CASE)
+    res = analyse_hindcast(read_hindcast(setup.hindcast_path()), MetoceanOptions(sectors=1))
+    climate = StormClimate.from_result(res)
+    user = setup.inputs()
+    model = StormModel(
+        setup.storm,
+        inputs=tuple(p.name for p in user),
+        climate=climate,
+        soil_kind=setup.seabed_model,
+    )
+    params = climate.parameters() + user
+    x, seeds = rows(model, params, a.storms, 0)
+    warm = Campaign(model, Path(tempfile.mkdtemp()) / "w.zarr", n_workers=0)
+    warm.evaluate(x[:1], seeds[:1] + 10**9)  # numba compile in this process
+    import psutil
+
+    me = psutil.Process()
+    rate = {}
+    for workers in (1, 2):
+        tmp = Path(tempfile.mkdtemp())
+        with Campaign(model, tmp / "s.zarr", n_workers=workers, task_size=a.task_size) as c:
+            c.evaluate(x[:workers], seeds[:workers] + 10**9)  # start and compile the workers
+            rss0 = me.memory_info().rss
+            t0 = time.perf_counter()
+            half = a.storms // 2
+            for lo, hi in ((0, half), (half, a.storms)):  # blocks, as an estimator asks
+                c.evaluate(x[lo:hi], seeds[lo:hi])
+                if lo == 0:
+                    rss_half = me.memory_info().rss
+            dt = time.perf_counter() - t0
+            rss1 = me.memory_info().rss
+        size = sum(f.stat().st_size for f in (tmp / "s.zarr").rglob("*") if f.is_file())
+        rate[workers] = a.storms / dt
+        mib = 1024.0**2
+        print(
+            f"{workers} worker(s): {a.storms} storms in {dt:.1f} s = {rate[workers]:.2f} storms/s;"
+            f" compute {c.stats.compute_seconds / c.stats.computed:.3f} s/storm in the workers;"
+            f" store {size / a.storms:.0f} B/storm; RSS of this process {rss0 / mib:.0f} MiB"
+            f" before, {rss_half / mib:.0f} after {half} storms, {rss1 / mib:.0f} after"
+            f" {a.storms}"
+        )
+        shutil.rmtree(tmp, ignore_errors=True)
+    eff = rate[2] / (2.0 * rate[1])
+    print(f"efficiency 1 -> 2 workers: {eff:.2f}")
+    t1 = 1.0 / rate[1]
+    for n, w in ((10**5, 2), (10**7, 2), (10**7, 256), (10**7, 2048)):
+        hours = n * t1 / (w * eff) / 3600.0
+        print(f"extrapolated: {n:.0e} storms on {w} workers ~ {hours:.3g} h")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,206 @@
+"""``onbottom reliability CASE.toml``: the probability that a pipe section's lateral
+displacement in a storm exceeds a limit, per storm, year and design life, from a campaign of
+storm runs on Dask (:mod:`onbottom.reliability`); with ``[reliability.design]``, the
+response-based design displacement on an IFORM contour against F109's return-period storm.
+
+Writes into ``--out`` (default: ``<case stem>_reliability`` beside the case):
+``campaign.zarr`` and ``design.zarr`` (every storm run; a rerun after a kill resumes from
+them), ``reliability.json`` (the ``--json`` payload), ``exceedance.png``, ``convergence.png``,
+``importance.png`` and ``design.png``.
+
+``--json`` keys: ``success`` (false when a storm run failed numerically: exit status 3),
+``case``, ``out``, ``diameter`` [m], ``storms_per_year``, ``inputs`` (names of the random
+inputs, the storm seed last), ``climate`` (hindcast, rate, threshold, gpd_scale, gpd_shape,
+sectors, sector_frequencies), ``estimates`` (per limit: ``label``, ``limit`` [m],
+``probability`` (per storm), ``cv``, ``method``, ``storms``, ``computed``, ``failed_runs``,
+``annual``, ``lifetime``, ``reliability_index``, ``history`` ([storms, probability, cv]),
+``curve`` ([displacement m, probability]), ``importance``, ``importance_kind``,
+``design_point``, ``upper_bound``), ``design`` (``return_period``, ``fractile``, ``points``,
+``governing``, ``design_displacement`` [m], ``f109``) or null, ``campaign`` (``requested``,
+``computed``, ``reused``, ``failed``, ``seconds_per_storm``), ``files``, ``notes``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from onbottom.cli._common import EXIT_INVALID_RESULT, Number, emit_json, handle_errors, json_option
+
+__all__ = ["command", "run_case"]
+
+
+def run_case(
+    case: Path,
+    out: Path | None,
+    *,
+    n_workers: int | None,
+    scheduler: str | None,
+    progress: bool,
+    figures: bool = True,
+) -> dict:
+    """Run the case and write the outputs; returns the JSON payload."""
+    import importlib.util
+    import math
+
+    from onbottom.errors import InputError
+
+    missing = [m for m in ("openturns", "zarr") if importlib.util.find_spec(m) is None]
+    if missing:
+        raise InputError(
+            f"onbottom reliability needs the optional package(s) {', '.join(missing)}:"
+            " pip install 'onbottom[reliability,metocean]'"
+        )
+    from onbottom.reliability.case import load_reliability_case
+    from onbottom.reliability.run import planned_storms, run_reliability
+    from onbottom.results import write_text_atomic
+
+    setup = load_reliability_case(case)
+    out = out if out is not None else case.resolve().parent / f"{case.stem}_reliability"
+    if out.exists() and not out.is_dir():
+        err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
+        err.field = "--out"  # type: ignore[attr-defined]
+        raise err
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=planned_storms(setup), unit="storm", desc="reliability")
+    try:
+        r = run_reliability(
+            setup,
+            out,
+            n_workers=n_workers,
+            scheduler=scheduler,
+            progress=bar.update if bar else None,
+        )
+    finally:
+        if bar is not None:
+            bar.close()
+    stats = [s for s in (r.stats, r.design_stats) if s is not None]
+    computed = sum(s.computed for s in stats)
+    files = [str(out / "campaign.zarr")] + ([str(out / "design.zarr")] if r.design else [])
+    if figures:
+        import matplotlib.pyplot as plt
+
+        from onbottom.plotting.reliability import (
+            plot_convergence,
+            plot_design,
+            plot_exceedance,
+            plot_importance,
+        )
+
+        figs = [
+            ("exceedance.png", plot_exceedance(r.estimates, r.diameter, title=case.name)),
+            ("convergence.png", plot_convergence(r.estimates)),
+            ("importance.png", plot_importance(r.estimates)),
+        ]
+        if r.design is not None:
+            figs.append(("design.png", plot_design(r.design, r.diameter)))
+        for name, fig in figs:
+            fig.savefig(out / name, dpi=110)
+            plt.close(fig)
+            files.append(str(out / name))
+    failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
+    payload = {
+        "success": failed == 0,
+        "case": str(case),
+        "out": str(out),
+        "diameter": r.diameter,
+        "storms_per_year": r.storms_per_year,
+        "inputs": [*r.inputs, "storm_seed"],
+        "climate": r.climate,
+        "estimates": [e.to_dict() for e in r.estimates],
+        "design": None if r.design is None else r.design.to_dict(),
+        "campaign": {
+            "requested": sum(s.requested for s in stats),
+            "computed": computed,
+            "reused": sum(s.reused for s in stats),
+            "failed": sum(s.failed for s in stats),
+            "seconds_per_storm": (
+                sum(s.compute_seconds for s in stats) / computed if computed else math.nan
+            ),
+        },
+        "files": [*files, str(out / "reliability.json")],
+        "notes": r.notes,
+    }
+    import json
+
+    from onbottom.cli._common import _jsonable
+
+    write_text_atomic(out / "reliability.json", json.dumps(_jsonable(payload), indent=1))
+    return payload
+
+
+@click.command("reliability")
+@click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
+@click.option(
+    "--out",
+    "out",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="Folder for the stores, figures and reliability.json (resumed if it holds a store).",
+)
+@click.option(
+    "--workers",
+    type=Number(int, min=0, max=4096),
+    default=None,
+    help="Worker processes of the local Dask cluster (default: one per core; 0: this process).",
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    help="Address of a running Dask scheduler (tcp://host:8786) instead of a local cluster.",
+)
+@click.option("--no-figures", is_flag=True, help="Skip the figures.")
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+@json_option
+@handle_errors
+def command(
+    case: Path,
+    out: Path | None,
+    workers: int | None,
+    scheduler: str | None,
+    no_figures: bool,
+    no_progress: bool,
+    as_json: bool,
+) -> None:
+    """Long-term reliability of CASE (a storm case with a [reliability] table; see
+    examples/reliability_case.toml and docs/theory/reliability.md): P[max lateral displacement
+    in a storm > limit] per storm, year and design life, with its CV and the importance of the
+    inputs; the response-based design on an environmental contour.
+    """
+    payload = run_case(
+        case,
+        out,
+        n_workers=workers,
+        scheduler=scheduler,
+        progress=not no_progress,
+        figures=not no_figures,
+    )
+    if as_json:
+        emit_json(payload)
+    else:
+        click.echo(f"{payload['case']}: {payload['storms_per_year']:.3g} storms/year")
+        for e in payload["estimates"]:
+            cv = "bound" if e["upper_bound"] else f"CV {e['cv']:.2f}" if e["cv"] else "CV -"
+            click.echo(
+                f"  P[Y > {e['label']}] per storm {e['probability']:.3g} ({cv}, {e['method']},"
+                f" {e['storms']} storms); per year {e['annual']:.3g}; life {e['lifetime']:.3g}"
+            )
+            imp = ", ".join(f"{k} {v:.2f}" for k, v in e["importance"].items())
+            click.echo(f"    importance ({e['importance_kind']}): {imp}")
+        d = payload["design"]
+        if d is not None:
+            g, f = d["governing"], d["f109"]
+            click.echo(
+                f"  design ({d['return_period']:g} years, {d['fractile']:g} fractile):"
+                f" {d['design_displacement']:.3g} m at H_s {g['hs']:.2f} m, T_p {g['tp']:.1f} s;"
+                f" F109 storm (H_s {f['hs']:.2f} m, T_p {f['tp']:.1f} s): {f['fractile']:.3g} m"
+            )
+        for n in payload["notes"]:
+            click.echo(f"  note: {n}")
+        click.echo(f"  wrote {payload['out']}")
+    if not payload["success"]:
+        raise click.exceptions.Exit(EXIT_INVALID_RESULT)

@@ -1,0 +1,186 @@
+"""Run a reliability case: the climate, the exceedance estimates per limit, the design.
+
+:func:`run_reliability` is what ``onbottom reliability`` calls; it writes the campaign stores
+``campaign.zarr`` (the long-term estimates) and ``design.zarr`` (the contour runs) into the
+output folder, so a rerun of the same case after a kill resumes where it stopped.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from onbottom.reliability.campaign import Campaign, CampaignStats
+from onbottom.reliability.case import ReliabilitySetup
+from onbottom.reliability.design import DesignResult, response_based_design
+from onbottom.reliability.dynamic import ExceedanceEstimate, estimate_exceedance
+from onbottom.reliability.storm_model import StormModel
+
+__all__ = ["ReliabilityRun", "run_reliability"]
+
+
+@dataclass
+class ReliabilityRun:
+    """What :func:`run_reliability` found."""
+
+    estimates: list[ExceedanceEstimate]
+    design: DesignResult | None
+    storms_per_year: float
+    diameter: float
+    inputs: list[str]
+    stats: CampaignStats
+    design_stats: CampaignStats | None
+    climate: dict[str, Any] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+
+def run_reliability(
+    setup: ReliabilitySetup,
+    out: Path,
+    *,
+    n_workers: int | None = None,
+    scheduler: str | None = None,
+    progress: Callable[[int], None] | None = None,
+) -> ReliabilityRun:
+    """Estimate every limit of the case and, with ``[reliability.design]``, the design."""
+    t = setup.table
+    climate = None
+    result = None
+    info: dict[str, Any] = {}
+    if t.climate is not None:
+        from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
+        from onbottom.reliability.climate import StormClimate
+
+        rps = {1.0, 10.0, 100.0}
+        if t.design is not None:
+            rps.add(float(t.design.return_period))
+        result = analyse_hindcast(
+            read_hindcast(setup.hindcast_path()),
+            MetoceanOptions(
+                sectors=t.climate.sectors,
+                return_periods=tuple(sorted(rps)),
+                storm_rate=t.climate.storm_rate,
+            ),
+        )
+        climate = StormClimate.from_result(result)
+        info = {
+            "hindcast": str(setup.hindcast_path()),
+            "rate": climate.rate,
+            "threshold": climate.threshold,
+            "gpd_scale": climate.gpd_scale,
+            "gpd_shape": climate.gpd_shape,
+            "sectors": list(climate.sectors),
+            "sector_frequencies": list(climate.sector_frequencies),
+        }
+    rate = climate.rate if climate is not None else float(t.storms_per_year)
+    user = setup.inputs()
+    model = StormModel(
+        setup.storm,
+        inputs=tuple(p.name for p in user),
+        climate=climate,
+        pipe_heading_deg=t.climate.pipe_heading_deg if t.climate else 0.0,
+        soil_kind=setup.seabed_model,
+    )
+    params = (climate.parameters() if climate is not None else []) + user
+    out.mkdir(parents=True, exist_ok=True)
+    estimates = []
+    notes: list[str] = []
+    with Campaign(
+        model,
+        out / "campaign.zarr",
+        task_size=t.task_size,
+        n_workers=n_workers,
+        scheduler=scheduler,
+        progress=progress,
+    ) as camp:
+        for label, limit in setup.limits():
+            estimates.append(
+                estimate_exceedance(
+                    camp,
+                    params,
+                    limit,
+                    label=label,
+                    method=t.method,
+                    target_cv=t.target_cv,
+                    max_storms=t.max_storms,
+                    block_size=t.block_size,
+                    seed=t.seed,
+                    storms_per_year=rate,
+                    design_life_years=t.design_life_years,
+                    form_storms=t.form_storms,
+                )
+            )
+        stats = camp.stats
+        fails = camp.store.failures()
+    if fails:
+        notes.append(f"{len(fails)} storm runs raised (counted as exceedances); see the store")
+    for e in estimates:
+        if e.method != "subset" and e.cv > t.target_cv:
+            notes.append(f"{e.label}: CV {e.cv:.2f} above the target {t.target_cv:g} at max_storms")
+    design = None
+    dstats = None
+    if t.design is not None and result is not None:
+        from onbottom.metocean.joint import iform_contour
+
+        d = t.design
+        peak_h = setup.storm.storm.stages[0].duration_s / 3600.0
+        contour = iform_contour(result.joint, d.return_period, peak_h, d.contour_points)
+        omni = result.hs["omni"]
+        hs_r = float(omni.value[list(omni.return_periods).index(float(d.return_period))])
+        tp_r = float(result.joint.tp_quantile(hs_r, 0.5))
+        fixed = [p for p in user if p.name not in ("hs", "tp")]
+        dmodel = StormModel(
+            setup.storm,
+            inputs=("hs", "tp", *(p.name for p in fixed)),
+            soil_kind=setup.seabed_model,
+        )
+        with Campaign(
+            dmodel,
+            out / "design.zarr",
+            task_size=1,
+            n_workers=n_workers,
+            scheduler=scheduler,
+            progress=progress,
+        ) as dc:
+            design = response_based_design(
+                dc,
+                {p.name: p.mean() for p in fixed},
+                contour,
+                (hs_r, tp_r),
+                return_period=d.return_period,
+                seeds=d.seeds,
+                top_points=d.top_points,
+                top_seeds=d.top_seeds,
+                fractile=d.fractile,
+            )
+            dstats = dc.stats
+    return ReliabilityRun(
+        estimates=estimates,
+        design=design,
+        storms_per_year=rate,
+        diameter=model.diameter,
+        inputs=[p.name for p in params],
+        stats=stats,
+        design_stats=dstats,
+        climate=info,
+        notes=notes,
+    )
+
+
+def planned_storms(setup: ReliabilitySetup) -> int:
+    """An upper estimate of the storms a case runs (progress bar total)."""
+    t = setup.table
+    n = len(t.limits) * t.max_storms
+    if t.method == "importance":
+        n += len(t.limits) * t.form_storms
+    if t.design is not None:
+        d = t.design
+        n += d.contour_points * d.seeds + d.top_points * d.top_seeds + d.top_seeds
+    return int(n)
+
+
+def _finite(v: float) -> float | None:
+    return float(v) if math.isfinite(v) else None

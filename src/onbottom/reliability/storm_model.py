@@ -1,0 +1,230 @@
+"""One storm on a pipe section as a campaign model: inputs → maximum lateral displacement.
+
+:class:`StormModel` maps a row of inputs and a seed to one run of
+:func:`onbottom.dynamics.storm_section.simulate_storm_section` (summary only). The row holds,
+in :attr:`StormModel.input_names` order:
+
+* the sea state: with a storm climate (:class:`~onbottom.reliability.climate.StormClimate`),
+  its standard normal ``u_hs``, ``u_tp`` (and ``u_direction``: the sector, whose centre minus
+  ``pipe_heading_deg`` is the wave direction to the pipe axis, the convention of
+  ``onbottom metocean``'s case tables); without one, ``hs`` [m] and ``tp`` [s] themselves;
+* any of :data:`PHYSICAL_INPUTS`: ``direction_deg`` (waves to the pipe axis [deg]),
+  ``current_velocity`` [m/s] (at the case's reference height), ``current_direction_deg``
+  [deg], ``friction_coefficient`` [-], ``submerged_unit_weight`` [N/m³] (sand and clay: the
+  soil model is rebuilt from the seabed with the drawn values).
+
+Everything else comes from the storm case (``StormSetup``): pipe, soil model kind, water depth,
+roughness, force model, reductions, solver settings, and the storm's shape (build-up, peak and
+decay durations, spectrum, γ, spreading). The peak sea state is the drawn one.
+
+Outputs: ``max_displacement``, ``final_displacement`` [m], the sea state used (``hs`` [m],
+``tp`` [s], ``direction_deg`` [deg], ``current_velocity`` [m/s]), ``max_penetration`` [m],
+``n_steps``; status as the solver's (1 end, 2 runaway stop, 3 lift-off stop, < 0 numerical).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import pickle
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from onbottom._version import __version__
+from onbottom.errors import InputError
+from onbottom.reliability.climate import StormClimate
+
+__all__ = ["PHYSICAL_INPUTS", "StormModel"]
+
+PHYSICAL_INPUTS: dict[str, str] = {
+    "hs": "m",
+    "tp": "s",
+    "direction_deg": "deg",
+    "current_velocity": "m/s",
+    "current_direction_deg": "deg",
+    "friction_coefficient": "1",
+    "submerged_unit_weight": "N/m3",
+}
+"""Inputs a row may set (name → unit)."""
+
+OUTPUTS = (
+    "max_displacement",
+    "final_displacement",
+    "hs",
+    "tp",
+    "direction_deg",
+    "current_velocity",
+    "max_penetration",
+    "n_steps",
+)
+
+
+@dataclass(frozen=True)
+class StormModel:
+    """A storm section run as a function of its uncertain inputs (module docstring).
+
+    Parameters
+    ----------
+    setup : onbottom.dynamics.storm_case.StormSetup
+        The storm case (a spectral storm: ``setup.storm`` is a ``Storm``).
+    inputs : tuple of str
+        Names of the non-climate inputs, each in :data:`PHYSICAL_INPUTS`.
+    climate : StormClimate or None
+        The long-term sea-state model; None: ``hs`` and ``tp`` must be among ``inputs``.
+    pipe_heading_deg : float
+        Pipe axis heading [deg from north] (sectors only).
+    soil_kind : str or None
+        ``[seabed].model`` of the case (sand, calcareous, clay, rock, coulomb) to rebuild the
+        soil model with drawn soil inputs; None: sand for Verley & Sotberg, clay for Verley &
+        Lund, else Coulomb.
+    """
+
+    setup: Any
+    inputs: tuple[str, ...] = ()
+    climate: StormClimate | None = None
+    pipe_heading_deg: float = 0.0
+    soil_kind: str | None = None
+
+    def __post_init__(self) -> None:
+        from onbottom.inputs.storm import Storm
+
+        if not isinstance(self.setup.storm, Storm):
+            raise InputError(
+                "storm.kind is invalid for a reliability campaign: a spectral storm is needed"
+                " (its sea state is drawn)"
+            )
+        for n in self.inputs:
+            if n not in PHYSICAL_INPUTS:
+                raise InputError(
+                    f"reliability input {n!r} is invalid: one of {', '.join(PHYSICAL_INPUTS)}"
+                )
+        if len(set(self.inputs)) != len(self.inputs):
+            raise InputError(f"reliability inputs = {self.inputs!r} is invalid: repeated names")
+        if self.climate is None and not {"hs", "tp"} <= set(self.inputs):
+            raise InputError(
+                "reliability inputs are invalid: without a climate (hindcast) hs and tp must be"
+                " given as distributions"
+            )
+        if self.climate is not None and {"hs", "tp"} & set(self.inputs):
+            raise InputError(
+                "reliability inputs are invalid: hs/tp come from the climate (hindcast); remove"
+                " them from [reliability.inputs]"
+            )
+        if self.climate is not None and self.climate.sectors and "direction_deg" in self.inputs:
+            raise InputError(
+                "reliability inputs are invalid: direction_deg comes from the climate's sectors"
+            )
+
+    @property
+    def input_names(self) -> tuple[str, ...]:
+        """Columns of a row: the climate's standard normals first, then :attr:`inputs`."""
+        head = tuple(p.name for p in self.climate.parameters()) if self.climate else ()
+        return head + tuple(self.inputs)
+
+    @property
+    def output_names(self) -> tuple[str, ...]:
+        return OUTPUTS
+
+    @property
+    def diameter(self) -> float:
+        """Pipe outer diameter D [m]."""
+        return float(self.setup.pipe.outer_diameter)
+
+    def identity(self) -> str:
+        """onbottom's version, the input names and a hash of the pickled case objects."""
+        s = self.setup
+        blob = pickle.dumps(
+            (
+                s.pipe,
+                s.seabed,
+                type(s.soil).__name__,
+                s.storm.with_seed(0),
+                s.depth,
+                s.current,
+                s.z0,
+                s.force_model,
+                s.reductions,
+                s.settings,
+                s.sample_interval,
+                self.climate,
+                self.pipe_heading_deg,
+                self.soil_kind,
+            )
+        )
+        digest = hashlib.blake2b(blob, digest_size=16).hexdigest()
+        return f"onbottom {__version__}; StormModel {self.input_names}; case {digest}"
+
+    def sea_state(self, x: np.ndarray) -> dict[str, float]:
+        """hs [m], tp [s], direction_deg [deg] of a row."""
+        row = dict(zip(self.input_names, np.asarray(x, dtype=float).tolist(), strict=True))
+        peak = self.setup.storm.stages[0] if self.setup.storm.stages else None
+        direction = row.get("direction_deg", peak.direction_deg if peak else 90.0)
+        if self.climate is not None:
+            c = self.climate
+            u = np.array([[row[p.name] for p in c.parameters()]])
+            ss = c.sea_state(u)
+            hs, tp = float(ss["hs"][0]), float(ss["tp"][0])
+            k = int(ss["sector"][0])
+            if k >= 0:
+                direction = (c.sector_centres_deg[k] - self.pipe_heading_deg) % 360.0
+        else:
+            hs, tp = row["hs"], row["tp"]
+        return {"hs": hs, "tp": tp, "direction_deg": float(direction)}
+
+    def build(self, x: np.ndarray, seed: int):
+        """(soil, storm, current) of a row."""
+        from onbottom.dynamics.storm_case import soil_model
+        from onbottom.inputs.storm import Storm
+
+        s = self.setup
+        row = dict(zip(self.input_names, np.asarray(x, dtype=float).tolist(), strict=True))
+        ss = self.sea_state(x)
+        seabed = s.seabed
+        soil_changes = {
+            k: row[k] for k in ("friction_coefficient", "submerged_unit_weight") if k in row
+        }
+        if soil_changes:
+            seabed = replace(seabed, **soil_changes)
+            kind = self.soil_kind or {"VerleySotberg": "sand", "VerleyLund": "clay"}.get(
+                type(s.soil).__name__, "coulomb"
+            )
+            soil = soil_model(kind, s.pipe, seabed)
+        else:
+            soil = s.soil
+        storm: Storm = s.storm
+        peak = replace(storm.stages[0], hs=ss["hs"], tp=ss["tp"], direction_deg=ss["direction_deg"])
+        storm = replace(storm, stages=(peak,), seed=int(seed))
+        current = s.current
+        cur = {}
+        if "current_velocity" in row:
+            cur["velocity"] = max(0.0, row["current_velocity"])
+        if "current_direction_deg" in row:
+            cur["direction_deg"] = row["current_direction_deg"] % 360.0
+        if cur:
+            current = replace(current, **cur)
+        return soil, storm, current
+
+    def __call__(self, x: np.ndarray, seed: int) -> dict[str, float]:
+        from onbottom.dynamics.storm_section import simulate_storm_section
+
+        s = self.setup
+        soil, storm, current = self.build(x, seed)
+        kw = s.kwargs()
+        kw["current"] = current
+        kw["settings"] = replace(s.settings, record_interval=None)
+        r = simulate_storm_section(s.pipe, soil, storm, **kw)
+        peak = storm.stages[0]
+        return {
+            "max_displacement": r.max_displacement,
+            "final_displacement": r.final_displacement,
+            "hs": peak.hs,
+            "tp": peak.tp,
+            "direction_deg": peak.direction_deg,
+            "current_velocity": current.velocity,
+            "max_penetration": r.summary.get("max_penetration", math.nan),
+            "n_steps": r.summary.get("n_steps", math.nan),
+            "status": r.status,
+            "message": r.message,
+        }
