@@ -68,7 +68,6 @@ def site(tmp_path_factory) -> Path:
         env=env,
         capture_output=True,
         text=True,
-        timeout=600,
         check=False,
     )
     assert proc.returncode == 0, proc.stderr[-3000:]

@@ -40,7 +40,6 @@ def test_example_runs(script, tmp_path):
         capture_output=True,
         text=True,
         env=env,
-        timeout=600,
         check=False,
     )
     assert proc.returncode == 0, proc.stderr[-3000:]
