@@ -135,7 +135,8 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
 def plot_curves_against_m(
     sweeps: dict[str, xr.Dataset], *, criterion: str = "L_stable", n_value: float | None = None
 ) -> Figure:
-    """L against M, one line per K and one line style per sweep (force model), one panel per soil.
+    """L/(2 + M)² against M, one line per K and one line style per sweep (force model), one
+    panel per soil.
 
     The form in which DNV-RP-F109's generalized method is usually discussed: at K >= 10 L rises
     with M to a peak near M ≈ 0.8–1 and settles toward a current-dominated value; at low M it
@@ -157,7 +158,7 @@ def plot_curves_against_m(
                 continue
             m = ds["M"].values
             for k_idx, k in enumerate(ds["K"].values):
-                y = ds[criterion].sel(soil=soil, N=n, K=k).values
+                y = ds[criterion].sel(soil=soil, N=n, K=k).values / (2.0 + m) ** 2
                 ax.plot(
                     m,
                     y,
@@ -176,7 +177,7 @@ def plot_curves_against_m(
         ax.set_xscale("symlog", linthresh=0.2)
         ax.set_yscale("log")
         ax.set_xlabel("M = V / U_s [-]")
-        ax.set_ylabel(f"{criterion} = w_s / (½ρ D U_s²) [-]")
+        ax.set_ylabel(f"{criterion} / (2 + M)² [-]  (L = w_s / (½ρ D U_s²))")
         ax.set_title(f"{soil}, N = {n:g}: {criterion}", fontsize=9)
         ax.grid(True, which="both", lw=0.3)
         ax.legend(fontsize=6, ncol=2)

@@ -83,10 +83,10 @@ def build(ctx: SectionContext) -> SectionContent:
                 ctx.save_figure(
                     plot_curves_against_m(sweeps, criterion=crit),
                     f"curves_against_M_{crit}",
-                    f"{crit} against M, one colour per K, one line style per committed sweep"
-                    f" ({', '.join(sweeps)}): the form in which F109's generalized method is"
-                    " discussed (at K >= 10 L rises with M to a peak near M ≈ 0.8–1, then"
-                    " settles; at low M L falls as K grows).",
+                    f"{crit}/(2 + M)² against M, one colour per K, one line style per"
+                    f" committed sweep ({', '.join(sweeps)}): the form in which F109's"
+                    " generalized method is discussed (at K >= 10 L rises with M to a peak"
+                    " near M ≈ 0.8–1, then settles; at low M L falls as K grows).",
                 )
             )
     return SectionContent(
