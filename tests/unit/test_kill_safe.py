@@ -428,3 +428,17 @@ def test_storm_command_names_a_corrupt_output_and_restart_recovers(tmp_path, cap
     capsys.readouterr()
     assert load_dataset(out).attrs["run_status"] == "complete"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["p.nc", "p.toml"]
+
+
+def test_killed_after_the_final_rename_the_rerun_returns_the_result_and_cleans_up(tmp_path):
+    """A kill between the rename of the finished output and the clean-up leaves the chunk
+    folder (a directory) beside the result; the rerun returns the result and removes it (found
+    by the random kill -9 test under load: 'p.nc.part: Is a directory')."""
+    m, kin = _pipeline()
+    out = tmp_path / "run.nc"
+    ref = simulate_pipeline(m, kin, settings=ST, output=out)
+    (tmp_path / "run.nc.part").mkdir()
+    (tmp_path / "run.nc.part" / "chunk_000000.npz").write_bytes(b"left by a kill")
+    res = simulate_pipeline(m, kin, settings=ST, output=out)
+    assert _same(res.summary, ref.summary)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.nc"]

@@ -24,6 +24,7 @@ import json
 import logging
 import math
 import os
+import shutil
 import tempfile
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
@@ -671,9 +672,11 @@ def simulate_pipeline(
     if out_path is not None and resume != "never":
         finished = _finished_output(out_path, run_id)
         if finished is not None:
-            for stale in (ckpt, partial_path(out_path)):
-                if stale is not None:
-                    stale.unlink(missing_ok=True)
+            # killed after the final rename, before the clean-up: the checkpoint (a file) and
+            # the chunk folder (a directory) are left; both go
+            if ckpt is not None:
+                ckpt.unlink(missing_ok=True)
+            shutil.rmtree(partial_path(out_path), ignore_errors=True)
             logger.info("%s is the finished result of this run: returned as it is", out_path)
             return _result_from_file(out_path, finished, model, s, run_id)
         if resume == "require" and out_path.exists() and (ckpt is None or not ckpt.exists()):
