@@ -10,7 +10,7 @@ client side: the workers are separate processes) is read before, after the first
 after all storms (flat: it does not grow with the storms run), and the store's size on disk
 per storm.
 
-    python benchmarks/reliability_campaign.py [--storms N] [--task-size K]
+    python benchmarks/reliability_campaign.py [--storms N] [--task-size K] [--workers 1 2]
 
 N defaults to 10⁵ (the issue's figure); on a loaded 2-core machine use a few hundred and read
 the extrapolation. Cost model: T(N, W) = N·t_storm/(W·e) with t_storm the measured seconds per
@@ -21,6 +21,7 @@ where one task of K storms costs one scheduler round trip, ≈ 1 ms, against K·
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import tempfile
 import time
@@ -53,6 +54,13 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--storms", type=int, default=100_000)
     ap.add_argument("--task-size", type=int, default=4)
+    ap.add_argument(
+        "--workers",
+        type=int,
+        nargs="+",
+        default=[1, 2],
+        help="worker counts to run (default 1 2; the efficiency needs both 1 and 2)",
+    )
     a = ap.parse_args()
     from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
 
@@ -74,7 +82,7 @@ def main() -> None:
 
     me = psutil.Process()
     rate = {}
-    for workers in (1, 2):
+    for workers in a.workers:
         tmp = Path(tempfile.mkdtemp())
         with Campaign(model, tmp / "s.zarr", n_workers=workers, task_size=a.task_size) as c:
             c.evaluate(x[:workers], seeds[:workers] + 10**9)  # start and compile the workers
@@ -98,6 +106,9 @@ def main() -> None:
             f" {a.storms}"
         )
         shutil.rmtree(tmp, ignore_errors=True)
+    print(f"load average (1, 5, 15 min) at the end: {os.getloadavg()}")
+    if 1 not in rate or 2 not in rate:
+        return
     eff = rate[2] / (2.0 * rate[1])
     print(f"efficiency 1 -> 2 workers: {eff:.2f}")
     t1 = 1.0 / rate[1]
