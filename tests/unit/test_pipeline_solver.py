@@ -320,3 +320,17 @@ def test_simple_pipe_form_takes_ei_ea_mass_from_the_pipeline_table(tmp_path):
     m = build_pipeline_run(case)["model"]
     assert (m.ei, m.ea, m.pipe.structural_mass) == (9.1e6, 1.7e9, 150.0)
     assert m.fibre_distance == pytest.approx(0.15)  # D/2 without a build-up
+
+
+def test_case_file_displacement_increment_is_taken_as_given(tmp_path):
+    """[solver] max_displacement_increment_over_d reaches the pipeline unchanged (it was raised
+    silently to at least 0.05 before)."""
+    from onbottom.cli.storm_pipeline import build_pipeline_run
+
+    case = tmp_path / "small_increment.toml"
+    text = EXAMPLE.read_text().replace(
+        "[solver]\n", "[solver]\nmax_displacement_increment_over_d = 0.01\n", 1
+    )
+    case.write_text(text)
+    assert build_pipeline_run(case)["settings"].max_displacement_increment_over_d == 0.01
+    assert build_pipeline_run(EXAMPLE)["settings"].max_displacement_increment_over_d == 0.05

@@ -452,7 +452,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
         dt_min=sv.dt_min,
         max_iterations=table.max_iterations,
         force_tolerance=table.force_tolerance,
-        max_displacement_increment_over_d=max(sv.max_displacement_increment_over_d, 0.05),
+        max_displacement_increment_over_d=sv.max_displacement_increment_over_d,
         stop_displacement_over_d=sv.max_displacement_over_d,
         record_interval=table.record_interval,
         chunk_duration=table.chunk_duration,
