@@ -28,6 +28,7 @@ from onbottom.soil.base import (
     OUT_R,
     OUT_REGION,
     OUT_SIZE,
+    OUT_STORED,
     OUT_TANGENT,
     OUT_Z,
     S_FRICTION,
@@ -228,3 +229,23 @@ def test_factory_builds_it_by_name():
     assert isinstance(m, ParabolicVH) and m.friction_coefficient == 0.6
     with pytest.raises(InputError, match="bearing_capacity"):
         lateral_model("vh_parabolic", pipe, Sand(submerged_unit_weight=1e4))
+
+
+def test_stored_plus_dissipated_is_the_lateral_plus_vertical_work():
+    # rule 2.3: the soil work is ∫H dy + ∫V dz; at constant V, ∫V dz = V·(z − z₀). Against an
+    # independent trapezoidal ∫H dy on a finely sampled path of 3 cycles of ±5 cm.
+    m = ParabolicVH(
+        friction_coefficient=0.6,
+        bearing_capacity=4000.0,
+        flow_coefficient=0.4,
+        hardening_stiffness=1e5,
+    )
+    v = 2500.0  # above V_p/2: the sliding pipe penetrates and V_p hardens
+    u = 0.05 * np.sin(np.linspace(0.0, 6.0 * np.pi, 20000))
+    h, _ = _drive(m, u, np.full(u.size, v))
+    uu = np.concatenate([[0.0], u])
+    ff = np.concatenate([[0.0], h[:, OUT_R]])
+    work = np.cumsum(0.5 * (ff[1:] + ff[:-1]) * np.diff(uu)) + v * h[:, OUT_Z]
+    booked = h[:, OUT_STORED] + h[:, OUT_DISSIPATED]
+    assert h[-1, OUT_Z] > 1e-3
+    assert np.max(np.abs(work - booked)) <= 1e-4 * abs(work[-1])
