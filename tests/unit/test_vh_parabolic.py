@@ -249,3 +249,39 @@ def test_stored_plus_dissipated_is_the_lateral_plus_vertical_work():
     booked = h[:, OUT_STORED] + h[:, OUT_DISSIPATED]
     assert h[-1, OUT_Z] > 1e-3
     assert np.max(np.abs(work - booked)) <= 1e-4 * abs(work[-1])
+
+
+def test_partial_inversion_gives_the_displacement_controlled_stiffness():
+    # rule 2.2: a bearing + sliding increment (∂z/∂V > 0); the stiffness from the hybrid
+    # tangent must predict the (H, V) change of a small (y, z) change made through (y, V)
+    from onbottom.soil._two_dof import stiffness_from_hybrid
+
+    m = ParabolicVH(
+        friction_coefficient=0.6,
+        bearing_capacity=4000.0,
+        flow_coefficient=0.4,
+        hardening_stiffness=3.0e5,
+    )
+    p, st = m.packed_parameters(), m.initial_state()
+    st[S_FRICTION] = 100.0
+    trial = np.empty_like(st)
+
+    def run(y, v):
+        out = np.zeros(OUT2_SIZE)
+        m.kernel(p, st, y, v, trial, out)
+        return out
+
+    o = run(2e-3, 4500.0)
+    k = np.zeros((2, 2))
+    assert stiffness_from_hybrid(o, k)
+    # move along V at fixed y: Δz = (∂z/∂V)ΔV must give ΔV = K_vz Δz, ΔH = K_hz Δz
+    dv = 0.1
+    o2 = run(2e-3, 4500.0 + dv)
+    dz = o2[OUT_Z] - o[OUT_Z]
+    assert k[1, 1] * dz == pytest.approx(dv, rel=1e-6)
+    assert k[0, 1] * dz == pytest.approx(o2[OUT_R] - o[OUT_R], rel=1e-5, abs=1e-9)
+    # by hand from the hybrid entries
+    assert k[1, 1] == pytest.approx(1.0 / o[OUT2_DZ_DV])
+    assert k[0, 0] == pytest.approx(o[OUT_TANGENT] - o[OUT2_DH_DV] * o[OUT2_DZ_DY] / o[OUT2_DZ_DV])
+    # rigid vertically (elastic step): no finite stiffness
+    assert not stiffness_from_hybrid(run(1e-5, 1000.0), k)

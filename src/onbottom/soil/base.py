@@ -70,7 +70,8 @@ and the section, storm and pipeline solvers take it unchanged), under these furt
     With ``OUT_SIZE`` slots it writes only those (the load-controlled solvers, which need
     ∂H/∂y alone: their V does not depend on y within a step). A caller with a vertical degree
     of freedom obtains the displacement-controlled stiffness ∂(H, V)/∂(y, z) by partial
-    inversion, which needs ∂z/∂V > 0 (a model with vertical compliance).
+    inversion (:func:`onbottom.soil._two_dof.stiffness_from_hybrid`), which needs
+    ∂z/∂V > 0 (a model with vertical compliance at that state).
 2.3 *Plastic flow.* Plastic increments follow a flow rule from a plastic potential g(V, H):
     (Δz_p, Δy_p) = Δλ·(∂g/∂V, ∂g/∂H), Δλ >= 0; the plastic work V·Δz_p + H·Δy_p must be
     >= 0 (rule 6's dissipation includes the vertical work V·Δz: the soil-work slot
