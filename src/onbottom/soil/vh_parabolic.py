@@ -8,8 +8,8 @@ section, with the parabolic yield surface of the Zhang (2001) / Zhang, Stewart &
 
 a non-associated flow rule from the plastic potential g = |H| − μ′·V·(1 − V/V_p) (μ′ <= μ;
 μ′ = μ associated), and linear hardening of the vertical capacity with the vertical plastic
-displacement, dV_p = k_p·dz_p. Lateral elasticity as in :class:`~onbottom.soil.coulomb.
-CoulombFriction`: stiffness μV/δ. Derivation and the increment algorithm:
+displacement, dV_p = k_p·dz_p. Lateral elasticity as in Coulomb friction
+(:mod:`onbottom.soil.coulomb`): stiffness μV/δ. Derivation and the increment algorithm:
 docs/theory/vh_parabolic.md; kernel contract: rules 2.1–2.7 of :mod:`onbottom.soil.base`.
 
 Sources: Zhang, J., Stewart, D. P. & Randolph, M. F. (2002), "Modeling of shallowly embedded
