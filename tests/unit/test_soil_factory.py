@@ -34,6 +34,7 @@ def test_names_build_the_right_models():
         "verley_sotberg_calcareous",
         "verley_sotberg_f109",
         "verley_lund",
+        "vh_parabolic",
     }
 
 

@@ -1,7 +1,8 @@
 """onbottom.soil — pipe–soil resistance models.
 
 Lateral (stateful, behind the kernel contract of :mod:`onbottom.soil.base`): Coulomb friction,
-Verley & Sotberg sand (silica, calcareous, DNV-RP-F109 variant), Verley & Lund clay.
+Verley & Sotberg sand (silica, calcareous, DNV-RP-F109 variant), Verley & Lund clay; the
+two-DOF V–H force-resultant test model (second form of the contract).
 Vertical: DNVGL-RP-F114 penetration resistance and the embedment solver.
 """
 
@@ -27,11 +28,13 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
     from onbottom.soil.response import path_response
     from onbottom.soil.verley_lund import VerleyLund
     from onbottom.soil.verley_sotberg import VerleySotberg
+    from onbottom.soil.vh_parabolic import ParabolicVH
 
 __all__ = [
     "CoulombFriction",
     "DrainedBounds",
     "DrainedPenetration",
+    "ParabolicVH",
     "UndrainedModel1",
     "UndrainedModel2",
     "VerleyLund",
@@ -62,5 +65,6 @@ __getattr__, __dir__ = attach(
         "onbottom.soil.response": ("path_response",),
         "onbottom.soil.verley_lund": ("VerleyLund",),
         "onbottom.soil.verley_sotberg": ("VerleySotberg",),
+        "onbottom.soil.vh_parabolic": ("ParabolicVH",),
     },
 )

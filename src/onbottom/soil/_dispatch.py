@@ -13,10 +13,12 @@ from numba import njit
 from onbottom.soil._coulomb_kernel import coulomb_kernel
 from onbottom.soil._verley_lund_kernel import verley_lund_kernel
 from onbottom.soil._verley_sotberg_kernel import verley_sotberg_kernel
+from onbottom.soil._vh_parabolic_kernel import vh_parabolic_kernel
 
 MODEL_COULOMB = 0
 MODEL_VERLEY_SOTBERG = 1
 MODEL_VERLEY_LUND = 2
+MODEL_VH_PARABOLIC = 3  # two-DOF force-resultant test model (onbottom.soil.vh_parabolic)
 
 
 @njit(cache=True)
@@ -28,6 +30,8 @@ def lateral_step(model_id, params, state_old, u_new, v_load, state_new, out):
         verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out)
     elif model_id == MODEL_VERLEY_LUND:
         verley_lund_kernel(params, state_old, u_new, v_load, state_new, out)
+    elif model_id == MODEL_VH_PARABOLIC:
+        vh_parabolic_kernel(params, state_old, u_new, v_load, state_new, out)
     else:
         # unknown id: signal with NaN resistance; the Python layer validates ids beforehand
         for i in range(out.shape[0]):

@@ -44,6 +44,47 @@ Common state slots: ``S_U`` committed displacement u [m]; ``S_FRICTION`` frictio
 soil ∫R du since the start [N·m/m] (energy bookkeeping). Model-specific slots follow
 ``N_COMMON_STATE``; never hard-code state lengths (use ``model.state_size`` or the kernels'
 ``N_STATE``).
+
+Second form: two degrees of freedom (vertical + lateral)
+--------------------------------------------------------
+A *force-resultant* model (a yield surface in V–H space, a flow rule, hardening; the test model
+is :class:`onbottom.soil.vh_parabolic.ParabolicVH`) couples the two directions: the vertical
+load changes the lateral capacity and the lateral slip moves the pipe vertically. It is a
+:class:`ForceResultantModel` (``degrees_of_freedom = 2``) and its kernel keeps the signature
+and slots above (so the same :func:`~onbottom.soil._dispatch.lateral_step` serves both forms
+and the section, storm and pipeline solvers take it unchanged), under these further rules:
+
+2.1 *Mixed control.* The pipe's degrees of freedom are the lateral displacement y (``u_new``)
+    and the vertical displacement z, positive downward (penetration). The section, storm and
+    pipeline solvers have no vertical degree of freedom: they prescribe the vertical load V
+    (rule 4) and the kernel returns the lateral reaction H (``out[OUT_R]``) and the vertical
+    displacement z (``out[OUT_Z]``, also ``state_new[S_Z]``) that the soil allows under V.
+    z is a plastic (or elastic) *displacement*, free to move both ways — penetration or heave —
+    not a penetration law; the solvers feed it back into the DNV-RP-F109 penetration
+    reductions of the loads (storm section, pipeline), as they do for the 1-DOF models.
+2.2 *Coupling tangent.* When ``out`` has :data:`OUT2_SIZE` slots (or more) the kernel also
+    writes the other three entries of the hybrid 2×2 tangent of (H, z) with respect to
+    (y, V): ``out[OUT_TANGENT]`` = ∂H/∂y, ``out[OUT2_DH_DV]`` = ∂H/∂V [-],
+    ``out[OUT2_DZ_DY]`` = ∂z/∂y [-], ``out[OUT2_DZ_DV]`` = ∂z/∂V [m²/N], all consistent with
+    the return mapping of the increment (checked against finite differences in the tests).
+    With ``OUT_SIZE`` slots it writes only those (the load-controlled solvers, which need
+    ∂H/∂y alone: their V does not depend on y within a step). A caller with a vertical degree
+    of freedom obtains the displacement-controlled stiffness ∂(H, V)/∂(y, z) by partial
+    inversion (:func:`onbottom.soil._two_dof.stiffness_from_hybrid`), which needs
+    ∂z/∂V > 0 (a model with vertical compliance at that state).
+2.3 *Plastic flow.* Plastic increments follow a flow rule from a plastic potential g(V, H):
+    (Δz_p, Δy_p) = Δλ·(∂g/∂V, ∂g/∂H), Δλ >= 0; the plastic work V·Δz_p + H·Δy_p must be
+    >= 0 (rule 6's dissipation includes the vertical work V·Δz: the soil-work slot
+    ``S_SOIL_WORK`` accumulates ∫H dy + ∫V dz).
+2.4 *Hardening* variables live in the model's own state slots (after ``N_COMMON_STATE``)
+    and are committed with the rest of the state (rule 5).
+2.5 *Lift-off.* V <= 0: H = 0, all tangents 0, z and the hardening state frozen.
+2.6 *No equilibrium.* A vertical load the soil cannot carry (V above the capacity with no
+    hardening) returns ``out[OUT_R]`` = NaN; the solvers stop with their soil-NaN status.
+2.7 *Reduction to the first form.* A 2-DOF model whose yield surface does not depend on V
+    beyond Coulomb's |H| = μV and whose flow has no vertical part is the 1-DOF Coulomb model:
+    it must then give Coulomb's lateral history to round-off in every solver
+    (``tests/verification/test_vh_soil_in_solvers.py``).
 """
 
 from __future__ import annotations
@@ -56,6 +97,10 @@ import numpy as np
 
 __all__ = [
     "N_COMMON_STATE",
+    "OUT2_DH_DV",
+    "OUT2_DZ_DV",
+    "OUT2_DZ_DY",
+    "OUT2_SIZE",
     "OUT_DISSIPATED",
     "OUT_FRICTION",
     "OUT_PASSIVE",
@@ -72,6 +117,7 @@ __all__ = [
     "S_U",
     "S_WORK",
     "S_Z",
+    "ForceResultantModel",
     "LateralResistanceModel",
 ]
 
@@ -95,6 +141,11 @@ OUT_REGION = 6
 OUT_STORED = 7
 OUT_DISSIPATED = 8
 OUT_SIZE = 9
+# second form (two degrees of freedom): the coupling entries of the hybrid tangent (rule 2.2)
+OUT2_DH_DV = 9
+OUT2_DZ_DY = 10
+OUT2_DZ_DV = 11
+OUT2_SIZE = 12
 
 KernelFn = Callable[[np.ndarray, np.ndarray, float, float, np.ndarray, np.ndarray], None]
 
@@ -110,6 +161,8 @@ class LateralResistanceModel(ABC):
     """Length of the state vector."""
     model_id: ClassVar[int]
     """Integer id used by :func:`onbottom.soil._dispatch.lateral_step` (cacheable dispatch)."""
+    degrees_of_freedom: ClassVar[int] = 1
+    """1: lateral kernel (rules 1–8); 2: force-resultant kernel (rules 2.1–2.7)."""
 
     @property
     @abstractmethod
@@ -132,3 +185,11 @@ class LateralResistanceModel(ABC):
     @abstractmethod
     def parameters(self) -> Mapping[str, Any]:
         """Model parameters as a name → value mapping (SI) for provenance and calibration."""
+
+
+class ForceResultantModel(LateralResistanceModel):
+    """Base class of two-degree-of-freedom (V–H force-resultant) models (second form, rules
+    2.1–2.7 of the module docstring)."""
+
+    degrees_of_freedom: ClassVar[int] = 2
+    """Vertical and lateral."""

@@ -2,7 +2,8 @@
 
 Names: "coulomb" (any seabed; rock: friction only, DNV-RP-F109 §3.4.6),
 "verley_sotberg_silica", "verley_sotberg_calcareous", "verley_sotberg_f109" (sand) and
-"verley_lund" (clay).
+"verley_lund" (clay); "vh_parabolic" (any seabed: the two-DOF V–H test model of
+:mod:`onbottom.soil.vh_parabolic`, μ from the seabed; ``bearing_capacity`` required).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from onbottom.soil.base import LateralResistanceModel
 from onbottom.soil.coulomb import CoulombFriction
 from onbottom.soil.verley_lund import VerleyLund
 from onbottom.soil.verley_sotberg import VerleySotberg
+from onbottom.soil.vh_parabolic import ParabolicVH
 
 __all__ = ["LATERAL_MODELS", "lateral_model"]
 
@@ -26,6 +28,7 @@ LATERAL_MODELS: dict[str, tuple[type, ...]] = {
     "verley_sotberg_calcareous": (Sand,),
     "verley_sotberg_f109": (Sand,),
     "verley_lund": (Clay,),
+    "vh_parabolic": (Sand, Clay, Rock),
 }
 """Model names and the seabed types each accepts."""
 
@@ -66,6 +69,13 @@ def lateral_model(
         return VerleySotberg.silica(pipe, seabed, **options)
     if name == "verley_sotberg_calcareous":
         return VerleySotberg.calcareous(pipe, seabed, **options)
+    if name == "vh_parabolic":
+        if "bearing_capacity" not in options:
+            raise InputError(
+                "lateral_model.bearing_capacity is missing: model 'vh_parabolic' needs the"
+                " vertical capacity V_p [N/m], in (0, inf]"
+            )
+        return ParabolicVH.from_seabed(seabed, **options)
     if name == "verley_sotberg_f109":
         return VerleySotberg.f109(pipe, seabed, **options)
     return VerleyLund.from_seabed(pipe, seabed, **options)
