@@ -65,7 +65,7 @@ def run_reliability(
                 storm_rate=t.climate.storm_rate,
             ),
         )
-        climate = StormClimate.from_result(result)
+        climate = StormClimate.from_result(result, current=t.climate.current)
         info = {
             "hindcast": str(setup.hindcast_path()),
             "rate": climate.rate,
@@ -74,6 +74,8 @@ def run_reliability(
             "gpd_shape": climate.gpd_shape,
             "sectors": list(climate.sectors),
             "sector_frequencies": list(climate.sector_frequencies),
+            "current_model": None if climate.current is None else climate.current.as_dict(),
+            "joint_model": climate.joint.as_dict(),
         }
     rate = climate.rate if climate is not None else float(t.storms_per_year)
     user = setup.inputs()
