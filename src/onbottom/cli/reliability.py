@@ -88,7 +88,7 @@ def run_case(
     stats = [s for s in (r.stats, r.design_stats) if s is not None]
     computed = sum(s.computed for s in stats)
     files = [str(out / "campaign.zarr")] + ([str(out / "design.zarr")] if r.design else [])
-    figs: dict[str, str] = {}
+    fig_files: dict[str, str] = {}
     if figures:
         import matplotlib.pyplot as plt
 
@@ -110,7 +110,7 @@ def run_case(
             fig.savefig(out / name, dpi=110)
             plt.close(fig)
             files.append(str(out / name))
-            figs[name.removesuffix(".png")] = name
+            fig_files[name.removesuffix(".png")] = name
     failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
     payload = {
         "success": failed == 0,
@@ -143,7 +143,7 @@ def run_case(
     if report:
         from onbottom.report.pages import reliability_sections, write_page
 
-        sections, prov = reliability_sections(_jsonable(payload), figures=figs, case=case)
+        sections, prov = reliability_sections(_jsonable(payload), figures=fig_files, case=case)
         write_page(
             out,
             f"Long-term reliability — {case.name}",
