@@ -211,6 +211,7 @@ MIN_TARGET_STORMS = 20
 
 
 def _levels(values, hc: Hindcast, o: MetoceanOptions, name: str) -> ReturnLevels:
+    values = np.where(np.isfinite(values), values, 0.0)  # a missing sea state is no storm
     rate = max(o.storm_rate, MIN_TARGET_STORMS / hc.years)
     u = (
         threshold_for_rate(values, hc.step_hours, o.r_hours, hc.years, rate)
@@ -228,6 +229,7 @@ def _levels(values, hc: Hindcast, o: MetoceanOptions, name: str) -> ReturnLevels
         seed=o.seed,
         name=name,
         ci_method=o.ci_method,
+        observed_years=hc.years if hc.n_missing else None,
     )
 
 
@@ -237,11 +239,19 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
 
     Each series (omni and each sector's masked series) gets its own threshold, set so that
     about ``storm_rate`` storms a year (and at least :data:`MIN_TARGET_STORMS` in the record)
-    exceed it, declustered with ``r_hours``.
+    exceed it, declustered with ``r_hours``. Missing sea states count as no storm, and the
+    storm rate is per observed year; the joint models are fitted to the observed states.
     """
     o = options or MetoceanOptions()
     hc = hindcast
     positive("hindcast length", hc.years)
+    if o.sectors > 1 and not hc.has_direction:
+        err = InputError(
+            f"sectors = {o.sectors} is invalid: the hindcast has no wave_direction_deg column"
+            " (an omnidirectional analysis only: sectors = 1)"
+        )
+        err.field = "sectors"  # type: ignore[attr-defined]
+        raise err
     centres, _ = sector_edges(o.sectors)
     names = sector_names(o.sectors)
     hs: dict[str, ReturnLevels] = {"omni": _levels(hc.hs, hc, o, "hs")}
@@ -260,12 +270,13 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
         if cur is not None:
             mc = sector_mask(cur_from, o.sectors, k)
             cur[name] = _levels(np.where(mc, hc.current_speed, 0.0), hc, o, "current")
-    joint = fit_joint_model(hc.hs, hc.tp)
+    obs = hc.observed
+    joint = fit_joint_model(hc.hs[obs], hc.tp[obs])
     current_model = None
     if hc.has_current:
         current_model = fit_current_model(
-            hc.hs,
-            hc.current_speed,
+            hc.hs[obs],
+            hc.current_speed[obs],
             hs_scale=joint.hs_scale,
             hs_shape=joint.hs_shape,
             hs_location=joint.hs_location,

@@ -152,18 +152,28 @@ def metocean_sections(
     ):
         if arr is None:
             continue
+        a = np.asarray(arr, dtype=float)
+        a = a[np.isfinite(a)]
         data_rows.append(
             [
                 f"{name} [{unit}]",
-                float(np.mean(arr)),
-                float(np.quantile(arr, 0.5)),
-                float(np.quantile(arr, 0.99)),
-                float(np.max(arr)),
+                float(np.mean(a)),
+                float(np.quantile(a, 0.5)),
+                float(np.quantile(a, 0.99)),
+                float(np.max(a)),
             ]
         )
+    missing = (
+        f", {hc.n_missing} missing ({100 * hc.n_missing / hc.hs.size:.1f} %: no storm there;"
+        " the rate is per observed year)"
+        if hc.n_missing
+        else ""
+    )
     data = SectionContent(
-        summary=f"{source.name}: {hc.years:.2f} years at a {hc.step_hours:g}-hour step,"
-        f" {hc.hs.size} sea states{', with current' if hc.has_current else ', no current'}."
+        summary=f"{source.name}: {hc.years:.2f} observed years at a {hc.step_hours:g}-hour step,"
+        f" {hc.hs.size - hc.n_missing} sea states{missing}"
+        f"{', with current' if hc.has_current else ', no current'}"
+        f"{'' if hc.has_direction else ', no wave direction (omnidirectional only)'}."
         " Read by the strict reader: no gap, duplicate or impossible value (units checked).",
         tables=[
             Table(
