@@ -114,7 +114,17 @@ _SCRIPT = textwrap.dedent(
 )
 
 
-def _run(store: Path, kill_after: float | None = None):
+def _committed(store: Path) -> int:
+    """Rows the store's metadata says are committed (0 while absent or being written)."""
+    import json
+
+    try:
+        return int(json.loads((store / "zarr.json").read_text())["attributes"]["n_rows"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return 0
+
+
+def _run(store: Path, kill_after: float | None = None, kill_at_rows: int | None = None):
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[2] / "src"))
     p = subprocess.Popen(
         [sys.executable, "-c", _SCRIPT, str(store)],
@@ -123,6 +133,13 @@ def _run(store: Path, kill_after: float | None = None):
         env=env,
         text=True,
     )
+    if kill_at_rows is not None:  # SIGKILL as soon as the store holds that many rows
+        deadline = time.monotonic() + 600.0
+        while p.poll() is None and time.monotonic() < deadline:
+            if _committed(store) >= kill_at_rows:
+                break
+            time.sleep(0.01)
+        kill_after = 0.0
     if kill_after is not None:
         time.sleep(kill_after)
         p.send_signal(signal.SIGKILL)
@@ -153,9 +170,11 @@ def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
     ref = _run(tmp_path / "ref.zarr")
     assert ref[2] == 1500 and ref[3] == 1500
     partial = []
-    for i, delay in enumerate((2.5, 4.0, 5.5)):  # import time varies: kills land at many points
+    # kills at fixed delays land before the store exists on a loaded machine (imports take
+    # longer): the first kill waits for a committed row, the others land after 0.5 s and 3 s
+    for i, (delay, rows) in enumerate(((None, 1), (0.5, None), (3.0, None))):
         store = tmp_path / f"k{i}.zarr"
-        _run(store, kill_after=delay)
+        _run(store, kill_after=delay, kill_at_rows=rows)
         if (store / "zarr.json").exists():
             partial.append(len(_store(store)))
         res = _run(store)

@@ -392,15 +392,20 @@ def reliability_sections(
     est = payload["estimates"]
     erows = []
     for e in est:
+        le = "≤ " if e["upper_bound"] else ""  # an upper bound: the subset levels stopped short
+
+        def g(v, le=le):
+            return None if v is None else f"{le}{v:.3g}"
+
         erows.append(
             [
                 e["label"],
                 e["limit"],
                 e["method"],
-                e["probability"],
+                g(e["probability"]),
                 "upper bound" if e["upper_bound"] else e["cv"],
-                e["annual"],
-                e["lifetime"],
+                g(e["annual"]),
+                g(e["lifetime"]),
                 e["reliability_index"],
                 e["storms"],
                 e["computed"],
