@@ -66,7 +66,7 @@ def main() -> None:
 
     setup = load_reliability_case(CASE)
     res = analyse_hindcast(read_hindcast(setup.hindcast_path()), MetoceanOptions(sectors=1))
-    climate = StormClimate.from_result(res)
+    climate = StormClimate.from_result(res, current=setup.table.climate.current)
     user = setup.inputs()
     model = StormModel(
         setup.storm,

@@ -68,6 +68,37 @@ def test_end_to_end_on_the_shipped_example(run, capsys):
     assert jm["hs_scale"] == pytest.approx(1.0, rel=0.1)
     assert jm["hs_shape"] == pytest.approx(1.35, rel=0.1)
     _docs_numbers_are_these(payload)
+    _contract_and_report_page(payload, out)
+
+
+def _contract_and_report_page(payload, out):
+    """The --json keys are the documented ones (docs/json.md), the current's joint model is
+    in the table, and report.html shows the sections, the figures and the tables' CSV."""
+    from onbottom.cli.json_contract import SCHEMA_VERSION, documented_keys
+
+    assert payload["schema_version"] == SCHEMA_VERSION
+    assert set(payload) == documented_keys("metocean")
+    for row in payload["table"]:
+        assert set(row) == documented_keys("metocean", "table[]")
+    assert set(payload["joint_model"]) == documented_keys("metocean", "joint_model")
+    cm = payload["current_model"]
+    assert cm["scale"] > 0 and -1 < cm["rho"] < 1
+    omni = payload["table"][0]
+    pairs = zip(omni["current_with_hs"], omni["current_with_hs_p90"], strict=True)
+    assert all(a < b for a, b in pairs)
+    html = (out / "report.html").read_text(encoding="utf-8")
+    for text in (
+        "Storms and return values",
+        "Joint model and environmental contours",
+        "DNV-RP-F109 design table",
+        "Assumptions and limits",
+        'src="return_levels.png"',
+        'src="contours.png"',
+        "hindcast SHA-256",
+    ):
+        assert text in html, text
+    assert (out / "tables" / "design_table_1.csv").is_file()
+    assert str(out / "report.html") in payload["files"]
 
 
 def _docs_numbers_are_these(payload):

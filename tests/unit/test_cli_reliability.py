@@ -58,7 +58,27 @@ def test_tiny_case_json_figures_and_resume(tmp_path, capsys):
         "notes",
     ):
         assert key in first
-    assert first["inputs"][:2] == ["u_hs", "u_tp"] and first["inputs"][-1] == "storm_seed"
+    assert first["inputs"][:3] == ["u_hs", "u_tp", "u_current"]
+    assert first["inputs"][-1] == "storm_seed"
+    assert first["climate"]["current_model"]["scale"] > 0  # current drawn from the hindcast
+    from onbottom.cli.json_contract import documented_keys
+
+    assert set(first) == documented_keys("reliability")
+    for e in first["estimates"]:
+        assert set(e) == documented_keys("reliability", "estimates[]")
+    assert set(first["campaign"]) == documented_keys("reliability", "campaign")
+    html = (out / "report.html").read_text(encoding="utf-8")
+    for text in (
+        "Exceedance probabilities",
+        "Importance of the inputs",
+        "Response-based design",
+        'src="exceedance.png"',
+        'src="convergence.png"',
+        'src="importance.png"',
+        "case SHA-256",
+        "reliability.json",
+    ):
+        assert text in html, text
     labels = [e["label"] for e in first["estimates"]]
     assert labels == ["0.5D", "10D"]
     for e in first["estimates"]:

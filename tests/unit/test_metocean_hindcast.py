@@ -197,3 +197,47 @@ def test_sectors():
     assert total == 1000
     with pytest.raises(InputError):
         sector_edges(0)
+
+
+def test_missing_sea_states_are_empty_rows_and_partial_rows_are_named(tmp_path):
+    rows = [*ROWS[:2], "2000-01-01T06:00:00Z,,,,,", ROWS[3], "2000-01-01T12:00:00Z,1.1,8.0,,,"]
+    with pytest.raises(InputError, match=r"a missing sea state leaves every value") as e:
+        read_hindcast(_csv(tmp_path, rows=rows))
+    assert "line 8" in str(e.value) and e.value.field == "wave_direction_deg"
+    h = read_hindcast(_csv(tmp_path, rows=rows[:4]))
+    assert h.n_missing == 1 and h.observed.tolist() == [True, True, False, True]
+    assert h.years == pytest.approx(3 * 3.0 / (24 * 365.2425))  # observed sea states only
+    rows[1] = "2000-01-01T03:00:00Z,,8.5,275.0,0.25,95.0"  # hs missing, the rest not
+    with pytest.raises(InputError, match="where the row's other values are given") as e:
+        read_hindcast(_csv(tmp_path, rows=rows[:4]))
+    assert "line 5" in str(e.value) and e.value.field == "hs"
+
+
+def test_a_record_without_directions_is_omnidirectional_only(tmp_path):
+    from onbottom.metocean.analysis import MetoceanOptions, analyse_hindcast
+
+    rows = [",".join(r.split(",")[:3]) for r in ROWS]
+    p = _csv(tmp_path, rows=rows, header="time,hs,tp\n", units="UTC,m,s\n")
+    h = read_hindcast(p)
+    assert not h.has_direction and not h.has_current
+    out = write_hindcast_csv(
+        tmp_path / "w.csv", {"time": h.time, "hs": h.hs, "tp": h.tp}, comments=("x",)
+    )
+    assert read_hindcast(out).hs.tolist() == h.hs.tolist()
+    with pytest.raises(InputError, match="no wave_direction_deg column") as e:
+        analyse_hindcast(h, MetoceanOptions(sectors=4))
+    assert e.value.field == "sectors"
+
+
+def test_the_shipped_ndbc_record_reads_with_its_source_and_licence():
+    """examples/hindcast_ndbc_44007.csv (tools/ndbc_to_hindcast.py): 10 years hourly, the
+    82 805 records of the benchmark's dataset A, the rest missing; no direction, no current."""
+    from pathlib import Path
+
+    p = Path(__file__).resolve().parents[2] / "examples" / "hindcast_ndbc_44007.csv"
+    head = p.read_text(encoding="utf-8")[:1000]
+    assert "National Data Buoy Center buoy 44007" in head and "public domain" in head
+    h = read_hindcast(p)
+    assert h.step_hours == 1.0 and h.hs.size - h.n_missing == 82805
+    assert not h.has_direction and not h.has_current
+    assert float(np.nanmax(h.hs)) == pytest.approx(7.10, abs=0.01)  # the benchmark's 7.0994

@@ -74,3 +74,28 @@ def test_seed_mapping_and_rank_importance():
     imp = rank_importance(x, y, ["a", "b"])
     assert imp["a"] / imp["b"] == pytest.approx(4.0, rel=0.15)
     assert imp["storm_seed and interactions"] < 0.05
+
+
+def test_climate_current_sets_the_storm_current_by_hand():
+    from dataclasses import replace
+
+    from onbottom.metocean.current import CurrentModel
+
+    cm = CurrentModel(scale=0.3, shape=1.8, rho=0.6, hs_scale=1.0, hs_shape=1.35, hs_location=0.25)
+    climate = replace(CLIMATE, current=cm)
+    m = StormModel(_setup(), inputs=("friction_coefficient",), climate=climate)
+    assert m.input_names == ("u_hs", "u_tp", "u_direction", "u_current", "friction_coefficient")
+    x = np.array([0.0, 0.0, 0.2, 1.0, 0.5])
+    hs = 4.0 + 0.7 / -0.1 * (0.5**0.1 - 1.0)
+    # z_H = Φ⁻¹(F_H(hs)), U = α(−ln(1 − Φ(ρ z_H + √(1 − ρ²)·1)))^(1/β)
+    fh = 1.0 - math.exp(-(((hs - 0.25) / 1.0) ** 1.35))
+    from scipy import special
+
+    zc = 0.6 * special.ndtri(fh) + 0.8 * 1.0
+    u = 0.3 * (-math.log1p(-special.ndtr(zc))) ** (1.0 / 1.8)
+    _, storm, current = m.build(x, 3)
+    assert current.velocity == pytest.approx(u, rel=1e-9)
+    # with sectors the current goes with the waves (sector S, heading 0: 180°)
+    assert current.direction_deg == pytest.approx(storm.stages[0].direction_deg) == 180.0
+    with pytest.raises(InputError, match="current_velocity comes from"):
+        StormModel(_setup(), inputs=("current_velocity",), climate=climate)

@@ -114,7 +114,17 @@ _SCRIPT = textwrap.dedent(
 )
 
 
-def _run(store: Path, kill_after: float | None = None):
+def _committed(store: Path) -> int:
+    """Rows the store's metadata says are committed (0 while absent or being written)."""
+    import json
+
+    try:
+        return int(json.loads((store / "zarr.json").read_text())["attributes"]["n_rows"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return 0
+
+
+def _run(store: Path, kill_after: float | None = None, kill_at_rows: int | None = None):
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[2] / "src"))
     p = subprocess.Popen(
         [sys.executable, "-c", _SCRIPT, str(store)],
@@ -123,6 +133,13 @@ def _run(store: Path, kill_after: float | None = None):
         env=env,
         text=True,
     )
+    if kill_at_rows is not None:  # SIGKILL as soon as the store holds that many rows
+        deadline = time.monotonic() + 600.0
+        while p.poll() is None and time.monotonic() < deadline:
+            if _committed(store) >= kill_at_rows:
+                break
+            time.sleep(0.01)
+        kill_after = 0.0
     if kill_after is not None:
         time.sleep(kill_after)
         p.send_signal(signal.SIGKILL)
@@ -153,9 +170,11 @@ def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
     ref = _run(tmp_path / "ref.zarr")
     assert ref[2] == 1500 and ref[3] == 1500
     partial = []
-    for i, delay in enumerate((2.5, 4.0, 5.5)):  # import time varies: kills land at many points
+    # kills at fixed delays land before the store exists on a loaded machine (imports take
+    # longer): the first kill waits for a committed row, the others land after 0.5 s and 3 s
+    for i, (delay, rows) in enumerate(((None, 1), (0.5, None), (3.0, None))):
         store = tmp_path / f"k{i}.zarr"
-        _run(store, kill_after=delay)
+        _run(store, kill_after=delay, kill_at_rows=rows)
         if (store / "zarr.json").exists():
             partial.append(len(_store(store)))
         res = _run(store)
@@ -163,6 +182,28 @@ def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
         assert res[3] <= 1500  # what the kill had committed was not rerun
         np.testing.assert_array_equal(_rows(store), _rows(tmp_path / "ref.zarr"))
     assert any(0 < n < 1500 for n in partial), partial  # at least one kill landed mid-campaign
+
+
+@pytest.mark.slow
+def test_resume_after_a_kill_at_a_random_time_equals_an_uninterrupted_run(tmp_path):
+    """SIGKILL at a time drawn uniformly over the uninterrupted run's wall time (its seed in the
+    failure message; ONBOTTOM_KILL_SEED replays one), twice on the same store, then a rerun:
+    the same estimate, the same stored rows, and nothing committed recomputed."""
+    seed = int(os.environ.get("ONBOTTOM_KILL_SEED", time.time_ns() % 2**32))
+    rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
+    ref = _run(tmp_path / "ref.zarr")
+    wall = time.perf_counter() - t0
+    store = tmp_path / "killed.zarr"
+    done = []
+    for _ in range(2):
+        _run(store, kill_after=float(rng.uniform(0.0, wall)))
+        done.append(len(_store(store)) if (store / "zarr.json").exists() else 0)
+    res = _run(store)
+    why = f"ONBOTTOM_KILL_SEED={seed}, wall {wall:.1f} s, rows after the kills {done}"
+    assert res[:3] == ref[:3], why
+    assert res[3] == 1500 - done[-1], why  # exactly the rows the kills had not committed
+    np.testing.assert_array_equal(_rows(store), _rows(tmp_path / "ref.zarr"), err_msg=why)
 
 
 @pytest.mark.slow

@@ -10,15 +10,21 @@ Writes into ``--out``:
   tables of a ``stability`` / ``storm`` case file;
 * ``metocean.nc`` — return values, intervals, thresholds, storm counts, GPD parameters,
   IFORM contours, with provenance attributes;
-* ``return_levels.png``, ``contours.png`` — the figures.
+* ``return_levels.png``, ``contours.png`` — the figures;
+* ``report.html`` (+ ``tables/*.csv``) — the report page: the record, storms and return values,
+  joint model and contours, the design table, assumptions and provenance
+  (:mod:`onbottom.report.pages`).
 
 ``--json`` keys: ``success`` (false when the omnidirectional H_s has no return values: exit
 status 3), ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
 ``return_periods``, ``ci_method``, ``confidence``, ``table`` (list of rows: ``sector``,
 ``centre_deg``, ``hs``, ``hs_lower``, ``hs_upper``, ``tp``, ``tp_low``, ``tp_high``,
-``current``, ``current_lower``, ``current_upper``, each a list over ``return_periods``; SI),
-``joint_model`` (parameters), ``contour_max_hs`` (per return period, m), ``files`` (paths
-written), ``notes`` (sectors without values and why).
+``current``, ``current_lower``, ``current_upper``, ``current_with_hs``,
+``current_with_hs_p90`` (median and 90 % current given the row's H_s, from the joint model),
+each a list over ``return_periods``; SI), ``joint_model`` (parameters), ``current_model``
+(Weibull ``scale`` [m/s], ``shape``, copula ``rho``, ``spearman``, …; null without current),
+``contour_max_hs`` (per return period, m), ``files`` (paths written), ``notes`` (sectors
+without values and why).
 """
 
 from __future__ import annotations
@@ -69,10 +75,14 @@ def run_metocean(
     pipe_heading_deg: float | None = None,
     current_height: float = 1.0,
     figures: bool = True,
+    report: bool = True,
 ) -> dict:
     """Run the analysis and write the outputs; returns the JSON payload."""
     import importlib.util
     import math
+    import time
+
+    t0 = time.perf_counter()
 
     import numpy as np
 
@@ -141,6 +151,7 @@ def run_metocean(
             continue
         files.append(str(write_text_atomic(out / f"case_{row.sector}.toml", text)))
     files.append(str(save_dataset(result.to_dataset(), out / "metocean.nc")))
+    figs: dict[str, str] = {}
     if figures:
         import matplotlib.pyplot as plt
 
@@ -153,6 +164,23 @@ def run_metocean(
             fig.savefig(out / name, dpi=110)
             plt.close(fig)
             files.append(str(out / name))
+            figs[name.removesuffix(".png")] = name
+    if report:
+        from onbottom.report.pages import metocean_sections, write_page
+
+        sections, prov = metocean_sections(
+            result, rows, source=hindcast_path, figures=figs, notes=notes
+        )
+        page = write_page(
+            out,
+            f"Metocean statistics — {hindcast_path.name}",
+            sections,
+            command=f"onbottom metocean {hindcast_path} --out {out} --sectors {sectors}"
+            f" --return-periods {','.join(f'{r:g}' for r in options.return_periods)}",
+            inputs=prov,
+            run_time=time.perf_counter() - t0,
+        )
+        files.append(str(page))
 
     def lst(x):
         return None if x is None else [v if math.isfinite(v) else None for v in x]
@@ -182,12 +210,15 @@ def run_metocean(
                         "current",
                         "current_lower",
                         "current_upper",
+                        "current_with_hs",
+                        "current_with_hs_p90",
                     )
                 },
             }
             for r in rows
         ],
         "joint_model": result.joint.as_dict(),
+        "current_model": None if result.current_model is None else result.current_model.as_dict(),
         "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
         "files": files,
         "notes": notes,
@@ -275,6 +306,7 @@ def run_metocean(
     help="Height above the seabed of the hindcast's current [m] (reference_height).",
 )
 @click.option("--no-figures", is_flag=True, help="Skip the figures.")
+@click.option("--no-report", is_flag=True, help="Skip the report page (report.html).")
 @json_option
 @handle_errors
 def command(
@@ -291,6 +323,7 @@ def command(
     pipe_heading_deg: float | None,
     current_height: float,
     no_figures: bool,
+    no_report: bool,
     as_json: bool,
 ) -> None:
     """Metocean statistics of HINDCAST (CSV or NetCDF: time, hs, tp, wave_direction_deg,
@@ -313,6 +346,7 @@ def command(
         pipe_heading_deg=pipe_heading_deg,
         current_height=current_height,
         figures=not no_figures,
+        report=not no_report,
     )
     if as_json:
         emit_json(payload)

@@ -6,12 +6,15 @@ response-based design displacement on an IFORM contour against F109's return-per
 Writes into ``--out`` (default: ``<case stem>_reliability`` beside the case):
 ``campaign.zarr`` and ``design.zarr`` (every storm run; a rerun after a kill resumes from
 them), ``reliability.json`` (the ``--json`` payload), ``exceedance.png``, ``convergence.png``,
-``importance.png`` and ``design.png``.
+``importance.png`` and ``design.png``, and ``report.html`` (+ ``tables/*.csv``): the report
+page — climate and inputs, exceedance probabilities, importance, design, campaign,
+assumptions and provenance (:mod:`onbottom.report.pages`).
 
 ``--json`` keys: ``success`` (false when a storm run failed numerically: exit status 3),
 ``case``, ``out``, ``diameter`` [m], ``storms_per_year``, ``inputs`` (names of the random
 inputs, the storm seed last), ``climate`` (hindcast, rate, threshold, gpd_scale, gpd_shape,
-sectors, sector_frequencies), ``estimates`` (per limit: ``label``, ``limit`` [m],
+sectors, sector_frequencies, current_model (null: the current is a case input), joint_model;
+empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``probability`` (per storm), ``cv``, ``method``, ``storms``, ``computed``, ``failed_runs``,
 ``annual``, ``lifetime``, ``reliability_index``, ``history`` ([storms, probability, cv]),
 ``curve`` ([displacement m, probability]), ``importance``, ``importance_kind``,
@@ -39,10 +42,14 @@ def run_case(
     scheduler: str | None,
     progress: bool,
     figures: bool = True,
+    report: bool = True,
 ) -> dict:
     """Run the case and write the outputs; returns the JSON payload."""
     import importlib.util
     import math
+    import time
+
+    t0 = time.perf_counter()
 
     from onbottom.errors import InputError
 
@@ -81,6 +88,7 @@ def run_case(
     stats = [s for s in (r.stats, r.design_stats) if s is not None]
     computed = sum(s.computed for s in stats)
     files = [str(out / "campaign.zarr")] + ([str(out / "design.zarr")] if r.design else [])
+    fig_files: dict[str, str] = {}
     if figures:
         import matplotlib.pyplot as plt
 
@@ -102,6 +110,7 @@ def run_case(
             fig.savefig(out / name, dpi=110)
             plt.close(fig)
             files.append(str(out / name))
+            fig_files[name.removesuffix(".png")] = name
     failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
     payload = {
         "success": failed == 0,
@@ -122,7 +131,8 @@ def run_case(
                 sum(s.compute_seconds for s in stats) / computed if computed else math.nan
             ),
         },
-        "files": [*files, str(out / "reliability.json")],
+        "files": [*files, str(out / "reliability.json")]
+        + ([str(out / "report.html")] if report else []),
         "notes": r.notes,
     }
     import json
@@ -130,6 +140,19 @@ def run_case(
     from onbottom.cli._common import _jsonable
 
     write_text_atomic(out / "reliability.json", json.dumps(_jsonable(payload), indent=1))
+    if report:
+        from onbottom.report.pages import reliability_sections, write_page
+
+        sections, prov = reliability_sections(_jsonable(payload), figures=fig_files, case=case)
+        write_page(
+            out,
+            f"Long-term reliability — {case.name}",
+            sections,
+            command=f"onbottom reliability {case} --out {out}",
+            inputs=prov,
+            run_time=time.perf_counter() - t0,
+            json_name="reliability.json",
+        )
     return payload
 
 
@@ -155,6 +178,7 @@ def run_case(
 )
 @click.option("--no-figures", is_flag=True, help="Skip the figures.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
+@click.option("--no-report", is_flag=True, help="Skip the report page (report.html).")
 @json_option
 @handle_errors
 def command(
@@ -164,6 +188,7 @@ def command(
     scheduler: str | None,
     no_figures: bool,
     no_progress: bool,
+    no_report: bool,
     as_json: bool,
 ) -> None:
     """Long-term reliability of CASE (a storm case with a [reliability] table; see
@@ -178,6 +203,7 @@ def command(
         scheduler=scheduler,
         progress=not no_progress,
         figures=not no_figures,
+        report=not no_report,
     )
     if as_json:
         emit_json(payload)

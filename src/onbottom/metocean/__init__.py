@@ -10,6 +10,7 @@ the optional extra ``onbottom[metocean]``, imported only when a fit runs. Theory
 """
 
 from onbottom.metocean.analysis import MetoceanOptions, MetoceanResult, analyse_hindcast
+from onbottom.metocean.current import CurrentModel, fit_current_model
 from onbottom.metocean.extremes import ReturnLevels, fit_return_levels, gpd_return_level
 from onbottom.metocean.hindcast import Hindcast, read_hindcast, write_hindcast_csv
 from onbottom.metocean.joint import JointModel, fit_joint_model, iform_contour
@@ -19,6 +20,7 @@ from onbottom.metocean.table import DesignRow, design_rows, design_table_csv, se
 
 __all__ = [
     "EXAMPLE_MODEL",
+    "CurrentModel",
     "DesignRow",
     "Hindcast",
     "JointModel",
@@ -30,6 +32,7 @@ __all__ = [
     "analyse_hindcast",
     "design_rows",
     "design_table_csv",
+    "fit_current_model",
     "fit_joint_model",
     "fit_return_levels",
     "gpd_return_level",

@@ -14,6 +14,7 @@ import numpy as np
 
 from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.errors import InputError
+from onbottom.metocean.current import CurrentModel, fit_current_model
 from onbottom.metocean.extremes import CI_METHODS, ReturnLevels, fit_return_levels
 from onbottom.metocean.hindcast import Hindcast
 from onbottom.metocean.joint import JointModel, fit_joint_model, iform_contour
@@ -119,6 +120,7 @@ class MetoceanResult:
     current: dict[str, ReturnLevels] | None
     joint: JointModel
     contours: dict[float, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    current_model: CurrentModel | None = None
 
     def to_dataset(self):
         """Return levels, thresholds, storm counts and contours as an xarray Dataset (SI,
@@ -185,6 +187,7 @@ class MetoceanResult:
                 hindcast_years=self.hindcast.years,
                 hindcast_step_hours=self.hindcast.step_hours,
                 joint_model=self.joint.as_dict(),
+                current_model=None if self.current_model is None else self.current_model.as_dict(),
                 direction_convention="waves: coming from; current sectored by coming-from"
                 " (going-to + 180 deg)",
                 pyextremes_version=_version("pyextremes"),
@@ -208,6 +211,7 @@ MIN_TARGET_STORMS = 20
 
 
 def _levels(values, hc: Hindcast, o: MetoceanOptions, name: str) -> ReturnLevels:
+    values = np.where(np.isfinite(values), values, 0.0)  # a missing sea state is no storm
     rate = max(o.storm_rate, MIN_TARGET_STORMS / hc.years)
     u = (
         threshold_for_rate(values, hc.step_hours, o.r_hours, hc.years, rate)
@@ -225,19 +229,29 @@ def _levels(values, hc: Hindcast, o: MetoceanOptions, name: str) -> ReturnLevels
         seed=o.seed,
         name=name,
         ci_method=o.ci_method,
+        observed_years=hc.years if hc.n_missing else None,
     )
 
 
 def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None) -> MetoceanResult:
-    """Storms, return values per sector (H_s, current), joint model and contours.
+    """Storms, return values per sector (H_s, current), joint model and contours, and (with
+    current columns) the current's joint model with H_s (:mod:`onbottom.metocean.current`).
 
     Each series (omni and each sector's masked series) gets its own threshold, set so that
     about ``storm_rate`` storms a year (and at least :data:`MIN_TARGET_STORMS` in the record)
-    exceed it, declustered with ``r_hours``.
+    exceed it, declustered with ``r_hours``. Missing sea states count as no storm, and the
+    storm rate is per observed year; the joint models are fitted to the observed states.
     """
     o = options or MetoceanOptions()
     hc = hindcast
     positive("hindcast length", hc.years)
+    if o.sectors > 1 and not hc.has_direction:
+        err = InputError(
+            f"sectors = {o.sectors} is invalid: the hindcast has no wave_direction_deg column"
+            " (an omnidirectional analysis only: sectors = 1)"
+        )
+        err.field = "sectors"  # type: ignore[attr-defined]
+        raise err
     centres, _ = sector_edges(o.sectors)
     names = sector_names(o.sectors)
     hs: dict[str, ReturnLevels] = {"omni": _levels(hc.hs, hc, o, "hs")}
@@ -256,7 +270,17 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
         if cur is not None:
             mc = sector_mask(cur_from, o.sectors, k)
             cur[name] = _levels(np.where(mc, hc.current_speed, 0.0), hc, o, "current")
-    joint = fit_joint_model(hc.hs, hc.tp)
+    obs = hc.observed
+    joint = fit_joint_model(hc.hs[obs], hc.tp[obs])
+    current_model = None
+    if hc.has_current:
+        current_model = fit_current_model(
+            hc.hs[obs],
+            hc.current_speed[obs],
+            hs_scale=joint.hs_scale,
+            hs_shape=joint.hs_shape,
+            hs_location=joint.hs_location,
+        )
     contours = {
         float(rp): iform_contour(joint, rp, hc.step_hours, o.contour_points)
         for rp in o.return_periods
@@ -270,4 +294,5 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
         current=cur,
         joint=joint,
         contours=contours,
+        current_model=current_model,
     )

@@ -230,6 +230,14 @@ def _seeded(seed: int):
         np.random.set_state(state)
 
 
+def _positive_years(value: float) -> float:
+    """``value`` [years] checked > 0."""
+    from onbottom._validate import positive
+
+    positive("observed_years", value)
+    return float(value)
+
+
 def fit_return_levels(
     values: np.ndarray,
     time: np.ndarray,
@@ -241,6 +249,7 @@ def fit_return_levels(
     seed: int = 0,
     name: str = "x",
     ci_method: str = "profile",
+    observed_years: float | None = None,
 ) -> ReturnLevels:
     """Fit a GPD to ``storms`` with pyextremes and return the levels for ``return_periods``.
 
@@ -265,6 +274,11 @@ def fit_return_levels(
     ci_method : str
         ``"profile"`` (profile likelihood) or ``"bootstrap"`` (pyextremes); see the module
         docstring.
+    observed_years : float or None
+        Years actually observed when the record has missing sea states [years]: the storm
+        rate is then storms per observed year, not per first-to-last span (pyextremes' rate;
+        its return periods are scaled by span/observed so that its levels use this rate).
+        None: the span (a complete record).
     """
     import pandas as pd
     from pyextremes import EVA
@@ -299,15 +313,18 @@ def fit_return_levels(
             ext, method="POT", threshold=storms.threshold, r=pd.to_timedelta(storms.r_hours, "h")
         )
         model.fit_model(model="MLE", distribution="genpareto")
+        span = (index[-1] - index[0]) / pd.Timedelta("365.2425D")  # pyextremes' rate
+        # λ_obs R = λ_span R' (same exceedance per storm): R' = R·span/observed
+        scale_r = 1.0 if observed_years is None else span / _positive_years(observed_years)
+        rps_pe = rps * scale_r
         if ci_method == "bootstrap":
             with _seeded(seed):
                 for n in range(min(50, nb), nb, 50):  # grow the cache 50 at a time: no Pool
-                    model.get_return_value(rps, alpha=confidence, n_samples=n)
-                v, lo, hi = model.get_return_value(rps, alpha=confidence, n_samples=nb)
+                    model.get_return_value(rps_pe, alpha=confidence, n_samples=n)
+                v, lo, hi = model.get_return_value(rps_pe, alpha=confidence, n_samples=nb)
         else:
-            v = model.get_return_value(rps)[0]
-            span = (index[-1] - index[0]) / pd.Timedelta("365.2425D")  # pyextremes' rate
-            rate = storms.peak.size / span
+            v = model.get_return_value(rps_pe)[0]
+            rate = storms.peak.size / (span if observed_years is None else observed_years)
             excess = storms.peak - storms.threshold
             lo = np.empty(rps.size)
             hi = np.empty(rps.size)

@@ -11,7 +11,13 @@ CSV layout (``#`` lines are comments; a header row, then a **units row**, then d
 * ``hs`` significant wave height [m], ``tp`` spectral peak period [s],
   ``wave_direction_deg`` the direction the waves come **from** [deg, clockwise from north].
 * ``current_speed`` [m/s] and ``current_direction_deg`` the direction the current goes **to**
-  [deg] (oceanographic conventions). The two current columns are optional together.
+  [deg] (oceanographic conventions). The two current columns are optional together;
+  ``wave_direction_deg`` is optional too (a record without directions: ``time,hs,tp``, analysed
+  omnidirectionally only).
+* **Missing sea states** (a buoy's outages): a row whose values are all empty, at its place in
+  the regular time grid — never a skipped time (a skipped time is a gap, an error). A row with
+  some values empty and others not is an error. The record length counts the observed sea
+  states only (:attr:`Hindcast.years`).
 
 NetCDF: a ``time`` coordinate and the same variable names, each with a ``units`` attribute
 (``m``; ``s``; ``deg``/``degree``/``degrees``; ``m/s``/``m s-1``).
@@ -84,8 +90,8 @@ class Hindcast:
         Significant wave height H_s [m].
     tp : ndarray
         Spectral peak period T_p [s].
-    wave_direction_deg : ndarray
-        Wave direction, coming from [deg].
+    wave_direction_deg : ndarray or None
+        Wave direction, coming from [deg] (None: not in the record).
     current_speed : ndarray or None
         Current speed [m/s].
     current_direction_deg : ndarray or None
@@ -97,7 +103,7 @@ class Hindcast:
     time: np.ndarray
     hs: np.ndarray
     tp: np.ndarray
-    wave_direction_deg: np.ndarray
+    wave_direction_deg: np.ndarray | None
     current_speed: np.ndarray | None
     current_direction_deg: np.ndarray | None
     source: str = ""
@@ -111,9 +117,26 @@ class Hindcast:
         return float((self.time[1] - self.time[0]) / np.timedelta64(1, "s")) / 3600.0
 
     @property
+    def observed(self) -> np.ndarray:
+        """Mask of the observed (not missing) sea states."""
+        return np.isfinite(np.asarray(self.hs, dtype=float))
+
+    @property
+    def n_missing(self) -> int:
+        """Missing sea states (rows left empty)."""
+        return int(np.count_nonzero(~self.observed))
+
+    @property
     def years(self) -> float:
-        """Length covered, n·Δt [years of 365.2425 d]."""
-        return len(self.time) * self.step_hours / (24.0 * 365.2425)
+        """Length observed, n_observed·Δt [years of 365.2425 d] (n·Δt without missing
+        sea states)."""
+        n = len(self.time) - self.n_missing
+        return n * self.step_hours / (24.0 * 365.2425)
+
+    @property
+    def has_direction(self) -> bool:
+        """Whether the wave direction column is present."""
+        return self.wave_direction_deg is not None
 
     @property
     def has_current(self) -> bool:
@@ -146,7 +169,7 @@ def _check_series(h: Hindcast, row_offset: int = 0, label: str = "index") -> Non
     n = len(h.time)
     if n < 3:
         _fail("time", f"time = {n} rows is invalid: a hindcast needs at least 3 time steps")
-    names = ["hs", "tp", "wave_direction_deg"]
+    names = ["hs", "tp"] + (["wave_direction_deg"] if h.wave_direction_deg is not None else [])
     if (h.current_speed is None) != (h.current_direction_deg is None):
         _fail(
             "current_speed",
@@ -186,15 +209,30 @@ def _check_series(h: Hindcast, row_offset: int = 0, label: str = "index") -> Non
             f"{', '.join(str(int(g) + off) for g in gaps[:_MAX_LISTED])}: {what}{more}; fill or"
             " split the record",
         )
+    missing = ~np.isfinite(np.asarray(h.hs, dtype=float))
+    given = np.zeros(n, dtype=bool)
+    for name in names[1:]:
+        given |= np.isfinite(np.asarray(getattr(h, name), dtype=float))
+    partial = np.flatnonzero(missing & given)
+    if partial.size:
+        _fail(
+            "hs",
+            f"hs is invalid: missing or non-finite values at {_row_list(partial, t, off, label)}"
+            " where the row's other values are given (a missing sea state leaves every value of"
+            " its row empty)",
+        )
+    if n - np.count_nonzero(missing) < 3:
+        _fail("hs", f"hs is invalid: {n - np.count_nonzero(missing)} observed sea states (< 3)")
     for name in names:
         a = np.asarray(getattr(h, name), dtype=float)
         lo, hi, unit = _LIMITS[name]
-        nonfinite = np.flatnonzero(~np.isfinite(a))
+        nonfinite = np.flatnonzero(~np.isfinite(a) & ~missing)
         if nonfinite.size:
             _fail(
                 name,
                 f"{name} is invalid: missing or non-finite values at"
-                f" {_row_list(nonfinite, t, off, label)}",
+                f" {_row_list(nonfinite, t, off, label)} (a missing sea state leaves every"
+                " value of its row empty)",
             )
         if name == "tp":
             out = np.flatnonzero((a <= lo) | (a > hi))
@@ -209,8 +247,9 @@ def _check_series(h: Hindcast, row_offset: int = 0, label: str = "index") -> Non
                 f"{name} = {a[r]!r} {unit} is invalid at {_row_list(out, t, off, label)}:"
                 f" must lie in {rng} {unit} (check the unit)",
             )
-    steep = 2.0 * math.pi * np.asarray(h.hs) / (GRAVITY * np.asarray(h.tp) ** 2)
-    over = np.flatnonzero(steep > MAX_STEEPNESS)
+    with np.errstate(invalid="ignore"):
+        steep = 2.0 * math.pi * np.asarray(h.hs) / (GRAVITY * np.asarray(h.tp) ** 2)
+        over = np.flatnonzero(steep > MAX_STEEPNESS)
     if over.size:
         r = over[0]
         _fail(
@@ -248,12 +287,13 @@ def _read_csv(path: Path) -> Hindcast:
         _fail("header", f"{path}: expected a header row and a units row, then data")
     header_row, header = lines[0]
     cols = [c.strip() for c in next(csv.reader([header]))]
-    allowed = (list(COLUMNS), list(COLUMNS[:4]))
+    allowed = (list(COLUMNS), list(COLUMNS[:4]), list(COLUMNS[:3]))
     if cols not in allowed:
         _fail(
             "header",
             f"header = {','.join(cols)!r} (line {header_row}) is invalid: expected"
-            f" {','.join(COLUMNS)!r} (the two current columns may be left out)",
+            f" {','.join(COLUMNS)!r} (the two current columns may be left out, and then the"
+            " wave direction too)",
         )
     units_row, units_line = lines[1]
     units = [u.strip() for u in next(csv.reader([units_line]))]
@@ -292,7 +332,7 @@ def _read_csv(path: Path) -> Hindcast:
         time=time,
         hs=data[:, 0],
         tp=data[:, 1],
-        wave_direction_deg=data[:, 2],
+        wave_direction_deg=data[:, 2] if len(cols) > 3 else None,
         current_speed=data[:, 3] if cur else None,
         current_direction_deg=data[:, 4] if cur else None,
         source=str(path),
@@ -320,7 +360,9 @@ def _read_netcdf(path: Path) -> Hindcast:
     with ds:
         if "time" not in ds.coords and "time" not in ds:
             _fail("time", f"{path}: no 'time' coordinate")
-        needed = list(COLUMNS[1:4])
+        needed = list(COLUMNS[1:3])
+        if "wave_direction_deg" in ds:
+            needed.append("wave_direction_deg")
         cur = "current_speed" in ds or "current_direction_deg" in ds
         if cur:
             needed += list(COLUMNS[4:])
@@ -352,7 +394,7 @@ def _read_netcdf(path: Path) -> Hindcast:
         time=time,
         hs=arrays["hs"],
         tp=arrays["tp"],
-        wave_direction_deg=arrays["wave_direction_deg"],
+        wave_direction_deg=arrays.get("wave_direction_deg"),
         current_speed=arrays.get("current_speed"),
         current_direction_deg=arrays.get("current_direction_deg"),
         source=str(path),
@@ -387,12 +429,14 @@ def write_hindcast_csv(
     path: str | os.PathLike, data: dict[str, np.ndarray], *, comments: tuple[str, ...] = ()
 ) -> Path:
     """Write a hindcast in the CSV schema (``data`` as returned by
-    :func:`~onbottom.metocean.synthetic.synthetic_hindcast`); directions to 0.1°, H_s to cm,
-    T_p to 0.01 s, current to mm/s."""
+    :func:`~onbottom.metocean.synthetic.synthetic_hindcast`; ``wave_direction_deg`` and the
+    current may be absent or None); directions to 0.1°, H_s to cm, T_p to 0.01 s, current to
+    mm/s; NaN (a missing sea state) as an empty cell."""
     from onbottom.results import write_text_atomic
 
     cur = "current_speed" in data and data["current_speed"] is not None
-    cols = COLUMNS if cur else COLUMNS[:4]
+    dirs = data.get("wave_direction_deg") is not None
+    cols = COLUMNS if cur else COLUMNS[:4] if dirs else COLUMNS[:3]
     out = [f"# {c}\n" for c in comments]
     out.append(",".join(cols) + "\n")
     out.append(",".join(UNITS[c][0] for c in cols) + "\n")
@@ -405,11 +449,15 @@ def write_hindcast_csv(
         "current_direction_deg": "{:.1f}",
     }
     columns = [np.asarray(data[c]) for c in cols[1:]]
+
+    def cell(c: str, v: float) -> str:
+        return fmt[c].format(v) if math.isfinite(v) else ""  # missing: empty
+
     for i in range(len(t)):
         out.append(
             t[i]
             + "Z,"
-            + ",".join(fmt[c].format(col[i]) for c, col in zip(cols[1:], columns, strict=True))
+            + ",".join(cell(c, col[i]) for c, col in zip(cols[1:], columns, strict=True))
             + "\n"
         )
     return write_text_atomic(path, "".join(out))

@@ -5,8 +5,11 @@ environment is the more severe of the 100-year wave with the 10-year current and
 wave with the 100-year current (:func:`onbottom.inputs.environment.f109_combinations`).
 Per sector (and omni) the table gives H_s for every return period (POT/GPD, with its
 confidence interval), the T_p that goes with it (median of T_p | H_s of the joint model, and
-its 5 %–95 % range, which F109 §3.4.4 asks to scan), and the current speed for every return
-period.
+its 5 %–95 % range, which F109 §3.4.4 asks to scan), the current speed for every return
+period (POT of the sector's current), and — with joint statistics of waves and current
+(:mod:`onbottom.metocean.current`) — the current that goes with each return-period H_s: the
+median and the 90 % quantile of U | H_s (omnidirectional copula; the joint-statistics
+alternative F109 §3.4.2 opens to its two combinations).
 
 Written as ``design_table.csv`` (one row per sector) and, per sector, a TOML fragment with
 ``[waves]`` (100-year), ``[current]`` (10-year) and the two ``[[combinations]]`` in the keys of
@@ -46,6 +49,9 @@ class DesignRow:
         Median T_p [s] given that H_s, and the 5 % and 95 % conditional quantiles.
     current, current_lower, current_upper : tuple of float or None
         Current speed [m/s] per R and its interval (None without current).
+    current_with_hs, current_with_hs_p90 : tuple of float or None
+        Median and 90 % quantile of the current speed [m/s] given the R-year H_s of the
+        row (joint model; None without current).
     """
 
     sector: str
@@ -60,6 +66,8 @@ class DesignRow:
     current: tuple[float, ...] | None
     current_lower: tuple[float, ...] | None
     current_upper: tuple[float, ...] | None
+    current_with_hs: tuple[float, ...] | None = None
+    current_with_hs_p90: tuple[float, ...] | None = None
 
     def at(self, what: str, return_period: float) -> float:
         """Value of column ``what`` (``"hs"``, ``"tp"``, ``"current"``…) at R [years]."""
@@ -85,6 +93,11 @@ def design_rows(result: MetoceanResult) -> list[DesignRow]:
         if result.current is not None:
             cr = result.current[name]
             cv, cl, cu = (tuple(map(float, a)) for a in (cr.value, cr.lower, cr.upper))
+        cj = cj90 = None
+        if result.current_model is not None:
+            cm = result.current_model
+            cj = tuple(float(v) for v in np.where(ok, cm.quantile(safe, 0.5), np.nan))
+            cj90 = tuple(float(v) for v in np.where(ok, cm.quantile(safe, 0.9), np.nan))
         rows.append(
             DesignRow(
                 sector=name,
@@ -99,6 +112,8 @@ def design_rows(result: MetoceanResult) -> list[DesignRow]:
                 current=cv,
                 current_lower=cl,
                 current_upper=cu,
+                current_with_hs=cj,
+                current_with_hs_p90=cj90,
             )
         )
     return rows
@@ -124,6 +139,8 @@ def design_table_csv(rows: list[DesignRow]) -> str:
                 (f"current_{t}_lower", "m/s"),
                 (f"current_{t}_upper", "m/s"),
             ]
+        if r0.current_with_hs is not None:
+            cols += [(f"current_with_hs_{t}", "m/s"), (f"current_with_hs_{t}_p90", "m/s")]
     lines = [",".join(c for c, _ in cols), ",".join(u for _, u in cols)]
 
     def f(x: float, nd: int) -> str:
@@ -142,6 +159,8 @@ def design_table_csv(rows: list[DesignRow]) -> str:
             ]
             if r.current is not None:
                 vals += [f(r.current[i], 3), f(r.current_lower[i], 3), f(r.current_upper[i], 3)]
+            if r.current_with_hs is not None:
+                vals += [f(r.current_with_hs[i], 3), f(r.current_with_hs_p90[i], 3)]
         lines.append(",".join(vals))
     return "\n".join(lines) + "\n"
 
@@ -236,4 +255,13 @@ def sector_toml(
         f"current_velocity = {c100:.3f}",
         "",
     ]
+    if row.current_with_hs is not None:
+        cj, cj90 = row.at("current_with_hs", 100), row.at("current_with_hs_p90", 100)
+        lines += [
+            "# Joint statistics of waves and current (F109 §3.4.2 allows them in place of the",
+            f"# two combinations): the current with the 100-year H_s is {cj:.3f} m/s (median),",
+            f"# {cj90:.3f} m/s (90 %) — Weibull current, Gaussian copula with H_s"
+            " (docs/theory/metocean.md).",
+            "",
+        ]
     return "\n".join(lines)

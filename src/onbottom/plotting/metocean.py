@@ -79,8 +79,10 @@ def plot_return_levels(result: MetoceanResult, *, title: str | None = None) -> F
 def plot_contours(result: MetoceanResult, *, title: str | None = None) -> Figure:
     """H_s–T_p sea states of the record and the IFORM contours of the joint model."""
     hc = result.hindcast
+    obs = hc.observed  # missing sea states left out
+    hs_obs, tp_obs = hc.hs[obs], hc.tp[obs]
     fig, ax = plt.subplots(figsize=(6.4, 5.0), layout="constrained")
-    hb = ax.hexbin(hc.tp, hc.hs, gridsize=60, bins="log", cmap="Greys", mincnt=1)
+    hb = ax.hexbin(tp_obs, hs_obs, gridsize=60, bins="log", cmap="Greys", mincnt=1)
     fig.colorbar(hb, ax=ax, label="sea states per bin")
     for k, (rp, (h, t)) in enumerate(sorted(result.contours.items())):
         ax.plot(
@@ -95,12 +97,12 @@ def plot_contours(result: MetoceanResult, *, title: str | None = None) -> Figure
             i = list(lv.return_periods).index(rp)
             if np.isfinite(lv.value[i]):
                 ax.axhline(lv.value[i], color=f"C{k}", ls=":", lw=1.0)
-    tp_line = np.linspace(max(1.0, float(hc.tp.min())), float(hc.tp.max()) * 1.1, 100)
+    tp_line = np.linspace(max(1.0, float(tp_obs.min())), float(tp_obs.max()) * 1.1, 100)
     ax.plot(
         tp_line, 9.80665 * tp_line**2 / (2 * np.pi * 15.0), "k--", lw=0.8, label="steepness 1/15"
     )
     ax.set_ylim(
-        0.0, max(float(hc.hs.max()), max(h.max() for h, _ in result.contours.values())) * 1.1
+        0.0, max(float(hs_obs.max()), max(h.max() for h, _ in result.contours.values())) * 1.1
     )
     ax.set_xlabel("T_p [s]")
     ax.set_ylabel("H_s [m]")

@@ -11,8 +11,11 @@ table (``examples/reliability_case.toml``).
 * ``storms_per_year`` (λ; required without a climate), ``design_life_years``;
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
   ``sectors`` (1: omnidirectional, waves from the case's direction), ``pipe_heading_deg``,
-  ``storm_rate`` (the POT threshold's target storms per year): the sea state (H_s, T_p,
-  sector) is drawn from :class:`~onbottom.reliability.climate.StormClimate`;
+  ``storm_rate`` (the POT threshold's target storms per year), ``current`` (true: the current
+  speed is drawn with the sea state from the hindcast's current model, U | H_s,
+  :mod:`onbottom.metocean.current`; then ``current_velocity`` is not an input): the sea state
+  (H_s, T_p, sector, current) is drawn from
+  :class:`~onbottom.reliability.climate.StormClimate`;
 * ``[reliability.inputs]``: ``name = number`` or ``name = {distribution = ..., ...}`` for
   ``hs``, ``tp`` (without a climate), ``direction_deg``, ``current_velocity``,
   ``current_direction_deg``, ``friction_coefficient``, ``submerged_unit_weight``;
@@ -43,6 +46,7 @@ class ClimateTable(StrictModel):
     sectors: int = Field(1, ge=1, le=36, description="direction sectors [-]")
     pipe_heading_deg: float = Field(0.0, ge=0.0, le=360.0, description="[deg from north]")
     storm_rate: float = Field(3.0, ge=0.5, le=50.0, description="target storms per year")
+    current: bool = Field(False, description="current speed from the hindcast's joint model")
 
 
 class DesignTable(StrictModel):

@@ -4,16 +4,20 @@ From a :class:`~onbottom.metocean.analysis.MetoceanResult` (``onbottom metocean`
 arrive as a Poisson process of rate λ per year; each storm's peak H_s exceeds the threshold u
 by a generalised Pareto excess (σ, ξ) (Coles 2001, §4.3); its T_p follows the joint model's
 log-normal T_p | H_s (DNV-RP-C205 §3.6.3); the sector the waves come from is drawn with the
-storms' observed sector frequencies.
+storms' observed sector frequencies; with a current model
+(:class:`~onbottom.metocean.current.CurrentModel`, fitted to the hindcast's current) the
+current speed at the storm peak follows U | H_s (Weibull marginal, Gaussian copula with H_s).
 
-The inputs are standard normal variables — ``u_hs``, ``u_tp`` and, with sectors,
-``u_direction`` — mapped to the sea state by the Rosenblatt transformation
+The inputs are standard normal variables — ``u_hs``, ``u_tp``, with sectors ``u_direction``,
+with a current model ``u_current`` — mapped to the sea state by the Rosenblatt transformation
 (:meth:`StormClimate.sea_state`): H_s = u + G⁻¹(Φ(u_hs)), T_p = exp(μ(H_s) + σ(H_s) u_tp),
-sector = the first k with Φ(u_direction) ≤ F_k (cumulative frequencies). FORM in these
+sector = the first k with Φ(u_direction) ≤ F_k (cumulative frequencies),
+U = F_U⁻¹(Φ(ρ z_H(H_s) + √(1 − ρ²) u_current)). FORM in these
 variables is the inverse-FORM of environmental contours (Winterstein et al. 1993), and a
 limit state over a storm gives P[failure | storm]; a year fails when any of its storms does:
 P_annual = 1 − exp(−λ P[failure | storm]) (:meth:`StormClimate.annual_probability`).
-Current and soil are further :class:`UncertainParameter` inputs given by the user.
+Without a current model the current, and always the soil, are further
+:class:`UncertainParameter` inputs given by the user.
 """
 
 from __future__ import annotations
@@ -26,6 +30,7 @@ from scipy import special
 
 from onbottom._validate import in_range, positive
 from onbottom.errors import InputError
+from onbottom.metocean.current import CurrentModel
 from onbottom.metocean.joint import JointModel
 from onbottom.reliability.distributions import UncertainParameter
 
@@ -54,6 +59,8 @@ class StormClimate:
         Share of the storms from each sector (sums to 1).
     sector_centres_deg : tuple of float
         Sector centres, coming from [deg].
+    current : CurrentModel or None
+        Current speed given H_s (None: the current is not part of the climate).
     """
 
     rate: float
@@ -64,6 +71,7 @@ class StormClimate:
     sectors: tuple[str, ...] = ()
     sector_frequencies: tuple[float, ...] = ()
     sector_centres_deg: tuple[float, ...] = ()
+    current: CurrentModel | None = None
 
     def __post_init__(self) -> None:
         positive("StormClimate.rate", self.rate)
@@ -80,10 +88,10 @@ class StormClimate:
             )
 
     @classmethod
-    def from_result(cls, result) -> StormClimate:
+    def from_result(cls, result, *, current: bool = False) -> StormClimate:
         """The climate of an analysed hindcast: the omnidirectional storms' GPD and rate, the
-        joint model, and the sectors' shares of the omnidirectional storm peaks (by the wave
-        direction at each peak)."""
+        joint model, the sectors' shares of the omnidirectional storm peaks (by the wave
+        direction at each peak) and, with ``current``, the hindcast's current model."""
         from onbottom.metocean.storms import sector_mask
 
         lv = result.hs["omni"]
@@ -100,7 +108,13 @@ class StormClimate:
             names = tuple(result.sectors)
             freq = tuple(float(c) for c in counts / counts.sum())
             centres = tuple(float(c) for c in result.centres_deg)
+        if current and result.current_model is None:
+            raise InputError(
+                "reliability.climate.current = true is invalid: the hindcast has no current"
+                " columns (current_speed, current_direction_deg)"
+            )
         return cls(
+            current=result.current_model if current else None,
             rate=lv.storms.rate,
             threshold=lv.storms.threshold,
             gpd_scale=lv.scale,
@@ -112,8 +126,10 @@ class StormClimate:
         )
 
     def parameters(self) -> list[UncertainParameter]:
-        """The standard normal inputs of a storm: ``u_hs``, ``u_tp`` (and ``u_direction``)."""
+        """The standard normal inputs of a storm: ``u_hs``, ``u_tp`` (``u_direction``,
+        ``u_current``)."""
         names = ["u_hs", "u_tp"] + (["u_direction"] if self.sectors else [])
+        names += ["u_current"] if self.current is not None else []
         return [UncertainParameter(n, "normal", {"mean": 0.0, "std": 1.0}) for n in names]
 
     def peak_hs(self, u_hs: np.ndarray) -> np.ndarray:
@@ -125,8 +141,9 @@ class StormClimate:
         return self.threshold + s / xi * (np.power(1.0 - q, -xi) - 1.0)
 
     def sea_state(self, u: np.ndarray) -> dict[str, np.ndarray]:
-        """H_s [m], T_p [s] and the sector index (−1 without sectors) of each row of ``u``
-        (columns in the order of :meth:`parameters`)."""
+        """H_s [m], T_p [s], the sector index (−1 without sectors) and the current speed
+        ``current`` [m/s] (NaN without a current model) of each row of ``u`` (columns in the
+        order of :meth:`parameters`)."""
         a = np.atleast_2d(np.asarray(u, dtype=float))
         hs = self.peak_hs(a[:, 0])
         tp = np.exp(self.joint.tp_mu(hs) + self.joint.tp_sigma(hs) * a[:, 1])
@@ -136,7 +153,11 @@ class StormClimate:
             sector = np.minimum(k, len(self.sectors) - 1)
         else:
             sector = np.full(a.shape[0], -1)
-        return {"hs": hs, "tp": tp, "sector": sector}
+        if self.current is not None:
+            current = self.current.speed(hs, a[:, -1])
+        else:
+            current = np.full(a.shape[0], np.nan)
+        return {"hs": hs, "tp": tp, "sector": sector, "current": current}
 
     def exceedance_per_storm(self, hs: float) -> float:
         """P[storm peak H_s > ``hs``] (closed form of the GPD; 1 below the threshold)."""

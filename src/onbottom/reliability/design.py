@@ -4,7 +4,9 @@
    duration equal to the storm's peak (α = Δt/R; :func:`onbottom.metocean.joint.iform_contour`);
    its points with H_s at or above ``upper_fraction`` of the contour's highest H_s (where the
    response lives) are run with ``seeds`` storms each, soil and current at the case's values
-   (the inputs' means when they are uncertain).
+   (the inputs' means when they are uncertain) — or, when the current comes from the
+   hindcast's joint model, the median current given each point's H_s (the F109 storm of step
+   4 likewise).
 2. The ``top_points`` points with the highest mean maximum displacement are rerun with
    ``top_seeds`` storms (the seeds of step 1 are reused: only new seeds run).
 3. The design displacement is the ``fractile`` of the maximum displacement over the seeds at
@@ -22,6 +24,7 @@ All runs go through a :class:`~onbottom.reliability.campaign.Campaign` (resumabl
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -80,6 +83,7 @@ def response_based_design(
     top_seeds: int = 8,
     fractile: float = 0.9,
     upper_fraction: float = 0.6,
+    current_given_hs: Callable[[float], float] | None = None,
 ) -> DesignResult:
     """Steps 1–4 of the module docstring.
 
@@ -102,6 +106,10 @@ def response_based_design(
         Fractile of the design displacement, in (0, 1).
     upper_fraction : float
         Points with H_s >= this share of the contour's highest H_s are run, in (0, 1].
+    current_given_hs : callable or None
+        H_s [m] → the current speed [m/s] that goes with it (the median of the hindcast's
+        U | H_s): sets the model's ``current_velocity`` input at each point and at F109's sea
+        state. None: the current is in ``base_row`` (or the case's).
     """
     names = campaign.model.input_names
     k = campaign.model.output_names.index("max_displacement")
@@ -115,6 +123,8 @@ def response_based_design(
 
     def row(hs: float, tp: float) -> np.ndarray:
         vals = {**base_row, "hs": hs, "tp": tp}
+        if current_given_hs is not None:
+            vals["current_velocity"] = float(current_given_hs(hs))
         return np.array([vals[n] for n in names], dtype=float)
 
     def run(hs: float, tp: float, n: int) -> np.ndarray:

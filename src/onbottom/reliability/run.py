@@ -65,7 +65,7 @@ def run_reliability(
                 storm_rate=t.climate.storm_rate,
             ),
         )
-        climate = StormClimate.from_result(result)
+        climate = StormClimate.from_result(result, current=t.climate.current)
         info = {
             "hindcast": str(setup.hindcast_path()),
             "rate": climate.rate,
@@ -74,6 +74,8 @@ def run_reliability(
             "gpd_shape": climate.gpd_shape,
             "sectors": list(climate.sectors),
             "sector_frequencies": list(climate.sector_frequencies),
+            "current_model": None if climate.current is None else climate.current.as_dict(),
+            "joint_model": climate.joint.as_dict(),
         }
     rate = climate.rate if climate is not None else float(t.storms_per_year)
     user = setup.inputs()
@@ -132,9 +134,11 @@ def run_reliability(
         hs_r = float(omni.value[list(omni.return_periods).index(float(d.return_period))])
         tp_r = float(result.joint.tp_quantile(hs_r, 0.5))
         fixed = [p for p in user if p.name not in ("hs", "tp")]
+        cm = climate.current if climate is not None else None
         dmodel = StormModel(
             setup.storm,
-            inputs=("hs", "tp", *(p.name for p in fixed)),
+            inputs=("hs", "tp", *(p.name for p in fixed))
+            + (("current_velocity",) if cm is not None else ()),
             soil_kind=setup.seabed_model,
         )
         with Campaign(
@@ -155,6 +159,8 @@ def run_reliability(
                 top_points=d.top_points,
                 top_seeds=d.top_seeds,
                 fractile=d.fractile,
+                # with the hindcast's current: the median current given each point's H_s
+                current_given_hs=None if cm is None else (lambda h: float(cm.quantile(h, 0.5))),
             )
             dstats = dc.stats
     return ReliabilityRun(

@@ -7,7 +7,11 @@ in :attr:`StormModel.input_names` order:
 * the sea state: with a storm climate (:class:`~onbottom.reliability.climate.StormClimate`),
   its standard normal ``u_hs``, ``u_tp`` (and ``u_direction``: the sector, whose centre minus
   ``pipe_heading_deg`` is the wave direction to the pipe axis, the convention of
-  ``onbottom metocean``'s case tables); without one, ``hs`` [m] and ``tp`` [s] themselves;
+  ``onbottom metocean``'s case tables; and ``u_current`` when the climate carries the
+  hindcast's current model: the current speed at the case's reference height — the hindcast's
+  current must be given at that height — and, with sectors, the current's direction set to the
+  waves' (co-linear, pushing the pipe the same way, as F109 §3.4.2's combinations assume));
+  without a climate, ``hs`` [m] and ``tp`` [s] themselves;
 * any of :data:`PHYSICAL_INPUTS`: ``direction_deg`` (waves to the pipe axis [deg]),
   ``current_velocity`` [m/s] (at the case's reference height), ``current_direction_deg``
   [deg], ``friction_coefficient`` [-], ``submerged_unit_weight`` [N/m³] (sand and clay: the
@@ -116,6 +120,16 @@ class StormModel:
             raise InputError(
                 "reliability inputs are invalid: direction_deg comes from the climate's sectors"
             )
+        if (
+            self.climate is not None
+            and self.climate.current is not None
+            and "current_velocity" in self.inputs
+        ):
+            raise InputError(
+                "reliability inputs are invalid: current_velocity comes from the hindcast's"
+                " current model (reliability.climate.current = true); remove it from"
+                " [reliability.inputs]"
+            )
 
     @property
     def input_names(self) -> tuple[str, ...]:
@@ -157,7 +171,8 @@ class StormModel:
         return f"onbottom {__version__}; StormModel {self.input_names}; case {digest}"
 
     def sea_state(self, x: np.ndarray) -> dict[str, float]:
-        """hs [m], tp [s], direction_deg [deg] of a row."""
+        """hs [m], tp [s], direction_deg [deg] of a row, and ``current_velocity`` [m/s] and
+        ``current_direction_deg`` [deg] when the climate draws the current."""
         row = dict(zip(self.input_names, np.asarray(x, dtype=float).tolist(), strict=True))
         peak = self.setup.storm.stages[0] if self.setup.storm.stages else None
         direction = row.get("direction_deg", peak.direction_deg if peak else 90.0)
@@ -169,6 +184,15 @@ class StormModel:
             k = int(ss["sector"][0])
             if k >= 0:
                 direction = (c.sector_centres_deg[k] - self.pipe_heading_deg) % 360.0
+            if c.current is not None:
+                cur_dir = float(direction) if k >= 0 else self.setup.current.direction_deg
+                return {
+                    "hs": hs,
+                    "tp": tp,
+                    "direction_deg": float(direction),
+                    "current_velocity": float(ss["current"][0]),
+                    "current_direction_deg": float(cur_dir),
+                }
         else:
             hs, tp = row["hs"], row["tp"]
         return {"hs": hs, "tp": tp, "direction_deg": float(direction)}
@@ -198,6 +222,9 @@ class StormModel:
         storm = replace(storm, stages=(peak,), seed=int(seed))
         current = s.current
         cur = {}
+        if "current_velocity" in ss:
+            cur["velocity"] = min(10.0, max(0.0, ss["current_velocity"]))
+            cur["direction_deg"] = ss["current_direction_deg"]
         if "current_velocity" in row:
             cur["velocity"] = max(0.0, row["current_velocity"])
         if "current_direction_deg" in row:
