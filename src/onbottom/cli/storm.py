@@ -221,8 +221,8 @@ def _command(
             "warnings": notes,
         }
         _report(payload, as_json)
-        if not res.success:
-            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+        if res.exit_code:
+            raise click.exceptions.Exit(res.exit_code)
         return
 
     from onbottom.results import TaskStore, save_dataset

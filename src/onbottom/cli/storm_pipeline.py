@@ -26,6 +26,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
+from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 
 __all__ = ["PipelineTable", "RouteSectionTable", "build_pipeline_run", "run_pipeline_case"]
@@ -468,7 +469,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     }
 
 
-STATUS_ERROR = -9
+STATUS_ERROR = int(Status.RAISED)
 """Status recorded for a seed whose run raised an exception."""
 
 
