@@ -54,9 +54,7 @@ from onbottom.inputs.stability_case import (
 )
 from onbottom.inputs.storm import Current, SeaState, Storm
 from onbottom.soil.base import LateralResistanceModel
-from onbottom.soil.coulomb import CoulombFriction
-from onbottom.soil.verley_lund import VerleyLund
-from onbottom.soil.verley_sotberg import VerleySotberg
+from onbottom.soil.registry import soil_model_for_seabed
 
 __all__ = [
     "StormCase",
@@ -202,14 +200,9 @@ def seabed_roughness(seabed: Sand | Clay | Rock) -> float:
 
 
 def soil_model(model: str, pipe: Pipe, seabed: Sand | Clay | Rock) -> LateralResistanceModel:
-    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s)."""
-    if model == "sand":
-        return VerleySotberg.silica(pipe, seabed)
-    if model == "calcareous":
-        return VerleySotberg.calcareous(pipe, seabed)
-    if model == "clay":
-        return VerleyLund.from_seabed(pipe, seabed)
-    return CoulombFriction.from_seabed(seabed)
+    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s):
+    the seabed kind's model in :data:`onbottom.soil.registry.SEABED_MODELS`."""
+    return soil_model_for_seabed(model, pipe, seabed)
 
 
 @dataclass(frozen=True)

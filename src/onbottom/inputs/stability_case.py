@@ -247,6 +247,10 @@ class DesignTable(StrictModel):
         default_factory=lambda: ["installation", "flooded", "hydrotest", "operation"]
     )
     vertical_safety_factor: float = Field(1.1, ge=1.0, le=2.0, description="γ_W [-]")
+    checks: list[str] = Field(
+        default_factory=lambda: ["vertical", "absolute"],
+        description="design checks run, by name (checks/registry.py: vertical, absolute)",
+    )
     permeable: bool | None = None
     solve_for: Literal["concrete_thickness", "submerged_weight", "none"] = "none"
     layer: str = Field("concrete", min_length=1, description="layer sized by the solve [-]")
