@@ -43,13 +43,13 @@ from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.stability_case import (
+    Checker,
     CurrentTable,
     EnvironmentTable,
     HydroTable,
     PipeTable,
     SeabedTable,
     WavesTable,
-    _Checker,
     check_common_tables,
 )
 from onbottom.inputs.storm import Current, SeaState, Storm
@@ -277,7 +277,7 @@ TIME_STEP_MAX_FRACTION = 1.0 / 4.0
 class _Keys:
     """Re-raise errors of the input objects under the case-file keys they came from."""
 
-    def __init__(self, chk: _Checker) -> None:
+    def __init__(self, chk: Checker) -> None:
         self.chk = chk
 
     def __enter__(self) -> _Keys:
@@ -299,7 +299,7 @@ class _Keys:
         return False  # pragma: no cover - rename raises
 
 
-def _check_time_step(case: StormCase, chk: _Checker) -> None:
+def _check_time_step(case: StormCase, chk: Checker) -> None:
     """The largest step against the shortest peak period of the storm (see the constants)."""
     periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
     if case.storm.kind == "regular":
@@ -328,7 +328,7 @@ def _check_time_step(case: StormCase, chk: _Checker) -> None:
         )
 
 
-def _check_durations_and_stop(case: StormCase, chk: _Checker) -> None:
+def _check_durations_and_stop(case: StormCase, chk: Checker) -> None:
     """A storm peak of at least a few peak periods and a runaway stop at or above the largest
     F109 criterion (:mod:`onbottom.inputs.consistency`)."""
     from onbottom.dynamics.storm_section import CRITERIA_OVER_D
@@ -365,7 +365,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
             text = Path(path).read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError):
             text = None
-    chk = _Checker(where, text)
+    chk = Checker(where, text)
     stages = [
         (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
         for i, s in enumerate(case.storm.stages)

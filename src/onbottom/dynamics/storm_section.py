@@ -32,8 +32,7 @@ from onbottom.dynamics.result import SolverResult
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
-from onbottom.hydro._force_contract import N_FORCE_STATE
-from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
+from onbottom.hydro.force_model import N_FORCE_STATE, ForceModel, MorisonLift, parameter_rows
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
 from onbottom.inputs import consistency

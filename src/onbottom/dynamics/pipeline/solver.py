@@ -43,8 +43,7 @@ from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_se
 from onbottom.dynamics.result import SolverResult
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
-from onbottom.hydro._force_contract import N_FORCE_STATE
-from onbottom.hydro.force_model import parameter_rows
+from onbottom.hydro.force_model import N_FORCE_STATE, parameter_rows
 from onbottom.hydro.short_crested import NodeKinematics
 from onbottom.results import (
     RESTART_ADVICE,
