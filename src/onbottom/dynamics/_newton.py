@@ -10,8 +10,9 @@ tangent is not too negative. :func:`safeguarded_update` is one iterate: it keeps
 c + dR/dx when that is positive (else the step on c alone, always descending), and falls back
 to bisection when the Newton point leaves the bracket. The residual itself — the soil kernel
 alone (section) or the force model then the soil (storm) — stays in each kernel's loop.
-Theory: docs/theory/section_dynamics.md ("Safeguarded Newton"); twin: the loop is checked
-against a bracketing root finder in tests/unit/test_newton_helper.py.
+Theory: docs/theory/section_dynamics.md ("Nonlinear solution"); tests: the plain-Python
+twin (``safeguarded_update.py_func``) and hand solutions of a kinked, Coulomb-like law in
+tests/unit/test_newton_helper.py.
 """
 
 from __future__ import annotations
