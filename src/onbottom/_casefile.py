@@ -39,6 +39,7 @@ __all__ = [
     "CaseFileError",
     "StrictModel",
     "contained",
+    "find_line",
     "load_case_file",
     "parse_case",
     "read_json",
@@ -393,7 +394,7 @@ def _case_error(
     first = errors[0]
     loc = _without_tags(first.get("loc", ()))
     field = _dotted(loc, root) or None
-    line = _find_line(text, tuple(root.split(".")) + loc if root else loc) if text else None
+    line = find_line(text, tuple(root.split(".")) + loc if root else loc) if text else None
     msg = _where(file, None, line) + _message(model, first, root)
     if len(errors) > 1:
         others = "; ".join(_message(model, e, root) for e in errors[1:4])
@@ -408,7 +409,7 @@ def _where(file: str | os.PathLike | None, field: str | None, line: int | None) 
     return f"{file}{f', line {line}' if line else ''}: "
 
 
-def _find_line(text: str, loc: Sequence[Any]) -> int | None:
+def find_line(text: str, loc: Sequence[Any]) -> int | None:
     """Best-effort 1-based line of the key at ``loc`` in TOML ``text`` (None if not found)."""
     keys = [str(k) for k in loc if not isinstance(k, int) and k != ""]
     if not keys:
@@ -432,3 +433,6 @@ def _find_line(text: str, loc: Sequence[Any]) -> int | None:
             if table + key == keys[: len(table) + len(key)] and "{" in raw:
                 return i
     return None
+
+
+_find_line = find_line  # the former private name, still imported by assess/case.py

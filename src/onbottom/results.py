@@ -24,6 +24,7 @@ import os
 import re
 import tempfile
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -38,6 +39,7 @@ __all__ = [
     "RUN_STATUS_COMPLETE",
     "RUN_STATUS_PARTIAL",
     "VARIABLES",
+    "RunIdentity",
     "TaskStore",
     "annotate",
     "atomic_write",
@@ -46,6 +48,7 @@ __all__ = [
     "identity_hash",
     "load_dataset",
     "provenance",
+    "run_identity",
     "save_dataset",
     "save_figure",
     "write_csv_atomic",
@@ -329,6 +332,35 @@ def identity_hash(meta: Any, *arrays: Any) -> str:
     for a in arrays:
         h.update(np.ascontiguousarray(a).tobytes())
     return h.hexdigest()
+
+
+@dataclass(frozen=True)
+class RunIdentity:
+    """The identity of a resumable run (checkpoint, chunk files, result file).
+
+    ``fields``: the inputs that determine the run (JSON-able; written to files where they are
+    compared field by field, as the DEM does); ``digest``: :func:`identity_hash` of the fields
+    and the large arrays (written as ``run_id``, as the pipeline does).
+    """
+
+    fields: dict[str, Any]
+    digest: str
+
+    @property
+    def fingerprint(self) -> str:
+        """The first 16 hex digits of :attr:`digest` (a short name for a file's attributes)."""
+        return self.digest[:16]
+
+
+def run_identity(fields: Mapping[str, Any], *arrays: Any) -> RunIdentity:
+    """The run identity of every resumable solver: the pipeline FE and the DEM.
+
+    ``fields``: the inputs (model, settings, versions, …) as a JSON-able mapping; ``arrays``:
+    large numeric inputs hashed by their bytes (kinematics). One function, one format:
+    :class:`RunIdentity` (fields + sha256 digest).
+    """
+    meta = dict(fields)
+    return RunIdentity(fields=meta, digest=identity_hash(meta, *arrays))
 
 
 def _task_name(key: Any) -> str:

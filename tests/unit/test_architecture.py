@@ -81,3 +81,89 @@ def test_module_imports_only_lower_layers(path):
     assert pkg in ALLOWED, f"{pkg} is not in the architecture table: add it to docs and here"
     upward = _imports(path) - ALLOWED[pkg] - {pkg}
     assert not upward, f"{path.relative_to(ROOT)} imports {sorted(upward)} (not allowed for {pkg})"
+
+
+# ---- no private name is imported across packages ---------------------------------------------
+# A private module or name (leading underscore) may be imported within its own top-level
+# package (dynamics/pipeline/ may import dynamics/_x), and the base modules of BASE (_validate,
+# _casefile, _lazy, _version, _roots) are imported by every package as modules — but a private
+# *name* of another package or base module is not. Exceptions, each with its reason:
+PRIVATE_MODULES_ALLOWED: dict[tuple[str, str], str] = {
+    # kernel contracts: numba kernels call other packages' kernels by static dispatch (numba
+    # cannot cache a kernel passed as an argument), so these private modules are contracts
+    ("dynamics", "onbottom.soil._dispatch"): "soil kernel contract (soil/base.py rules)",
+    ("dynamics", "onbottom.hydro._force_dispatch"): "force-model kernel contract (its rules)",
+    ("dynamics", "onbottom.hydro._force_contract"): "force-model output and state slots",
+    ("dynamics", "onbottom.hydro._load_kernels"): "F109 penetration reductions, numba",
+    ("dynamics", "onbottom.soil._coulomb_kernel"): "pipeline axial friction: Coulomb return map",
+    ("dynamics", "onbottom.soil._twin"): "the plain-Python twin decorator of every kernel",
+    ("peers", "onbottom.dynamics.pipeline._pipeline_kernel"): "OpenSees peer: node-array layout",
+}
+PRIVATE_NAMES_ALLOWED: dict[tuple[str, str, str], str] = {
+    # files of branch assess2 (#32), which owns them; public names exist or come with it
+    ("assess", "onbottom.inputs.stability_case", "_Checker"): "assess2: use Checker",
+    ("assess", "onbottom._casefile", "_find_line"): "assess2: use find_line",
+    ("assess", "onbottom.inputs.stability_case", "_check_section"): "assess2 (#32) area",
+    ("assess", "onbottom.results", "_atomic_write"): "assess2 (#32) area",
+    ("cli", "onbottom.assess.output", "_value"): "assess2 (#32) area",
+    ("assess", "onbottom.checks.design", "_minimum_passing"): "made public in branch assess2",
+}
+_BASE_PRIVATE = {m for m in BASE if m.startswith("_")}
+
+
+def _private_imports(path: pathlib.Path) -> list[tuple[str, str | None]]:
+    """(module, name) of every import of a private module or name of another package."""
+    pkg = _package_of(path)
+    found: list[tuple[str, str | None]] = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.module:
+            pairs = [(node.module, a.name) for a in node.names]
+        elif isinstance(node, ast.Import):
+            pairs = [(a.name, None) for a in node.names]
+        else:
+            continue
+        for module, name in pairs:
+            parts = module.split(".")
+            if parts[0] != "onbottom":
+                continue
+            if len(parts) == 1:  # from onbottom import x: x is a module or a name
+                if name and name.startswith("_") and name not in _BASE_PRIVATE and name != pkg:
+                    found.append((module, name))
+                continue
+            if parts[1] == pkg:
+                continue
+            if any(p.startswith("_") for p in parts[2:]) or (
+                parts[1].startswith("_") and parts[1] not in _BASE_PRIVATE
+            ):
+                found.append((module, None))
+            if name and name.startswith("_") and not name.startswith("__"):
+                sub = ROOT.joinpath(*parts[1:], name)
+                if sub.with_suffix(".py").is_file() or sub.is_dir():  # a private module
+                    found.append((f"{module}.{name}", None))
+                else:
+                    found.append((module, name))
+    return found
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_no_private_name_imported_across_packages(path):
+    pkg = _package_of(path)
+    bad = []
+    for module, name in _private_imports(path):
+        if name is None and (pkg, module) in PRIVATE_MODULES_ALLOWED:
+            continue
+        if name is not None and (pkg, module, name) in PRIVATE_NAMES_ALLOWED:
+            continue
+        if name is not None and (pkg, module) in PRIVATE_MODULES_ALLOWED:
+            continue  # a name of an allowed kernel module (e.g. `from ..pipeline import _x`)
+        bad.append(f"{module}" + (f".{name}" if name else ""))
+    assert not bad, (
+        f"{path.relative_to(ROOT)} ({pkg}) imports private {bad}: make it public, or add it to"
+        " the allow-list with its reason"
+    )
+
+
+def test_private_allow_list_is_still_needed():
+    used = {(_package_of(p), m, n) for p in MODULES for m, n in _private_imports(p)}
+    stale_mod = [k for k in PRIVATE_MODULES_ALLOWED if not any(u[:2] == k for u in used)]
+    assert not stale_mod, f"allow-list entries no longer used: {stale_mod}"

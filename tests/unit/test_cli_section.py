@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 
 from onbottom.cli.main import main
+from onbottom.dynamics.status import Status
 from onbottom.results import load_dataset
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -49,7 +50,7 @@ def test_simulate_preset_and_bad_case(tmp_path, capsys):
         )
         == 0
     )
-    assert json.loads(capsys.readouterr().out)["status"] == 3
+    assert json.loads(capsys.readouterr().out)["status"] == Status.RUNAWAY_END  # 3 in 0.1
     bad = tmp_path / "bad.toml"
     bad.write_text('[preset]\ntest = "Inclined 9"\n')
     assert main(["simulate", str(bad), "-o", str(tmp_path / "b.nc"), "--quiet"]) == 1

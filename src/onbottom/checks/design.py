@@ -8,7 +8,9 @@ column and a list of :class:`~onbottom.inputs.environment.LoadCombination`:
 * ``absolute_lateral`` and ``absolute_vertical`` — F109 §3.6 Eqs 3.38 and 3.39 in every load
   combination, for the pipe in the combination's condition.
 
-Each row has a utilisation (pass at <= 1). :func:`design_concrete_thickness` finds the
+The checks are the ones named in ``options.checks``, looked up in
+:mod:`onbottom.checks.registry` (these two register themselves below). Each row has a
+utilisation (pass at <= 1). :func:`design_concrete_thickness` finds the
 smallest thickness of one coating layer in ``[t_min, t_max]`` for which every row passes;
 :func:`design_submerged_weight` does the same for the submerged weight of a simple pipe.
 
@@ -27,6 +29,7 @@ import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -34,6 +37,7 @@ from onbottom import _roots
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.checks.absolute import absolute_lateral_stability
 from onbottom.checks.f109_tables import REGIONS, SAFETY_CLASSES
+from onbottom.checks.registry import DesignCheck, get_check, register_check
 from onbottom.checks.vertical import VERTICAL_SAFETY_FACTOR, vertical_stability
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -91,6 +95,9 @@ class CheckOptions:
         Trench wall angle [deg], in [5, 45].
     permeable : bool or None
         r_perm,z = 0.7; None → sand and rock yes, clay no.
+    checks : tuple of str
+        The design checks run, in order: names in :data:`onbottom.checks.registry.CHECKS`
+        (default ``("vertical", "absolute")``: flotation, then the absolute checks).
     """
 
     safety_class: str = "normal"
@@ -101,8 +108,12 @@ class CheckOptions:
     trench_depth: float = 0.0
     trench_angle_deg: float = 45.0
     permeable: bool | None = None
+    checks: tuple[str, ...] = ("vertical", "absolute")
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "checks", tuple(self.checks))
+        for name in self.checks:
+            get_check(name, where="checks")
         one_of("safety_class", self.safety_class, SAFETY_CLASSES)
         one_of("region", self.region, REGIONS)
         object.__setattr__(self, "vertical_conditions", tuple(self.vertical_conditions))
@@ -169,77 +180,111 @@ def run_checks(
     combos = tuple(combinations)
     if not combos:
         raise InputError("combinations = () is invalid: give at least one load combination")
-    rows: list[CheckRow] = []
-    conditions = ("as given",) if isinstance(section, Pipe) else opts.vertical_conditions
-    for cond in conditions:
-        props = section if isinstance(section, Pipe) else section.properties(cond)
-        if props.buoyancy > 0.0:
-            v = vertical_stability(props, opts.vertical_safety_factor)
-            rows.append(
-                CheckRow(
-                    "vertical_stability",
-                    cond,
-                    cond,
-                    v.utilisation,
-                    v.passes,
-                    {"specific_gravity": v.specific_gravity, "gamma_w": v.safety_factor},
-                )
-            )
     for combo in combos:
         if not isinstance(combo, LoadCombination):
             raise InputError(f"combinations item {combo!r} is invalid: expected LoadCombination")
-        cond = "as given" if isinstance(section, Pipe) else combo.condition
-        pipe, props = _pipe_in(section, cond)
-        if pipe is None:
-            details = {"submerged_weight": props.submerged_weight, "message": "the pipe floats"}
-            for name in ("absolute_lateral", "absolute_vertical"):
-                rows.append(CheckRow(name, combo.name, cond, math.inf, False, details))
+    rows: list[CheckRow] = []
+    conditions = ("as given",) if isinstance(section, Pipe) else opts.vertical_conditions
+    for check in (get_check(name, where="checks") for name in opts.checks):
+        if check.per == "condition":
+            for cond in conditions:
+                props = section if isinstance(section, Pipe) else section.properties(cond)
+                rows.extend(check.run(props, opts, cond))
             continue
-        ss, cur = combo.sea_state, combo.current
-        r = absolute_lateral_stability(
-            pipe,
-            seabed,
-            hs=ss.hs,
-            tp=ss.tp,
-            depth=environment.water_depth,
-            current_velocity=cur.velocity,
-            current_reference_height=cur.reference_height,
-            roughness=cur.z0,
-            gamma=ss.gamma,
-            spectrum=ss.spectrum,
-            wave_direction_deg=ss.direction_deg,
-            current_direction_deg=_to_half_turn(cur.direction_deg),
-            spreading_s=ss.spreading_s or None,
-            safety_class=opts.safety_class,
-            region=opts.region,
-            penetration=opts.penetration,
-            trench_depth=opts.trench_depth,
-            trench_angle_deg=opts.trench_angle_deg,
-            permeable=opts.permeable,
-            duration=ss.duration_s,
-        )
-        details = r.as_dict()
-        rows.append(
-            CheckRow(
-                "absolute_lateral",
-                combo.name,
-                cond,
-                r.utilisation_lateral,
-                r.utilisation_lateral <= 1.0,
-                details,
-            )
-        )
-        rows.append(
-            CheckRow(
-                "absolute_vertical",
-                combo.name,
-                cond,
-                r.utilisation_vertical,
-                r.utilisation_vertical <= 1.0,
-                details,
-            )
-        )
+        for combo in combos:
+            cond = "as given" if isinstance(section, Pipe) else combo.condition
+            pipe, props = _pipe_in(section, cond)
+            if pipe is None:
+                details = {"submerged_weight": props.submerged_weight, "message": "the pipe floats"}
+                for name in check.rows:
+                    rows.append(CheckRow(name, combo.name, cond, math.inf, False, details))
+                continue
+            rows.extend(check.run(pipe, seabed, environment, combo, opts, cond))
     return rows
+
+
+def _vertical_rows(props: Any, opts: CheckOptions, cond: str) -> list[CheckRow]:
+    """The flotation check (F109 §3.3 Eq 3.1) in condition ``cond``: one row, none when the
+    pipe has no buoyancy."""
+    if not props.buoyancy > 0.0:
+        return []
+    v = vertical_stability(props, opts.vertical_safety_factor)
+    details = {"specific_gravity": v.specific_gravity, "gamma_w": v.safety_factor}
+    return [CheckRow("vertical_stability", cond, cond, v.utilisation, v.passes, details)]
+
+
+def _absolute_rows(
+    pipe: Pipe,
+    seabed: Sand | Clay | Rock,
+    environment: Environment,
+    combo: LoadCombination,
+    opts: CheckOptions,
+    cond: str,
+) -> list[CheckRow]:
+    """The absolute lateral and vertical checks (F109 §3.6 Eqs 3.38, 3.39) of one load
+    combination: two rows."""
+    ss, cur = combo.sea_state, combo.current
+    r = absolute_lateral_stability(
+        pipe,
+        seabed,
+        hs=ss.hs,
+        tp=ss.tp,
+        depth=environment.water_depth,
+        current_velocity=cur.velocity,
+        current_reference_height=cur.reference_height,
+        roughness=cur.z0,
+        gamma=ss.gamma,
+        spectrum=ss.spectrum,
+        wave_direction_deg=ss.direction_deg,
+        current_direction_deg=_to_half_turn(cur.direction_deg),
+        spreading_s=ss.spreading_s or None,
+        safety_class=opts.safety_class,
+        region=opts.region,
+        penetration=opts.penetration,
+        trench_depth=opts.trench_depth,
+        trench_angle_deg=opts.trench_angle_deg,
+        permeable=opts.permeable,
+        duration=ss.duration_s,
+    )
+    details = r.as_dict()
+    return [
+        CheckRow(
+            "absolute_lateral",
+            combo.name,
+            cond,
+            r.utilisation_lateral,
+            r.utilisation_lateral <= 1.0,
+            details,
+        ),
+        CheckRow(
+            "absolute_vertical",
+            combo.name,
+            cond,
+            r.utilisation_vertical,
+            r.utilisation_vertical <= 1.0,
+            details,
+        ),
+    ]
+
+
+register_check(
+    DesignCheck(
+        "vertical",
+        "condition",
+        _vertical_rows,
+        ("vertical_stability",),
+        "DNV-RP-F109 (2017) §3.3, Eq 3.1",
+    )
+)
+register_check(
+    DesignCheck(
+        "absolute",
+        "combination",
+        _absolute_rows,
+        ("absolute_lateral", "absolute_vertical"),
+        "DNV-RP-F109 (2017) §3.6, Eqs 3.38-3.41",
+    )
+)
 
 
 def _to_half_turn(angle_deg: float) -> float:

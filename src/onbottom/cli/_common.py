@@ -51,7 +51,7 @@ __all__ = [
 
 EXIT_INPUT = 1
 EXIT_USAGE = 2
-EXIT_INVALID_RESULT = 3
+EXIT_INVALID_RESULT = 3  # a solver status maps here: onbottom.dynamics.status.exit_code
 EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
 

@@ -338,11 +338,11 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     from onbottom.errors import InputError
     from onbottom.hydro.registry import force_model_from_case
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
-    from onbottom.inputs.stability_case import _Checker
+    from onbottom.inputs.stability_case import Checker
     from onbottom.study.stability_curves import CurveSettings
 
     _, text = read_toml(case)
-    chk = _Checker(case, text)
+    chk = Checker(case, text)
     c = cfg.curves
     h = cfg.hydro
     try:

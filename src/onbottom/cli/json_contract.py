@@ -321,7 +321,9 @@ CONTRACT: dict[str, Output] = {
         "Pipe section under a load programme",
         {
             "success": "valid result",
-            "status": "solver status",
+            "status": "solver status (docs/conventions.md: 1 end of the programme, 2 stopped at"
+            " the displacement limit, 5 ran on after the limit until the pipe stopped; -3 outside"
+            " the model's validity; other < 0: failed)",
             "message": "how the run ended",
             "n_steps": "solver steps",
             "cycles_to_limit": "load cycles to the displacement limit, or null",

@@ -8,7 +8,6 @@ from pathlib import Path
 import click
 
 from onbottom.cli._common import (
-    EXIT_INVALID_RESULT,
     check_output_path,
     emit_json,
     handle_errors,
@@ -87,8 +86,8 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     }
     if as_json:
         emit_json(payload)
-        if not res.success:
-            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+        if res.exit_code:
+            raise click.exceptions.Exit(res.exit_code)
         return
     for msg in messages:
         click.echo(f"warning: {msg}", err=True)
@@ -100,5 +99,5 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     click.echo(f"  largest penetration  {s['max_penetration']:.4f} m")
     click.echo(f"  final displacement   {s['final_displacement']:.3f} m")
     click.echo(f"  written: {nc}" + (f", {plot}" if plot else ""))
-    if not res.success:
-        raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+    if res.exit_code:
+        raise click.exceptions.Exit(res.exit_code)

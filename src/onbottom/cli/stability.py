@@ -68,6 +68,10 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
     check_reference_height(case, case_path, seabed)
     caught.extend(loading)
     d = case.design
+    from onbottom.checks.registry import get_check
+
+    for name in d.checks:  # an unknown name: an error naming the key and the choices
+        get_check(name, where="design.checks")
     options = CheckOptions(
         safety_class=d.safety_class,
         region=d.region,
@@ -77,6 +81,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         trench_depth=case.seabed.trench_depth,
         trench_angle_deg=case.seabed.trench_angle_deg,
         permeable=d.permeable,
+        checks=tuple(d.checks),
     )
     from onbottom.inputs.consistency import warnings_reported_by_case
 

@@ -221,10 +221,11 @@ def _command(
             "warnings": notes,
         }
         _report(payload, as_json)
-        if not res.success:
-            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+        if res.exit_code:
+            raise click.exceptions.Exit(res.exit_code)
         return
 
+    from onbottom.dynamics.status import Status
     from onbottom.results import TaskStore, save_dataset
     from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
@@ -266,7 +267,7 @@ def _command(
         "mean_max_displacement_m": st["mean"],
         "final_displacement_m": float(abs(final).mean()) if final.size else None,
         "criteria": study.criteria,
-        "status": 1 if study.success else -9,
+        "status": int(Status.END if study.success else Status.RAISED),
         "success": study.success,
         "message": (
             f"{n} seeds: seed-averaged maximum displacement {st['mean'] / d:.3g}D"

@@ -26,6 +26,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
+from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 
 __all__ = ["PipelineTable", "RouteSectionTable", "build_pipeline_run", "run_pipeline_case"]
@@ -170,9 +171,9 @@ MAX_RUN_SECONDS = 24 * 3600.0
 
 
 def _fail(p: Path, text: str | None, field: str, message: str) -> None:
-    from onbottom.inputs.stability_case import _Checker
+    from onbottom.inputs.stability_case import Checker
 
-    _Checker(p, text).fail(field, message)
+    Checker(p, text).fail(field, message)
 
 
 def _storm_duration(storm: Any) -> float:
@@ -282,12 +283,12 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
 def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any) -> None:
     """At least three nodes free to move laterally (fixed and pinned ends hold theirs)."""
     from onbottom.inputs import consistency
-    from onbottom.inputs.stability_case import _Checker
+    from onbottom.inputs.stability_case import Checker
 
     nodes = round(table.length / table.element_length) + 1
     pair = (ends, ends) if isinstance(ends, str) else tuple(ends)
     held = sum(1 for e in pair if e in ("fixed", "pinned"))
-    _Checker(p, text).apply(
+    Checker(p, text).apply(
         consistency.free_nodes(
             nodes - held,
             field="pipeline.element_length",
@@ -468,7 +469,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     }
 
 
-STATUS_ERROR = -9
+STATUS_ERROR = int(Status.RAISED)
 """Status recorded for a seed whose run raised an exception."""
 
 

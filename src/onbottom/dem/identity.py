@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from onbottom import results
 from onbottom.errors import InputError
 
 __all__ = [
@@ -95,13 +96,13 @@ def run_identity(config: Any, kind: str, *, sample: Any = None) -> dict[str, Any
     }
     if sample is not None:
         ident["sample"] = sample_fingerprint(sample)
-    return ident
+    return results.run_identity(ident).fields
 
 
 def fingerprint(identity: Mapping[str, Any]) -> str:
-    """SHA-256 (16 hex digits) of a run identity."""
-    text = json.dumps(identity, sort_keys=True, default=str)
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
+    """SHA-256 (16 hex digits) of a run identity (:func:`onbottom.results.run_identity`, the
+    pipeline's function too)."""
+    return results.run_identity(identity).fingerprint
 
 
 def _flatten(d: Any, prefix: str = "") -> dict[str, Any]:

@@ -28,12 +28,14 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         irregular_wave_current_groups,
         regular_wave_current_groups,
     )
+    from onbottom.dynamics.result import SolverResult
     from onbottom.dynamics.section import (
         SectionResult,
         SolverSettings,
         section_mass,
         simulate_section,
     )
+    from onbottom.dynamics.status import Status
 
 __all__ = [
     "RECOMMENDED",
@@ -42,7 +44,9 @@ __all__ = [
     "LoadProgramme",
     "ParameterSet",
     "SectionResult",
+    "SolverResult",
     "SolverSettings",
+    "Status",
     "build_programme",
     "build_soil",
     "from_arrays",
@@ -77,6 +81,8 @@ __getattr__, __dir__ = attach(
             "irregular_wave_current_groups",
             "regular_wave_current_groups",
         ),
+        "onbottom.dynamics.result": ("SolverResult",),
+        "onbottom.dynamics.status": ("Status",),
         "onbottom.dynamics.section": (
             "SectionResult",
             "SolverSettings",

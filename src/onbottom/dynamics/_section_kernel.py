@@ -29,6 +29,8 @@ import math
 import numpy as np
 from numba import njit
 
+from onbottom.dynamics._newton import safeguarded_update
+from onbottom.dynamics.status import Status
 from onbottom.soil._dispatch import lateral_step
 from onbottom.soil.base import (
     OUT_DISSIPATED,
@@ -94,13 +96,13 @@ REC_E_STORED = 11  # elastic energy stored in the soil [N·m/m] (soil kernel OUT
 REC_E_DISSIPATED = 12  # energy dissipated by the soil since the start [N·m/m]
 N_REC = 13
 
-STATUS_CHUNK = 0
-STATUS_END = 1
-STATUS_LIMIT = 2
-STATUS_RUNAWAY_END = 3
-STATUS_BUFFER_FULL = 4
-STATUS_STEP_FAILED = -1
-STATUS_SOIL_NAN = -2
+STATUS_CHUNK = int(Status.CHUNK)
+STATUS_END = int(Status.END)
+STATUS_LIMIT = int(Status.LIMIT)
+STATUS_RUNAWAY_END = int(Status.RUNAWAY_END)
+STATUS_BUFFER_FULL = int(Status.BUFFER_FULL)
+STATUS_STEP_FAILED = int(Status.STEP_FAILED)
+STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 
 
 @njit(cache=True)
@@ -144,28 +146,13 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
         r = c0 * (du - du_hat) + big_r - h1
         if abs(r) <= tol_r:
             return du, True, it + 1
-        if r > 0.0:
-            hi = du
-            have_hi = True
-        else:
-            lo = du
-            have_lo = True
-        if have_lo and have_hi and (hi - lo) <= eps_u:
+        du_next, lo, hi, have_lo, have_hi, closed = safeguarded_update(
+            du, r, c0, out[OUT_TANGENT], lo, hi, have_lo, have_hi, eps_u
+        )
+        if closed:
             # a jump of R across the root (discontinuous law), or the root resolved to the
             # precision of u: accept the bracket point
             return du, True, it + 1
-        jac = c0 + out[OUT_TANGENT]
-        if jac > 0.0:
-            du_next = du - r / jac
-        else:
-            du_next = du - r / c0
-        if have_lo and have_hi:
-            if not (lo < du_next < hi):
-                du_next = 0.5 * (lo + hi)
-        elif have_hi and du_next >= hi:
-            du_next = du - r / c0
-        elif have_lo and du_next <= lo:
-            du_next = du - r / c0
         if abs(du_next - du) <= eps_u:
             # Newton correction below the resolution of u: converged to machine precision
             lateral_step(model_id, params, state_old, u0 + du_next, v1, trial, out)

@@ -50,6 +50,8 @@ import math
 import numpy as np
 from numba import njit
 
+from onbottom.dynamics._newton import safeguarded_update
+from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
 from onbottom.hydro._force_dispatch import force_step
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
@@ -142,13 +144,13 @@ REC_REGION = 15
 REC_SOIL_WORK = 16
 N_REC = 17
 
-STATUS_CHUNK = 0
-STATUS_END = 1
-STATUS_LIMIT = 2
-STATUS_LIFTOFF = 3
-STATUS_BUFFER_FULL = 4
-STATUS_STEP_FAILED = -1
-STATUS_SOIL_NAN = -2
+STATUS_CHUNK = int(Status.CHUNK)
+STATUS_END = int(Status.END)
+STATUS_LIMIT = int(Status.LIMIT)
+STATUS_LIFTOFF = int(Status.LIFTOFF)
+STATUS_BUFFER_FULL = int(Status.BUFFER_FULL)
+STATUS_STEP_FAILED = int(Status.STEP_FAILED)
+STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 
 
 @njit(cache=True)
@@ -253,27 +255,11 @@ def solve_step(model_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, y
         r = c0 * (dy - dy_hat) + big_r - fy
         if abs(r) <= tol_r:
             return dy, True, it + 1
-        if r > 0.0:
-            hi = dy
-            have_hi = True
-        else:
-            lo = dy
-            have_lo = True
-        if have_lo and have_hi and (hi - lo) <= eps:
+        dy_next, lo, hi, have_lo, have_hi, closed = safeguarded_update(
+            dy, r, c0 - dfdyd * cv, out[OUT_TANGENT], lo, hi, have_lo, have_hi, eps
+        )
+        if closed:
             return dy, True, it + 1
-        cdamp = c0 - dfdyd * cv
-        jac = cdamp + out[OUT_TANGENT]
-        if jac > 0.0:
-            dy_next = dy - r / jac
-        else:
-            dy_next = dy - r / cdamp
-        if have_lo and have_hi:
-            if not (lo < dy_next < hi):
-                dy_next = 0.5 * (lo + hi)
-        elif have_hi and dy_next >= hi:
-            dy_next = dy - r / cdamp
-        elif have_lo and dy_next <= lo:
-            dy_next = dy - r / cdamp
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
             forces(settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)

@@ -327,7 +327,7 @@ def run_case(
             extra["mobilisation_displacement"] = st.mobilisation_displacement
         soil = CoulombFriction(friction_coefficient=st.friction_coefficient, **extra)
     else:
-        from onbottom.soil.verley_sotberg import VerleySotberg
+        from onbottom.soil.registry import build_soil_model
 
         sand = Sand(
             submerged_unit_weight=st.submerged_unit_weight_kn * _KN,
@@ -347,12 +347,9 @@ def run_case(
             )
             if getattr(st, k) is not None
         }
-        build = (
-            VerleySotberg.calcareous
-            if st.model == "verley_sotberg_calcareous"
-            else VerleySotberg.silica
+        soil = build_soil_model(
+            st.model, pipe, sand, installation_load=prog.peak_vertical_load, **options
         )
-        soil = build(pipe, sand, installation_load=prog.peak_vertical_load, **options)
     settings = SolverSettings(
         **{
             k: getattr(sv, k)

@@ -24,10 +24,13 @@ import xarray as xr
 
 from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics import _section_kernel as K
+from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.programmes import LoadProgramme
+from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
-from onbottom.results import annotate, provenance, save_dataset
+from onbottom.results import annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = ["SectionResult", "SolverSettings", "section_mass", "simulate_section"]
@@ -119,18 +122,19 @@ class SolverSettings:
 
 
 @dataclass(frozen=True, kw_only=True)
-class SectionResult:
-    """Result of :func:`simulate_section`.
+class SectionResult(SolverResult):
+    """Result of :func:`simulate_section` (a :class:`~onbottom.dynamics.result.SolverResult`).
 
     Attributes
     ----------
     success : bool
         True if the run ended normally (programme end or displacement-limit event).
     status : int
-        1 end of programme, 2 displacement limit (stopped), 3 limit reached and ran on until
-        the pipe stopped, −1 step failure, −2 soil kernel NaN, −3 the run left the soil
-        model's validity (lift-off: V <= 0; penetration beyond D/2 for the Verley & Sotberg
-        sand models; the time series is kept, ``success`` is False).
+        A :class:`~onbottom.dynamics.status.Status`: 1 end of programme, 2 displacement limit
+        (stopped), 5 limit reached and ran on until the pipe stopped (3 in 0.1), −1 step
+        failure, −2 soil kernel NaN, −3 the run left the soil model's validity (lift-off:
+        V <= 0; penetration beyond D/2 for the Verley & Sotberg sand models; the time series
+        is kept, ``success`` is False).
     message : str
         Human-readable status.
     n_steps : int
@@ -161,12 +165,8 @@ class SectionResult:
     cycles_to_limit: float | None
     summary: dict[str, float] = field(default_factory=dict)
 
-    def save(self, path: Any) -> Any:
-        """Write :attr:`data` to NetCDF (atomically, :func:`onbottom.results.save_dataset`)."""
-        return save_dataset(self.data, path)
 
-
-STATUS_OUTSIDE_VALIDITY = -3
+STATUS_OUTSIDE_VALIDITY = int(Status.OUTSIDE_VALIDITY)
 """Status of a run that left its soil model's validity (e.g. penetration > D/2)."""
 
 
@@ -277,35 +277,22 @@ def simulate_section(
     cap = int(min(max(4 * pt.size, 4096), 5_000_000))
     rec = np.empty((cap, K.N_REC))
     K.initial_record(model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
-    n = 1
 
     t_end = float(pt[-1])
     chunk = (t_end - pt[0]) / int(s.chunks)
-    bar = None
-    if progress:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=int(s.chunks), desc=programme.name, unit="chunk", leave=False)
-    k = 1
-    status = K.STATUS_CHUNK
-    while True:
-        t_stop = pt[0] + k * chunk if k < int(s.chunks) else t_end
-        n, status = K.integrate(model_id, params, state, dyn, pt, ph, pv, st, t_stop, rec, n)
-        if status == K.STATUS_BUFFER_FULL:
-            rec = np.concatenate([rec, np.empty_like(rec)])
-            continue
-        if status == K.STATUS_CHUNK:
-            k += 1
-            if bar is not None:
-                bar.update(1)
-            continue
-        break
-    if bar is not None:
-        bar.update(bar.total - bar.n)
-        bar.close()
-
-    rec = rec[:n]
-    success = status in (K.STATUS_END, K.STATUS_LIMIT, K.STATUS_RUNAWAY_END)
+    recorder = Recorder(rec, 1)
+    with progress_bar(progress, int(s.chunks), programme.name, "chunk") as bar:
+        status = drive(
+            lambda t_stop, rows, n0: K.integrate(
+                model_id, params, state, dyn, pt, ph, pv, st, t_stop, rows, n0
+            ),
+            lambda k: pt[0] + k * chunk if k < int(s.chunks) else t_end,
+            recorder=recorder,
+            bar=bar,
+        )
+    n = recorder.n
+    rec = recorder.records()
+    success = Status(status).success
     message = _STATUS_MESSAGES.get(status, f"status {status}")
     if status == K.STATUS_STEP_FAILED:
         message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"

@@ -43,20 +43,18 @@ from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.stability_case import (
+    Checker,
     CurrentTable,
     EnvironmentTable,
     HydroTable,
     PipeTable,
     SeabedTable,
     WavesTable,
-    _Checker,
     check_common_tables,
 )
 from onbottom.inputs.storm import Current, SeaState, Storm
 from onbottom.soil.base import LateralResistanceModel
-from onbottom.soil.coulomb import CoulombFriction
-from onbottom.soil.verley_lund import VerleyLund
-from onbottom.soil.verley_sotberg import VerleySotberg
+from onbottom.soil.registry import soil_model_for_seabed
 
 __all__ = [
     "StormCase",
@@ -202,14 +200,9 @@ def seabed_roughness(seabed: Sand | Clay | Rock) -> float:
 
 
 def soil_model(model: str, pipe: Pipe, seabed: Sand | Clay | Rock) -> LateralResistanceModel:
-    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s)."""
-    if model == "sand":
-        return VerleySotberg.silica(pipe, seabed)
-    if model == "calcareous":
-        return VerleySotberg.calcareous(pipe, seabed)
-    if model == "clay":
-        return VerleyLund.from_seabed(pipe, seabed)
-    return CoulombFriction.from_seabed(seabed)
+    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s):
+    the seabed kind's model in :data:`onbottom.soil.registry.SEABED_MODELS`."""
+    return soil_model_for_seabed(model, pipe, seabed)
 
 
 @dataclass(frozen=True)
@@ -284,7 +277,7 @@ TIME_STEP_MAX_FRACTION = 1.0 / 4.0
 class _Keys:
     """Re-raise errors of the input objects under the case-file keys they came from."""
 
-    def __init__(self, chk: _Checker) -> None:
+    def __init__(self, chk: Checker) -> None:
         self.chk = chk
 
     def __enter__(self) -> _Keys:
@@ -306,7 +299,7 @@ class _Keys:
         return False  # pragma: no cover - rename raises
 
 
-def _check_time_step(case: StormCase, chk: _Checker) -> None:
+def _check_time_step(case: StormCase, chk: Checker) -> None:
     """The largest step against the shortest peak period of the storm (see the constants)."""
     periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
     if case.storm.kind == "regular":
@@ -335,7 +328,7 @@ def _check_time_step(case: StormCase, chk: _Checker) -> None:
         )
 
 
-def _check_durations_and_stop(case: StormCase, chk: _Checker) -> None:
+def _check_durations_and_stop(case: StormCase, chk: Checker) -> None:
     """A storm peak of at least a few peak periods and a runaway stop at or above the largest
     F109 criterion (:mod:`onbottom.inputs.consistency`)."""
     from onbottom.dynamics.storm_section import CRITERIA_OVER_D
@@ -372,7 +365,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
             text = Path(path).read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError):
             text = None
-    chk = _Checker(where, text)
+    chk = Checker(where, text)
     stages = [
         (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
         for i, s in enumerate(case.storm.stages)

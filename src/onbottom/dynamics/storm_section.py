@@ -27,16 +27,18 @@ import xarray as xr
 
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
+from onbottom.dynamics.driver import Recorder, drive, progress_bar
+from onbottom.dynamics.result import SolverResult
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
+from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
-from onbottom.hydro._force_contract import N_FORCE_STATE
-from onbottom.hydro.force_model import ForceModel, MorisonLift, parameter_rows
+from onbottom.hydro.force_model import N_FORCE_STATE, ForceModel, MorisonLift, parameter_rows
 from onbottom.hydro.reductions import LoadReductions
 from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
 from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Current, Storm
-from onbottom.results import annotate, provenance, save_dataset
+from onbottom.results import annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = [
@@ -157,8 +159,8 @@ class StormSolverSettings:
 
 
 @dataclass(frozen=True, kw_only=True)
-class StormSectionResult:
-    """Result of :func:`simulate_storm_section`.
+class StormSectionResult(SolverResult):
+    """Result of :func:`simulate_storm_section` (a :class:`.result.SolverResult`).
 
     Attributes
     ----------
@@ -166,11 +168,12 @@ class StormSectionResult:
         True if the run ended normally: end of storm, runaway stop or lift-off stop (the
         physical outcomes); False on numerical failure.
     status : int
-        1 end of storm, 2 runaway (stop limit reached), 3 lift-off stop, −1 step failure,
-        −2 soil kernel NaN, −3 the run left the soil model's range (penetration beyond
-        :func:`penetration_limit`, D/2 for Verley & Sotberg / Verley & Lund): the run went on
-        to its end (or stop) and its numbers are kept, ``success`` is False and the message
-        says when and where (as :func:`onbottom.dynamics.section.simulate_section`).
+        A :class:`~onbottom.dynamics.status.Status`: 1 end of storm, 2 runaway (stop limit
+        reached), 3 lift-off stop, −1 step failure, −2 soil kernel NaN, −3 the run left the
+        soil model's range (penetration beyond :func:`penetration_limit`, D/2 for Verley &
+        Sotberg / Verley & Lund): the run went on to its end (or stop) and its numbers are
+        kept, ``success`` is False and the message says when and where (as
+        :func:`onbottom.dynamics.section.simulate_section`).
     message : str
     diameter : float
         D [m].
@@ -215,12 +218,6 @@ class StormSectionResult:
             "message": self.message,
             "summary": dict(self.summary),
         }
-
-    def save(self, path: Any) -> Any:
-        """Write :attr:`data` to NetCDF (atomic)."""
-        if self.data is None:
-            raise InputError("StormSectionResult.data = None: run with record_interval set")
-        return save_dataset(self.data, path)
 
 
 _REC_NAMES = {
@@ -374,36 +371,26 @@ def simulate_storm_section(
         per = max(s.record_interval, s.dt_max)
         cap = int(min(kin.duration / per * 1.2 + 1024, 2_000_000))
         rec = np.empty((cap, K.N_REC))
-    n = K.initial(model_id, params, state, st, fparams, fstate, ku, ka, dyn, rec)
+    recorder = Recorder(
+        rec, K.initial(model_id, params, state, st, fparams, fstate, ku, ka, dyn, rec)
+    )
 
     chunks = int(s.chunks) if progress else 1
-    bar = None
-    if progress:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=chunks, desc="storm", unit="chunk", leave=False)
-    k = 1
     status = K.STATUS_CHUNK
     if s.liftoff == "stop" and dyn[K.D_LIFTED] == 1.0:
         status = K.STATUS_LIFTOFF  # lifted off at the start
-    while status == K.STATUS_CHUNK:
-        t_stop = kin.duration * k / chunks if k < chunks else kin.duration
-        n, status = K.integrate(
-            model_id, params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rec, n
+    with progress_bar(progress, chunks, "storm", "chunk") as bar:
+        status = drive(
+            lambda t_stop, rows, n0: K.integrate(
+                model_id, params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rows, n0
+            ),
+            lambda k: kin.duration * k / chunks if k < chunks else kin.duration,
+            recorder=recorder,
+            status=status,
+            bar=bar,
         )
-        if status == K.STATUS_BUFFER_FULL:
-            rec = np.concatenate([rec, np.empty_like(rec)])
-            status = K.STATUS_CHUNK
-            continue
-        if status == K.STATUS_CHUNK:
-            k += 1
-            if bar is not None:
-                bar.update(1)
-    if bar is not None:
-        bar.update(bar.total - bar.n)
-        bar.close()
 
-    success = status in (K.STATUS_END, K.STATUS_LIMIT, K.STATUS_LIFTOFF)
+    success = Status(status).success
     message = _STATUS_MESSAGES.get(status, f"status {status}")
     if status in (K.STATUS_STEP_FAILED, K.STATUS_SOIL_NAN):
         message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
@@ -451,7 +438,7 @@ def simulate_storm_section(
         message += f"; lift-off {summary['n_liftoff']} time(s), pipe free of soil while lifted"
     data = None
     if s.record_interval is not None:
-        rec = rec[:n]
+        rec = recorder.records()
         prov = provenance(
             "simulate_storm_section",
             {"soil_model": soil.name, **dict(soil.parameters())},

@@ -41,11 +41,13 @@ import numpy as np
 
 from onbottom._validate import non_negative
 from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.hydro._force_contract import N_FORCE_STATE
 from onbottom.hydro._force_dispatch import FORCE_MORISON
 from onbottom.hydro._morison_kernel import N_PARAMS, P_CD, P_CL, P_CM, P_LIFT_REL
 
 __all__ = [
     "FORCE_MODEL_MORISON_LIFT",
+    "N_FORCE_STATE",
     "ForceModel",
     "MorisonLift",
     "parameter_rows",

@@ -24,7 +24,13 @@ from typing import Any
 
 from onbottom.errors import InputError
 
-__all__ = ["FORCE_MODELS", "build_force_model", "force_model_class", "force_model_names"]
+__all__ = [
+    "FORCE_MODELS",
+    "build_force_model",
+    "force_model_class",
+    "force_model_names",
+    "register_force_model",
+]
 
 
 def _classes() -> dict[str, type]:
@@ -32,7 +38,7 @@ def _classes() -> dict[str, type]:
     from onbottom.hydro.fourier import FourierModel
     from onbottom.hydro.wake import WakeModel
 
-    return {"morison": MorisonLift, "wake": WakeModel, "fourier": FourierModel}
+    return {"morison": MorisonLift, "wake": WakeModel, "fourier": FourierModel, **_REGISTERED}
 
 
 FORCE_MODELS: tuple[str, ...] = ("morison", "wake", "fourier")
@@ -41,9 +47,30 @@ FORCE_MODELS: tuple[str, ...] = ("morison", "wake", "fourier")
 _NOT_OPTIONS = frozenset({"name", "model_id", "rule"})
 
 
+_REGISTERED: dict[str, type] = {}
+"""Force models added by :func:`register_force_model` (after the built-in ones)."""
+
+
+def register_force_model(name: str, cls: type, *, replace: bool = False) -> type:
+    """Register force-model class ``cls`` (a frozen dataclass on the
+    :class:`~onbottom.hydro.force_model.ForceModel` protocol) under ``name``.
+
+    Its dataclass fields are the options a case file may give (``[hydro.<name>]``). A name
+    taken is an error unless ``replace`` (docs/contributing.md, "Add a force model").
+    """
+    if not isinstance(name, str) or not name.isidentifier():
+        raise InputError(f"force model name = {name!r} is invalid: a lower-case identifier")
+    if not dataclasses.is_dataclass(cls) or not isinstance(cls, type):
+        raise InputError(f"force model {name!r}: cls = {cls!r} is invalid: a dataclass")
+    if (name in FORCE_MODELS or name in _REGISTERED) and not replace:
+        raise InputError(f"force model {name!r} is registered already (pass replace=True)")
+    _REGISTERED[name] = cls
+    return cls
+
+
 def force_model_names() -> tuple[str, ...]:
     """The registered names."""
-    return FORCE_MODELS
+    return FORCE_MODELS + tuple(k for k in _REGISTERED if k not in FORCE_MODELS)
 
 
 def force_model_class(name: str, *, where: str = "hydro.model") -> type:
@@ -51,7 +78,8 @@ def force_model_class(name: str, *, where: str = "hydro.model") -> type:
     classes = _classes()
     if not isinstance(name, str) or name not in classes:
         raise InputError(
-            f"{where} = {name!r} is invalid: choose one of {', '.join(map(repr, FORCE_MODELS))}"
+            f"{where} = {name!r} is invalid: choose one of"
+            f" {', '.join(map(repr, force_model_names()))}"
         )
     return classes[name]
 

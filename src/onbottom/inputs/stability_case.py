@@ -25,7 +25,7 @@ from typing import Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, _find_line, load_case_file
+from onbottom._casefile import CaseFileError, StrictModel, find_line, load_case_file
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.inputs import consistency
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -35,6 +35,7 @@ from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState
 
 __all__ = [
+    "Checker",
     "StabilityCase",
     "check_common_tables",
     "load_stability_case",
@@ -247,6 +248,10 @@ class DesignTable(StrictModel):
         default_factory=lambda: ["installation", "flooded", "hydrotest", "operation"]
     )
     vertical_safety_factor: float = Field(1.1, ge=1.0, le=2.0, description="γ_W [-]")
+    checks: list[str] = Field(
+        default_factory=lambda: ["vertical", "absolute"],
+        description="design checks run, by name (checks/registry.py: vertical, absolute)",
+    )
     permeable: bool | None = None
     solve_for: Literal["concrete_thickness", "submerged_weight", "none"] = "none"
     layer: str = Field("concrete", min_length=1, description="layer sized by the solve [-]")
@@ -372,7 +377,7 @@ _OBJECT_TABLES = {
 }
 
 
-class _Checker:
+class Checker:
     """Raise :class:`CaseFileError` naming field, value, range, file and line; collect warnings."""
 
     def __init__(self, file: str | os.PathLike, text: str | None) -> None:
@@ -387,7 +392,7 @@ class _Checker:
             loc.append(name)
             if idx:
                 loc.append(int(idx.rstrip("]")))
-        return _find_line(self.text, loc)
+        return find_line(self.text, loc)
 
     def fail(self, field: str, message: str) -> NoReturn:
         line = self._line(field)
@@ -420,6 +425,9 @@ class _Checker:
         self.fail(field or "", text)
 
 
+_Checker = Checker  # the former private name, still imported by assess/case.py
+
+
 def _plain(text: str) -> str:
     """Messages with plain numbers (``np.float64(7.0)`` → ``7.0``)."""
     import re
@@ -427,7 +435,7 @@ def _plain(text: str) -> str:
     return re.sub(r"np\.(?:float|int|uint|bool_?|str_)\d*\(([^()]*)\)", r"\1", text)
 
 
-def _check_case(case: StabilityCase, chk: _Checker) -> None:
+def _check_case(case: StabilityCase, chk: Checker) -> None:
     """Cross-table rules and engineering plausibility of a parsed case."""
 
     # -- combinations and design against the pipe form ------------------------------------
@@ -493,7 +501,7 @@ def _check_case(case: StabilityCase, chk: _Checker) -> None:
     _check_common(case, chk, states)
 
 
-def _check_common(case: Any, chk: _Checker, extra_states: list[tuple]) -> None:
+def _check_common(case: Any, chk: Checker, extra_states: list[tuple]) -> None:
     """Plausibility of the tables every on-bottom command shares ([pipe], [seabed],
     [environment], [waves], [current]) and of extra sea states
     ``(label, hs, tp, hs_table, tp_table)``."""
@@ -630,10 +638,10 @@ def check_common_tables(
         text: str | None = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError):
         text = None
-    _check_common(case, _Checker(p, text), list(sea_states or []))
+    _check_common(case, Checker(p, text), list(sea_states or []))
 
 
-def _check_section(case: StabilityCase, chk: _Checker) -> None:
+def _check_section(case: StabilityCase, chk: Checker) -> None:
     """Build every input object once (errors under their case-file keys), the cross-table and
     plausibility rules (:func:`_check_case`), and the embedment against D."""
     try:
@@ -700,6 +708,6 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
         text: str | None = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
         text = None
-    chk = _Checker(p, text)
+    chk = Checker(p, text)
     _check_section(case, chk)
     return case

@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from onbottom.dynamics.status import Status
 from onbottom.dynamics.storm_section import (
     CRITERIA_OVER_D,
     STATUS_OUTSIDE_VALIDITY,
@@ -43,7 +44,7 @@ __all__ = ["STATUS_ERROR", "SeedStudy", "run_storm_seeds", "seed_list"]
 
 logger = logging.getLogger(__name__)
 
-STATUS_ERROR = -9
+STATUS_ERROR = int(Status.RAISED)
 """Status recorded for a seed whose run raised an exception."""
 
 

@@ -44,6 +44,7 @@ from onbottom.dynamics.pipeline._beam_kernel import (
     assemble_internal,
     node_section_forces,
 )
+from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
 from onbottom.hydro._force_dispatch import force_step
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
@@ -159,12 +160,12 @@ E_MIN_VCONT = 7
 E_MAX_Z = 8
 N_ENV = 9
 
-STATUS_CHUNK = 0
-STATUS_END = 1
-STATUS_LIMIT = 2
-STATUS_STEP_FAILED = -1
-STATUS_SOIL_NAN = -2
-STATUS_SINGULAR = -4  # (-3 is the section solvers' "outside the soil model's range")
+STATUS_CHUNK = int(Status.CHUNK)
+STATUS_END = int(Status.END)
+STATUS_LIMIT = int(Status.LIMIT)
+STATUS_STEP_FAILED = int(Status.STEP_FAILED)
+STATUS_SOIL_NAN = int(Status.SOIL_NAN)
+STATUS_SINGULAR = int(Status.SINGULAR)
 
 
 @njit(cache=True)

@@ -35,23 +35,24 @@ import numpy as np
 import xarray as xr
 
 from onbottom._validate import in_range, one_of, positive
+from onbottom.dynamics.driver import drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
-from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
+from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
-from onbottom.hydro._force_contract import N_FORCE_STATE
-from onbottom.hydro.force_model import parameter_rows
+from onbottom.hydro.force_model import N_FORCE_STATE, parameter_rows
 from onbottom.hydro.short_crested import NodeKinematics
 from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
     annotate,
     check_result_file,
-    identity_hash,
     provenance,
 )
+from onbottom.results import run_identity as results_run_identity
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -173,18 +174,18 @@ class PipelineSettings:
 
 
 @dataclass(frozen=True, kw_only=True)
-class PipelineResult:
-    """Result of :func:`simulate_pipeline`.
+class PipelineResult(SolverResult):
+    """Result of :func:`simulate_pipeline` (a :class:`~onbottom.dynamics.result.SolverResult`).
 
     Attributes
     ----------
     success : bool
         True when the run ended normally (end of storm or runaway stop).
     status : int
-        1 end, 2 runaway stop, −1 step failure, −2 soil NaN, −3 a node's penetration left
-        the soil model's range (beyond D/2 for Verley & Sotberg / Verley & Lund, as the
-        section solvers; the run went on, its numbers are kept, ``success`` is False and the
-        message names the time, node and x), −4 singular Jacobian.
+        A :class:`~onbottom.dynamics.status.Status`: 1 end, 2 runaway stop, −1 step failure, −2 soil
+        NaN, −3 a node's penetration left the soil model's range (beyond D/2 for Verley & Sotberg /
+        Verley & Lund, as the section solvers; the run went on, its numbers are kept, ``success`` is
+        False and the message names the time, node and x), −4 singular Jacobian.
     message : str
     diameter : float
         D [m].
@@ -264,7 +265,7 @@ def run_identity(
     force_parameters: np.ndarray | None = None,
 ) -> str:
     """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics
-    (:func:`onbottom.results.identity_hash`).
+    (the digest of :func:`onbottom.results.run_identity`, the DEM's function too).
 
     ``force_parameters``: the force model's parameter rows; folded in only when they change
     along the storm (per sea state), so a constant model keeps the identity of earlier runs.
@@ -278,7 +279,7 @@ def run_identity(
     arrays = [kinematics.velocity, kinematics.acceleration]
     if force_parameters is not None and force_parameters.shape[0] > 1:
         arrays.append(force_parameters)
-    return identity_hash(meta, *arrays)
+    return results_run_identity(meta, *arrays).digest
 
 
 def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSettings, r_perm_z):
@@ -755,53 +756,51 @@ def simulate_pipeline(
         per_chunk = max(math.ceil(s.chunk_duration / s.record_interval) + 2, 2)
     rec = np.zeros((per_chunk, K.N_FIELDS, n))
     rec_t = np.zeros(per_chunk)
-    bar = None
-    if progress:
-        from tqdm import tqdm
 
-        bar = tqdm(total=round(t_end), unit="s", desc="pipeline storm", leave=False)
-    status = done
-    try:
-        while status == K.STATUS_CHUNK:
-            t0 = float(scal[K.SC_T])
-            t_stop = min(t0 + s.chunk_duration, t_end)
-            while True:
-                m, status = K.integrate(
-                    st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-                    arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
-                    arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
-                )  # fmt: skip
-                if writer is not None:
-                    writer.append(rec_t[:m].copy(), rec[:m])
-                elif m:
-                    mem_t.append(rec_t[:m].copy())
-                    mem_r.append(rec[:m].copy())
-                # a full buffer returns STATUS_CHUNK before t_stop: continue the chunk
-                if status != K.STATUS_CHUNK or scal[K.SC_T] >= t_stop - 1e-9 * (1 + t_stop):
-                    break
-            if bar is not None:
-                bar.update(round(scal[K.SC_T]) - bar.n)
+    def advance(t_stop: float, _rows: np.ndarray, _n: int) -> tuple[int, int]:
+        while True:
+            m, status = K.integrate(
+                st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
+                arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
+                arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+            )  # fmt: skip
             if writer is not None:
-                writer.commit()
-            if ckpt is not None and writer is not None:
-                _save_checkpoint(
-                    ckpt,
-                    run_id,
-                    writer.rows,
-                    writer.chunks,
-                    writer.last_time if writer.rows else math.nan,
-                    {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
-                     "fstate": fstate, "env": env, "status": np.array(status)},
-                )  # fmt: skip
-            if status != K.STATUS_CHUNK:
-                break
+                writer.append(rec_t[:m].copy(), rec[:m])
+            elif m:
+                mem_t.append(rec_t[:m].copy())
+                mem_r.append(rec[:m].copy())
+            # a full buffer returns STATUS_CHUNK before t_stop: continue the chunk
+            if status != K.STATUS_CHUNK or scal[K.SC_T] >= t_stop - 1e-9 * (1 + t_stop):
+                return 0, status
+
+    def after_chunk(status: int) -> None:
+        if writer is not None:
+            writer.commit()
+        if ckpt is not None and writer is not None:
+            _save_checkpoint(
+                ckpt,
+                run_id,
+                writer.rows,
+                writer.chunks,
+                writer.last_time if writer.rows else math.nan,
+                {"vec": vec, "scal": scal, "sstate": sstate, "axst": axst, "nodal": nodal,
+                 "fstate": fstate, "env": env, "status": np.array(status)},
+            )  # fmt: skip
+
+    try:
+        with progress_bar(progress, round(t_end), "pipeline storm", "s") as bar:
+            status = drive(
+                advance,
+                lambda _k: min(float(scal[K.SC_T]) + s.chunk_duration, t_end),
+                status=done,
+                bar=bar,
+                position=lambda: round(scal[K.SC_T]),
+                after_chunk=after_chunk,
+            )
     except BaseException:
         if writer is not None:
             writer.close()
         raise
-    finally:
-        if bar is not None:
-            bar.close()
     # ---- summary
     d_fin = vec[K.V_D]
     mass = np.zeros(ndof)
@@ -841,7 +840,7 @@ def simulate_pipeline(
         "n_factorisations": float(scal[K.SC_N_FACTOR]),
         "n_nodes": float(n),
     }
-    success = status in (K.STATUS_END, K.STATUS_LIMIT)
+    success = Status(status).success
     message = _STATUS_MESSAGES.get(status, f"status {status}")
     if not success:
         message += f" (t = {scal[K.SC_T]:.6g} s, dt_min = {st[K.ST_DT_MIN]:.3g} s)"
@@ -853,7 +852,7 @@ def simulate_pipeline(
     summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
     if success and z_node >= 0:
         success = False
-        status = STATUS_OUTSIDE_VALIDITY
+        status = Status.OUTSIDE_VALIDITY
         zmax = float(np.max(env[K.E_MAX_Z]))
         message = (
             f"outside the model's validity: penetration exceeded D/2 ="
@@ -949,7 +948,7 @@ def _result_from_file(
     emax = float(np.max(env_ds["max_strain"].values))
     d = model.pipe.outer_diameter
     return PipelineResult(
-        success=status in (K.STATUS_END, K.STATUS_LIMIT),
+        success=Status(status).success,
         status=status,
         message=str(attrs["message"]),
         diameter=d,

@@ -1,0 +1,88 @@
+"""Design checks by name: one registry for case files, the CLI, sweeps and the report.
+
+``CHECKS`` maps a check's name to a :class:`DesignCheck` (scipy's ``solve_ivp`` ``METHODS``
+dict is the model). :func:`onbottom.checks.design.run_checks` runs the checks named in
+``CheckOptions.checks`` (default ``("vertical", "absolute")``) in that order:
+
+* ``vertical`` (per condition): row ``vertical_stability``, flotation with γ_W (DNV-RP-F109
+  (2017) §3.3, Eq 3.1);
+* ``absolute`` (per load combination): rows ``absolute_lateral`` and ``absolute_vertical``
+  (F109 §3.6, Eqs 3.38–3.41).
+
+A check ``per="condition"`` is called once per pipe condition of the options
+(``run(props, options, condition)``, ``props`` the :class:`~onbottom.inputs.pipe.Pipe` or the
+build-up's properties in that condition); ``per="combination"`` once per load combination
+(``run(pipe, seabed, environment, combination, options, condition)``). Each returns a list of
+:class:`~onbottom.checks.design.CheckRow`. An unknown name is an
+:class:`~onbottom.errors.InputError` naming the field and listing the choices. A new check
+registers with :func:`register_check` (docs/contributing.md, "Add a design check").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from onbottom.errors import InputError
+
+__all__ = ["CHECKS", "DesignCheck", "check_names", "get_check", "register_check"]
+
+
+@dataclass(frozen=True)
+class DesignCheck:
+    """One registered design check.
+
+    ``name`` (the case-file name), ``per`` (``"condition"`` or ``"combination"``), ``run``
+    (the function, signature in the module docstring), ``rows`` (the names of the rows it
+    returns; a floating pipe gets these rows with an infinite utilisation), ``reference`` (the
+    source: standard, edition, equations).
+    """
+
+    name: str
+    per: Literal["condition", "combination"]
+    run: Callable[..., list[Any]]
+    rows: tuple[str, ...]
+    reference: str
+
+
+CHECKS: dict[str, DesignCheck] = {}
+"""Registered design checks by name (the F109 ones register on import of
+:mod:`onbottom.checks.design`)."""
+
+
+def register_check(check: DesignCheck, *, replace: bool = False) -> DesignCheck:
+    """Register ``check`` under ``check.name``; a name taken is an error unless ``replace``."""
+    if not isinstance(check, DesignCheck):
+        raise InputError(f"check = {check!r} is invalid: expected DesignCheck")
+    if check.per not in ("condition", "combination"):
+        raise InputError(
+            f"DesignCheck.per = {check.per!r} is invalid: choose 'condition' or 'combination'"
+        )
+    if not check.rows:
+        raise InputError(f"DesignCheck.rows = () is invalid for {check.name!r}: name its rows")
+    if check.name in CHECKS and not replace:
+        raise InputError(f"design check {check.name!r} is registered already (replace=True)")
+    CHECKS[check.name] = check
+    return check
+
+
+def _builtin() -> dict[str, DesignCheck]:
+    import onbottom.checks.design  # noqa: F401  (registers the F109 checks)
+
+    return CHECKS
+
+
+def check_names() -> tuple[str, ...]:
+    """The registered names, in registration order."""
+    return tuple(_builtin())
+
+
+def get_check(name: str, *, where: str = "checks") -> DesignCheck:
+    """The check registered under ``name``; an :class:`InputError` listing the choices."""
+    checks = _builtin()
+    if not isinstance(name, str) or name not in checks:
+        raise InputError(
+            f"{where} = {name!r} is invalid: choose one of {', '.join(map(repr, checks))}"
+        )
+    return checks[name]

@@ -1,0 +1,102 @@
+"""One status enumeration for every time-domain solver, and its CLI exit codes.
+
+The centrifuge section (:func:`onbottom.dynamics.section.simulate_section`), the storm section
+(:func:`onbottom.dynamics.storm_section.simulate_storm_section`) and the pipeline FE
+(:func:`onbottom.dynamics.pipeline.simulate_pipeline`) return, and write in their result files
+(attribute ``status``), one of the codes below; their numba kernels use the same numbers
+(``STATUS_*`` module constants taken from :class:`Status`). Positive: the run ended normally
+(a physical outcome); zero and 4: internal (a chunk or the record buffer ended, never
+returned); negative: the run failed or left its model's validity (its numbers are kept but
+not valid). Table: docs/conventions.md, "Solver status".
+
+Numbers kept from 0.1 where the solvers agreed (1, 2, −1, −2, −3, −4); 0.1's centrifuge
+section wrote 3 for "ran on until the pipe stopped" where the storm section wrote 3 for
+"lift-off": the section's code is 5 now; :func:`read_status` reads files of 0.1.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from enum import IntEnum
+from typing import Any
+
+__all__ = ["EXIT_INVALID_RESULT", "EXIT_OK", "Status", "exit_code", "read_status"]
+
+EXIT_OK = 0
+"""CLI exit status of a valid result."""
+
+EXIT_INVALID_RESULT = 3
+"""CLI exit status of a result that is not valid (a failed run or one outside its model's
+validity); equals :data:`onbottom.cli._common.EXIT_INVALID_RESULT`."""
+
+
+class Status(IntEnum):
+    """Outcome of a time-domain run (an ``int``: compares equal to its value).
+
+    ========  =================  ==========================================================
+    code      name               meaning
+    ========  =================  ==========================================================
+    0         CHUNK              internal: the chunk ended (``t_stop``), go on
+    1         END                ran to the end of the load programme / storm
+    2         LIMIT              stopped at the displacement limit (runaway, terminal event)
+    3         LIFTOFF            storm section: lift-off, the run stopped (``liftoff="stop"``)
+    4         BUFFER_FULL        internal: the record buffer is full, grow it and go on
+    5         RUNAWAY_END        centrifuge section: reached the limit, ran on until the pipe
+                                 stopped (``after_limit="runaway_end"``; 3 in 0.1)
+    −1        STEP_FAILED        a time step did not converge at the smallest step
+    −2        SOIL_NAN           a soil kernel returned NaN (unknown model id, invalid state)
+    −3        OUTSIDE_VALIDITY   the run left its model's validity (penetration > D/2,
+                                 lift-off in a centrifuge programme); numbers kept
+    −4        SINGULAR           pipeline: the Jacobian became singular (a mechanism)
+    −9        RAISED             a run of a study raised an exception (seeds, campaigns)
+    ========  =================  ==========================================================
+    """
+
+    CHUNK = 0
+    END = 1
+    LIMIT = 2
+    LIFTOFF = 3
+    BUFFER_FULL = 4
+    RUNAWAY_END = 5
+    STEP_FAILED = -1
+    SOIL_NAN = -2
+    OUTSIDE_VALIDITY = -3
+    SINGULAR = -4
+    RAISED = -9
+
+    @property
+    def success(self) -> bool:
+        """True for a normal end (END, LIMIT, LIFTOFF, RUNAWAY_END)."""
+        return self in _SUCCESS
+
+    @property
+    def exit_code(self) -> int:
+        """The CLI exit status of a run ending with this status (:func:`exit_code`)."""
+        return EXIT_OK if self.success else EXIT_INVALID_RESULT
+
+
+_SUCCESS = frozenset({Status.END, Status.LIMIT, Status.LIFTOFF, Status.RUNAWAY_END})
+
+
+def exit_code(status: int) -> int:
+    """CLI exit status of a run that ended with ``status``: 0 valid, 3 not valid.
+
+    Every command that runs a solver maps its status through here (docs/conventions.md).
+    An unknown number counts as not valid.
+    """
+    try:
+        return Status(int(status)).exit_code
+    except ValueError:
+        return EXIT_INVALID_RESULT
+
+
+def read_status(attrs: Mapping[str, Any]) -> Status:
+    """The :class:`Status` recorded in a result file's attributes (files of 0.1 included).
+
+    A centrifuge-section file of 0.1 (``after_limit = "runaway_end"``, status 3) reads as
+    :attr:`Status.RUNAWAY_END`.
+    """
+    value = int(attrs["status"])
+    if value == 3 and attrs.get("after_limit") == "runaway_end":
+        return Status.RUNAWAY_END
+    return Status(value)

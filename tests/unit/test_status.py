@@ -1,0 +1,43 @@
+"""Unit test: one status enumeration for every solver, mapped once to the CLI exit codes."""
+
+from __future__ import annotations
+
+import pytest
+
+from onbottom.cli._common import EXIT_INVALID_RESULT
+from onbottom.dynamics import _section_kernel as SK
+from onbottom.dynamics import _storm_kernel as TK
+from onbottom.dynamics import status as S
+from onbottom.dynamics.pipeline import _pipeline_kernel as PK
+from onbottom.dynamics.status import Status, exit_code, read_status
+
+
+def test_numbers_kept_from_0_1_where_the_solvers_agreed():
+    # 1, 2, -1, -2: all solvers; 3 lift-off (storm), -3 outside validity, -4 singular (pipeline)
+    assert [Status.END, Status.LIMIT, Status.LIFTOFF] == [1, 2, 3]
+    assert [Status.STEP_FAILED, Status.SOIL_NAN, Status.OUTSIDE_VALIDITY] == [-1, -2, -3]
+    assert Status.SINGULAR == -4 and Status.RAISED == -9
+
+
+@pytest.mark.parametrize("kernel", [SK, TK, PK], ids=["section", "storm", "pipeline"])
+def test_every_kernel_uses_the_enumeration(kernel):
+    names = [n for n in dir(kernel) if n.startswith("STATUS_")]
+    assert names
+    for name in names:
+        assert getattr(kernel, name) == Status[name.removeprefix("STATUS_")], name
+
+
+def test_exit_codes():
+    assert S.EXIT_INVALID_RESULT == EXIT_INVALID_RESULT == 3
+    ok = {Status.END, Status.LIMIT, Status.LIFTOFF, Status.RUNAWAY_END}
+    for st in Status:
+        assert exit_code(st) == (0 if st in ok else 3), st
+        assert st.success == (st in ok)
+    assert exit_code(42) == 3  # an unknown number is not a valid result
+
+
+def test_files_of_0_1_read():
+    # the centrifuge section wrote 3 for "ran on until the pipe stopped" in 0.1
+    assert read_status({"status": 3, "after_limit": "runaway_end"}) is Status.RUNAWAY_END
+    assert read_status({"status": 3}) is Status.LIFTOFF  # a storm-section file
+    assert read_status({"status": -3, "after_limit": "stop"}) is Status.OUTSIDE_VALIDITY
