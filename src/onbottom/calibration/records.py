@@ -341,7 +341,7 @@ def _read_csv(path: Path) -> TestRecord:
     rows = list(csv.reader(io.StringIO("\n".join(lines[n_header:]))))
     if len(rows) < 2:
         raise InputError(f"{path}: expected a line of column names and a line of units")
-    names = _current_names([c.strip() for c in rows[0]])
+    names = [c.strip() for c in rows[0]]
     units = [c.strip() for c in rows[1]]
     if len(units) != len(names):
         raise InputError(
@@ -349,13 +349,14 @@ def _read_csv(path: Path) -> TestRecord:
         )
     if len(set(names)) != len(names):
         raise InputError(f"{path}: duplicate column names in {names}")
+    current = _current_names(names)  # a 0.1 file's u, w are read as y, z
     for required in ("time", "y", "z"):
-        if required not in names:
+        if required not in current:
             raise InputError(f"{path}: column {required!r} is missing (columns: {names})")
     factors: list[float] = []
     kinds: list[str | None] = []
-    for col, unit in zip(names, units, strict=True):
-        kind = _COLUMN_KIND.get(col) or _kind_of_unit(unit)
+    for col, cur, unit in zip(names, current, units, strict=True):
+        kind = _COLUMN_KIND.get(cur) or _kind_of_unit(unit)
         kinds.append(kind)
         factors.append(
             to_si(1.0, unit, kind, field_name=f"{path}: column {col!r}") if kind else 1.0
@@ -391,7 +392,7 @@ def _read_csv(path: Path) -> TestRecord:
             f" after {float(t[r - 1])!r} s: time must increase strictly"
         )
     ds = xr.Dataset(coords={"time": ("time", t)})
-    for c, col in enumerate(names):
+    for c, col in enumerate(current):
         if col == "time":
             continue
         ds[col] = ("time", values[:, c])
