@@ -82,7 +82,7 @@ def test_fig9_penetration_grows_under_small_cyclic_motion(inclined_1):
 
 def _penetration_grows(inclined_1):
     d = inclined_1.data
-    u, w, reg, h = (d[k].values for k in ("u", "w", "region", "H"))
+    u, w, reg, h = (d[k].values for k in ("y", "z", "region", "H"))
     pre = slice(0, int(np.argmax(reg >= 3)))  # before the first breakout (past y2 = 0.25 D)
     # penetration only grows while the pipe stays in its trough (|u| < 0.25 m) ...
     assert np.max(np.abs(u[pre])) < 0.25
