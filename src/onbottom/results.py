@@ -35,6 +35,7 @@ from onbottom._version import __version__
 from onbottom.errors import ResultFileError
 
 __all__ = [
+    "LEGACY_NAMES",
     "RESTART_ADVICE",
     "RUN_STATUS_COMPLETE",
     "RUN_STATUS_PARTIAL",
@@ -51,6 +52,7 @@ __all__ = [
     "run_identity",
     "save_dataset",
     "save_figure",
+    "upgrade_names",
     "write_csv_atomic",
     "write_text_atomic",
 ]
@@ -70,9 +72,9 @@ RESTART_ADVICE = (
 VARIABLES: dict[str, tuple[str, str]] = {
     # name: (long_name, units)
     "time": ("time", "s"),
-    "u": ("lateral displacement of the pipe", "m"),
-    "u_dot": ("lateral velocity of the pipe", "m/s"),
-    "w": ("penetration (embedment) of the pipe invert", "m"),
+    # one name per quantity (docs/conventions.md): y lateral, z penetration (0.1: u, w)
+    "y": ("lateral displacement of the pipe section", "m"),
+    "y_dot": ("lateral velocity of the pipe section", "m/s"),
     "z": ("penetration (embedment) of the pipe invert", "m"),
     "H": ("applied horizontal load per unit length", "N/m"),
     "V": ("vertical contact load per unit length", "N/m"),
@@ -96,8 +98,6 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "fraction_20_45": ("fraction of wave cycles with load angle in [20, 45] degrees", "1"),
     "w_s": ("submerged weight of the pipe per unit length", "N/m"),
     # storm section (issue 12)
-    "y": ("lateral displacement of the pipe section", "m"),
-    "y_dot": ("lateral velocity of the pipe section", "m/s"),
     "F_hydro": ("horizontal hydrodynamic load on the pipe F_Y", "N/m"),
     "F_Z": ("hydrodynamic lift on the pipe", "N/m"),
     "U": ("wave-induced near-bed velocity normal to the pipe", "m/s"),
@@ -111,6 +111,44 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "axial_force": ("effective axial force (tension positive)", "N"),
     "strain": ("largest longitudinal fibre strain |N|/EA + |M|c/EI", "1"),
 }
+
+
+LEGACY_NAMES: dict[str, str] = {"u": "y", "u_dot": "y_dot", "w": "z"}
+"""Variable names of onbottom 0.1 results and their names since (``docs/conventions.md``).
+
+0.1 wrote the centrifuge section's results (``simulate_section``), the soil path response
+(``path_response``) and calibration test records with ``u`` (lateral displacement),
+``u_dot`` (its velocity) and ``w`` (penetration); every result now says ``y``, ``y_dot``
+and ``z``, as the storm section, the pipeline and DNV-RP-F109 do."""
+
+
+def upgrade_names(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with the 0.1 variable names (:data:`LEGACY_NAMES`) renamed; ``ds`` if none.
+
+    Applied by :func:`load_dataset` (and the test-record reader), so a file written by 0.1
+    opens with today's names. Only a dataset holding the 0.1 lateral displacement ``u``
+    is renamed (the DEM penetration records keep their paper's ``w``, and have no ``u``); a
+    name already taken is left alone. The renamed dataset says so in its attribute
+    ``renamed_variables`` (``"u->y, w->z"``) and in an INFO log line — a note, not a
+    warning: the file is valid and nothing needs doing.
+    """
+    if "u" not in ds.variables:
+        return ds
+    renames = {
+        old: new
+        for old, new in LEGACY_NAMES.items()
+        if old in ds.variables and new not in ds.variables
+    }
+    if not renames:
+        return ds
+    out = ds.rename(renames)
+    for new in renames.values():
+        if new in VARIABLES:
+            out[new].attrs["long_name"] = VARIABLES[new][0]
+    note = ", ".join(f"{old}->{new}" for old, new in renames.items())
+    out.attrs["renamed_variables"] = note
+    logger.info("opened a result written by onbottom 0.1: variables renamed %s", note)
+    return out
 
 
 def provenance(model: str, parameters: Mapping[str, Any] | None = None, **extra: Any) -> dict:
@@ -301,12 +339,13 @@ def load_dataset(path: str | os.PathLike, *, allow_partial: bool = False) -> xr.
     """Load a NetCDF result fully into memory; refuse an unreadable or partial file.
 
     Raises :class:`~onbottom.errors.ResultFileError` as :func:`check_result_file` (a file
-    marked ``run_status = "partial"`` is refused unless ``allow_partial``).
+    marked ``run_status = "partial"`` is refused unless ``allow_partial``). A file written by
+    onbottom 0.1 opens with today's variable names (:func:`upgrade_names`).
     """
     check_result_file(path, allow_partial=allow_partial)
     try:
         with xr.open_dataset(path, engine="h5netcdf") as ds:
-            return ds.load()
+            return upgrade_names(ds.load())
     except FileNotFoundError:
         raise
     except Exception as exc:  # any damage: never a traceback

@@ -22,14 +22,14 @@ def toy(record, params):
         raise RuntimeError("diverged")
     u = params["a"] * T**2 / 10.0
     w = 0.05 * params["c"] + 0.002 * params["b"] * np.sqrt(T)
-    return xr.Dataset({"u": ("time", u), "w": ("time", w)}, coords={"time": T})
+    return xr.Dataset({"y": ("time", u), "z": ("time", w)}, coords={"time": T})
 
 
 def _record(truth, noise=0.0, seed=1):
     ds = toy(None, truth)
     rng = np.random.default_rng(seed)
-    ds["u"] = ds["u"] + noise * rng.standard_normal(T.size)
-    ds["w"] = ds["w"] + 0.02 * noise * rng.standard_normal(T.size)
+    ds["y"] = ds["y"] + noise * rng.standard_normal(T.size)
+    ds["z"] = ds["z"] + 0.02 * noise * rng.standard_normal(T.size)
     return TestRecord(name="toy", data=ds, diameter=1.0, displacement_limit=3.0)
 
 
@@ -146,7 +146,7 @@ def test_parallel_objective_evaluations_on_dask_equal_serial():
     def toy_local(record, params):  # a closure: cloudpickle sends it by value to workers
         u = params["a"] * t**2 / 10.0
         w = 0.05 * params["c"] + 0.002 * params["b"] * np.sqrt(t)
-        return xr.Dataset({"u": ("time", u), "w": ("time", w)}, coords={"time": t})
+        return xr.Dataset({"y": ("time", u), "z": ("time", w)}, coords={"time": t})
 
     rec = _record(TRUTH, noise=0.01)
     kw = dict(simulator=toy_local, method="global", seed=4, maxiter=5, popsize=5)

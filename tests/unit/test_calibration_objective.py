@@ -22,7 +22,7 @@ from onbottom.calibration.records import TestRecord
 @pytest.fixture
 def record() -> TestRecord:
     ds = xr.Dataset(
-        {"u": ("time", [0.0, 0.5, 1.0, 2.0]), "w": ("time", [0.10, 0.12, 0.14, 0.14])},
+        {"y": ("time", [0.0, 0.5, 1.0, 2.0]), "z": ("time", [0.10, 0.12, 0.14, 0.14])},
         coords={"time": [0.0, 1.0, 2.0, 3.0]},
     )
     return TestRecord(name="tiny", data=ds, diameter=1.0, displacement_limit=2.0, cycle_period=1.5)
@@ -31,7 +31,7 @@ def record() -> TestRecord:
 @pytest.fixture
 def simulated() -> xr.Dataset:
     return xr.Dataset(
-        {"u": ("time", [0.0, 1.0, 2.2]), "w": ("time", [0.11, 0.13, 0.15])},
+        {"y": ("time", [0.0, 1.0, 2.2]), "z": ("time", [0.11, 0.13, 0.15])},
         coords={"time": [0.0, 2.0, 4.0]},
     )
 
@@ -82,6 +82,6 @@ def test_invalid_weights_and_simulation(record):
         MisfitWeights(u_history=-1.0)
     with pytest.raises(InputError, match="at least one"):
         MisfitWeights(**dict.fromkeys(MisfitWeights.__slots__, 0.0))
-    bad = xr.Dataset({"u": ("time", [0.0, np.nan])}, coords={"time": [0.0, 1.0]})
+    bad = xr.Dataset({"y": ("time", [0.0, np.nan])}, coords={"time": [0.0, 1.0]})
     with pytest.raises(InputError):
         evaluate_misfit(record, bad)

@@ -24,7 +24,7 @@ CSV = """# onbottom test record v1
 # displacement_limit: 3.0 m
 # cycle_period: 40 s
 # operator: tester
-time,H,V,u,w
+time,H,V,y,z
 s,kN/m,kN/m,m,mm
 0.0,0.0,10.52,0.0,65.0
 10.0,0.25,10.09,0.001,65.5
@@ -50,8 +50,8 @@ def test_csv_units_converted_to_si(tmp_path):
     assert rec.metadata["operator"] == "tester"
     np.testing.assert_allclose(rec.data["H"].values, [0.0, 250.0, 0.0])
     np.testing.assert_allclose(rec.data["V"].values, [10520.0, 10090.0, 10520.0])
-    np.testing.assert_allclose(rec.w, [0.065, 0.0655, 0.066])
-    assert rec.data["w"].attrs["units"] == "m"
+    np.testing.assert_allclose(rec.z, [0.065, 0.0655, 0.066])
+    assert rec.data["z"].attrs["units"] == "m"
     assert rec.data["H"].attrs["units"] == "N/m"
 
 
@@ -72,7 +72,7 @@ def test_missing_value_names_column_and_row(tmp_path):
 
 def test_nan_value_names_column_and_row(tmp_path):
     text = CSV.replace("20.0,0.0,10.52,0.0005,66.0", "20.0,0.0,10.52,0.0005,nan")
-    with pytest.raises(InputError, match=r"column 'w' row 2"):
+    with pytest.raises(InputError, match=r"column 'z' row 2"):
         load_record(_write(tmp_path, text))
 
 
@@ -84,13 +84,13 @@ def test_non_monotone_time_names_row(tmp_path):
 
 def test_unknown_column_unit_is_rejected(tmp_path):
     text = CSV.replace("s,kN/m,kN/m,m,mm", "s,kN/m,kN/m,m,inch")
-    with pytest.raises(InputError, match=r"column 'w'.*'inch'"):
+    with pytest.raises(InputError, match=r"column 'z'.*'inch'"):
         load_record(_write(tmp_path, text))
 
 
 def test_missing_required_column_and_header(tmp_path):
-    text = CSV.replace("time,H,V,u,w", "time,H,V,u,z")
-    with pytest.raises(InputError, match="'w' is missing"):
+    text = CSV.replace("time,H,V,y,z", "time,H,V,y,x")
+    with pytest.raises(InputError, match="'z' is missing"):
         load_record(_write(tmp_path, text))
     text = CSV.replace("# diameter: 1000 mm\n", "")
     with pytest.raises(InputError, match="diameter"):
@@ -106,19 +106,19 @@ def test_round_trip(tmp_path, suffix):
     for key in ("diameter", "V_peak", "V_i", "displacement_limit", "cycle_period"):
         assert getattr(back, key) == pytest.approx(getattr(rec, key))
     assert back.metadata["operator"] == "tester"
-    for col in ("time", "H", "V", "u", "w"):
+    for col in ("time", "H", "V", "y", "z"):
         np.testing.assert_allclose(back.data[col].values, rec.data[col].values, rtol=1e-15)
 
 
 def test_record_is_immutable_and_copies_data():
     ds = xr.Dataset(
-        {"u": ("time", np.zeros(3)), "w": ("time", np.ones(3))}, coords={"time": [0.0, 1, 2]}
+        {"y": ("time", np.zeros(3)), "z": ("time", np.ones(3))}, coords={"time": [0.0, 1, 2]}
     )
     rec = TestRecord(name="x", data=ds, diameter=1.0)
-    ds["u"][0] = 5.0
-    assert rec.u[0] == 0.0
+    ds["y"][0] = 5.0
+    assert rec.y[0] == 0.0
     with pytest.raises(ValueError):
-        rec.u[0] = 1.0
+        rec.y[0] = 1.0
     with pytest.raises(AttributeError):
         rec.name = "y"  # type: ignore[misc]
     with pytest.raises(TypeError):
@@ -128,8 +128,8 @@ def test_record_is_immutable_and_copies_data():
 def test_record_from_simulation_result():
     sim = xr.Dataset(
         {
-            "u": ("time", [0.0, 0.1, 0.2]),
-            "w": ("time", [0.05, 0.06, 0.07]),
+            "y": ("time", [0.0, 0.1, 0.2]),
+            "z": ("time", [0.05, 0.06, 0.07]),
             "H": ("time", [0.0, 1.0, 2.0]),
             "F_soil": ("time", [0.0, 1.0, 2.0]),
         },
@@ -137,17 +137,41 @@ def test_record_from_simulation_result():
         attrs={"model": "section"},
     )
     rec = record_from_result(sim, name="sim", diameter=1.0, V_i=1e4)
-    assert set(rec.data.data_vars) == {"u", "w", "H"}
+    assert set(rec.data.data_vars) == {"y", "z", "H"}
     assert rec.metadata["source_model"] == "section"
 
 
 def test_invalid_metadata_rejected():
     ds = xr.Dataset(
-        {"u": ("time", np.zeros(3)), "w": ("time", np.ones(3))}, coords={"time": [0.0, 1, 2]}
+        {"y": ("time", np.zeros(3)), "z": ("time", np.ones(3))}, coords={"time": [0.0, 1, 2]}
     )
     with pytest.raises(InputError, match="TestRecord.V_i"):
         TestRecord(name="x", data=ds, diameter=1.0, V_i=-1.0)
     bad = ds.copy()
-    bad["u"] = ("time", [0.0, np.nan, 1.0])
-    with pytest.raises(InputError, match="column 'u' row 1"):
+    bad["y"] = ("time", [0.0, np.nan, 1.0])
+    with pytest.raises(InputError, match="column 'y' row 1"):
         TestRecord(name="x", data=bad, diameter=1.0)
+
+
+def test_records_written_by_0_1_open_with_today_names(tmp_path):
+    """0.1 wrote the displacement as ``u`` and the penetration as ``w``: CSV and NetCDF
+    records in that form open with ``y`` and ``z`` (same values), and a simulated result with
+    the old names still becomes a record."""
+    old_csv = CSV.replace("time,H,V,y,z", "time,H,V,u,w")
+    new = load_record(_write(tmp_path, CSV))
+    old = load_record(_write(tmp_path, old_csv, "old.csv"))
+    assert set(old.data.data_vars) == {"H", "V", "y", "z"}
+    np.testing.assert_array_equal(old.y, new.y)
+    np.testing.assert_array_equal(old.z, new.z)
+    with pytest.raises(InputError, match=r"column 'w'.*'inch'"):  # the file's own name
+        load_record(_write(tmp_path, old_csv.replace("m,mm", "m,inch"), "bad.csv"))
+    nc = new.to_dataset().rename({"y": "u", "z": "w"})
+    nc.to_netcdf(tmp_path / "old.nc", engine="h5netcdf")
+    back = load_record(tmp_path / "old.nc")
+    np.testing.assert_array_equal(back.y, new.y)
+    np.testing.assert_array_equal(back.z, new.z)
+    sim = xr.Dataset(
+        {"u": ("time", [0.0, 0.1]), "w": ("time", [0.05, 0.06])}, coords={"time": [0.0, 1.0]}
+    )
+    rec = record_from_result(sim, name="sim", diameter=1.0)
+    np.testing.assert_array_equal(rec.z, [0.05, 0.06])

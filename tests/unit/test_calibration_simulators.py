@@ -21,9 +21,9 @@ def test_virtual_record_metadata_and_noise_level():
     assert clean.programme == "Inclined 1" and clean.diameter == 1.0
     np.testing.assert_allclose(np.diff(clean.time)[:-1], 1.0)
     # noise: standard deviation 2 % of the displacement limit (3 m) on u
-    assert np.std(noisy.u - clean.u) == pytest.approx(0.02 * 3.0, rel=0.15)
+    assert np.std(noisy.y - clean.y) == pytest.approx(0.02 * 3.0, rel=0.15)
     again = virtual_record("Inclined 1", TRUTH, noise=0.02, seed=3)
-    np.testing.assert_array_equal(again.u, noisy.u)
+    np.testing.assert_array_equal(again.y, noisy.y)
 
 
 def test_recorded_load_simulator_reproduces_preset_run():
@@ -41,7 +41,7 @@ def test_simulators_reject_unknown_parameters_and_missing_programme():
     rec = virtual_record("Inclined 1", TRUTH, noise=0.0)
     with pytest.raises(InputError, match="phi"):
         CentrifugeSimulator()(rec, {"phi": 1.0})
-    bare = rec.__class__(name="x", data=rec.data[["u", "w"]], diameter=1.0)
+    bare = rec.__class__(name="x", data=rec.data[["y", "z"]], diameter=1.0)
     with pytest.raises(InputError, match="programme"):
         CentrifugeSimulator()(bare, TRUTH)
     with pytest.raises(InputError, match="'H'"):

@@ -32,7 +32,7 @@ def test_simulate_user_case_writes_netcdf_and_plot(tmp_path, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["success"] and out["cycles_to_limit"] > 10
     ds = load_dataset(nc)
-    assert ds["u"].attrs["units"] == "m" and ds.attrs["model"] == "simulate_section"
+    assert ds["y"].attrs["units"] == "m" and ds.attrs["model"] == "simulate_section"
     assert png.stat().st_size > 10_000
 
 

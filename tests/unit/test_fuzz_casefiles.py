@@ -163,7 +163,7 @@ def test_fuzz_simulate_case_file(data):
                 from onbottom.results import load_dataset
 
                 ds = load_dataset(out["netcdf"])
-                for name in ("u", "w", "H", "V", "F_soil"):
+                for name in ("y", "z", "H", "V", "F_soil"):
                     assert np.all(np.isfinite(ds[name].values)), name
                 _assert_no_nan({k: v for k, v in out.items() if k != "cycles_to_limit"})
         else:
@@ -258,7 +258,7 @@ CELLS = st.one_of(
 
 @FUZZ
 @given(
-    header=st.lists(st.sampled_from(["time", "u", "w", "H", "V", "x", ""]), max_size=6),
+    header=st.lists(st.sampled_from(["time", "y", "z", "u", "w", "H", "V", "x", ""]), max_size=6),
     units=st.lists(st.sampled_from(["s", "m", "mm", "kN/m", "N/m", "furlong", ""]), max_size=6),
     rows=st.lists(st.lists(CELLS, max_size=6), max_size=5),
     meta=st.lists(st.tuples(st.sampled_from(["diameter", "V_i", "name", "zz"]), CELLS), max_size=3),

@@ -17,11 +17,11 @@ def _record():
 
 def test_plot_fit_has_measured_and_simulated(tmp_path):
     rec = _record()
-    sim = rec.data.assign(u=rec.data["u"] * 1.1)
+    sim = rec.data.assign(y=rec.data["y"] * 1.1)
     fig = plot_fit(rec, sim)
     ax_wu, ax_ut = fig.axes
     assert ax_wu.yaxis_inverted()
-    np.testing.assert_allclose(ax_ut.lines[1].get_ydata(), sim["u"].values)
+    np.testing.assert_allclose(ax_ut.lines[1].get_ydata(), sim["y"].values)
     assert [t.get_text() for t in ax_ut.get_legend().get_texts()][:2] == ["measured", "simulated"]
     fig.savefig(tmp_path / "fit.png")
 

@@ -24,10 +24,10 @@ def test_provenance_records_version_model_parameters_and_seed():
 
 
 def test_annotate_and_atomic_round_trip(tmp_path):
-    ds = xr.Dataset({"u": ("time", np.arange(3.0))}, coords={"time": [0.0, 1.0, 2.0]})
+    ds = xr.Dataset({"y": ("time", np.arange(3.0))}, coords={"time": [0.0, 1.0, 2.0]})
     ds.attrs.update(provenance("test"))
     annotate(ds)
-    assert ds["u"].attrs["units"] == "m" and ds["time"].attrs["units"] == "s"
+    assert ds["y"].attrs["units"] == "m" and ds["time"].attrs["units"] == "s"
     path = save_dataset(ds, tmp_path / "sub" / "run.nc")
     assert path.exists()
     assert not list(path.parent.glob("*.tmp"))

@@ -29,7 +29,7 @@ def test_statuses_and_outputs(tmp_path):
     assert end.data["time"].values[-1] == pytest.approx(80.0)
     stop = simulate_section(_prog(), soil, mass=100.0, displacement_limit=0.5)
     assert stop.status == 2 and 5.0 < stop.cycles_to_limit < 8.0
-    assert abs(stop.data["u"].values[-1]) >= 0.5
+    assert abs(stop.data["y"].values[-1]) >= 0.5
     cont = simulate_section(
         _prog(), soil, mass=100.0, displacement_limit=0.5, after_limit="continue"
     )
@@ -39,7 +39,7 @@ def test_statuses_and_outputs(tmp_path):
     np.testing.assert_allclose(ds["F_friction"] + ds["F_passive"], ds["F_soil"])
     assert ds["H"].attrs["units"] == "N/m" and ds.attrs["model"] == "simulate_section"
     back = load_dataset(stop.save(tmp_path / "s.nc"))
-    np.testing.assert_array_equal(back["u"].values, ds["u"].values)
+    np.testing.assert_array_equal(back["y"].values, ds["y"].values)
     assert stop.summary["max_abs_displacement"] >= 0.5
 
 
@@ -52,7 +52,7 @@ def test_lift_off_runs_free():
         mass=100.0,
         settings=SolverSettings(integrator="newmark", dt_max=0.01, max_displacement_increment=1.0),
     )
-    assert res.data["u"].values[-1] == pytest.approx(2.0, rel=1e-9)
+    assert res.data["y"].values[-1] == pytest.approx(2.0, rel=1e-9)
 
 
 def test_bad_inputs():

@@ -82,7 +82,7 @@ def test_fig9_penetration_grows_under_small_cyclic_motion(inclined_1):
 
 def _penetration_grows(inclined_1):
     d = inclined_1.data
-    u, w, reg, h = (d[k].values for k in ("u", "w", "region", "H"))
+    u, w, reg, h = (d[k].values for k in ("y", "z", "region", "H"))
     pre = slice(0, int(np.argmax(reg >= 3)))  # before the first breakout (past y2 = 0.25 D)
     # penetration only grows while the pipe stays in its trough (|u| < 0.25 m) ...
     assert np.max(np.abs(u[pre])) < 0.25
@@ -100,7 +100,7 @@ def _penetration_grows(inclined_1):
 
 def test_fig9_pipe_rises_after_sweeping_its_berm(inclined_1):
     d = inclined_1.data
-    w, reg = d["w"].values, d["region"].values
+    w, reg = d["z"].values, d["region"].values
     in3 = reg == 3  # breakout region: penetration falls from z2 to z3
     assert in3.any()
     assert w[in3][-1] < w[in3][0]
@@ -119,7 +119,7 @@ def _runaway_in_last_cycle(inclined_1):
     d = inclined_1.data
     c = inclined_1.cycles_to_limit
     t_start_last = np.floor(c) * float(d.attrs["cycle_period"])
-    u_start = np.interp(t_start_last, d["time"].values, d["u"].values)
+    u_start = np.interp(t_start_last, d["time"].values, d["y"].values)
     # paper: "the pipe displaced horizontally from approximately 0.4 m to 3.0 m in the last cycle"
     assert abs(u_start) < 0.6
     assert inclined_1.summary["final_displacement"] > TESTS["Inclined 1"].displacement_limit

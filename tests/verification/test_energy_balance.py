@@ -172,7 +172,7 @@ def test_section_solver_energy_balance_newmark():
     )
     assert res.success and res.cycles_to_limit is not None
     d = res.data
-    u, h, v = d["u"].values, d["H"].values, d["u_dot"].values
+    u, h, v = d["y"].values, d["H"].values, d["y_dot"].values
     work_in = float(np.sum(0.5 * (h[1:] + h[:-1]) * np.diff(u)))
     kinetic = 0.5 * mass * v[-1] ** 2
     stored = float(d["soil_energy_stored"].values[-1])

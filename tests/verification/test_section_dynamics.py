@@ -28,7 +28,7 @@ def test_stick_below_friction_no_creep():
     k = MU * V / DELTA
     prog = from_arrays([0.0, 20.0, 2000.0], [0.0, 400.0, 400.0], [V, V, V])
     res = simulate_section(prog, _coulomb(), mass=M, settings=SolverSettings(dt_max=0.5))
-    u = res.data["u"].values
+    u = res.data["y"].values
     t = res.data["time"].values
     assert res.success and res.status == 1
     assert np.max(np.abs(u)) <= DELTA
@@ -53,12 +53,12 @@ def test_slip_above_friction_matches_closed_form(integrator):
     s = SolverSettings(integrator=integrator, dt_max=dt, max_displacement_increment=0.05)
     res = simulate_section(prog, _coulomb(), mass=M, settings=s)
     t = res.data["time"].values
-    u = res.data["u"].values
+    u = res.data["y"].values
     exact = DELTA + v_m * (t - t_m) + 0.5 * a * (t - t_m) ** 2
     late = t > 1.0
     np.testing.assert_allclose(u[late], exact[late], rtol=2e-4)
     # after mobilisation the pipe accelerates at (H − μV)/m = 0.3 m/s²
-    udot = res.data["u_dot"].values
+    udot = res.data["y_dot"].values
     i1 = np.searchsorted(t, 1.0)
     assert (udot[-1] - udot[i1]) / (t[-1] - t[i1]) == pytest.approx(a, rel=1e-3)
     # the friction force is exactly μV while sliding
@@ -75,7 +75,7 @@ def _constant_slip_error(dt, integrator):
     prog = from_arrays([0.0, 10.0], [h, h], [V, V])
     s = SolverSettings(integrator=integrator, dt_max=dt, max_displacement_increment=1.0)
     res = simulate_section(prog, _coulomb(), mass=M, settings=s)
-    return abs(float(res.data["u"].values[-1]) - exact)
+    return abs(float(res.data["y"].values[-1]) - exact)
 
 
 def test_time_step_convergence_against_closed_form():
@@ -96,7 +96,7 @@ def _sine_run(dt):
     s = SolverSettings(dt_max=dt, max_displacement_increment=1.0)
     res = simulate_section(prog, _coulomb(), mass=M, settings=s)
     assert res.success
-    return float(res.data["u"].values[-1])
+    return float(res.data["y"].values[-1])
 
 
 def test_time_step_convergence_stick_slip_cycles():
@@ -122,7 +122,7 @@ def test_mirror_symmetry_verley_sotberg():
     a = simulate_section(prog, soil, **kw)
     b = simulate_section(mirrored, soil, **kw)
     assert a.n_steps == b.n_steps
-    np.testing.assert_allclose(b.data["u"].values, -a.data["u"].values, atol=1e-9)
-    np.testing.assert_allclose(b.data["w"].values, a.data["w"].values, atol=1e-12)
+    np.testing.assert_allclose(b.data["y"].values, -a.data["y"].values, atol=1e-9)
+    np.testing.assert_allclose(b.data["z"].values, a.data["z"].values, atol=1e-12)
     np.testing.assert_allclose(b.data["F_soil"].values, -a.data["F_soil"].values, atol=1e-6)
     assert a.cycles_to_limit == pytest.approx(b.cycles_to_limit, abs=1e-12)

@@ -44,6 +44,7 @@ import xarray as xr
 from onbottom._validate import non_negative
 from onbottom.calibration.records import TestRecord
 from onbottom.errors import InputError
+from onbottom.results import LEGACY_NAMES
 
 __all__ = [
     "FAILED_RESIDUAL",
@@ -157,8 +158,9 @@ def time_to_limit(t: np.ndarray, u: np.ndarray, limit: float, t0: float = 0.0) -
 
 
 def _series(ds: xr.Dataset, name: str) -> np.ndarray:
-    if name == "w" and "w" not in ds and "z" in ds:
-        name = "z"
+    legacy = {new: old for old, new in LEGACY_NAMES.items()}.get(name)
+    if name not in ds and legacy is not None and legacy in ds:  # a 0.1 result
+        name = legacy
     if name not in ds:
         raise InputError(f"simulated result has no variable {name!r} (has {list(ds.variables)})")
     return np.asarray(ds[name].values, dtype=float)
@@ -198,8 +200,8 @@ def _simulated_dataset(simulated: Any) -> xr.Dataset:
 
 def _scales(record: TestRecord) -> dict[str, float]:
     floor = 0.01 * record.diameter
-    w_meas = record.w
-    u_scale = record.displacement_limit or float(np.max(np.abs(record.u)))
+    w_meas = record.z
+    u_scale = record.displacement_limit or float(np.max(np.abs(record.y)))
     return {
         "w_init": max(abs(float(np.interp(record.t_cyclic_start, record.time, w_meas))), floor),
         "w_max": max(float(np.max(np.abs(w_meas))), floor),
@@ -237,15 +239,15 @@ def _compute(
 ) -> tuple[np.ndarray, Misfit]:
     ds = _simulated_dataset(simulated)
     t_sim = _series(ds, "time")
-    u_sim = _series(ds, "u")
-    w_sim = _series(ds, "w")
+    u_sim = _series(ds, "y")
+    w_sim = _series(ds, "z")
     if t_sim.size < 2 or not np.all(np.isfinite(u_sim)) or not np.all(np.isfinite(w_sim)):
-        raise InputError("simulated result has fewer than 2 samples or non-finite u/w")
+        raise InputError("simulated result has fewer than 2 samples or non-finite y/z")
     t = record.time
     meas = record_features(
         t,
-        record.u,
-        record.w,
+        record.y,
+        record.z,
         t_cyclic_start=record.t_cyclic_start,
         displacement_limit=record.displacement_limit,
         cycle_period=record.cycle_period,
@@ -284,9 +286,9 @@ def _compute(
         elif name == "time_to_limit":
             r = np.array([(sim[name] - meas[name]) / max(meas[name], 1e-12)])
         elif name == "u_history":
-            r = (u_rs - record.u) / (sc["u"] * math.sqrt(n))
+            r = (u_rs - record.y) / (sc["u"] * math.sqrt(n))
         else:  # w_history
-            r = (w_rs - record.w) / (sc["w_max"] * math.sqrt(n))
+            r = (w_rs - record.z) / (sc["w_max"] * math.sqrt(n))
         terms[name] = float(np.sqrt(np.sum(r**2)))
         weighted = math.sqrt(wts[name]) * r
         contrib[name] = float(np.sum(weighted**2))

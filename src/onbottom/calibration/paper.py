@@ -112,7 +112,7 @@ def virtual_record(
     tmp = TestRecord(
         name=name,
         data=xr.Dataset(
-            {"u": ("time", [0.0, 0.0]), "w": ("time", [0.0, 0.0])}, coords={"time": [0.0, 1.0]}
+            {"y": ("time", [0.0, 0.0]), "z": ("time", [0.0, 0.0])}, coords={"time": [0.0, 1.0]}
         ),
         diameter=1.0,
         programme=name,
@@ -126,13 +126,13 @@ def virtual_record(
     if t_end - t[-1] > 1e-9:
         t = np.append(t, t_end)
     out = xr.Dataset(coords={"time": t})
-    for col in ("H", "V", "u", "w"):
+    for col in ("H", "V", "y", "z"):
         out[col] = ("time", np.interp(t, ds["time"].values, ds[col].values))
     limit = _attr_float(ds.attrs.get("displacement_limit"))
     rng = np.random.default_rng(seed)
-    u_scale = limit if limit is not None else float(np.max(np.abs(out["u"])))
-    out["u"] = out["u"] + noise * u_scale * rng.standard_normal(t.size)
-    out["w"] = out["w"] + noise * float(np.max(out["w"])) * rng.standard_normal(t.size)
+    u_scale = limit if limit is not None else float(np.max(np.abs(out["y"])))
+    out["y"] = out["y"] + noise * u_scale * rng.standard_normal(t.size)
+    out["z"] = out["z"] + noise * float(np.max(out["z"])) * rng.standard_normal(t.size)
     out.attrs = dict(ds.attrs)
     return record_from_result(
         out,

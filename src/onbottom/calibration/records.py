@@ -1,7 +1,7 @@
 """Test records: measured (or simulated) pipe-section tests as calibration data.
 
 A :class:`TestRecord` is the time history of one load-controlled pipe test — horizontal load
-H, vertical load V, lateral displacement u and penetration w against time — plus the metadata
+H, vertical load V, lateral displacement y and penetration z against time — plus the metadata
 needed to simulate it again (test programme, pipe diameter, installation load V_peak, vertical
 load V_i during cycling, the box's displacement limit). Laboratory tests, centrifuge tests,
 section-solver results and DEM runs all become records, so the fitter sees one kind of data.
@@ -19,15 +19,17 @@ CSV
         # V_peak: 42.98 kN/m
         # V_i: 10.52 kN/m
         # displacement_limit: 3.0 m
-        time,H,V,u,w
+        time,H,V,y,z
         s,kN/m,kN/m,m,mm
         0.0,0.0,10.52,0.0,65.1
         ...
 
-    Required columns: ``time``, ``u``, ``w``; ``H`` and ``V`` are optional but recommended.
-    Further columns are kept (converted when their unit is known).
+    Required columns: ``time``, ``y``, ``z``; ``H`` and ``V`` are optional but recommended.
+    Further columns are kept (converted when their unit is known). Files written by onbottom
+    0.1 call the displacement ``u`` and the penetration ``w``: they are read as ``y`` and
+    ``z`` (``docs/conventions.md``).
 NetCDF
-    A Dataset with coordinate ``time`` and variables ``u``, ``w`` (``H``, ``V``), each with a
+    A Dataset with coordinate ``time`` and variables ``y``, ``z`` (``H``, ``V``), each with a
     ``units`` attribute; metadata as global attributes (``record_name``, ``programme``,
     ``diameter``, ``V_peak``, ``V_i``, ``displacement_limit``, ``t_cyclic_start``,
     ``cycle_period``) in SI, any further attributes kept in ``metadata``.
@@ -73,9 +75,21 @@ _COLUMN_KIND = {
     "time": "time",
     "H": "force_per_length",
     "V": "force_per_length",
-    "u": "length",
-    "w": "length",
+    "y": "length",
+    "z": "length",
 }
+# 0.1 column names (onbottom.results.LEGACY_NAMES): read as today's
+_LEGACY_COLUMNS = {"u": "y", "w": "z"}
+
+
+def _current_names(names: list[str]) -> list[str]:
+    """``names`` with the 0.1 columns ``u``/``w`` called ``y``/``z`` (unless both are there)."""
+    return [
+        _LEGACY_COLUMNS[n] if n in _LEGACY_COLUMNS and _LEGACY_COLUMNS[n] not in names else n
+        for n in names
+    ]
+
+
 _SI_UNIT = {"time": "s", "force_per_length": "N/m", "length": "m", "unit_weight": "N/m3"}
 
 UNIT_FACTORS: Mapping[str, Mapping[str, float]] = MappingProxyType(
@@ -147,9 +161,10 @@ class TestRecord:
     name : str
         Label of the test (e.g. ``"Inclined 1"``).
     data : xarray.Dataset
-        Coordinate ``time`` [s] strictly increasing; variables ``u`` lateral displacement [m]
-        and ``w`` penetration of the invert [m, positive down]; optionally ``H`` horizontal
-        and ``V`` vertical load per unit length [N/m]. A private copy is kept.
+        Coordinate ``time`` [s] strictly increasing; variables ``y`` lateral displacement [m]
+        and ``z`` penetration of the invert [m, positive down]; optionally ``H`` horizontal
+        and ``V`` vertical load per unit length [N/m]. A private copy is kept (0.1's names
+        ``u`` and ``w`` are renamed ``y`` and ``z``).
     diameter : float
         Pipe outer diameter D [m], > 0.
     programme : str
@@ -163,7 +178,7 @@ class TestRecord:
         Largest lateral displacement the apparatus allows; the test stops there [m], > 0.
     t_cyclic_start : float
         Time at which the cyclic programme starts [s]; the *initial penetration* of the
-        objective is w at this time. Default 0 (the record starts with the cycles).
+        objective is z at this time. Default 0 (the record starts with the cycles).
     cycle_period : float or None
         Duration of one load cycle [s] (cycles to the limit = time to limit / period).
     metadata : mapping
@@ -206,14 +221,14 @@ class TestRecord:
         return self.data["time"].values
 
     @property
-    def u(self) -> np.ndarray:
+    def y(self) -> np.ndarray:
         """Lateral displacement [m]."""
-        return self.data["u"].values
+        return self.data["y"].values
 
     @property
-    def w(self) -> np.ndarray:
-        """Penetration of the invert [m]."""
-        return self.data["w"].values
+    def z(self) -> np.ndarray:
+        """Penetration of the invert [m, positive down]."""
+        return self.data["z"].values
 
     def attrs(self) -> dict[str, Any]:
         """Metadata as NetCDF-safe global attributes (SI values; None omitted)."""
@@ -244,7 +259,11 @@ def _validated_data(data: xr.Dataset, name: str) -> xr.Dataset:
         raise InputError(f"TestRecord.data of {name!r} is invalid: expected an xarray.Dataset")
     if "time" not in data.coords and "time" not in data.variables:
         raise InputError(f"TestRecord.data of {name!r} is invalid: column 'time' is missing")
-    for col in ("u", "w"):
+    names = [str(n) for n in data.variables]
+    data = data.rename(
+        {old: new for old, new in zip(names, _current_names(names), strict=True) if old != new}
+    )
+    for col in ("y", "z"):
         if col not in data.variables:
             raise InputError(f"TestRecord.data of {name!r} is invalid: column {col!r} is missing")
     ds = data.copy(deep=True)
@@ -330,13 +349,14 @@ def _read_csv(path: Path) -> TestRecord:
         )
     if len(set(names)) != len(names):
         raise InputError(f"{path}: duplicate column names in {names}")
-    for required in ("time", "u", "w"):
-        if required not in names:
+    current = _current_names(names)  # a 0.1 file's u, w are read as y, z
+    for required in ("time", "y", "z"):
+        if required not in current:
             raise InputError(f"{path}: column {required!r} is missing (columns: {names})")
     factors: list[float] = []
     kinds: list[str | None] = []
-    for col, unit in zip(names, units, strict=True):
-        kind = _COLUMN_KIND.get(col) or _kind_of_unit(unit)
+    for col, cur, unit in zip(names, current, units, strict=True):
+        kind = _COLUMN_KIND.get(cur) or _kind_of_unit(unit)
         kinds.append(kind)
         factors.append(
             to_si(1.0, unit, kind, field_name=f"{path}: column {col!r}") if kind else 1.0
@@ -372,7 +392,7 @@ def _read_csv(path: Path) -> TestRecord:
             f" after {float(t[r - 1])!r} s: time must increase strictly"
         )
     ds = xr.Dataset(coords={"time": ("time", t)})
-    for c, col in enumerate(names):
+    for c, col in enumerate(current):
         if col == "time":
             continue
         ds[col] = ("time", values[:, c])
@@ -415,11 +435,11 @@ def _write_csv(record: TestRecord, path: Path) -> None:
     ds = record.data
     cols = [
         "time",
-        *[c for c in ("H", "V", "u", "w") if c in ds],
+        *[c for c in ("H", "V", "y", "z") if c in ds],
         *[
             str(c)
             for c in ds.data_vars
-            if c not in ("H", "V", "u", "w") and ds[c].dims == ("time",)
+            if c not in ("H", "V", "y", "z") and ds[c].dims == ("time",)
         ],
     ]
     lines = [f"# {FORMAT_TAG}", f"# name: {record.name}"]
@@ -554,8 +574,9 @@ def record_from_result(
     Parameters
     ----------
     result : xarray.Dataset or object with ``.data``
-        Section-solver output: coordinate ``time`` [s] and variables ``u`` [m], ``w`` (or
-        ``z``) [m], optionally ``H``, ``V`` [N/m]. Other variables are dropped.
+        Section-solver output: coordinate ``time`` [s] and variables ``y`` [m], ``z`` [m]
+        (0.1's ``u``, ``w`` accepted), optionally ``H``, ``V`` [N/m]. Other variables are
+        dropped.
     name, diameter, programme, V_peak, V_i, displacement_limit, t_cyclic_start, cycle_period,
     metadata
         As in :class:`TestRecord` (SI units). Left as None, ``diameter``, ``programme``,
@@ -568,9 +589,11 @@ def record_from_result(
     if not isinstance(ds, xr.Dataset):
         raise InputError("record_from_result: result must be an xarray.Dataset or have .data")
     keep = xr.Dataset(coords={"time": np.asarray(ds["time"].values, dtype=float)})
-    w_name = "w" if "w" in ds else "z"
-    for src, dst in (("u", "u"), (w_name, "w"), ("H", "H"), ("V", "V")):
-        if src in ds:
+    names = [str(n) for n in ds.variables]
+    current = dict(zip(_current_names(names), names, strict=True))  # today's name -> in ds
+    for dst in ("y", "z", "H", "V"):
+        src = current.get(dst)
+        if src is not None:
             keep[dst] = ("time", np.asarray(ds[src].values, dtype=float))
     attrs = ds.attrs
     if diameter is None:

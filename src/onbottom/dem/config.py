@@ -289,33 +289,25 @@ class Preparation:
         97:170201, with the same contact law and the same unbalanced-force criterion; see
         ``docs/theory/dem.md``, "Speed levers"); ``"fire-1g"``: FIRE for the 1 g stage
         only, at the plain step even when the preparation sub-cycles, then the gravity ramp
-        and the N g stage as ``"damped"`` (sub-cycled with ``Numerics.subcycle``). The 1 g
-        stage is a slow consolidation under the bed's own weight that local damping
-        (α = 0.7 caps a falling disk at 0.3 g) drags out; the N g stage after it is short.
-        ``"fire-1g"`` is *not* equivalent at full size: on SM-Dr48 (seed 6, the same
-        compacted specimen) it halved the 1 g steps but left the specimen 0.0047 denser
-        (interior e 0.2189 against 0.2236 at 25 g), FIRE consolidating the bed further than
-        the damped stage, which meets the ratio while the bed still creeps (on SM-reduced,
-        12 seeds, the two agree within the seed scatter); opt in only for quick,
-        approximate specimens.
+        and the N g stage as ``"damped"`` (sub-cycled with ``Numerics.subcycle``).
+        ``"fire-1g"`` is not equivalent at full size (opt-in, for quick approximate
+        specimens).
     layer_generation
         How each loose layer is laid out before the lid compresses it: ``"lattice"``
         (default: a jittered square lattice of pitch 1.05·d_max, porosity ≈ 0.64 for the SM
         grading; the generator of every committed run) or ``"random"`` (random sequential
-        addition, largest disks first, into a band of porosity 0.45: statistically
-        isotropic, and the lid travels 2.6 times less far, so the compaction takes about
-        half the steps). ``"random"`` is *not* equivalent: on SM-reduced, 8 seeds, whole
-        cases, its mean V–w curve left the seed scatter of the lattice's in one bin of
-        0.05D (2.1 standard deviations at 0.35–0.4D; ``docs/theory/dem.md``, "Speed
-        levers"); opt in only for quick, approximate specimens.
+        addition, largest disks first, into a band of porosity 0.45: the lid travels 2.6
+        times less far). ``"random"`` is not equivalent (opt-in, for quick approximate
+        specimens).
     lid_pause
         What the lid does when its pressure passes the limit while it moves: it stops and
         the layer relaxes for up to :data:`LID_PAUSE_STEPS` steps; ``"fixed"`` (default,
         every committed run) waits all of them and then tests the pressure once,
         ``"adaptive"`` tests it every :data:`LID_PAUSE_CHECK` steps and moves on as soon as
         it has fallen below the limit. Either way a pressure still above the limit after the
-        whole pause stops the lid for good (the layer is "pressure capped"). Most pauses are
-        transients of the fast lid (measured: 44–66 per layer, half the compaction's steps).
+        whole pause stops the lid for good (the layer is "pressure capped").
+
+    How each option was checked, and why the presets set it: ``docs/validation/dem_levers.md``.
     """
 
     n_layers: int = 5
@@ -398,58 +390,28 @@ class Numerics:
         the pipe take n_sub = ⌈√(k_stiff/k_soil)⌉ sub-steps per step for *all* their forces
         (nodal-partition sub-cycling, Belytschko, Yen & Mullen 1979; ``docs/theory/dem.md``,
         "Speed levers"), in the 1 g, ramp, N g and penetration stages; the compaction always
-        takes the plain step. Same contact law and damping, 3.65 times fewer steps. Checked
-        case by case: on SM-reduced (8 seeds) whole cases with and without it agree within the
-        seed scatter, so the SM presets (``SM``, ``SM-reduced``, ``SM-Dr48``) turn it on; on
-        SD-reduced (8 seeds) the sub-cycled penetration of the same specimens is softer beyond
-        0.35D, by up to 2.8 seed standard deviations at 0.4–0.45D (round-off alone: 0.5), so
-        the SD presets sub-cycle only their penetration, at half the step
-        (``subcycle_preparation``, ``subcycle_dt_safety``;
-        ``docs/validation/dem_penetration.md``). ``False``
-        (default): one time step for all, set by the stiffest contact. Not with
+        takes the plain step. Same contact law and damping, 3.65 times fewer steps (on in the
+        SM presets; the SD presets sub-cycle their penetration only). ``False`` (default):
+        one time step for all, set by the stiffest contact. Not with
         ``Preparation.relaxation = "fire"`` when the preparation sub-cycles.
     subcycle_preparation
         With ``subcycle``: whether the 1 g, ramp and N g stages sub-cycle too [-]. ``False``:
         only the penetration sub-cycles; the whole preparation takes the plain step (the form
-        checked on SD-reduced, with ``subcycle_dt_safety`` 0.25). Ignored without ``subcycle``.
+        of the SD presets). Default ``True``. Ignored without ``subcycle``.
     subcycle_dt_safety
         With ``subcycle``: the safety factor of the sub-cycled step [-], Δt =
         ``subcycle_dt_safety``·√(m_min/k_soil) and Δt/n_sub for the flagged disks; ``None``
-        (default) → ``dt_safety``. On SD-reduced (8 seeds, the same specimens) the penetration
-        sub-cycled at 0.25 lies closer to the step-converged plain reference (plain at
-        ``dt_safety`` 0.125) than the plain engine at the default 0.5 does (largest
-        |difference of the mean curves| / seed scatter 0.49 against 0.97; round-off alone
-        0.51) with 1.8 times fewer steps than plain at 0.5; sub-cycled at 0.5 it does not
-        (1.55), so the SD presets sub-cycle their penetration at 0.25
-        (``docs/validation/dem_penetration.md``).
+        (default) → ``dt_safety``. The SD presets use 0.25.
     sort_disks
         Renumber the specimen in cell order (rows of cells 2·d_max high, then x) for memory
-        locality, before each compacted layer and before the 1 g stage [-] (before each layer
-        since 2026-11-23: compaction mixes each layer over its height; a run made before
-        renumbered after the compaction only); the physics is unchanged (round-off
-        only: on SD-reduced, 8 seeds, the renumbered penetrations stay at 0.51 seed standard
-        deviations of the plain ones). On in the presets: a compacted full-size specimen is
-        only roughly row-ordered; in cell order its step is 2–4 % faster on 2 threads and
-        10 % on one on an idle machine (``benchmarks/bench_dem_cell_order.py``,
-        ``bench_dem.py --cell-order``), 15–33 % beside another run sharing the cores.
+        locality, before each compacted layer and before the 1 g stage [-]; the physics is
+        unchanged (round-off only). Default ``False``; on in the presets.
     compaction_dt_safety
         Safety factor of the compaction's time step [-]: Δt = ``compaction_dt_safety``·
         √(m_min/k_max) while the layers are laid and compressed by the lid (always the plain
-        step, never sub-cycled); ``None`` (default) → ``dt_safety``. The compaction contacts
-        are frictionless (``Preparation.prep_friction`` = 0 in the presets), so the shear and
-        rolling modes that set the 0.5 of ``dt_safety`` (a small disk sticking to a stiff
-        body, ω² ≈ 3.6·k/m) do not exist there: a disk pressed by the lid or a wall
-        (1e9 N/m) and four soil contacts has ω² ≈ 1.3e9/m, for which leapfrog is stable
-        below ≈ 1.75·√(m/1e9) (a wall and the lid at right angles act on different
-        directions and do not add). Values up to 1 therefore keep the compaction stable;
-        whether they keep the specimen is an equivalence question
-        (the compaction is a fast, collisional process): ``docs/theory/dem.md``, "Speed
-        levers", and ``benchmarks/dem_lever_check.py --lever compaction-step``. Only with
-        frictionless compaction contacts (the limit above does not hold with friction).
-        **Opt-in** (2026-11-26): at 1.0 whole cases on SM-reduced stay within the seed
-        scatter (36 seeds, largest ratio 0.21) and the full-size compaction takes 0.54 of
-        the steps, but the full-size SM-Dr48 run was softer over its first 0.1D than the
-        preset's three seeds (two of its checks fail), so no preset sets it.
+        step, never sub-cycled); ``None`` (default) → ``dt_safety``. Only with frictionless
+        compaction contacts (``Preparation.prep_friction`` = 0), for which values up to 1
+        keep the leapfrog stable. Opt-in; no preset sets it.
     penetration_mass_floor
         Inertial mass scaling in the penetration stage [-]: no disk's inertial mass (and
         moment of inertia ½·m·r²) falls below this fraction of the largest disk's mass, while
@@ -458,18 +420,15 @@ class Numerics:
         d_max/d_min (2.55 for the paper's grading). 0 (default): the true masses, as the
         paper. The inertial number computed with the scaled d50 mass is recorded with the run
         (``inertial_number_scaled``); the penetration stays quasi-static while it is below
-        1e-3. The preparation is never scaled (its compaction is a dynamic process).
-        **Not equivalent** (2026-11-25): at 1.0, on the same 8 SM-reduced specimens, the
-        curves came out stiffer at the preset's 0.05 m/s (+48 kN/m over the curve) and
-        softer at the full-size inertial number (0.0023 m/s: −47 kN/m, 38 %), both far
-        outside the seed scatter (``docs/theory/dem.md``, "Speed levers"); no preset uses
-        it. Opt in only for quick, approximate runs.
+        1e-3. The preparation is never scaled (its compaction is a dynamic process). Not
+        equivalent; no preset uses it (opt-in, for quick approximate runs).
     equilibrium_mass_floor
         The same inertial mass scaling in the preparation's 1 g, gravity-ramp and N g stages
         [-] (never in the compaction); their time windows and the gravity ramp are
         stretched by the same factor as the step, so the step budget is the preset's. 0
-        (default): the true masses. Opt-in and not checked for equivalence (on a 2-layer
-        test specimen, whose 1 g stage runs to its time cap either way, it ends denser).
+        (default): the true masses. Opt-in; not checked for equivalence.
+
+    How each option was checked, and why the presets set it: ``docs/validation/dem_levers.md``.
     """
 
     dt_safety: float = 0.5
@@ -662,8 +621,8 @@ SM = DEMConfig(
     numerics=Numerics(subcycle=True, sort_disks=True),
     seed=1,
 )
-"""Medium-dense specimen of the paper (D_r = 48 %, e = 0.227). Zonally sub-cycled (checked
-equivalent on SM-reduced; ``Numerics.subcycle``)."""
+"""Medium-dense specimen of the paper (D_r = 48 %, e = 0.227), zonally sub-cycled
+(``Numerics.subcycle``; why: ``docs/validation/dem_levers.md``)."""
 
 SD = DEMConfig(
     name="SD",
@@ -676,19 +635,15 @@ SD = DEMConfig(
     ),
     seed=2,
 )
-"""Dense specimen of the paper (D_r = 78 %, e = 0.197). Prepared with the plain step and FIRE
-relaxation of the equilibrium stages (its jammed layers otherwise cycle to their time cap;
-whole cases with and without it agree within the seed scatter on SD-reduced); the
-penetration is zonally sub-cycled at ``subcycle_dt_safety`` 0.25, the form that matched the
-step-converged plain reference on SD-reduced (``Numerics.subcycle_dt_safety``; sub-cycled at
-the default step it failed)."""
+"""Dense specimen of the paper (D_r = 78 %, e = 0.197), prepared with the plain step and FIRE
+relaxation of the equilibrium stages; the penetration is zonally sub-cycled at
+``subcycle_dt_safety`` 0.25 (why: ``docs/validation/dem_levers.md``)."""
 
 SM_INTERIOR_OFFSET = 0.009
 """Whole-box target minus interior void ratio of a layer-compacted specimen at N g [-].
 
-Measured on the full-size SM run (seed 1): target 0.227, interior e at 25 g 0.2183
-(``docs/validation/dem_penetration.md``); the looser layers next to the walls and the
-surface hold the difference. Used to aim :data:`SM_DR48` at the paper's interior density."""
+Measured on the full-size SM run (``docs/validation/dem_levers.md``, "Presets"). Used to aim
+:data:`SM_DR48` at the paper's interior density."""
 
 SM_DR48 = SM.replace(
     name="SM-Dr48",
@@ -697,8 +652,8 @@ SM_DR48 = SM.replace(
 )
 """SM at the paper's density *in the interior*: whole-box target e = 0.236 so that the
 interior (the band the void ratio is measured in) comes out near the paper's e = 0.227,
-D_r = 48 % (the SM preset's interior was 0.218, D_r ≈ 57 %). Same contacts, box, grading
-and loading as :data:`SM`; seed 3. Not run yet (``docs/validation/dem_penetration.md``)."""
+D_r = 48 %. Same contacts, box, grading and loading as :data:`SM`; seed 3
+(``docs/validation/dem_penetration.md``)."""
 
 _REDUCED_GEOMETRY = Geometry(width=7 * _D, height=3 * _D, pipe_diameter=_D)
 _REDUCED_PSD = ParticleSizeDistribution(d50=3 * 0.68e-3, cu=1.67)

@@ -34,10 +34,8 @@ the time step is not adapted, see :meth:`Simulation.set_relaxation`)."""
 
 PARALLEL_MIN_DISKS = 5000
 """Below this number of disks the engine runs on one thread unless told otherwise (the reduced
-presets, ≈ 2,000 disks, several runs side by side). Measured on the idle 2-core machine, a
-compaction step of the first SM-Dr48 layers: 6k disks 0.23 ms on one thread, 0.12 ms on two;
-12k 0.47 / 0.30 ms; 18k 0.82 / 0.39 ms (it was 20,000, so the first three layers of a full-size
-compaction ran on one thread)."""
+presets, ≈ 2,000 disks, several runs side by side) [-]; the measurement that set it:
+``docs/validation/dem_levers.md``."""
 
 
 def critical_time_step(mass_min: float, k_max: float) -> float:

@@ -36,6 +36,7 @@ import math
 import time
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -256,6 +257,13 @@ def prepare_sample(
 ) -> Sample:
     """Prepare the specimen of ``config`` at N g equilibrium (seeded, reproducible).
 
+    The stages, each a function of this module: :func:`_draw_layers` (the disk population,
+    split into layers), then per layer :func:`_generate_layer` (the loose layer above the
+    surface) and :func:`_compact_layer` (the lid down to the layer's target, then settled),
+    :func:`_release_lid` (lid off, design contact), :func:`_settle_1g` (equilibrium at 1 g),
+    :func:`_ramp_gravity` (1 g → N g), :func:`_settle_ng` (equilibrium at N g) and
+    :func:`_finish` (the specimen at rest, with its attributes).
+
     Parameters
     ----------
     config
@@ -307,331 +315,445 @@ def prepare_sample(
         ck.unlink(missing_ok=True)
     saved = _read_checkpoint(ck, identity) if ck is not None and ck.exists() else None
     rng = np.random.default_rng(config.seed)
-    g = config.geometry
-    prep = config.preparation
-    diam = draw_diameters(config, rng)
-    rng.shuffle(diam)
-    area = np.pi * diam**2 / 4.0
-    cum = np.cumsum(area)
-    n_l = prep.n_layers
-    bounds = np.searchsorted(cum, cum[-1] * np.arange(1, n_l) / n_l)
-    layers = np.split(np.arange(len(diam)), bounds)
-    tops = layer_targets(config, np.array([area[ix].sum() for ix in layers]))
-    box = (0.0, g.width, 0.0, g.height)
-    soil = config.contacts.soil
-    prep_soil = ContactParameters(soil.k_n, soil.k_s, prep.prep_friction, 0.0)
-    pos = np.zeros((0, 2))
-    rad = np.zeros(0)
-    history: dict[str, np.ndarray] | None = None
-    vel = np.zeros((0, 2))
-    om = np.zeros(0)
-    attrs: dict[str, object] = {
-        "config": config.to_json(),
-        "layers": n_l,
-        # the configuration itself is under "config"; the rest of the identity here
-        "run_identity": json.dumps(
-            {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
-        ),
-        "run_fingerprint": fingerprint(identity),
-    }
-    sim: Simulation | None = None
-    n_g = config.loading.gravity_factor
-    m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
-    w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
-    # the compaction always takes the plain step; with Numerics.subcycle (and
-    # subcycle_preparation) the 1 g and N g stages are zonally sub-cycled (a sub-cycled
-    # compaction gave stiffer specimens, see docs/theory/dem.md, "Speed levers")
-    # (Numerics.compaction_dt_safety: its own plain step; frictionless contacts only)
-    dt_compaction, _ = step_sizes(
-        config.contacts, m_min, config.numerics.compaction_step_safety, False
-    )
-    nsub_sub = (
-        step_sizes(config.contacts, m_min, config.numerics.subcycled_dt_safety, True)[1]
-        if config.numerics.prep_subcycles
-        else 1
-    )
-    # inertial mass scaling of the 1 g, ramp and N g stages (Numerics.equilibrium_mass_floor;
-    # never the compaction): the steps follow the lightest inertial mass
-    floor_eq = (
-        config.numerics.equilibrium_mass_floor
-        * config.material.density
-        * math.pi
-        * (float(diam.max()) / 2) ** 2
-    )
-    m_eq = max(m_min, floor_eq)
-    # a scaled assembly's own time scale is longer by the same factor as its step: the
-    # 1 g / N g time windows and the ramp are stretched alike (the preset's step budget)
-    stretch = math.sqrt(m_eq / m_min)
-    dt_plain_eq = step_sizes(config.contacts, m_eq, config.numerics.dt_safety, False)[0]
-    dt_sub_eq = (
-        step_sizes(config.contacts, m_eq, config.numerics.subcycled_dt_safety, True)[0]
-        if config.numerics.prep_subcycles
-        else dt_plain_eq
-    )
+    diam, layers, tops = _draw_layers(config, rng)
+    run = _Run(config, diam, identity, ck, int(checkpoint_every), progress, clock)
+    first_layer = run.resume(saved, rng) if saved is not None else 0
+    for li, ix in enumerate(layers):
+        if li < first_layer:
+            continue
+        _generate_layer(run, diam[ix], rng)
+        _compact_layer(run, li, len(layers), float(tops[li]), rng)
+    run.rng_state = rng.bit_generator.state
+    _release_lid(run)
+    if run.stage == "1g":
+        _settle_1g(run)
+        _ramp_gravity(run)
+    _settle_ng(run)
+    out = _finish(run)
+    if ck is not None and ck.exists():
+        ck.unlink()
+    return out
 
-    def subcycled(stage: str) -> bool:
+
+class _Run:
+    """One preparation in progress: its configuration, derived steps, simulation and checkpoint.
+
+    Holds what the stage functions share: the step sizes and sub-cycling of each stage
+    (:meth:`subcycled`, :meth:`step_size`), the current :class:`Simulation` (``sim``), the bed
+    between layers (``bed``), the sample attributes (``attrs``), the values carried from
+    stage to stage and through a checkpoint (``stage``, ``stage_values``), and the
+    checkpoint file.
+    """
+
+    def __init__(
+        self,
+        config: DEMConfig,
+        diam: np.ndarray,
+        identity: dict,
+        ck: Path | None,
+        checkpoint_every: int,
+        progress: Progress | None,
+        clock: _StageClock,
+    ) -> None:
+        self.config = config
+        self.prep = config.preparation
+        self.identity = identity
+        self.ck = ck
+        self.checkpoint_every = checkpoint_every
+        self.progress = progress
+        self.clock = clock
+        g = config.geometry
+        self.box = (0.0, g.width, 0.0, g.height)
+        self.d_min = float(diam.min())
+        soil = config.contacts.soil
+        self.prep_soil = ContactParameters(soil.k_n, soil.k_s, self.prep.prep_friction, 0.0)
+        self.bed = Sample(np.zeros((0, 2)), np.zeros(0), self.box)
+        self.attrs: dict[str, object] = {
+            "config": config.to_json(),
+            "layers": self.prep.n_layers,
+            # the configuration itself is under "config"; the rest of the identity here
+            "run_identity": json.dumps(
+                {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
+            ),
+            "run_fingerprint": fingerprint(identity),
+        }
+        self.sim: Simulation | None = None
+        self.stage = "compaction"
+        self.stage_values: dict[str, float] = {}
+        self.rng_state: dict | None = None
+        self.last_saved = 0
+        self.n_g = config.loading.gravity_factor
+        m_min = config.material.density * math.pi * (diam.min() / 2) ** 2
+        self.w_mean = config.material.density * math.pi * float(np.mean(diam**2)) / 4.0 * GRAVITY
+        # the compaction always takes the plain step; with Numerics.subcycle (and
+        # subcycle_preparation) the 1 g and N g stages are zonally sub-cycled (a sub-cycled
+        # compaction gave stiffer specimens, see docs/validation/dem_levers.md)
+        # (Numerics.compaction_dt_safety: its own plain step; frictionless contacts only)
+        num = config.numerics
+        self.dt_compaction, _ = step_sizes(
+            config.contacts, m_min, num.compaction_step_safety, False
+        )
+        self.nsub_sub = (
+            step_sizes(config.contacts, m_min, num.subcycled_dt_safety, True)[1]
+            if num.prep_subcycles
+            else 1
+        )
+        # inertial mass scaling of the 1 g, ramp and N g stages (Numerics.equilibrium_mass_floor;
+        # never the compaction): the steps follow the lightest inertial mass
+        self.floor_eq = (
+            num.equilibrium_mass_floor
+            * config.material.density
+            * math.pi
+            * (float(diam.max()) / 2) ** 2
+        )
+        m_eq = max(m_min, self.floor_eq)
+        # a scaled assembly's own time scale is longer by the same factor as its step: the
+        # 1 g / N g time windows and the ramp are stretched alike (the preset's step budget)
+        self.stretch = math.sqrt(m_eq / m_min)
+        self.dt_plain_eq = step_sizes(config.contacts, m_eq, num.dt_safety, False)[0]
+        self.dt_sub_eq = (
+            step_sizes(config.contacts, m_eq, num.subcycled_dt_safety, True)[0]
+            if num.prep_subcycles
+            else self.dt_plain_eq
+        )
+
+    def subcycled(self, stage: str) -> bool:
         """Whether ``stage`` takes the sub-cycled step (FIRE needs the plain one)."""
         if stage == "compaction":
             return False
-        return prep.stage_relaxation(stage) != "fire" and nsub_sub > 1
+        return self.prep.stage_relaxation(stage) != "fire" and self.nsub_sub > 1
 
-    def step_size(stage: str) -> float:
+    def step_size(self, stage: str) -> float:
         """Time step [s] of ``stage``."""
         if stage == "compaction":
-            return dt_compaction
-        return dt_sub_eq if subcycled(stage) else dt_plain_eq
+            return self.dt_compaction
+        return self.dt_sub_eq if self.subcycled(stage) else self.dt_plain_eq
 
-    def new_sim(sample: Sample, stage: str) -> Simulation:
+    def new_sim(self, sample: Sample, stage: str) -> Simulation:
         """A simulation of ``sample`` with the step (and inertia) of ``stage``."""
-        sub = subcycled(stage)
+        config = self.config
         s = Simulation(
             sample,
             config.contacts,
             density=config.material.density,
             damping=config.material.damping,
-            dt=step_size(stage),
-            skin=config.numerics.skin_ratio * float(diam.min()),
+            dt=self.step_size(stage),
+            skin=config.numerics.skin_ratio * self.d_min,
             gravity=(0.0, 0.0),
-            nsub=nsub_sub if sub else 1,
-            inertial_mass_floor=0.0 if stage == "compaction" else floor_eq,
+            nsub=self.nsub_sub if self.subcycled(stage) else 1,
+            inertial_mass_floor=0.0 if stage == "compaction" else self.floor_eq,
         )
-        s.set_soil_contact(prep_soil)
+        s.set_soil_contact(self.prep_soil)
         return s
 
-    def step_of(stage: str) -> None:
-        """Rebuild ``sim`` with the step of ``stage`` if it has another (same state)."""
-        nonlocal sim
-        assert sim is not None
-        sub = subcycled(stage)
-        if sim.nsub != (nsub_sub if sub else 1) or sim.dt != step_size(stage):
-            t_now, steps = sim.time, sim.step_count
-            sim = new_sim(sim.to_sample(), stage)
-            sim.time, sim.step_count = t_now, steps
+    def rebuild(self, sample: Sample, stage: str) -> None:
+        """Replace ``sim`` by one of ``sample`` for ``stage``, keeping its time and step count."""
+        assert self.sim is not None
+        t_now, steps = self.sim.time, self.sim.step_count
+        self.sim = self.new_sim(sample, stage)
+        self.sim.time, self.sim.step_count = t_now, steps
 
-    first_layer = 0
-    stage = "compaction"
-    stage_values: dict[str, float] = {}
-    if saved is not None:
+    def step_of(self, stage: str) -> None:
+        """Rebuild ``sim`` with the step of ``stage`` if it has another (same state)."""
+        assert self.sim is not None
+        nsub = self.nsub_sub if self.subcycled(stage) else 1
+        if self.sim.nsub != nsub or self.sim.dt != self.step_size(stage):
+            self.rebuild(self.sim.to_sample(), stage)
+
+    def resume(self, saved: Sample, rng: np.random.Generator) -> int:
+        """Continue from the checkpoint ``saved``; returns the number of layers done."""
         meta = saved.attrs.pop("_checkpoint")
         first_layer = int(meta["layers_done"])
-        stage = str(meta.get("stage", "compaction"))
-        stage_values = dict(meta.get("stage_values", {}))
+        self.stage = str(meta.get("stage", "compaction"))
+        self.stage_values = dict(meta.get("stage_values", {}))
         rng.bit_generator.state = meta["rng_state"]
-        attrs = saved.attrs
-        pos, rad, vel, om, history = (
-            saved.positions,
-            saved.radii,
-            saved.velocities,
-            saved.omega,
-            saved.contacts,
-        )
-        sim = new_sim(saved, stage)
-        sim.time = float(meta["time"])
+        self.attrs = saved.attrs
+        self.bed = saved
+        self.sim = self.new_sim(saved, self.stage)
+        self.sim.time = float(meta["time"])
         if meta["lid"] is not None:
-            sim.set_lid(float(meta["lid"]), 0.0)
-        log.info("resumed preparation from %s (layer %d, stage %s)", ck, first_layer, stage)
-    p_cap = (
-        prep.lid_pressure_limit
-        if prep.lid_pressure_limit is not None
-        else 10.0
-        * config.material.density
-        * (1 - config.target.porosity)
-        * n_g
-        * GRAVITY
-        * g.height
-    )
-    for li, ix in enumerate(layers):
-        if li < first_layer:
-            continue
-        y_base = float(np.max(pos[:, 1] + rad)) if len(rad) else 0.0
-        generate = _random_layer if prep.layer_generation == "random" else _lattice
-        new_pos = generate(diam[ix], 0.0, g.width, y_base, rng)
-        pos = np.concatenate([pos, new_pos])
-        rad = np.concatenate([rad, diam[ix] / 2.0])
-        vel = np.concatenate([vel, np.zeros((len(ix), 2))])
-        om = np.concatenate([om, np.zeros(len(ix))])
-        sample = Sample(pos, rad, box, velocities=vel, omega=om, contacts=history)
-        if config.numerics.sort_disks:
-            # compaction mixes each layer over its height: renumber the specimen in cell
-            # order before each layer as well (round-off only)
-            sample = sample.permuted(sample.cell_order())
-        t_prev = sim.time if sim is not None else 0.0
-        sim = new_sim(sample, "compaction")
-        sim.time = t_prev
-        clock.lap("generation", 0, sim.n)
-        lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
-        stop = float(tops[li])
-        sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
-        capped = False
-        while sim.lid is not None and sim.lid > stop + 1e-12:
-            sim.run(50)
-            if sim.lid_force() > p_cap * g.width:
-                # pause and let the layer relax: a fast lid hitting loose disks also gives
-                # large transient forces; only a force that persists means a jammed layer
-                sim.set_lid(sim.lid, 0.0)
-                if prep.lid_pause == "adaptive":
-                    for _ in range(LID_PAUSE_STEPS // LID_PAUSE_CHECK):
-                        sim.run(LID_PAUSE_CHECK)
-                        if sim.lid_force() <= p_cap * g.width:
-                            break
-                else:
-                    sim.run(LID_PAUSE_STEPS)
-                if sim.lid_force() > p_cap * g.width:
-                    capped = True
-                    break
-                sim.set_lid(sim.lid, -prep.lid_speed, stop=max(stop, 0.0))
-            if progress is not None:
-                done = (lid0 - sim.lid) / max(lid0 - stop, 1e-12)
-                progress("compaction", (li + min(done, 1.0)) / n_l)
-        ok_l, r = settle(
-            sim,
-            prep.equilibrium_ratio,
-            prep.max_settle_time / 5.0,
-            min_time=2e-3,
-            force_floor=STRESS_FREE_FRACTION * w_mean,
-            relaxation=prep.stage_relaxation("layer"),
+            self.sim.set_lid(float(meta["lid"]), 0.0)
+        log.info(
+            "resumed preparation from %s (layer %d, stage %s)", self.ck, first_layer, self.stage
         )
-        log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
-        clock.lap("compaction", sim.step_count, sim.n)
-        attrs[f"layer{li + 1}_settled"] = bool(ok_l)
-        attrs[f"layer{li + 1}_lid"] = float(sim.lid or 0.0)
-        attrs[f"layer{li + 1}_lid_target"] = stop
-        attrs[f"layer{li + 1}_pressure_capped"] = capped
-        snap = sim.to_sample()
-        pos, rad, vel, om, history = (
-            snap.positions,
-            snap.radii,
-            snap.velocities,
-            snap.omega,
-            snap.contacts,
-        )
-        if ck is not None:
-            snap.attrs = dict(attrs)
-            snap.attrs["_checkpoint"] = {
-                "identity": identity,
-                "layers_done": li + 1,
-                "rng_state": rng.bit_generator.state,
-                "time": sim.time,
-                "lid": sim.lid,
-            }
-            snap.save(ck)
-        if progress is not None:
-            progress("compaction", (li + 1) / n_l)
-        clock.reset()
-    assert sim is not None
-    rng_state = rng.bit_generator.state
-    last_saved = [sim.step_count]
+        return first_layer
 
-    def save_stage(name: str) -> None:
-        assert sim is not None and ck is not None
-        snap = sim.to_sample()
-        snap.attrs = dict(attrs)
+    def save(self, layers_done: int, rng_state: dict, **stage: Any) -> None:
+        """Write the checkpoint of the current simulation (``stage``: further metadata)."""
+        assert self.sim is not None and self.ck is not None
+        snap = self.sim.to_sample()
+        snap.attrs = dict(self.attrs)
         snap.attrs["_checkpoint"] = {
-            "identity": identity,
-            "layers_done": n_l,
+            "identity": self.identity,
+            "layers_done": layers_done,
             "rng_state": rng_state,
-            "time": sim.time,
-            "lid": None,
-            "stage": name,
-            "stage_values": stage_values,
+            "time": self.sim.time,
+            "lid": self.sim.lid,
+            **stage,
         }
-        snap.save(ck)
-        last_saved[0] = sim.step_count
+        snap.save(self.ck)
+        self.last_saved = self.sim.step_count
 
-    def on_check(name: str) -> Callable[[float], None]:
-        def check(fraction: float) -> None:
-            if ck is not None and sim.step_count - last_saved[0] >= checkpoint_every:
-                save_stage(name)
-            if progress is not None:
-                progress(name, min(fraction, 1.0))
+    def save_stage(self, name: str) -> None:
+        """Checkpoint inside the equilibrium stage ``name`` (every layer done, lid off)."""
+        assert self.rng_state is not None
+        self.save(self.prep.n_layers, self.rng_state, stage=name, stage_values=self.stage_values)
 
-        return check
-
-    def equilibrium(name: str) -> tuple[bool, float]:
+    def equilibrium(self, name: str) -> tuple[bool, float]:
         """Cycle stage ``name`` to equilibrium within its time window (resumable)."""
-        assert sim is not None
+        assert self.sim is not None
+
+        def check(fraction: float) -> None:
+            assert self.sim is not None
+            if (
+                self.ck is not None
+                and self.sim.step_count - self.last_saved >= self.checkpoint_every
+            ):
+                self.save_stage(name)
+            if self.progress is not None:
+                self.progress(name, min(fraction, 1.0))
+
         result = settle(
-            sim,
-            prep.equilibrium_ratio,
-            prep.max_settle_time * stretch,
-            min_time=5e-3 * stretch,
-            start_time=stage_values[f"t0_{name}"],
-            on_check=on_check(name),
-            relaxation=prep.stage_relaxation(name),
+            self.sim,
+            self.prep.equilibrium_ratio,
+            self.prep.max_settle_time * self.stretch,
+            min_time=5e-3 * self.stretch,
+            start_time=self.stage_values[f"t0_{name}"],
+            on_check=check,
+            relaxation=self.prep.stage_relaxation(name),
         )
-        if progress is not None:
-            progress(name, 1.0)
+        if self.progress is not None:
+            self.progress(name, 1.0)
         return result
 
-    # lid off, design contact, 1 g
-    if stage == "compaction":
-        stage_values["e_compacted"] = sim.to_sample().void_ratio(top=sim.lid)
-        stage_values["t0_1g"] = sim.time
-        stage = "1g"
+
+def _draw_layers(
+    config: DEMConfig, rng: np.random.Generator
+) -> tuple[np.ndarray, list[np.ndarray], np.ndarray]:
+    """Stage 0, the disk population: diameters [m], their layers, and the lid targets [m].
+
+    The diameters fill the target solid area (:func:`draw_diameters`), are shuffled, and
+    split into ``n_layers`` groups of equal solid area (indices into the diameters, bottom
+    layer first); the lid stop height of each layer follows :func:`layer_targets`.
+    """
+    diam = draw_diameters(config, rng)
+    rng.shuffle(diam)
+    area = np.pi * diam**2 / 4.0
+    cum = np.cumsum(area)
+    n_l = config.preparation.n_layers
+    bounds = np.searchsorted(cum, cum[-1] * np.arange(1, n_l) / n_l)
+    layers = np.split(np.arange(len(diam)), bounds)
+    tops = layer_targets(config, np.array([area[ix].sum() for ix in layers]))
+    return diam, layers, tops
+
+
+def _generate_layer(run: _Run, diam: np.ndarray, rng: np.random.Generator) -> None:
+    """Stage 1, per layer: lay the loose disks ``diam`` [m] out above the current surface.
+
+    On a jittered square lattice (:func:`_lattice`) or by random sequential addition
+    (:func:`_random_layer`), following ``Preparation.layer_generation``; with
+    ``Numerics.sort_disks`` the whole specimen is renumbered in cell order (compaction mixes
+    each layer over its height; round-off only). Starts a new simulation at the compaction
+    step, with the time of the previous one.
+    """
+    bed, g = run.bed, run.config.geometry
+    y_base = float(np.max(bed.positions[:, 1] + bed.radii)) if bed.n else 0.0
+    generate = _random_layer if run.prep.layer_generation == "random" else _lattice
+    new_pos = generate(diam, 0.0, g.width, y_base, rng)
+    sample = Sample(
+        np.concatenate([bed.positions, new_pos]),
+        np.concatenate([bed.radii, diam / 2.0]),
+        run.box,
+        velocities=np.concatenate([bed.velocities, np.zeros((len(diam), 2))]),
+        omega=np.concatenate([bed.omega, np.zeros(len(diam))]),
+        contacts=bed.contacts,
+    )
+    if run.config.numerics.sort_disks:
+        sample = sample.permuted(sample.cell_order())
+    t_prev = run.sim.time if run.sim is not None else 0.0
+    run.sim = run.new_sim(sample, "compaction")
+    run.sim.time = t_prev
+    run.clock.lap("generation", 0, run.sim.n)
+
+
+def _lid_pressure_cap(config: DEMConfig) -> float:
+    """Lid pressure [Pa] above which the lid pauses (``Preparation.lid_pressure_limit``)."""
+    prep = config.preparation
+    if prep.lid_pressure_limit is not None:
+        return prep.lid_pressure_limit
+    return (
+        10.0
+        * config.material.density
+        * (1 - config.target.porosity)
+        * config.loading.gravity_factor
+        * GRAVITY
+        * config.geometry.height
+    )
+
+
+def _compact_layer(run: _Run, li: int, n_l: int, stop: float, rng: np.random.Generator) -> None:
+    """Stage 2, per layer: the lid compresses layer ``li`` down to ``stop`` [m], then it settles.
+
+    Gravity off, friction ``prep_friction``. The lid moves at ``lid_speed`` and pauses when
+    its force passes the pressure cap (``lid_pause``: a fixed :data:`LID_PAUSE_STEPS`, or
+    adaptive); a force still above the cap after the pause stops it for good (the layer is
+    "pressure capped"). The layer then settles (:func:`settle`, a stress-free layer counting
+    as settled, :data:`STRESS_FREE_FRACTION`); the layer's attributes are recorded, the bed
+    kept for the next layer and the checkpoint written.
+    """
+    sim, prep, width = run.sim, run.prep, run.config.geometry.width
+    assert sim is not None
+    p_cap = _lid_pressure_cap(run.config)
+    lid0 = float(np.max(sim.pos[:, 1] + sim.rad)) + 1e-6
+    sim.set_lid(lid0, -prep.lid_speed, stop=max(stop, 0.0))
+    capped = False
+    while sim.lid is not None and sim.lid > stop + 1e-12:
+        sim.run(50)
+        if sim.lid_force() > p_cap * width:
+            # pause and let the layer relax: a fast lid hitting loose disks also gives
+            # large transient forces; only a force that persists means a jammed layer
+            sim.set_lid(sim.lid, 0.0)
+            if prep.lid_pause == "adaptive":
+                for _ in range(LID_PAUSE_STEPS // LID_PAUSE_CHECK):
+                    sim.run(LID_PAUSE_CHECK)
+                    if sim.lid_force() <= p_cap * width:
+                        break
+            else:
+                sim.run(LID_PAUSE_STEPS)
+            if sim.lid_force() > p_cap * width:
+                capped = True
+                break
+            sim.set_lid(sim.lid, -prep.lid_speed, stop=max(stop, 0.0))
+        if run.progress is not None:
+            done = (lid0 - sim.lid) / max(lid0 - stop, 1e-12)
+            run.progress("compaction", (li + min(done, 1.0)) / n_l)
+    ok_l, r = settle(
+        sim,
+        prep.equilibrium_ratio,
+        prep.max_settle_time / 5.0,
+        min_time=2e-3,
+        force_floor=STRESS_FREE_FRACTION * run.w_mean,
+        relaxation=prep.stage_relaxation("layer"),
+    )
+    log.info("layer %d/%d: lid %.5f m (target %.5f), ratio %.2e", li + 1, n_l, sim.lid, stop, r)
+    run.clock.lap("compaction", sim.step_count, sim.n)
+    run.attrs[f"layer{li + 1}_settled"] = bool(ok_l)
+    run.attrs[f"layer{li + 1}_lid"] = float(sim.lid or 0.0)
+    run.attrs[f"layer{li + 1}_lid_target"] = stop
+    run.attrs[f"layer{li + 1}_pressure_capped"] = capped
+    run.bed = sim.to_sample()
+    if run.ck is not None:
+        run.save(li + 1, rng.bit_generator.state)
+    if run.progress is not None:
+        run.progress("compaction", (li + 1) / n_l)
+    run.clock.reset()
+
+
+def _release_lid(run: _Run) -> None:
+    """Stage 3: the lid is removed and the design contact (μ, μ_r) restored.
+
+    Records the compacted void ratio (under the lid) and the start of the 1 g stage; with
+    ``Numerics.sort_disks`` renumbers the specimen in cell order (idempotent on resume), and
+    switches the simulation from the compaction's step to the equilibrium stage's.
+    """
+    sim = run.sim
+    assert sim is not None
+    if run.stage == "compaction":
+        run.stage_values["e_compacted"] = sim.to_sample().void_ratio(top=sim.lid)
+        run.stage_values["t0_1g"] = sim.time
+        run.stage = "1g"
     sim.set_lid(None)
-    if config.numerics.sort_disks:
+    if run.config.numerics.sort_disks:
         # renumber in cell order for memory locality (round-off only; idempotent on resume)
         snap = sim.to_sample()
         order = snap.cell_order()
         if not np.array_equal(order, np.arange(snap.n)):
-            t_now, steps = sim.time, sim.step_count
-            sim = new_sim(snap.permuted(order), stage)
-            sim.time, sim.step_count = t_now, steps
-    step_of(stage)  # from the compaction's plain step to the equilibrium stage's
-    sim.set_soil_contact(soil)
-    if stage == "1g":
-        sim.set_gravity(0.0, -GRAVITY)
-        clock.reset(sim.step_count)
-        ok1, r1 = equilibrium("1g")
-        clock.lap("1g", sim.step_count, sim.n)
-        stage_values.update(ok1=float(ok1), r1=r1, e_1g=sim.to_sample().void_ratio())
-        if subcycled("Ng") != subcycled("1g"):  # "fire-1g": the ramp takes the N g step
-            step_of("Ng")
-            sim.set_soil_contact(soil)
-            sim.set_gravity(0.0, -GRAVITY)
-        # ramp to N g, then equilibrium
-        ramp = config.loading.gravity_ramp_time * stretch
-        if ramp > 0:
-            n_chunks = max(1, int(ramp / (200 * sim.dt)))
-            steps = max(1, round(ramp / sim.dt / n_chunks))
-            for c in range(n_chunks):
-                f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
-                sim.set_gravity(0.0, -f * GRAVITY)
-                sim.run(steps)
-        clock.lap("ramp", sim.step_count, sim.n)
-        stage_values["t0_Ng"] = sim.time
-        stage = "Ng"
-        if ck is not None:
-            save_stage(stage)
-    sim.set_gravity(0.0, -n_g * GRAVITY)
-    clock.reset(sim.step_count)
-    ok2, r2 = equilibrium("Ng")
-    clock.lap("Ng", sim.step_count, sim.n)
-    e_compacted = stage_values["e_compacted"]
-    ok1, r1, e_1g = bool(stage_values["ok1"]), stage_values["r1"], stage_values["e_1g"]
+            run.rebuild(snap.permuted(order), run.stage)
+    run.step_of(run.stage)  # from the compaction's plain step to the equilibrium stage's
+    assert run.sim is not None
+    run.sim.set_soil_contact(run.config.contacts.soil)
+
+
+def _settle_1g(run: _Run) -> None:
+    """Stage 4: gravity 1 g, cycled to equilibrium (``Preparation.relaxation``, resumable).
+
+    Records convergence, final ratio and void ratio at 1 g in ``stage_values``.
+    """
+    assert run.sim is not None
+    run.sim.set_gravity(0.0, -GRAVITY)
+    run.clock.reset(run.sim.step_count)
+    ok1, r1 = run.equilibrium("1g")
+    run.clock.lap("1g", run.sim.step_count, run.sim.n)
+    run.stage_values.update(ok1=float(ok1), r1=r1, e_1g=run.sim.to_sample().void_ratio())
+
+
+def _ramp_gravity(run: _Run) -> None:
+    """Stage 5: gravity ramped linearly from 1 g to N g over ``Loading.gravity_ramp_time``.
+
+    In chunks of about 200 steps (stretched with the inertial mass scaling); with
+    ``relaxation = "fire-1g"`` the ramp already takes the N g stage's step. Records the start
+    of the N g stage and writes a checkpoint.
+    """
+    assert run.sim is not None
+    if run.subcycled("Ng") != run.subcycled("1g"):  # "fire-1g": the ramp takes the N g step
+        run.step_of("Ng")
+        run.sim.set_soil_contact(run.config.contacts.soil)
+        run.sim.set_gravity(0.0, -GRAVITY)
+    sim, n_g = run.sim, run.n_g
+    ramp = run.config.loading.gravity_ramp_time * run.stretch
+    if ramp > 0:
+        n_chunks = max(1, int(ramp / (200 * sim.dt)))
+        steps = max(1, round(ramp / sim.dt / n_chunks))
+        for c in range(n_chunks):
+            f = 1.0 + (n_g - 1.0) * (c + 1) / n_chunks
+            sim.set_gravity(0.0, -f * GRAVITY)
+            sim.run(steps)
+    run.clock.lap("ramp", sim.step_count, sim.n)
+    run.stage_values["t0_Ng"] = sim.time
+    run.stage = "Ng"
+    if run.ck is not None:
+        run.save_stage(run.stage)
+
+
+def _settle_ng(run: _Run) -> None:
+    """Stage 6: gravity N g, cycled to equilibrium (resumable); records its convergence."""
+    assert run.sim is not None
+    run.sim.set_gravity(0.0, -run.n_g * GRAVITY)
+    run.clock.reset(run.sim.step_count)
+    ok2, r2 = run.equilibrium("Ng")
+    run.clock.lap("Ng", run.sim.step_count, run.sim.n)
+    run.stage_values.update(ok2=float(ok2), r2=r2)
+
+
+def _finish(run: _Run) -> Sample:
+    """Stage 7: the specimen at rest (velocities, spins and rotations zeroed), with attributes.
+
+    Void ratio after each stage, convergence and final ratio of each equilibrium stage, the
+    criterion, the step and the simulated time.
+    """
+    sim, sv = run.sim, run.stage_values
+    assert sim is not None
     out = sim.to_sample()
     out.velocities[:] = 0.0
     out.omega[:] = 0.0
     out.theta[:] = 0.0
     e_ng = out.void_ratio()
     out.attrs.update(
-        attrs,
+        run.attrs,
         stage="N g equilibrium",
-        gravity_factor=n_g,
+        gravity_factor=run.n_g,
         n_particles=out.n,
-        void_ratio_compacted=e_compacted,
-        void_ratio_1g=e_1g,
+        void_ratio_compacted=sv["e_compacted"],
+        void_ratio_1g=sv["e_1g"],
         void_ratio_Ng=e_ng,
-        equilibrium_1g_converged=bool(ok1),
-        equilibrium_1g_ratio=r1,
-        equilibrium_Ng_converged=bool(ok2),
-        equilibrium_Ng_ratio=r2,
+        equilibrium_1g_converged=bool(sv["ok1"]),
+        equilibrium_1g_ratio=sv["r1"],
+        equilibrium_Ng_converged=bool(sv["ok2"]),
+        equilibrium_Ng_ratio=sv["r2"],
         equilibrium_criterion=(
-            f"mean unbalanced force / mean applied force < {prep.equilibrium_ratio:g}"
+            f"mean unbalanced force / mean applied force < {run.prep.equilibrium_ratio:g}"
         ),
         dt=sim.dt,
         time_prepared=sim.time,
     )
-    if ck is not None and ck.exists():
-        ck.unlink()
     return out

@@ -142,7 +142,8 @@ class SectionResult(SolverResult):
     n_rejected : int
         Rejected (halved) steps.
     data : xarray.Dataset
-        Time series (dimension ``time``): H, V, u, u_dot, w, F_friction, F_passive, F_soil,
+        Time series (dimension ``time``): H, V, y (lateral displacement), y_dot, z
+        (penetration), F_friction, F_passive, F_soil,
         work, region, soil_energy_stored, soil_energy_dissipated (their sum is the work done
         on the soil, ∫F_soil du); provenance attributes.
     time_to_limit : float or None
@@ -151,7 +152,7 @@ class SectionResult(SolverResult):
     cycles_to_limit : float or None
         The same in load cycles (t/cycle_period) [-], None if never or non-cyclic.
     summary : dict
-        initial_penetration, max_penetration [m], final_displacement [m] (u at the end of the
+        initial_penetration, max_penetration [m], final_displacement [m] (y at the end of the
         run), max_abs_displacement [m], final_time [s].
     """
 
@@ -174,9 +175,9 @@ def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset
     names = {
         "H": K.REC_H,
         "V": K.REC_V,
-        "u": K.REC_U,
-        "u_dot": K.REC_UDOT,
-        "w": K.REC_W,
+        "y": K.REC_U,  # lateral displacement (0.1: "u"; docs/conventions.md)
+        "y_dot": K.REC_UDOT,
+        "z": K.REC_W,  # penetration (0.1: "w")
         "F_friction": K.REC_FF,
         "F_passive": K.REC_FP,
         "F_soil": K.REC_FS,

@@ -136,15 +136,15 @@ def plot_path_response(
     Parameters
     ----------
     ds : xarray.Dataset
-        Output of :func:`onbottom.soil.response.path_response` (u, F_soil, F_passive, z, ...).
+        Output of :func:`onbottom.soil.response.path_response` (y, F_soil, F_passive, z, ...).
     diameter : float or None
-        D [m]; if given, u and z are shown as u/D and z/D.
+        D [m]; if given, y and z are shown as y/D and z/D.
     units_kn : bool
         Display forces in kN/m.
     """
     sx = 1.0 / diameter if diameter else 1.0
     sf = 1.0e-3 if units_kn else 1.0
-    u = ds["u"].values * sx
+    u = ds["y"].values * sx
     fig = Figure(figsize=(7.0, 6.5), layout="constrained")
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     ax1.plot(u, ds["F_soil"].values * sf, "k-", lw=1, label="total R")
@@ -155,7 +155,7 @@ def plot_path_response(
     ax2.plot(u, ds["z"].values * sx, "C0-", lw=1)
     ax2.invert_yaxis()
     ax2.set_ylabel("penetration z/D [-] (down)" if diameter else "penetration z [m] (down)")
-    ax2.set_xlabel("lateral displacement u/D [-]" if diameter else "lateral displacement u [m]")
+    ax2.set_xlabel("lateral displacement y/D [-]" if diameter else "lateral displacement y [m]")
     model = ds.attrs.get("model", "")
     if model:
         ax1.set_title(f"{model}: response along the displacement path")

@@ -30,7 +30,7 @@ def _as_ds(obj: Any) -> xr.Dataset:
 
 
 def _w(ds: xr.Dataset) -> np.ndarray:
-    return np.asarray(ds["w"] if "w" in ds else ds["z"])
+    return np.asarray(ds["z"])
 
 
 def plot_fit(
@@ -40,12 +40,12 @@ def plot_fit(
     labels: Sequence[str] | None = None,
     title: str | None = None,
 ) -> Figure:
-    """Measured vs simulated: penetration–displacement (w–u) and displacement–time (u–t).
+    """Measured vs simulated: penetration–displacement (z–y) and displacement–time (y–t).
 
     Parameters
     ----------
     record : TestRecord or xarray.Dataset
-        The measured test (``time`` [s], ``u`` [m], ``w`` [m]).
+        The measured test (``time`` [s], ``y`` [m], ``z`` [m]).
     simulated : Dataset/result, sequence of them, or None
         Simulations to overlay.
     labels : sequence of str or None
@@ -66,21 +66,21 @@ def plot_fit(
     )
     fig = Figure(figsize=(10.0, 4.0), layout="constrained")
     ax_wu, ax_ut = fig.subplots(1, 2)
-    ax_wu.plot(meas["u"], _w(meas), "k-", lw=1.0, label="measured")
-    ax_ut.plot(meas["time"], meas["u"], "k-", lw=1.0, label="measured")
+    ax_wu.plot(meas["y"], _w(meas), "k-", lw=1.0, label="measured")
+    ax_ut.plot(meas["time"], meas["y"], "k-", lw=1.0, label="measured")
     for sim, lab in zip(sims, labels, strict=True):
         ds = _as_ds(sim)
-        ax_wu.plot(ds["u"], _w(ds), lw=1.0, label=lab)
-        ax_ut.plot(ds["time"], ds["u"], lw=1.0, label=lab)
+        ax_wu.plot(ds["y"], _w(ds), lw=1.0, label=lab)
+        ax_ut.plot(ds["time"], ds["y"], lw=1.0, label=lab)
     limit = getattr(record, "displacement_limit", None)
     if limit is not None:
         for ax, kw in ((ax_wu, "axvline"), (ax_ut, "axhline")):
             getattr(ax, kw)(limit, color="grey", ls=":", lw=0.8, label="displacement limit")
-    ax_wu.set_xlabel("lateral displacement u [m]")
-    ax_wu.set_ylabel("penetration w [m]")
+    ax_wu.set_xlabel("lateral displacement y [m]")
+    ax_wu.set_ylabel("penetration z [m]")
     ax_wu.invert_yaxis()
     ax_ut.set_xlabel("time t [s]")
-    ax_ut.set_ylabel("lateral displacement u [m]")
+    ax_ut.set_ylabel("lateral displacement y [m]")
     for ax in (ax_wu, ax_ut):
         ax.grid(True, lw=0.3)
         ax.legend(fontsize="small")

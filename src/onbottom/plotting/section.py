@@ -5,6 +5,8 @@
 * V–H: the load path in the V–H plane (Figs 4, 9a);
 * w and u against load cycles.
 
+The figure types and axis labels keep the paper's names, u for the lateral displacement and
+w for the penetration; the datasets call them ``y`` and ``z`` (``docs/conventions.md``).
 Loads are displayed in kN/m; the datasets hold SI values (N/m). Functions take a
 :class:`~onbottom.dynamics.section.SectionResult` or its dataset and return Axes / Figure.
 """
@@ -33,11 +35,14 @@ __all__ = [
 ]
 
 PAPER_AXES: dict[str, dict[str, tuple[float, float]]] = {
-    "inclined": {"w": (0.0, 0.12), "u": (-1.0, 4.0), "H": (-4.0, 4.0), "V": (0.0, 45.0)},
-    "regular": {"w": (-0.03, 0.15), "u": (-1.0, 5.0), "H": (-8.0, 10.0), "V": (0.0, 45.0)},
-    "irregular": {"w": (-0.1, 0.15), "u": (-0.5, 4.5), "H": (-8.0, 10.0), "V": (0.0, 45.0)},
+    "inclined": {"z": (0.0, 0.12), "y": (-1.0, 4.0), "H": (-4.0, 4.0), "V": (0.0, 45.0)},
+    "regular": {"z": (-0.03, 0.15), "y": (-1.0, 5.0), "H": (-8.0, 10.0), "V": (0.0, 45.0)},
+    "irregular": {"z": (-0.1, 0.15), "y": (-0.5, 4.5), "H": (-8.0, 10.0), "V": (0.0, 45.0)},
 }
-"""Axis ranges of the paper's figures (w, u in m; H, V in kN/m), widened to fit the data."""
+"""Axis ranges of the paper's figures (z, y in m; H, V in kN/m), widened to fit the data.
+
+The paper (and these figures' axis labels) writes u for the lateral displacement (the
+results' ``y``) and w for the penetration (``z``): ``docs/conventions.md``."""
 
 _KN = 1.0e-3
 
@@ -65,13 +70,13 @@ def _fit(lim: tuple[float, float] | None, data: np.ndarray, pad: float = 0.05):
 def plot_penetration_path(
     result: Any, ax: Axes | None = None, *, axes: str | None = "inclined", label: str = "model"
 ) -> Axes:
-    """w–u: penetration w [m] against horizontal displacement u [m]."""
+    """w–u (the paper's names): penetration ``z`` [m] against lateral displacement ``y`` [m]."""
     ds = _ds(result)
     ax = _ax(ax)
-    ax.plot(ds["u"].values, ds["w"].values, lw=0.9, label=label)
+    ax.plot(ds["y"].values, ds["z"].values, lw=0.9, label=label)
     lim = PAPER_AXES.get(axes or "", {})
-    ax.set_xlim(*_fit(lim.get("u"), ds["u"].values))
-    ax.set_ylim(*_fit(lim.get("w"), ds["w"].values))
+    ax.set_xlim(*_fit(lim.get("y"), ds["y"].values))
+    ax.set_ylim(*_fit(lim.get("z"), ds["z"].values))
     ax.set_xlabel("Horizontal disp., u (m)")
     ax.set_ylabel("Vertical disp. (penetration), w (m)")
     ax.grid(alpha=0.3)
@@ -81,13 +86,13 @@ def plot_penetration_path(
 def plot_load_displacement(
     result: Any, ax: Axes | None = None, *, axes: str | None = "inclined", label: str = "model"
 ) -> Axes:
-    """H–u: horizontal load H [kN/m] against horizontal displacement u [m]."""
+    """H–u (the paper's names): horizontal load H [kN/m] against lateral displacement ``y`` [m]."""
     ds = _ds(result)
     ax = _ax(ax)
     h = ds["H"].values * _KN
-    ax.plot(ds["u"].values, h, lw=0.9, label=label)
+    ax.plot(ds["y"].values, h, lw=0.9, label=label)
     lim = PAPER_AXES.get(axes or "", {})
-    ax.set_xlim(*_fit(lim.get("u"), ds["u"].values))
+    ax.set_xlim(*_fit(lim.get("y"), ds["y"].values))
     ax.set_ylim(*_fit(lim.get("H"), h))
     ax.set_xlabel("Horizontal disp., u (m)")
     ax.set_ylabel("Horizontal load, H (kN/m)")
@@ -126,7 +131,7 @@ def plot_load_path(
 def plot_time_histories(
     result: Any, axs: tuple[Axes, Axes] | None = None, *, cycle_period: float | None = None
 ) -> tuple[Axes, Axes]:
-    """u and w against time, or against load cycles when ``cycle_period`` [s] is given."""
+    """``y`` and ``z`` (the paper's u and w) against time, or cycles given ``cycle_period`` [s]."""
     ds = _ds(result)
     if axs is None:
         _, axs = plt.subplots(2, 1, sharex=True, figsize=(5.0, 4.0))
@@ -135,9 +140,9 @@ def plot_time_histories(
     if cycle_period:
         x = x / cycle_period
         xlabel = "Load cycles"
-    axs[0].plot(x, ds["u"].values, lw=0.9)
+    axs[0].plot(x, ds["y"].values, lw=0.9)
     axs[0].set_ylabel("u (m)")
-    axs[1].plot(x, ds["w"].values, lw=0.9)
+    axs[1].plot(x, ds["z"].values, lw=0.9)
     axs[1].set_ylabel("w (m)")
     axs[1].set_xlabel(xlabel)
     for a in axs:

@@ -71,7 +71,8 @@ def path_response(
     Returns
     -------
     xarray.Dataset
-        Dimension ``step``; variables u, V, F_soil, F_friction, F_passive, z, work, region,
+        Dimension ``step``; variables y (lateral displacement), V, F_soil, F_friction,
+        F_passive, z, work, region,
         with units and provenance attributes.
     """
     u = np.ascontiguousarray(displacement, dtype=float).ravel()
@@ -85,7 +86,7 @@ def path_response(
     drive_path(model.model_id, model.packed_parameters(), model.initial_state(), u, v, h)
     ds = xr.Dataset(
         {
-            "u": ("step", u),
+            "y": ("step", u),
             "V": ("step", v),
             "F_soil": ("step", h[:, OUT_R]),
             "F_friction": ("step", h[:, OUT_FRICTION]),

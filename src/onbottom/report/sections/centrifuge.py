@@ -33,7 +33,7 @@ def _fig9_checks(result) -> list[Check]:
     import numpy as np
 
     d = result.data
-    u, w, reg, h = (d[k].values for k in ("u", "w", "region", "H"))
+    u, w, reg, h = (d[k].values for k in ("y", "z", "region", "H"))
     t = d["time"].values
     n = int(np.argmax(reg >= 3))  # before the first breakout (past y2 = 0.25 D)
     grows = np.diff(w[:n]) > 1e-7
