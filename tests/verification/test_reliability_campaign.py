@@ -149,6 +149,7 @@ def _rows(store: Path):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
     ref = _run(tmp_path / "ref.zarr")
     assert ref[2] == 1500 and ref[3] == 1500
@@ -166,6 +167,7 @@ def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
     """A short storm (0.05 h build-up, 0.15 h peak) of examples/storm_case.toml with
     H_s ~ N(3.5, 0.5) m, T_p ~ U(9, 12) s, μ ~ N(0.6, 0.06) and the seed: P[Y > 2D] ≈ 0.04
