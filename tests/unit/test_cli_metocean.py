@@ -160,7 +160,6 @@ def test_input_errors_exit_1_with_the_field(tmp_path, capsys):
 
 
 @pytest.mark.slow
-@pytest.mark.long
 def test_report_section_runs_and_passes(tmp_path):
     from onbottom.report import build_report
 

@@ -68,7 +68,6 @@ def test_committed_band_matches_a_recomputed_subset(committed, name):
 
 
 @pytest.mark.slow
-@pytest.mark.long
 @pytest.mark.parametrize("name", ["Inclined 2", "Irregular"])
 def test_committed_band_matches_the_full_recomputed_grid(committed, name):
     rows = compute_bands([name])
@@ -142,7 +141,6 @@ def test_cli_bands_serial_json_matches_committed(tmp_path, capsys, committed):
 
 
 @pytest.mark.slow
-@pytest.mark.long
 @pytest.mark.dask
 def test_bands_on_dask_equal_the_serial_ones():
     from onbottom.study.engine import ParallelMap, dask_client

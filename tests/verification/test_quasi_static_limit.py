@@ -86,7 +86,6 @@ def _quasi_static(soil, prog, limit):
 
 
 @pytest.mark.slow
-@pytest.mark.long
 def test_slow_loading_matches_the_quasi_static_path():
     test = get_test("Inclined 1")
     prog = inclined_cyclic(

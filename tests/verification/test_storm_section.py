@@ -196,7 +196,6 @@ def test_mirror_symmetry(sand_case):
 
 
 @pytest.mark.slow
-@pytest.mark.long
 def test_pipe_passing_f109_absolute_check_is_stable_and_half_weight_runs_away():
     """F109 absolute check (γ_SC = 1) vs the dynamic storm on a friction (rock) seabed.
 

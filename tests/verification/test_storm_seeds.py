@@ -24,7 +24,6 @@ def case():
 
 
 @pytest.mark.slow
-@pytest.mark.long
 @pytest.mark.dask
 def test_same_seed_bitwise_same_on_one_and_two_workers(case):
     pipe, soil, storm, kw = case
