@@ -14,7 +14,11 @@ writing the result, or after it ended — and then once more to completion. What
 
 No assertion depends on how long anything takes: the kill time only selects which state the
 run is left in, and every state must lead to a valid outcome. A Ctrl-C (SIGINT to the process
-group, as a terminal sends it) of a seeds run ends with one line and status 130.
+group, as a terminal sends it) of a seeds run ends with one line and status 130, and so does a
+SIGINT at random moments of ``stability`` and ``loads`` (start-up included). The in-process
+counterpart, an interrupt at a random call of onbottom's code in every stability command, is
+``tests/unit/test_fuzz_interrupts.py``. The module is in the ``long`` tier
+(``python3 -m pytest -m long``).
 """
 
 from __future__ import annotations
