@@ -93,6 +93,7 @@ def test_report_in_browser(browser, shots, tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_site_front_page_and_report_in_browser(browser, shots, site):
     front = browser_check.check_page(browser, site / "index.html", shots / "site_front.png")
     _assert_page_ok(front)
@@ -107,6 +108,7 @@ def test_site_front_page_and_report_in_browser(browser, shots, site):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_no_broken_link_anywhere_in_the_site(site):
     errors = browser_check.site_link_errors(site)
     assert errors == [], "\n".join(errors[:50])

@@ -1,4 +1,9 @@
-"""Every example script runs to completion and prints its key result (scikit-fem style)."""
+"""Every example script runs to completion and prints its key result (scikit-fem style).
+
+One test per example (``test_example_runs[ex07_dem_penetration.py]``), so ``-v`` shows each as
+it ends; with ``-s`` each also prints ``example NAME: T s``. The examples run the checkout's
+``src/`` (``PYTHONPATH``), installed or not. Marked ``long`` (``python3 -m pytest -m long``).
+"""
 
 from __future__ import annotations
 
@@ -7,10 +12,12 @@ import pathlib
 import re
 import subprocess
 import sys
+import time
 
 import pytest
 
-EXAMPLES = pathlib.Path(__file__).resolve().parents[1] / "examples"
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
 
 # script → a regular expression its output must match (one key number each)
 EXPECTED = {
@@ -31,9 +38,12 @@ def test_every_example_is_covered():
 
 
 @pytest.mark.slow
+@pytest.mark.long
 @pytest.mark.parametrize("script", sorted(EXPECTED))
 def test_example_runs(script, tmp_path):
-    env = dict(os.environ, MPLBACKEND="Agg")
+    path = os.pathsep.join(p for p in (str(ROOT / "src"), os.environ.get("PYTHONPATH")) if p)
+    env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=path)
+    t0 = time.perf_counter()
     proc = subprocess.run(
         [sys.executable, str(EXAMPLES / script)],
         cwd=tmp_path,
@@ -42,5 +52,6 @@ def test_example_runs(script, tmp_path):
         env=env,
         check=False,
     )
+    print(f"example {script}: {time.perf_counter() - t0:.1f} s")  # progress, shown with -s
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert re.search(EXPECTED[script], proc.stdout), proc.stdout[-2000:]

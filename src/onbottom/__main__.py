@@ -2,6 +2,10 @@
 
 import sys
 
-from onbottom.cli.main import main
+try:
+    from onbottom.cli.main import main
+except KeyboardInterrupt:  # Ctrl-C while the CLI loads: one line and status 130, as in a run
+    sys.stderr.write("interrupted\n")
+    sys.exit(130)
 
 sys.exit(main())

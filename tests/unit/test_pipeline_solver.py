@@ -228,6 +228,7 @@ def test_animation_is_a_gif(tmp_path):
 
 @pytest.mark.dask
 @pytest.mark.slow
+@pytest.mark.long
 def test_several_seeds_on_dask_and_in_process(tmp_path):
     case = tmp_path / "pipeline_case.toml"
     text = EXAMPLE.read_text().replace(  # 0.01 h: a peak of 3 T_p at least (issue #31)

@@ -21,6 +21,7 @@ TOLERANCE = {"A": 0.02, "B": 0.02, "C": 0.01, "mu": 0.01}
 
 @pytest.mark.verification
 @pytest.mark.slow
+@pytest.mark.long
 def test_recover_table2_parameters_of_inclined_1_from_noisy_record():
     truth = PAPER_TABLE2["Inclined 1"]
     sim = CentrifugeSimulator()

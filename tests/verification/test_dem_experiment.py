@@ -203,6 +203,7 @@ def reduced_runs():
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
     """SD: stiffer initial response and larger heave than SM (paper §4.3.1, Figs. 5 and 8).
 
@@ -243,6 +244,7 @@ def test_reduced_cases_dense_is_stiffer_and_heaves_more(reduced_runs):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_reduced_cases_initial_state_is_physical(reduced_runs):
     """Measuring circles at N g equilibrium.
 

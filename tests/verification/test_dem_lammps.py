@@ -375,6 +375,7 @@ def _random_bed_case(width_d: float, height_d: float, d50_factor: float = 1.5, s
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_engines_agree_on_a_random_bed_penetration(tmp_path):
     """``penetrate`` (onbottom) and ``run_lammps_case`` on the same bed, to w = 0.1D.
 

@@ -14,7 +14,11 @@ writing the result, or after it ended — and then once more to completion. What
 
 No assertion depends on how long anything takes: the kill time only selects which state the
 run is left in, and every state must lead to a valid outcome. A Ctrl-C (SIGINT to the process
-group, as a terminal sends it) of a seeds run ends with one line and status 130.
+group, as a terminal sends it) of a seeds run ends with one line and status 130, and so does a
+SIGINT at random moments of ``stability`` and ``loads`` (start-up included). The in-process
+counterpart, an interrupt at a random call of onbottom's code in every stability command, is
+``tests/unit/test_fuzz_interrupts.py``. The module is in the ``long`` tier
+(``python3 -m pytest -m long``).
 """
 
 from __future__ import annotations
@@ -32,7 +36,7 @@ import xarray as xr
 
 psutil = pytest.importorskip("psutil")
 
-pytestmark = [pytest.mark.verification, pytest.mark.slow]
+pytestmark = [pytest.mark.verification, pytest.mark.slow, pytest.mark.long]
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -293,3 +297,50 @@ def _assert_same_dataset_vars(path: Path, ref: xr.Dataset, variables: list[str])
         assert ds.attrs["run_status"] == "complete"
         for name in variables:
             np.testing.assert_array_equal(ds[name].values, ref[name].values, err_msg=name)
+
+
+# ---------------------------------------------------------------------------------------------
+def test_ctrl_c_at_random_moments_of_the_stability_commands(tmp_path):
+    """A real SIGINT (as a terminal sends it) at random moments of ``stability`` and of
+    ``loads`` — while Python loads onbottom, parses the case, computes, writes: status 130
+    with one line and no traceback, or a finished run; a ``loads`` output is whole or absent."""
+    case = tmp_path / "c.toml"
+    case.write_text((EXAMPLES / "stability_case.toml").read_text(encoding="utf-8"), "utf-8")
+    commands = {
+        "stability": ["stability", case.name],
+        "loads": ["loads", case.name, "--duration-hours", "0.1", "-o", "p.nc"],
+    }
+    for name, args in commands.items():
+        ref_run, t_ref = _run(args, tmp_path)
+        assert ref_run.returncode == 0, ref_run.stderr
+        t_ref = min(t_ref, _run(args, tmp_path)[1])  # the first run also warms the file cache
+        if name == "loads":
+            ref = _load(tmp_path / "p.nc")
+            (tmp_path / "p.nc").unlink()
+        for delay, _ in _kills(t_ref, 3, 0):
+            proc = subprocess.Popen(
+                _command(args),
+                cwd=tmp_path,
+                env=ENV,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                text=True,
+                start_new_session=True,
+            )
+            try:
+                _, err = proc.communicate(timeout=delay)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGINT)
+                _, err = proc.communicate()
+            lines = [ln for ln in err.splitlines() if ln.strip()]
+            print(f"{name}: SIGINT at {delay:.1f} of {t_ref:.1f} s: status {proc.returncode}")
+            # -SIGINT: the signal came before Python set its handler (nothing printed at all)
+            assert proc.returncode in (0, 130, -signal.SIGINT), err
+            assert "Traceback" not in err, err
+            if proc.returncode == 130:
+                assert len(lines) == 1 and lines[0].startswith("interrupted"), err
+            if name == "loads" and (tmp_path / "p.nc").exists():
+                with xr.open_dataset(tmp_path / "p.nc", engine="h5netcdf") as ds:
+                    for var in ref.variables:
+                        np.testing.assert_array_equal(ds[var].values, ref[var].values)
+                (tmp_path / "p.nc").unlink()

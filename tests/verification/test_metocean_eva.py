@@ -149,6 +149,7 @@ def test_joint_fit_recovers_the_generating_model():
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_reference_storm_levels_of_the_example_model_are_what_a_2000_year_draw_gives():
     """The constants the report and the theory page compare the example's analysis with."""
     from onbottom.metocean.synthetic import STORM_LEVELS_2000Y, simulated_storm_levels

@@ -166,6 +166,7 @@ def _rows(store: Path):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
     ref = _run(tmp_path / "ref.zarr")
     assert ref[2] == 1500 and ref[3] == 1500
@@ -185,6 +186,7 @@ def test_resume_after_kill_equals_an_uninterrupted_run(tmp_path):
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_resume_after_a_kill_at_a_random_time_equals_an_uninterrupted_run(tmp_path):
     """SIGKILL at a time drawn uniformly over the uninterrupted run's wall time (its seed in the
     failure message; ONBOTTOM_KILL_SEED replays one), twice on the same store, then a rerun:
@@ -207,6 +209,7 @@ def test_resume_after_a_kill_at_a_random_time_equals_an_uninterrupted_run(tmp_pa
 
 
 @pytest.mark.slow
+@pytest.mark.long
 def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
     """A short storm (0.05 h build-up, 0.15 h peak) of examples/storm_case.toml with
     H_s ~ N(3.5, 0.5) m, T_p ~ U(9, 12) s, μ ~ N(0.6, 0.06) and the seed: P[Y > 2D] ≈ 0.04

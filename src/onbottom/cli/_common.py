@@ -198,11 +198,7 @@ def handle_errors(fn: Callable) -> Callable:
             raise ReportedError(plain_numbers(str(exc))) from exc
         except KeyboardInterrupt as exc:  # Ctrl-C: one line, no traceback, status 130
             msg = str(exc) if isinstance(exc, RunInterrupted) and str(exc) else "interrupted"
-            if as_json:
-                payload = {"error": {"type": "Interrupted", "message": msg, "field": None}}
-                click.echo(json.dumps(payload, indent=2))
-            else:
-                click.echo(msg, err=True)
+            report_interrupt(msg, as_json=as_json)
             raise ReportedError(msg).with_exit(EXIT_INTERRUPTED) from None
         except OSError as exc:
             err = InputError(plain_numbers(_os_message(exc)))
@@ -215,6 +211,17 @@ def handle_errors(fn: Callable) -> Callable:
             raise ReportedError(str(exc)).with_exit(EXIT_INTERNAL) from exc
 
     return wrapper
+
+
+def report_interrupt(message: str = "interrupted", *, as_json: bool) -> int:
+    """Say that the run was interrupted (Ctrl-C): one line on stderr, or a JSON error object
+    on stdout; returns the exit status, 130."""
+    if as_json:
+        payload = {"error": {"type": "Interrupted", "message": message, "field": None}}
+        click.echo(json.dumps(_versioned(payload), indent=2))
+    else:
+        click.echo(message, err=True)
+    return EXIT_INTERRUPTED
 
 
 def report_click_error(exc: click.ClickException, argv: Sequence[str] | None) -> int:

@@ -18,7 +18,7 @@ import click
 from click.utils import make_default_short_help
 
 from onbottom._version import __version__
-from onbottom.cli._common import JsonErrorGroup, report_click_error
+from onbottom.cli._common import JsonErrorGroup, report_click_error, report_interrupt
 
 COMMANDS: dict[str, tuple[str, str]] = {
     "reproduce": (
@@ -236,9 +236,17 @@ def _listener(notice: CompileNotice) -> Any:
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the exit code (for tests, ``main([...])``).
 
-    On a terminal (and without ``--quiet``) a line on stderr says when numba compiles.
+    On a terminal (and without ``--quiet``) a line on stderr says when numba compiles. A Ctrl-C
+    at any moment (also before or after the command's own handling) ends with one line on
+    stderr (a JSON error object with ``--json``) and status 130, never a traceback.
     """
-    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return _main_with_notice(argv, list(sys.argv[1:] if argv is None else argv))
+    except KeyboardInterrupt:
+        return report_interrupt(as_json="--json" in (sys.argv[1:] if argv is None else argv))
+
+
+def _main_with_notice(argv: list[str] | None, args: list[str]) -> int:
     if "--quiet" in args or not sys.stderr.isatty() or "numba" in sys.modules:
         return _main(argv)
     notice = CompileNotice(sys.stderr)
@@ -256,7 +264,9 @@ def main(argv: list[str] | None = None) -> int:
 def _main(argv: list[str] | None) -> int:
     try:
         rv = cli.main(args=argv, prog_name="onbottom", standalone_mode=False)
-    except click.exceptions.Abort:
+    except click.exceptions.Abort as exc:
+        if isinstance(exc.__context__, KeyboardInterrupt):  # Ctrl-C outside a command's body
+            return report_interrupt(as_json="--json" in (sys.argv[1:] if argv is None else argv))
         click.echo("Aborted!", err=True)
         return 1
     except click.ClickException as exc:

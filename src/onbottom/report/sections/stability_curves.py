@@ -1,12 +1,12 @@
 """Report section: generalized-stability curves from dynamic storm runs, when committed.
 
 A curve sweep (:mod:`onbottom.study.stability_curves`, ``onbottom curves CASE``) needs of the
-order of 10⁴ storms (the committed 256-point sweeps: tens of minutes of CPU on 2 cores), too
-long for a report run. The report shows the sweeps
-committed as NetCDF files (written by ``onbottom curves``) in ``docs/validation/
-stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the curves. Without
-such a file the section says so. There is no pass/fail: F109's tables are DNV content and are
-not reproduced (docs/theory/storm_section.md).
+order of 10⁴ storms (the committed 256-point sweeps: about 7,000 storms each, 28 and 37 min
+wall on 2 loaded cores, as their ``wall_time_s`` attributes record), too long for a report
+run. The report shows the sweeps committed as NetCDF files (written by ``onbottom curves``) in
+``docs/validation/stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the
+curves. Without such a file the section says so. There is no pass/fail: F109's tables are DNV
+content and are not reproduced (docs/theory/storm_section.md).
 """
 
 from __future__ import annotations
@@ -30,8 +30,9 @@ def build(ctx: SectionContext) -> SectionContent:
     files = [] if folder is None or not folder.is_dir() else sorted(folder.glob("*.nc"))
     if not files:
         return SectionContent(
-            summary="No committed stability-curve sweep: a sweep takes hours on 2 cores, so the"
-            f" report shows the NetCDF files of `onbottom curves` committed in {FOLDER}/.",
+            summary="No committed stability-curve sweep: a sweep of about 7,000 storms takes half"
+            " an hour on 2 cores (the committed ones: 28 and 37 min wall), so the report shows"
+            f" the NetCDF files of `onbottom curves` committed in {FOLDER}/.",
             checks=[
                 Check(
                     name="committed sweeps",
@@ -48,8 +49,15 @@ def build(ctx: SectionContext) -> SectionContent:
         plot_stability_curves = None
     tables, figures = [], []
     flagged = 0
+    costs = []
     for path in files:
         ds = load_dataset(path)
+        if "wall_time_s" in ds.attrs and "total_storms" in ds.attrs:
+            costs.append(
+                f"{path.stem}: {int(ds.attrs['total_storms']):,} storms in"
+                f" {float(ds.attrs['wall_time_s']) / 60.0:.0f} min wall on"
+                f" {int(ds.attrs.get('workers', 1))} workers"
+            )
         rows = curves_table(ds)
         flagged += sum(
             1 for r in rows if any(v for k, v in r.items() if k.endswith("_out_of_range"))
@@ -91,7 +99,8 @@ def build(ctx: SectionContext) -> SectionContent:
             )
     return SectionContent(
         summary="Weight parameter L = w_s/(½ρDU_s²) at which the seed-averaged largest lateral"
-        " displacement of a storm equals 0.5D (L_stable) and 10D (L_10).",
+        " displacement of a storm equals 0.5D (L_stable) and 10D (L_10)."
+        + (f" Cost of the committed sweeps (from the files): {'; '.join(costs)}." if costs else ""),
         checks=[
             Check(
                 name="committed sweeps",
