@@ -216,11 +216,11 @@ class StormSectionResult:
             "summary": dict(self.summary),
         }
 
-    def save(self, path: Any) -> Any:
-        """Write :attr:`data` to NetCDF (atomic)."""
+    def save(self, path: Any, *, compression_level: int = 0) -> Any:
+        """Write :attr:`data` to NetCDF (atomic); ``compression_level`` 0 (none) to 9 (zlib)."""
         if self.data is None:
             raise InputError("StormSectionResult.data = None: run with record_interval set")
-        return save_dataset(self.data, path)
+        return save_dataset(self.data, path, compression_level=compression_level)
 
 
 _REC_NAMES = {
