@@ -759,6 +759,12 @@ def simulate_pipeline(
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
             state["env"],
         )  # fmt: skip
+        n_st = arr["sstate"].shape[1]
+        if sstate.shape[1] < n_st:
+            # checkpoints written before the V&S memo slots (issue 33): zero slots are an
+            # empty memo (the memo's key is then 0, whose power 0 is right)
+            pad = np.zeros((sstate.shape[0], n_st - sstate.shape[1]))
+            sstate = np.ascontiguousarray(np.hstack([sstate, pad]))
         # checkpoints written before the force state existed: Morison only, no state
         fstate = state.get("fstate", np.zeros((n, N_FORCE_STATE)))
     writer = None
