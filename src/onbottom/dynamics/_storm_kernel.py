@@ -48,8 +48,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from onbottom._jit import njit
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
 from onbottom.hydro._force_dispatch import force_step
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
