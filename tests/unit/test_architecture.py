@@ -12,12 +12,16 @@ import pathlib
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
-BASE = {"_version", "errors", "constants", "_validate", "_casefile", "results", "_lazy", "_roots"}
+BASE = {
+    "_version", "errors", "constants", "_validate", "_casefile", "results", "_lazy", "_roots",
+    "_jit",
+}  # fmt: skip
 
 ALLOWED: dict[str, set[str]] = {
     "_version": set(),
     "_lazy": set(),
     "_roots": set(),
+    "_jit": set(),
     "errors": set(),
     "constants": set(),
     "_validate": {"errors"},

@@ -199,7 +199,7 @@ def _command(
             attrs={"case_file": str(case)},
             **setup.kwargs(),
         )
-        res.save(nc)
+        res.save(nc, compression_level=setup.compression_level)
         if plot is not None:
             import matplotlib.pyplot as plt
 
@@ -256,7 +256,7 @@ def _command(
         restart=restart,
         **setup.kwargs(),
     )
-    save_dataset(study.data, nc)
+    save_dataset(study.data, nc, compression_level=setup.compression_level)
     TaskStore.delete(store)  # the result holds every seed now
     st = study.statistics
     d = setup.pipe.outer_diameter

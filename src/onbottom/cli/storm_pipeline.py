@@ -458,6 +458,7 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
         record_interval=table.record_interval,
         chunk_duration=table.chunk_duration,
         strain_limit=table.strain_limit,
+        compression_level=sv.compression_level,
     )
     return {
         "model": model,

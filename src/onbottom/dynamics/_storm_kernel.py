@@ -48,8 +48,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from onbottom._jit import njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE

@@ -59,8 +59,9 @@ class SolverResult:
         """The provenance attributes of :attr:`data` (empty without records)."""
         return {} if self.data is None else dict(self.data.attrs)
 
-    def save(self, path: Any) -> Any:
-        """Write :attr:`data` to NetCDF (atomically, :func:`onbottom.results.save_dataset`)."""
+    def save(self, path: Any, *, compression_level: int = 0) -> Any:
+        """Write :attr:`data` to NetCDF (atomically, :func:`onbottom.results.save_dataset`);
+        ``compression_level`` 0 (none) to 9 (zlib)."""
         if self.data is None:
             raise InputError(f"{type(self).__name__}.data = None: run with record_interval set")
-        return save_dataset(self.data, path)
+        return save_dataset(self.data, path, compression_level=compression_level)

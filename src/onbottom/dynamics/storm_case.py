@@ -149,6 +149,9 @@ class SolverTable(StrictModel):
     record_interval: float = Field(
         0.5, ge=0.0, description="time between records [s], 0 = every step"
     )
+    compression_level: int = Field(
+        0, ge=0, le=9, description="zlib level of the NetCDF records [-], 0 = none"
+    )
     dt_min: float | None = Field(None, gt=0.0, description="smallest step [s]")
     max_displacement_increment_over_d: float = Field(0.05, gt=0.0, le=1.0, description="[-]")
     force_tolerance: float = Field(1e-9, gt=0.0, le=1e-3, description="relative [-]")
@@ -227,6 +230,7 @@ class StormSetup:
     seeds: int
     fractile: float
     path: str | None
+    compression_level: int = 0
 
     def kwargs(self) -> dict[str, Any]:
         """Keyword arguments of :func:`onbottom.dynamics.storm_section.simulate_storm_section`."""
@@ -498,6 +502,7 @@ def _build_objects(
         seeds=case.run.seeds,
         fractile=case.run.fractile,
         path=None if path is None else os.fspath(path),
+        compression_level=sv.compression_level,
     )
 
 

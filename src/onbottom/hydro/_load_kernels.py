@@ -9,7 +9,7 @@ force law is in :mod:`onbottom.hydro._morison_kernel`.
 
 from __future__ import annotations
 
-from numba import njit
+from onbottom._jit import njit
 
 
 @njit(cache=True)

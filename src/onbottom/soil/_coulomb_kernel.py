@@ -5,8 +5,7 @@ params: [mu, mobilisation_displacement]
 
 from __future__ import annotations
 
-from numba import njit
-
+from onbottom._jit import njit
 from onbottom.soil._trough import spring_work
 from onbottom.soil.base import (
     OUT_DISSIPATED,

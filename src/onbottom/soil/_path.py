@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from onbottom._jit import njit
 from onbottom.soil._dispatch import lateral_step
 
 

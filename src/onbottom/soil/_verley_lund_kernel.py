@@ -7,8 +7,7 @@ source run by the Python interpreter (:func:`onbottom.soil._twin.pure_python`).
 
 from __future__ import annotations
 
-from numba import njit
-
+from onbottom._jit import njit
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,

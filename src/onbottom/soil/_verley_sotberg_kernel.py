@@ -13,8 +13,7 @@ slots below.
 
 from __future__ import annotations
 
-from numba import njit
-
+from onbottom._jit import njit
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,
@@ -78,7 +77,15 @@ S_Z2 = N_COMMON_STATE + 3  # penetration frozen on first passing y2 [m] (0 befor
 S_PHASE = N_COMMON_STATE + 4  # PHASE_* code
 S_DIR = N_COMMON_STATE + 5  # sign of the last non-zero displacement increment (+1, -1, 0)
 S_PASSIVE = N_COMMON_STATE + 6  # committed passive force [N/m] (for the work integral)
-N_STATE = N_COMMON_STATE + 7
+# memo of the fractional power (z/D)^1.25 of the peak passive force (issue 33): the last
+# penetration it was evaluated at and its value, one pair for z (trough) or z2 (breakout, out)
+# and one for z3. A hit returns the stored value, which is the same function of the same z,
+# so the memo changes no result; a zero state is a valid memo (0^1.25 = 0).
+S_MEMO_Z = N_COMMON_STATE + 7  # penetration of the memo [m]
+S_MEMO_P = N_COMMON_STATE + 8  # its (z/D)^1.25 [-]
+S_MEMO_Z3 = N_COMMON_STATE + 9  # residual penetration z3 of the second memo [m]
+S_MEMO_P3 = N_COMMON_STATE + 10  # its (z3/D)^1.25 [-]
+N_STATE = N_COMMON_STATE + 11
 
 # ---- codes -----------------------------------------------------------------------------------
 # phases (onbottom.soil._trough): PHASE_TROUGH regions 1-2, y2 not yet passed;
@@ -115,10 +122,32 @@ def peak_passive(params, z, v_load):
     """
     if v_load <= 0.0 or z <= 0.0:
         return 0.0
+    return peak_passive_from_power(params, penetration_power(params, z), v_load)
+
+
+@njit(cache=True)
+def penetration_power(params, z):
+    """(z/D)^1.25 of V&S Eqs 3-4 (0 for z <= 0)."""
+    if z <= 0.0:
+        return 0.0
+    return (z / params[P_D]) ** 1.25
+
+
+@njit(cache=True)
+def memo_power(params, z, key, value):
+    """(z/D)^1.25, taken from the memo (``key``, ``value``) when z equals its key."""
+    if z == key:
+        return value
+    return penetration_power(params, z)
+
+
+@njit(cache=True)
+def peak_passive_from_power(params, zp, v_load):
+    """:func:`peak_passive` from the power zp = (z/D)^1.25 (z > 0, V > 0)."""
     d = params[P_D]
     g = params[P_GAMMA]
     ks = g * d * d / v_load
-    base = params[P_A] * g * d * d * (z / d) ** 1.25
+    base = params[P_A] * g * d * d * zp
     if params[P_PASSIVE_LAW] == PASSIVE_DNV_F109:
         if ks <= KS_SWITCH_F109:
             return base * (5.0 - 0.15 * ks)
@@ -126,6 +155,14 @@ def peak_passive(params, z, v_load):
     if ks <= KS_SWITCH_VS:
         return base * (5.0 - 0.15 * ks)
     return 2.0 * base
+
+
+@njit(cache=True)
+def _peak(params, z, zp, v_load):
+    """:func:`peak_passive` at z given its power zp = (z/D)^1.25 (same arithmetic)."""
+    if v_load <= 0.0 or z <= 0.0:
+        return 0.0
+    return peak_passive_from_power(params, zp, v_load)
 
 
 @njit(cache=True)
@@ -193,6 +230,10 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
 
     legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
     p_old = state_old[S_PASSIVE]
+    memo_z = state_old[S_MEMO_Z]
+    memo_p = state_old[S_MEMO_P]
+    memo_z3 = state_old[S_MEMO_Z3]
+    memo_p3 = state_old[S_MEMO_P3]
     # out of the trough and reversing: a new trough starts at the turning point [I]
     if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
         y0 = u_old
@@ -215,7 +256,9 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         du2 = overlap(s_old, s_new, y1, y2) + overlap(s_old, s_new, -y2, -y1)
         smax_c = min(max(smax, a_new), y2)
         if du2 > 0.0 and v_load > 0.0:
-            fr2 = peak_passive(params, z, v_load)
+            memo_p = memo_power(params, z, memo_z, memo_p)
+            memo_z = z
+            fr2 = _peak(params, z, memo_p, v_load)
             if legacy:
                 mag_p, _slope = envelope(min(a_new, y2), 0.3 * fr2, fr2, fr2, y1, y2, y3)
                 p_pred = sign(s_new) * mag_p
@@ -247,11 +290,18 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
 
     # passive force about y0 bounded by the envelope
     if phase == PHASE_TROUGH:
-        fr2 = peak_passive(params, z, v_load)
+        memo_p = memo_power(params, z, memo_z, memo_p)
+        memo_z = z
+        fr2 = _peak(params, z, memo_p, v_load)
         fr3 = fr2
     else:
-        fr2 = peak_passive(params, z2, v_load)
-        fr3 = peak_passive(params, residual_ratio(z2 / d) * z2, v_load)
+        memo_p = memo_power(params, z2, memo_z, memo_p)
+        memo_z = z2
+        fr2 = _peak(params, z2, memo_p, v_load)
+        z3 = residual_ratio(z2 / d) * z2
+        memo_p3 = memo_power(params, z3, memo_z3, memo_p3)
+        memo_z3 = z3
+        fr3 = _peak(params, z3, memo_p3, v_load)
     fr1 = 0.3 * fr2
     mag, slope = envelope(a_new, fr1, fr2, fr3, y1, y2, y3)
     k_u = fr1 / y1
@@ -295,6 +345,10 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     if direction != 0.0:
         state_new[S_DIR] = direction
     state_new[S_PASSIVE] = passive
+    state_new[S_MEMO_Z] = memo_z
+    state_new[S_MEMO_P] = memo_p
+    state_new[S_MEMO_Z3] = memo_z3
+    state_new[S_MEMO_P3] = memo_p3
 
     out[OUT_R] = r_new
     out[OUT_FRICTION] = f
@@ -307,5 +361,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_DISSIPATED] = soil_work - stored
 
 
+peak_passive_py = pure_python(peak_passive)
+"""Plain-Python twin of :func:`peak_passive` (the F109 checks call it: nothing compiled)."""
 verley_sotberg_kernel_py = pure_python(verley_sotberg_kernel)
 """Plain-Python twin of :func:`verley_sotberg_kernel` (same source, interpreted)."""

@@ -226,7 +226,7 @@ def peak_passive_resistance(
     p = np.zeros(_k.N_PARAMS)
     p[_k.P_D], p[_k.P_GAMMA], p[_k.P_A] = d, g, A
     p[_k.P_PASSIVE_LAW] = PASSIVE_LAWS[law]
-    return float(_k.peak_passive.py_func(p, z, v))
+    return float(_k.peak_passive_py(p, z, v))
 
 
 def residual_penetration_ratio(z2_over_d: float) -> float:

@@ -15,8 +15,8 @@ Reference: Golub & Van Loan, *Matrix Computations*, 4th ed., §4.3 (band LDLᵀ)
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from onbottom._jit import njit
 from onbottom.soil._twin import pure_python
 
 

@@ -24,8 +24,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from onbottom._jit import njit
 from onbottom.soil._twin import pure_python
 
 # element property columns

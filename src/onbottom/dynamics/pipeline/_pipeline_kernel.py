@@ -35,8 +35,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from onbottom._jit import njit
 from onbottom.dynamics.pipeline._banded import ldl_factor, ldl_solve
 from onbottom.dynamics.pipeline._beam_kernel import (
     HALF_BAND,
@@ -46,10 +46,10 @@ from onbottom.dynamics.pipeline._beam_kernel import (
 )
 from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import force_step
+from onbottom.hydro._force_dispatch import force_step_inline as force_step  # issue 33
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 from onbottom.soil._coulomb_kernel import friction_return_map
-from onbottom.soil._dispatch import lateral_step
+from onbottom.soil._dispatch import lateral_step_inline as lateral_step  # issue 33
 from onbottom.soil.base import OUT_R, OUT_SIZE, OUT_TANGENT, S_Z
 
 # ---- settings ------------------------------------------------------------------------------

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from onbottom._validate import in_range, one_of, positive
+from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.dynamics.driver import drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
@@ -139,6 +139,10 @@ class PipelineSettings:
         Storm time between NetCDF appends and checkpoints [s], > 0.
     strain_limit : float or None
         User strain limit [-] for the strain check, > 0 (DNV-ST-F101 gives design values).
+    compression_level : int
+        zlib level of the records in the NetCDF file [-], 0 (none) to 9; the records are
+        written in chunks of at most 1024 rows × all nodes. Not part of the run identity (a
+        run may resume with another level). Decimation: ``record_interval``.
     """
 
     alpha: float = -0.1
@@ -152,6 +156,7 @@ class PipelineSettings:
     record_interval: float | None = 1.0
     chunk_duration: float = 600.0
     strain_limit: float | None = None
+    compression_level: int = 0
 
     def __post_init__(self) -> None:
         c = "PipelineSettings"
@@ -171,6 +176,7 @@ class PipelineSettings:
         positive(f"{c}.chunk_duration", self.chunk_duration)
         if self.strain_limit is not None:
             positive(f"{c}.strain_limit", self.strain_limit)
+        integer(f"{c}.compression_level", self.compression_level, 0, 9)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -272,7 +278,8 @@ def run_identity(
     """
     meta = {
         "model": model.describe(),
-        "settings": asdict(settings),
+        # the output's compression is not part of the run (a run may resume with another)
+        "settings": {k: v for k, v in asdict(settings).items() if k != "compression_level"},
         "kinematics": [kinematics.t0, kinematics.dt, list(kinematics.velocity.shape)],
         "extra": extra,
     }
@@ -366,8 +373,10 @@ class _Writer:
         attrs: Mapping[str, Any],
         run_id: str,
         resume: tuple[int, int, float] = (0, 0, math.nan),
+        compression_level: int = 0,
     ) -> None:
         self.path = path
+        self.compression_level = compression_level
         self.folder = partial_path(path)
         self.x = x
         self.attrs = dict(attrs)
@@ -423,8 +432,16 @@ class _Writer:
                 tv.attrs.update(long_name="time", units="s")
                 xv = f.create_variable("x", ("node",), np.float64, data=x)
                 xv.attrs.update(long_name="position along the pipe", units="m")
+                # chunked (≤ 1024 rows × all nodes), deflated at compression_level when > 0
+                opts: dict[str, Any] = {}
+                if self.rows > 0:
+                    opts["chunks"] = (min(self.rows, 1024), n)
+                if self.compression_level > 0:
+                    opts.update(
+                        compression="gzip", compression_opts=self.compression_level, shuffle=True
+                    )
                 for name, (_k, long_name, units) in FIELDS.items():
-                    v = f.create_variable(name, ("time", "node"), np.float32)
+                    v = f.create_variable(name, ("time", "node"), np.float32, **opts)
                     v.attrs.update(long_name=long_name, units=units, coordinates="x")
                 r0 = 0
                 for i in range(self.chunks):
@@ -743,12 +760,18 @@ def simulate_pipeline(
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
             state["env"],
         )  # fmt: skip
+        n_st = arr["sstate"].shape[1]
+        if sstate.shape[1] < n_st:
+            # checkpoints written before the V&S memo slots (issue 33): zero slots are an
+            # empty memo (the memo's key is then 0, whose power 0 is right)
+            pad = np.zeros((sstate.shape[0], n_st - sstate.shape[1]))
+            sstate = np.ascontiguousarray(np.hstack([sstate, pad]))
         # checkpoints written before the force state existed: Morison only, no state
         fstate = state.get("fstate", np.zeros((n, N_FORCE_STATE)))
     writer = None
     if out_path is not None:
         resumed = (rows, chunks, last_time) if state is not None else (0, 0, math.nan)
-        writer = _Writer(out_path, x, base_attrs, run_id, resumed)
+        writer = _Writer(out_path, x, base_attrs, run_id, resumed, s.compression_level)
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
     per_chunk = 1

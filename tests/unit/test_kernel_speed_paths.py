@@ -1,0 +1,63 @@
+"""Paths added for kernel speed (issue 33): the project's njit error model and the V&S memo."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from onbottom._jit import njit
+from onbottom.soil import _verley_sotberg_kernel as VK
+from onbottom.soil._path import drive_path
+from onbottom.soil.base import OUT_SIZE
+from onbottom.soil.verley_sotberg import VerleySotberg
+
+
+def _divide(a, b):
+    return a / b
+
+
+def test_project_njit_divides_by_zero_as_ieee_not_by_exception():
+    f = njit(_divide)
+    assert f(1.0, 0.0) == math.inf and f(-1.0, 0.0) == -math.inf
+    assert math.isnan(f(0.0, 0.0))
+    assert f(3.0, 4.0) == 0.75
+
+
+def test_project_njit_keeps_an_explicit_error_model():
+    g = njit(error_model="python")(_divide)
+    with pytest.raises(ZeroDivisionError):
+        g(1.0, 0.0)
+
+
+@pytest.fixture
+def calc_model(centrifuge_pipe, calcareous_sand):
+    return VerleySotberg.calcareous(centrifuge_pipe, calcareous_sand)
+
+
+def test_vs_memo_holds_the_power_of_the_penetration_it_was_used_at(calc_model):
+    """After any step the memo pair (z, (z/D)^1.25) is consistent, and a state whose memo was
+    wiped gives bitwise the same next step (the memo changes no result)."""
+    m = calc_model
+    p = m.packed_parameters()
+    d = p[VK.P_D]
+    rng = np.random.default_rng(3)
+    n = 400
+    u = np.cumsum(rng.normal(0.0, 0.02, n) + 0.05 * (rng.random(n) < 0.03))
+    v = np.full(n, 10.5e3)
+    hist = np.zeros((n, OUT_SIZE))
+    state = drive_path(m.model_id, p, m.initial_state(), u, v, hist)
+    assert state[VK.S_MEMO_Z] > 0.0  # the memo was used
+    for key, val in ((VK.S_MEMO_Z, VK.S_MEMO_P), (VK.S_MEMO_Z3, VK.S_MEMO_P3)):
+        z = state[key]
+        assert state[val] == pytest.approx(0.0 if z <= 0.0 else (z / d) ** 1.25, rel=1e-14)
+    wiped = state.copy()
+    wiped[VK.S_MEMO_Z :] = 0.0
+    a, b = np.zeros_like(state), np.zeros_like(state)
+    oa, ob = np.zeros(OUT_SIZE), np.zeros(OUT_SIZE)
+    for du in (0.01, -0.2, 0.4):
+        m.kernel(p, state, u[-1] + du, 10.5e3, a, oa)
+        m.kernel(p, wiped, u[-1] + du, 10.5e3, b, ob)
+        np.testing.assert_array_equal(oa, ob)
+        np.testing.assert_array_equal(a[: VK.S_MEMO_Z], b[: VK.S_MEMO_Z])
