@@ -130,7 +130,7 @@ def test_recipe_soil_model(clean_registries):
     assert (
         res.success and json.loads(res.data.attrs["parameters"])["soil_model"] == "friction_angle"
     )
-    np.testing.assert_array_equal(res.data["u"].values, twin.data["u"].values)
+    np.testing.assert_array_equal(res.data["y"].values, twin.data["y"].values)
     f_soil = res.data["F_soil"].values
     assert np.max(np.abs(f_soil)) == pytest.approx(math.tan(math.pi / 6) * v, rel=1e-9)
 

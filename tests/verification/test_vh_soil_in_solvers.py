@@ -72,10 +72,10 @@ def test_section_coulomb_limit_equals_coulomb():
     a = _section(_coulomb())
     b = _section(_vh_coulomb_limit())
     assert a.success and b.success
-    assert np.ptp(a.data["u"].values) > 0.1  # it slides both ways, under a varying V
-    for name in ("u", "u_dot", "F_friction"):
+    assert np.ptp(a.data["y"].values) > 0.1  # it slides both ways, under a varying V
+    for name in ("y", "y_dot", "F_friction"):
         np.testing.assert_array_equal(b.data[name].values, a.data[name].values)
-    assert np.all(b.data["w"].values == 0.0)
+    assert np.all(b.data["z"].values == 0.0)
 
 
 def test_section_vh_capacity_and_vertical_flow_closed_form():
@@ -84,15 +84,15 @@ def test_section_vh_capacity_and_vertical_flow_closed_form():
     r = _section(_vh(4000.0), v_amp=0.0)
     assert r.success
     f = r.data["F_friction"].values
-    u = r.data["u"].values
-    w = r.data["w"].values
+    u = r.data["y"].values
+    w = r.data["z"].values
     assert np.max(np.abs(f)) == pytest.approx(450.0, rel=1e-12)
     k = MU * 1000.0 / DELTA
     slip = np.abs(np.diff(u) - np.diff(f) / k)
     assert w[-1] == pytest.approx(-0.15 * np.sum(slip), rel=1e-9)
     assert w[-1] < -0.01  # the pipe rose by more than 1 cm
     c = _section(_coulomb(), v_amp=0.0)
-    assert np.ptp(u) > np.ptp(c.data["u"].values)  # less capacity: it slides further
+    assert np.ptp(u) > np.ptp(c.data["y"].values)  # less capacity: it slides further
 
 
 # ---- storm section (hydrodynamic loads, V = w_s − F_Z) ---------------------------------------
