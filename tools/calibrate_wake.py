@@ -51,6 +51,7 @@ NEUTRAL_START = {
     "lift_relaxation": 2.0,
     "wake_ratio": 0.5,
     "wake_decay": 3.0,
+    "slack_exponent": 1.0,
 }
 """Start of the fit: round values, not the result of an earlier fit."""
 
