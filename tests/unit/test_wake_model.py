@@ -194,7 +194,7 @@ def test_slack_hand_values():
     old[[wk.S_STARTED, wk.S_T, wk.S_Q, wk.S_SIGN, wk.S_DIST, wk.S_PEAK, wk.S_TROUGH]] = [
         1.0, 0.0, 1.0, 1.0, 40.0, 3.0, 1.0,
     ]  # fmt: skip
-    s, out = _eval(p, old, 0.1, 1.1, 1.0, 0.0)
+    s, _ = _eval(p, old, 0.1, 1.1, 1.0, 0.0)
     r = (3.0 - 1.0) / 3.0
     g = ((r - m.slack_threshold) / (1.0 - m.slack_threshold)) ** m.slack_exponent
     assert s[wk.S_STRENGTH] == pytest.approx(g, rel=1e-14)
