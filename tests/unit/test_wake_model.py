@@ -66,6 +66,9 @@ def test_parameter_table_rows_and_layout():
     assert row[wk.P_LAMBDA_W] == m.wake_decay
     assert row[wk.P_LIFT_RELATIVE] == 1.0
     assert row[wk.P_REVERSAL_TOL] == m.reversal_tolerance
+    assert row[wk.P_SLACK_EXPONENT] == m.slack_exponent
+    assert row[wk.P_SLACK_THRESHOLD] == m.slack_threshold
+    assert row[wk.P_ONSET] == m.wake_onset
     off = m.without_wake().parameters()
     assert off[wk.P_DCD] == off[wk.P_DCL] == off[wk.P_WAKE_RATIO] == 0.0
     assert off[wk.P_CD_STEADY] == m.cd_steady
@@ -86,6 +89,9 @@ def test_parameter_table_rows_and_layout():
         ({"wake_ratio": 3.0}, "wake_ratio"),
         ({"added_mass": -0.1}, "added_mass"),
         ({"reversal_tolerance": 0.5}, "reversal_tolerance"),
+        ({"slack_exponent": -1.0}, "slack_exponent"),
+        ({"slack_threshold": 1.0}, "slack_threshold"),
+        ({"wake_onset": 11.0}, "wake_onset"),
         ({"wake": 1}, "wake"),
         ({"lift_relative_velocity": "yes"}, "lift_relative_velocity"),
         ({"model_id": 0}, "model_id"),
