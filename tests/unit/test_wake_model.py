@@ -66,6 +66,9 @@ def test_parameter_table_rows_and_layout():
     assert row[wk.P_LAMBDA_W] == m.wake_decay
     assert row[wk.P_LIFT_RELATIVE] == 1.0
     assert row[wk.P_REVERSAL_TOL] == m.reversal_tolerance
+    assert row[wk.P_SLACK_EXPONENT] == m.slack_exponent
+    assert row[wk.P_SLACK_THRESHOLD] == m.slack_threshold
+    assert row[wk.P_ONSET] == m.wake_onset
     off = m.without_wake().parameters()
     assert off[wk.P_DCD] == off[wk.P_DCL] == off[wk.P_WAKE_RATIO] == 0.0
     assert off[wk.P_CD_STEADY] == m.cd_steady
@@ -86,6 +89,9 @@ def test_parameter_table_rows_and_layout():
         ({"wake_ratio": 3.0}, "wake_ratio"),
         ({"added_mass": -0.1}, "added_mass"),
         ({"reversal_tolerance": 0.5}, "reversal_tolerance"),
+        ({"slack_exponent": -1.0}, "slack_exponent"),
+        ({"slack_threshold": 1.0}, "slack_threshold"),
+        ({"wake_onset": 11.0}, "wake_onset"),
         ({"wake": 1}, "wake"),
         ({"lift_relative_velocity": "yes"}, "lift_relative_velocity"),
         ({"model_id": 0}, "model_id"),
@@ -148,13 +154,72 @@ def test_reversal_hand_values():
     assert s[wk.S_PEAK] == 0.6
     assert s[wk.S_WAKE0] == pytest.approx(m.wake_ratio * 1.5)
     assert s[wk.S_RELAX] == 1.0
-    x = dist / D
-    cd = m.cd_steady + m.drag_excess * math.exp(-x / m.drag_relaxation)
-    cl = m.cl_steady + m.lift_excess * math.exp(-x / m.lift_relaxation)
-    ue = -0.6 - m.wake_ratio * 1.5 * math.exp(-x / m.wake_decay)
+    assert s[wk.S_STRENGTH] == 1.0
+    # the old segment had no wake and no excess: nothing to blend out
+    assert s[wk.S_W_END] == s[wk.S_CD_END] == s[wk.S_CL_END] == 0.0
+    x = dist / D  # 0.225 D, inside the onset distance 0.3 D: φ = 3ξ² − 2ξ³, ξ = 0.75
+    assert m.wake_onset == 0.3
+    phi = 0.75**2 * (3.0 - 2.0 * 0.75)
+    cd = m.cd_steady + phi * m.drag_excess * math.exp(-x / m.drag_relaxation)
+    cl = m.cl_steady + phi * m.lift_excess * math.exp(-x / m.lift_relaxation)
+    ue = -0.6 - phi * m.wake_ratio * 1.5 * math.exp(-x / m.wake_decay)
     fy = 0.5 * RHO * D * cd * ue * abs(ue) - 0.25 * math.pi * RHO * D * D * m.cm
     assert out[FO_FY] == pytest.approx(fy, rel=1e-13)
     assert out[FO_FZ] == pytest.approx(0.5 * RHO * D * cl * ue * ue, rel=1e-13)
+
+
+def test_old_wake_is_blended_out_after_a_reversal():
+    """Right after a reversal U_e and C_D continue the old segment's values (no jump)."""
+    m = WakeModel()
+    p = m.parameters()
+    old = np.zeros(N_FORCE_STATE)
+    old[[wk.S_STARTED, wk.S_T, wk.S_Q, wk.S_SIGN, wk.S_DIST, wk.S_PEAK, wk.S_TROUGH]] = [
+        1.0, 10.0, 0.2, 1.0, 3.0, 1.5, 0.2,
+    ]  # fmt: skip
+    old[[wk.S_WAKE0, wk.S_RELAX, wk.S_STRENGTH]] = [0.4, 1.0, 1.0]
+    s, _ = _eval(p, old, 10.5, -0.6, -1.0, 0.0)
+    x_end = s[wk.S_PREV_STROKE] / D
+    assert s[wk.S_W_END] == pytest.approx(0.4 * math.exp(-x_end / m.wake_decay), rel=1e-14)
+    ex_d = m.drag_excess * math.exp(-x_end / m.drag_relaxation)
+    assert s[wk.S_CD_END] == pytest.approx(ex_d, rel=1e-14)
+    # at the instant of the reversal (s = 0) the new segment's forces equal the old one's
+    s0 = s.copy()
+    s0[wk.S_DIST] = 0.0
+    w, exd, exl = wk._history_terms(
+        p, -1.0, s0[wk.S_WAKE0], 1.0, s0[wk.S_W_END], s0[wk.S_CD_END], s0[wk.S_CL_END], 0.0
+    )
+    assert (w, exd, exl) == (s[wk.S_W_END], s[wk.S_CD_END], s[wk.S_CL_END])
+
+
+def test_slack_hand_values():
+    """|q| passes a minimum without a reversal (following current): a slack by hand."""
+    m = WakeModel()
+    p = m.parameters()
+    old = np.zeros(N_FORCE_STATE)
+    # segment peak 3.0, trough 1.0 at the previous sample (q_old = 1.0), now rising
+    old[[wk.S_STARTED, wk.S_T, wk.S_Q, wk.S_SIGN, wk.S_DIST, wk.S_PEAK, wk.S_TROUGH]] = [
+        1.0, 0.0, 1.0, 1.0, 40.0, 3.0, 1.0,
+    ]  # fmt: skip
+    s, _ = _eval(p, old, 0.1, 1.1, 1.0, 0.0)
+    r = (3.0 - 1.0) / 3.0
+    g = ((r - m.slack_threshold) / (1.0 - m.slack_threshold)) ** m.slack_exponent
+    assert s[wk.S_STRENGTH] == pytest.approx(g, rel=1e-14)
+    assert s[wk.S_SIGN] == 1.0 and s[wk.S_N_REVERSALS] == 0.0
+    assert s[wk.S_PREV_STROKE] == 40.0
+    assert s[wk.S_WAKE0] == pytest.approx(m.wake_ratio * (3.0 - 1.0) * g, rel=1e-14)
+    assert s[wk.S_RELAX] == 0.0  # a slack makes a wake, no coefficient excess
+    assert s[wk.S_DIST] == pytest.approx(0.5 * (1.0 + 1.1) * 0.1, rel=1e-14)
+    assert s[wk.S_PEAK] == s[wk.S_TROUGH] == 1.1
+    # a shallow minimum (depth below r_0) is no slack
+    old[wk.S_TROUGH] = old[wk.S_Q] = 2.5
+    s, _ = _eval(p, old, 0.1, 2.6, 1.0, 0.0)
+    assert s[wk.S_STRENGTH] == 0.0 and s[wk.S_DIST] == pytest.approx(40.0 + 0.255)
+    # a slack weaker than what is left of the present wake does not restart the history
+    old[wk.S_TROUGH] = old[wk.S_Q] = 1.0
+    old[wk.S_STRENGTH] = 1.0
+    old[wk.S_DIST] = 0.1
+    s, _ = _eval(p, old, 0.1, 1.1, 1.0, 0.0)
+    assert s[wk.S_STRENGTH] == 1.0 and s[wk.S_DIST] == pytest.approx(0.1 + 0.105)
 
 
 def test_sign_change_below_tolerance_is_not_a_reversal():

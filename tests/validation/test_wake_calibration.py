@@ -80,12 +80,16 @@ def test_published_constants_are_the_defaults():
         ("λ_L [D]", "lift_relaxation"),
         ("α_w", "wake_ratio"),
         ("λ_w [D]", "wake_decay"),
+        ("β", "slack_exponent"),
+        ("r_0", "slack_threshold"),
+        ("λ_o [D]", "wake_onset"),
     ]:
         row = next(ln for ln in text.splitlines() if f"| {symbol} |" in ln)
         assert float(row.split("|")[3]) == getattr(m, field)
     theory = (DOCS.parent / "theory" / "wake_model.md").read_text(encoding="utf-8")
     for field in ("drag_excess", "lift_excess", "drag_relaxation", "lift_relaxation",
-                  "wake_ratio", "wake_decay"):  # fmt: skip
+                  "wake_ratio", "wake_decay", "slack_exponent", "slack_threshold",
+                  "wake_onset"):  # fmt: skip
         row = next(ln for ln in theory.splitlines() if ln.startswith(f"| `{field}` |"))
         cells = re.split(r"(?<!\\)\|", row)  # escaped pipes stay inside a cell
         assert float(cells[5]) == getattr(m, field)
@@ -97,3 +101,12 @@ def test_wake_improves_on_morison_everywhere_it_should(result):
     assert result.rms_log < 0.25 * off.rms_log
     # at steady current (M* = 10) both are F109's steady row
     np.testing.assert_allclose(result.cz[-1], 0.9, rtol=1e-9)
+    # and no slack wake there (depth 2/11 < r_0): the wake model is Morison, bit for bit
+    np.testing.assert_array_equal(result.cy[-1], off.cy[-1])
+    np.testing.assert_array_equal(result.cz[-1], off.cz[-1])
+    # under a following current (M* = 1, K* = 5-40; no reversal) the slack wake brings
+    # every C*_Y cell closer to F109 than the steady coefficients do
+    i1 = int(np.flatnonzero(M_GRID == 1.0)[0])
+    miss = np.abs(np.log(result.cy[i1, 1:6] / CY_TABLE[i1, 1:6]))
+    miss_off = np.abs(np.log(off.cy[i1, 1:6] / CY_TABLE[i1, 1:6]))
+    assert np.all(miss < miss_off)

@@ -84,6 +84,18 @@ class WakeModel:
     reversal_tolerance : float
         A sign change of U + V counts as a reversal only when |U + V| exceeds this fraction
         of the half-cycle's running peak [-], in [0, 0.1]; default 1e-9 (round-off guard).
+    slack_exponent : float
+        β [-], exponent of the strength g = ((r − r_0)/(1 − r_0))^β of a *slack* (a local
+        minimum of |U + V| without a reversal, depth r = 1 − min/peak), in [0, 20]. Fitted.
+    slack_threshold : float
+        r_0 [-], slack depth below which a slack makes no wake, in [0, 0.9]. Default 0.2: a
+        regular flow with a following current M = V/U has slacks of depth 2/(1 + M), so the
+        wake is gone for M >= 9 (F109's M* = 10 row is steady flow); fixed, not fitted.
+    wake_onset : float
+        λ_o [-], distance (in D) over which a new wake and coefficient excess replace the old
+        ones after an event (C¹ smoothstep), in [0, 10]; 0 gives a step. Default 0.3: short
+        against the smallest tabulated stroke (K* = 2.5: 0.8 D), long enough that the solver
+        does not reject steps at every reversal; fixed, not fitted.
 
     Defaults of ΔC_D, ΔC_L, λ_D, λ_L, α_w, λ_w: least-squares fit of the regular-flow
     protocol of :mod:`onbottom.hydro.wake_calibration` to F109 Tables 3-9/3-10 over the whole
@@ -97,16 +109,19 @@ class WakeModel:
     # fitted by tools/calibrate_wake.py to DNV-RP-F109 (2017) Tables 3-9/3-10 (regular
     # protocol, 4 cycles of 400 steps, 242 cells): RMS ln(model/F109) 0.1011, worst cell
     # C*_Z(K* 2.5, M* 0.8) x1.531; docs/validation/wake_calibration.md
-    drag_excess: float = 0.5104
-    lift_excess: float = 1.523
-    drag_relaxation: float = 16.18
-    lift_relaxation: float = 4.995
-    wake_ratio: float = 0.4917
-    wake_decay: float = 5.007
+    drag_excess: float = 0.6279
+    lift_excess: float = 1.927
+    drag_relaxation: float = 9.279
+    lift_relaxation: float = 3.829
+    wake_ratio: float = 0.354
+    wake_decay: float = 9.470
     added_mass: float | None = None
     lift_relative_velocity: bool = False
     wake: bool = True
     reversal_tolerance: float = 1.0e-9
+    slack_exponent: float = 1.458
+    slack_threshold: float = 0.2
+    wake_onset: float = 0.3
     name: str = "wake"
     model_id: int = FORCE_WAKE
 
@@ -120,6 +135,9 @@ class WakeModel:
             in_range(f"WakeModel.{key}", getattr(self, key), 0.0, 1000.0, low_inclusive=False)
         in_range("WakeModel.wake_ratio", self.wake_ratio, 0.0, 2.0)
         in_range("WakeModel.reversal_tolerance", self.reversal_tolerance, 0.0, 0.1)
+        in_range("WakeModel.slack_exponent", self.slack_exponent, 0.0, 20.0)
+        in_range("WakeModel.slack_threshold", self.slack_threshold, 0.0, 0.9)
+        in_range("WakeModel.wake_onset", self.wake_onset, 0.0, 10.0)
         if self.added_mass is not None:
             in_range("WakeModel.added_mass", self.added_mass, 0.0, 10.0)
         elif self.cm < 1.0:
@@ -162,6 +180,9 @@ class WakeModel:
         p[wk.P_LAMBDA_W] = self.wake_decay
         p[wk.P_LIFT_RELATIVE] = 1.0 if self.lift_relative_velocity else 0.0
         p[wk.P_REVERSAL_TOL] = self.reversal_tolerance
+        p[wk.P_SLACK_EXPONENT] = self.slack_exponent
+        p[wk.P_SLACK_THRESHOLD] = self.slack_threshold
+        p[wk.P_ONSET] = self.wake_onset
         return p
 
     def parameter_table(self, keulegan_carpenter: ArrayLike, current_ratio: ArrayLike) -> NDArray:
@@ -204,5 +225,8 @@ class WakeModel:
             "added_mass_coefficient": self.added_mass_coefficient,
             "lift_relative_velocity": int(self.lift_relative_velocity),
             "reversal_tolerance": self.reversal_tolerance,
+            "slack_exponent": self.slack_exponent,
+            "slack_threshold": self.slack_threshold,
+            "wake_onset_diameters": self.wake_onset,
             "force_model_source": _SOURCE,
         }

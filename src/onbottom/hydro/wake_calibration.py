@@ -67,8 +67,10 @@ FITTED_CONSTANTS: tuple[str, ...] = (
     "lift_relaxation",
     "wake_ratio",
     "wake_decay",
+    "slack_exponent",
 )
-"""The :class:`WakeModel` fields fitted by default (C_D∞, C_L∞, C_M are fixed; see its doc)."""
+"""The :class:`WakeModel` fields fitted by default (C_D∞, C_L∞, C_M, r_0, λ_o are fixed; see its
+doc)."""
 
 _BOUNDS: dict[str, tuple[float, float]] = {
     "drag_excess": (-0.9, 10.0),
@@ -77,6 +79,9 @@ _BOUNDS: dict[str, tuple[float, float]] = {
     "lift_relaxation": (0.05, 200.0),
     "wake_ratio": (0.0, 2.0),
     "wake_decay": (0.05, 200.0),
+    "slack_exponent": (0.0, 20.0),
+    "slack_threshold": (0.0, 0.9),
+    "wake_onset": (0.0, 5.0),
     "cd_steady": (0.1, 3.0),
     "cl_steady": (0.1, 3.0),
     "cm": (1.0, 6.0),
