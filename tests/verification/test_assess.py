@@ -106,6 +106,22 @@ def test_bisection_against_dense_scan():
     # bisection returns the passing end of a bracket of width <= tol around it
     tol = d.thickness_tolerance_m
     assert first - step < b["value"] < first + tol
+    # the cost-aware search (worst seed first, known given design, a guess) finds the same
+    # crossing to the same tolerance, with fewer storms than the bisection
+    trials = dyn.DynamicTrials(
+        lambda t: [case.storm_document(0, "design", pipe=t)],
+        pipe, "concrete_thickness", "concrete", [0, 1], d.allowable_for,
+    )  # fmt: skip
+    k0 = int(np.flatnonzero(np.isclose(xs, 0.04))[0])
+    s = dyn.search_dynamic(
+        trials, 0.0, 0.2, tol, known=[(0.04, float(gs[k0]))], guesses=[first + 2 * step]
+    )
+    assert s["status"] == 0
+    lo2, hi2 = s["bracket"]
+    assert hi2 - lo2 <= tol and s["value"] == hi2
+    assert g(hi2, False)[0] <= 1.0 < g(lo2, False)[0]
+    assert first - step < s["value"] < first + tol
+    assert s["storms"] < b["storms"]
 
 
 def test_dynamic_against_absolute_reported(one_section, tmp_path):

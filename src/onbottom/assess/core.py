@@ -158,7 +158,7 @@ def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -
             else:
                 build = lambda w: replace(section, submerged_weight=w, mass=None)  # noqa: E731
                 lo, hi, tol, unit = d.weight_min, d.weight_max, 0.1, "N/m"
-            res = dz._minimum_passing(build, evaluate, lo, hi, 51, tol, variable, unit)
+            res = dz.minimum_passing(build, evaluate, lo, hi, 51, tol, variable, unit)
         return {"success": True, "value": res.value, "utilisation": res.utilisation,
                 "governing_check": res.governing_check, "message": res.message}  # fmt: skip
     except dz.NoFeasibleDesignError as exc:
@@ -298,19 +298,35 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
             def docs(trial: dict[str, Any]) -> list[dict[str, Any]]:
                 return [case.storm_document(i, n, pipe=trial) for n in names]
 
-            def evaluate(x: float) -> tuple[float, int]:
-                return dyn.dynamic_ratio(
-                    docs, pipe_doc, variable, case.design.layer, x, seeds, d.allowable_for
-                )
-
+            evaluate = dyn.DynamicTrials(
+                docs, pipe_doc, variable, case.design.layer, seeds, d.allowable_for
+            )
+            evaluate.prime({
+                (k, sd): y / dynamic["base"][n]["allowable"]
+                for k, n in enumerate(names)
+                for sd, y in zip(dynamic["base"][n]["seeds"],
+                                 dynamic["base"][n]["max_displacement"], strict=True)
+            })  # fmt: skip
             lo, hi, tol = (
                 (case.design.thickness_min, case.design.thickness_max, d.thickness_tolerance_m)
                 if variable == "concrete_thickness"
                 else (case.design.weight_min, case.design.weight_max, d.weight_tolerance_n_per_m)
             )
-            b = dyn.bisect_dynamic(evaluate, lo, hi, tol)
-            dynamic["bisection"] = b
             vert = levels.get("vertical", {}).get("value")
+            if vert is not None and vert > lo:
+                lo = min(vert, hi)  # the design is raised to the flotation minimum anyway
+            given = _given_value(case, variable)
+            known = []
+            if given is not None and all(len(b["seeds"]) == len(seeds) for b in
+                                         dynamic["base"].values()):  # fmt: skip
+                known.append((given, max(b["utilisation"] for b in dynamic["base"].values())))
+            guesses = [
+                levels[k]["value"]
+                for k in ("generalized", "absolute")
+                if (levels.get(k) or {}).get("success") and levels[k].get("value") is not None
+            ]
+            b = dyn.search_dynamic(evaluate, lo, hi, tol, known=known, guesses=guesses)
+            dynamic["bisection"] = b
             value = b["value"]
             governed = "dynamic lateral (every seed <= allowable)"
             if value is not None and vert is not None and vert > value:
@@ -358,6 +374,17 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
                         "current_reference_height": c.current.reference_height,
                         "current_direction_deg": c.current.direction_deg} for c in combos],
     })  # fmt: skip
+
+
+def _given_value(case: RouteCase, variable: str) -> float | None:
+    """The design variable of the case's ``[pipe]`` (the given design), if it has one."""
+    if variable == "concrete_thickness":
+        for lay in case.pipe.layers or ():
+            if lay.name == case.design.layer:
+                return float(lay.thickness)
+        return None
+    w = getattr(case.pipe, "submerged_weight", None)
+    return None if w is None else float(w)
 
 
 def _weight_saved(case: RouteCase, sc: Any, x_abs: float, x_dyn: float) -> dict[str, Any]:
