@@ -168,3 +168,46 @@ def test_resume_reuses_finished_sections(tmp_path):
     changed = assess(parse_route_case(doc), out=tmp_path, n_workers=0)
     assert changed.reused == ["section 0"]
     assert changed.sections[1]["water_depth"] == 45.0
+
+
+def test_pipeline_fe_of_the_governing_section(tmp_path):
+    """[levels] pipeline_fe: the pipeline FE runs the section with the heaviest design, in the
+    combination and seed with the largest displacement at the given design, at the design
+    value; its envelopes, strain check and report page follow from its own numbers."""
+    from onbottom.assess.pipeline import governing_storm
+
+    doc = route_document(sections=2, seeds=2)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"length": 60.0, "element_length": 5.0, "strain_limit": 1.0e-3}
+    case = parse_route_case(doc)
+    a = assess(case, out=tmp_path, n_workers=0)
+    p = a.pipeline
+    gov = governing_storm(case, a.sections)
+    sec = a.sections[gov["index"]]
+    assert sec["design_value"] == max(s["design_value"] for s in a.sections)
+    base = sec["dynamic"]["base"][p["combination"]]
+    assert base["utilisation"] == max(b["utilisation"] for b in sec["dynamic"]["base"].values())
+    assert p["seed"] == base["seeds"][int(np.argmax(base["max_displacement"]))]
+    # the line is the pipe at the design value: its D is the trial pipe's
+    trial = dyn._trial_pipe(
+        json.loads(case.pipe.model_dump_json(exclude_none=True)),
+        "concrete_thickness", "concrete", p["design_value"],
+    )  # fmt: skip
+    d = dyn._setup(case.storm_document(p["index"], p["combination"], pipe=trial)).pipe
+    assert p["diameter_m"] == pytest.approx(d.outer_diameter)
+    env = p["envelopes"]
+    assert len(env["x"]) == p["n_nodes"] == 13 and env["x"][-1] == pytest.approx(60.0)
+    assert max(env["max_abs_y"]) == pytest.approx(p["max_displacement_m"])
+    assert max(env["max_strain"]) == pytest.approx(p["max_strain"])
+    assert p["strain_check"] == (p["max_strain"] <= 1.0e-3)
+    assert env["max_abs_y"][0] == 0.0 == env["max_abs_y"][-1]  # fixed ends hold
+    # resumed: the same run is read back, not rerun
+    again = assess(case, out=tmp_path, n_workers=0)
+    assert again.pipeline["reused"] and again.pipeline["max_strain"] == p["max_strain"]
+    write_outputs(a, tmp_path / "out", pdf=False)
+    payload = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert payload["pipeline"]["max_displacement_m"] == p["max_displacement_m"]
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert "Pipeline FE of the governing section" in html
+    for key in ("V–H diagram", "RECONSTRUCTED MODEL", "mean max |y|", "run identity"):
+        assert key in html, key

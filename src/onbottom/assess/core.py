@@ -426,6 +426,9 @@ class Assessment:
         SHA-256 of the validated case.
     wall_time_s : float
         Wall time of the study [s]; ``reused`` lists the sections taken from a previous run.
+    pipeline : dict or None
+        The pipeline FE run of the governing section (``[levels] pipeline_fe``; keys of
+        :func:`onbottom.assess.pipeline.run_governing_pipeline`), None when not run.
     """
 
     case: RouteCase
@@ -434,6 +437,7 @@ class Assessment:
     wall_time_s: float
     reused: list[str] = field(default_factory=list)
     source: str = ""
+    pipeline: dict[str, Any] | None = None
 
     @property
     def summary(self) -> pd.DataFrame:
@@ -580,9 +584,41 @@ def assess(
         for r in done:
             results[r["index"]] = r
     sections = [results[i] for i in range(len(case.route.sections))]
+    pipe = _pipeline(case, sections, outp) if case.levels.pipeline_fe else None
     return Assessment(case=case, sections=sections, identity=case_identity(case),
                       wall_time_s=time.perf_counter() - t0, reused=reused,
-                      source=source)  # fmt: skip
+                      source=source, pipeline=pipe)  # fmt: skip
+
+
+def _pipeline(case: RouteCase, sections: list[dict[str, Any]], out: Path | None) -> dict | None:
+    """The pipeline FE run of the governing section, reused from ``sections/pipeline.json``
+    when its identity (the section results it depends on and ``[pipeline]``) matches."""
+    from onbottom.assess.pipeline import governing_storm, run_governing_pipeline
+
+    gov = governing_storm(case, sections)
+    if gov is None:
+        return None
+    ident = hashlib.sha256(
+        json.dumps(
+            {"governing": gov, "pipeline": json.loads(case.pipeline.model_dump_json()),
+             "section": next(s["identity"] for s in sections if s["index"] == gov["index"]),
+             "version": __version__},
+            sort_keys=True,
+        ).encode()
+    ).hexdigest()  # fmt: skip
+    f = None if out is None else out / SECTION_FOLDER / "pipeline.json"
+    if f is not None and f.is_file():
+        try:
+            old = json.loads(f.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            old = None
+        if old and old.get("identity") == ident:
+            return old | {"reused": True}
+    res = run_governing_pipeline(case, sections, out)
+    res = _clean(res | {"identity": ident})
+    if f is not None:
+        write_text_atomic(f, json.dumps(res, indent=1))
+    return res
 
 
 def _call(job: _SectionJob) -> dict[str, Any]:

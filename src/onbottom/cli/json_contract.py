@@ -191,6 +191,10 @@ CONTRACT: dict[str, Output] = {
             "comparison": "per section: absolute and dynamic designs, which is heavier, why",
             "validity": "assumptions and reconstructed models",
             "clauses": "check name -> F109 clause and equation",
+            "pipeline": "pipeline FE run of the governing section ([levels] pipeline_fe):"
+            " section, combination, seed, design_value, max_displacement_m, max_strain,"
+            " strain_limit, strain_check, envelopes {x, max_abs_y, max_strain, max_abs_moment};"
+            " null when not run",
             "files": "files written in --out",
             "pdf": "why report.pdf was not written, or null",
         },
