@@ -83,9 +83,10 @@ class _SectionJob:
 
     def __call__(self, _: Any = None) -> dict[str, Any]:
         case = RouteCase.model_validate_json(self.case_json)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         result = _run_section(case, self.index, self.curve_files)
         result["wall_time_s"] = time.perf_counter() - t0
+        result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
         result["identity"] = self.identity
         if self.out is not None:
             path = section_file(Path(self.out), self.index, case.route.sections[self.index].name)
