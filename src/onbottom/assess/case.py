@@ -24,7 +24,7 @@ file, the line and the nearest valid key):
   optional duration;
 * ``[dynamic]`` — seeds, the allowable displacement (``allowable = "0.5D" | "10D" | "user"``
   with ``allowable_displacement_m``), the storm (build-up, peak, time step) and the
-  bisection tolerance.
+  search tolerance.
 
 Each section is turned into the case files of the single-section commands
 (:meth:`RouteCase.stability_document` → ``onbottom stability``,
@@ -179,10 +179,10 @@ class DynamicTable(StrictModel):
     peak_hours: float = Field(3.0, gt=0.0, le=100.0, description="storm peak duration [h]")
     time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest solver step [s]")
     thickness_tolerance_m: float = Field(
-        1.0e-3, gt=0.0, le=0.05, description="bisection bracket on the thickness [m]"
+        1.0e-3, gt=0.0, le=0.05, description="search tolerance on the thickness [m]"
     )
     weight_tolerance_n_per_m: float = Field(
-        5.0, gt=0.0, le=1.0e3, description="bisection bracket on the submerged weight [N/m]"
+        5.0, gt=0.0, le=1.0e3, description="search tolerance on the submerged weight [N/m]"
     )
 
     @model_validator(mode="after")

@@ -1,4 +1,4 @@
-"""Dynamic level of a route section: storms over seeds, and the minimum weight by bisection.
+"""Dynamic level of a route section: storms over seeds, and the minimum weight.
 
 Each evaluation builds the ``onbottom storm`` case of the section in one load combination
 (:meth:`onbottom.assess.case.RouteCase.storm_document`) through its own loader
@@ -9,14 +9,16 @@ Each evaluation builds the ``onbottom storm`` case of the section in one load co
 Minimum weight (concrete thickness, or submerged weight of a simple pipe). The design passes
 when **every seed's** largest lateral displacement in **every** combination is at most the
 allowable (0.5D, 10D — D of the trial design — or a user value in metres). The governing ratio
-g(x) = max over combinations and seeds of max|y| / allowable is bisected on x in the design
+g(x) = max over combinations and seeds of max|y| / allowable is searched on x in the design
 range: the upper bound must pass (else no feasible design), the lower bound is returned when
-it passes, and the bracket is halved until it is narrower than the tolerance; the passing end
-is returned. The same seeds are used at every x (common random numbers), so g is a smooth
-function of x for the bisection. A trial is decided as failing at its first seed above the
-allowable (the remaining seeds are not run). More weight means less motion for a given flow,
-but a thicker coat also adds diameter and load, so g need not be monotone: the bisection finds
-a crossing, which :func:`scan_dynamic` (a dense scan) checks in the verification tests.
+it passes, and the bracket [failing, passing] is narrowed below the tolerance; the passing
+end is returned. :func:`bisect_dynamic` halves the bracket; :func:`search_dynamic` (used by
+``onbottom assess``) climbs from below, see Cost. The same seeds are used at every x (common
+random numbers). A trial is decided as failing at its first seed above the allowable (the
+remaining seeds are not run). More weight means less motion for a given flow, but a thicker
+coat also adds diameter and load, and near a runaway one seed can move more at a heavier
+weight, so g need not be monotone: each search finds a crossing, which :func:`scan_dynamic`
+(a dense scan) checks in the verification tests.
 
 Cost (issue 32 item 7). A failing trial stops at its first seed above the allowable, so it
 costs one storm when the seeds are tried worst first (:class:`DynamicTrials` orders the

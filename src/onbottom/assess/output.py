@@ -11,7 +11,8 @@ the given design, variable, vertical_value / absolute_value / generalized_value 
 dynamic_value — the minimum of the design variable per level, m or N/m, null where the level
 has no solution or was not run — governing_level, design_value, saved_submerged_weight_n_per_m),
 ``sections`` (everything per section: checks with details, levels, per-seed dynamic results
-and the bisection trials, notes, the section's ``onbottom stability`` case document),
+and the search trials (key ``bisection``), notes, the section's ``onbottom stability`` case
+document),
 ``comparison`` (per section: which of the absolute and dynamic designs is heavier, and why),
 ``validity`` (notes on reconstructed models), ``clauses`` (equation → clause reference),
 ``pipeline`` (the pipeline FE run of the governing section, ``[levels] pipeline_fe``: section,
@@ -606,8 +607,10 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
         if dyn.get("bisection"):
             tr = "; ".join(f"{_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
             out.append(
-                "<p class='note'>Bisection on the design variable (g = max over combinations"
-                f" and seeds of max |y| / allowable; pass at g ≤ 1): {e(tr)}.</p>"
+                "<p class='note'>Search on the design variable (g = max over combinations"
+                " and seeds of max |y| / allowable; pass at g ≤ 1; a failing trial stops at its"
+                f" first seed above the allowable): {e(tr)}. {e(dyn['bisection']['message'])}"
+                f" — {dyn['bisection']['storms']} storms.</p>"
             )
         if a.pipeline and a.pipeline.get("index") == s["index"]:
             out.append(_pipeline_html(a.pipeline, var))

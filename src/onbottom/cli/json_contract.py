@@ -187,7 +187,8 @@ CONTRACT: dict[str, Output] = {
             "route": "{name, sections, variable, allowable}",
             "summary": "one item per KP section",
             "sections": "everything per section: checks with details, levels, per-seed dynamic"
-            " results and bisection trials, notes, the section's stability case document",
+            " results and the search trials (key bisection), notes, the section's stability"
+            " case document",
             "comparison": "per section: absolute and dynamic designs, which is heavier, why",
             "validity": "assumptions and reconstructed models",
             "clauses": "check name -> F109 clause and equation",
