@@ -122,6 +122,11 @@ def test_bisection_against_dense_scan():
     assert g(hi2, False)[0] <= 1.0 < g(lo2, False)[0]
     assert first - step < s["value"] < first + tol
     assert s["storms"] < b["storms"]
+    # without a known passing design the guess bounds the climb (the upper bound not run)
+    s2 = dyn.search_dynamic(trials, 0.0, 0.2, tol, guesses=[first + 2 * step])
+    lo3, hi3 = s2["bracket"]
+    assert hi3 - lo3 <= tol and first - step < s2["value"] < first + tol
+    assert all(x < 0.2 for x, _ in s2["trials"])
 
 
 def test_dynamic_against_absolute_reported(one_section, tmp_path):

@@ -299,7 +299,8 @@ def search_dynamic(
 
     ``evaluate(x)`` → (g, storms) as :class:`DynamicTrials`; ``known``: (x, g) already
     evaluated with every seed (the given design); ``guesses``: values expected to pass (the
-    absolute and generalized designs), tried in increasing order before ``hi``. The bracket
+    absolute and generalized designs), tried in increasing order before ``hi`` when no known
+    value passes (a passing guess costs every storm and only bounds the climb). The bracket
     [a, b] (a fails, b passes) is then narrowed from below: trials at a + step, a + 2 step, ...
     until one passes, with step = (b − a)/⌈(b − a)/tol⌉ when that is at most ``max_steps``
     steps (one pass closes the bracket to ``tol``), else (b − a)/``levels_k`` and a finer
@@ -330,8 +331,8 @@ def search_dynamic(
     passing = sorted(x for x, v in pts.items() if v <= 1.0)
     failing = sorted(x for x, v in pts.items() if v > 1.0)
     b = passing[0] if passing else None
-    for x in sorted(guesses):
-        if b is not None and x >= b:
+    for x in sorted(guesses):  # only without a known passing design: the climb from below
+        if b is not None:  # needs a passing end to stop at, not a tight one
             break
         if lo < x < hi and not any(f >= x for f in failing):
             if g(x) <= 1.0:
