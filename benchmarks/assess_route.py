@@ -161,24 +161,41 @@ def main() -> None:
         f"load average (1/5/15 min) before {load0[0]:.2f}/{load0[1]:.2f}/{load0[2]:.2f}, after"
         f" {load1[0]:.2f}/{load1[1]:.2f}/{load1[2]:.2f}; {os.cpu_count()} cores"
     )
-    busy, storms_all = 0.0, 0
+    busy, cpu, storms_all = 0.0, 0.0, 0
     for s in a.sections:
         lv = s["levels"].get("dynamic") or {}
         base = sum(len(b["seeds"]) + 1 for b in s["dynamic"].get("base", {}).values())
         search = lv.get("storms", 0)
         trials = len((s["dynamic"].get("bisection") or {}).get("trials", []))
         busy += s["wall_time_s"]
+        cpu += s.get("cpu_time_s", float("nan"))
         storms_all += base + search
+        levels = ", ".join(
+            f"{k} " + ("—" if v.get("value") is None else f"{1e3 * v['value']:.1f}")
+            for k, v in s["levels"].items()
+        )
         print(
-            f"  {s['name']:<20} task {s['wall_time_s']:7.1f} s  storms {base + search:4d}"
-            f" (given design + histories {base}, search {search} in {trials} trials)"
-            f"  design {s['design_value']} ({s['governing_level']})"
+            f"  {s['name']:<20} task {s['wall_time_s']:7.1f} s wall,"
+            f" {s.get('cpu_time_s', float('nan')):6.1f} s CPU; storms {base + search:4d}"
+            f" (given design + histories {base}, search {search} in {trials} trials);"
+            f" minimum per level [mm or N/m x 1e3]: {levels}; design ({s['governing_level']})"
         )
     n = len(a.sections)
     print(
-        f"cost per section: {busy / n:.1f} s of worker time (sum {busy:.1f} s), {wall / n:.1f} s"
-        f" of wall time; {storms_all / n:.0f} storms; {busy / max(storms_all, 1):.2f} s per storm"
+        f"cost per section: {busy / n:.1f} s of worker wall time (sum {busy:.1f} s),"
+        f" {cpu / n:.1f} s of worker CPU (sum {cpu:.1f} s), {wall / n:.1f} s of study wall"
+        f" time; {storms_all / n:.0f} storms; {cpu / max(storms_all, 1):.3f} s CPU per storm"
     )
+    print(
+        f"on 2 uncontended cores the sections' CPU alone would take ~{cpu / 2:.0f} s of wall"
+        " time (sum of worker CPU / 2; the machine's load sets the rest)"
+    )
+    if a.pipeline:
+        p = a.pipeline
+        print(
+            f"pipeline FE of {p['section']}: {p['n_nodes']} nodes, {p['wall_time_s']:.1f} s wall"
+            f" (in the main process), max strain {100 * p['max_strain']:.3g} %"
+        )
 
 
 if __name__ == "__main__":
