@@ -17,10 +17,12 @@ and after: on a shared machine every figure depends on it.
 Run: ``PYTHONPATH=src nice python benchmarks/assess_route.py [--route default|big|N]
 [--seeds 10] [--workers 2] [--scheduler auto|tcp://...]``.
 
-Measured (2026-11-26, 2 cores shared with other agents' jobs; see the closing note of issue 32
-for the figures of this version). Earlier version (bisection from the full range, no
-worst-first order): default route, 10 seeds: 227 s; 20 sections × 2 combinations (Morison):
-1594 s.
+Measured (2026-11-26, 2 cores shared with other agents' jobs, load average 18-20, run with
+nice): default route, 10 seeds, 2 local workers, pipeline FE on: 276.5 s wall (target 300 s:
+met); worker CPU 14.6 / 17.4 / 9.5 s per section, 71-88 storms each (0.18 s CPU per storm);
+pipeline FE 63 s wall. Earlier version (bisection over the full range, no worst-first
+order): default route 227 s at a lower load with 138-164 storms per section; 20 sections × 2
+combinations (Morison): 1594 s.
 """
 
 from __future__ import annotations
