@@ -216,3 +216,20 @@ def test_pipeline_fe_of_the_governing_section(tmp_path):
     assert "Pipeline FE of the governing section" in html
     for key in ("V–H diagram", "RECONSTRUCTED MODEL", "mean max |y|", "run identity"):
         assert key in html, key
+
+
+def test_pipeline_fe_at_the_given_design_without_a_design_variable():
+    """solve_for = "none": the pipeline FE runs the section of the highest dynamic utilisation
+    at the given design (its D is the case's pipe)."""
+    doc = route_document(sections=2, seeds=1, peak_hours=0.05)
+    doc["levels"] = {"generalized": False, "absolute": False, "pipeline_fe": True}
+    doc["design"]["solve_for"] = "none"
+    doc["pipeline"] = {"length": 40.0, "element_length": 5.0}
+    case = parse_route_case(doc)
+    a = assess(case, n_workers=0)
+    p = a.pipeline
+    utils = {s["name"]: max(b["utilisation"] for b in s["dynamic"]["base"].values())
+             for s in a.sections}  # fmt: skip
+    assert p["design_value"] is None and p["section"] == max(utils, key=utils.get)
+    base = a.sections[p["index"]]["dynamic"]["base"][p["combination"]]
+    assert p["diameter_m"] == pytest.approx(base["diameter"])

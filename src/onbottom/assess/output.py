@@ -396,7 +396,8 @@ def _pipeline_html(p: dict[str, Any], var: str) -> str:
     verdict = {None: "not checked", True: "pass", False: "FAIL"}[p.get("strain_check")]
     rows = [
         ("Governing storm", f"{p['combination']} (seed {p['seed']}), condition {p['condition']}"),
-        ("Design value", _value(p["design_value"], var)),
+        ("Design value", "the given design" if p["design_value"] is None
+         else _value(p["design_value"], var)),
         ("Line", f"{p['length_m']:g} m, {p['n_nodes']} nodes, ends {p['end_conditions']}"),
         ("D, w_s", f"{d:.4g} m, {p['submerged_weight_n_per_m']:.4g} N/m"),
         ("Max lateral displacement", f"{p['max_displacement_m']:.3g} m"

@@ -37,11 +37,14 @@ __all__ = ["governing_storm", "run_governing_pipeline"]
 
 def governing_storm(case: Any, sections: list[dict[str, Any]]) -> dict[str, Any] | None:
     """The governing section, its design value, combination and seed (None: no candidate —
-    no section has a design value and a dynamic run at the given design)."""
+    no section has a design value and a dynamic run at the given design). Without a design
+    variable (``solve_for = "none"``) the section with the highest dynamic utilisation, at the
+    given design (design value None)."""
+    given = case.solve_for == "none"  # no design variable: the given design is the design
     cands = [
         s
         for s in sections
-        if s.get("design_value") is not None and (s.get("dynamic") or {}).get("base")
+        if (given or s.get("design_value") is not None) and (s.get("dynamic") or {}).get("base")
     ]
     if not cands:
         return None
@@ -49,13 +52,13 @@ def governing_storm(case: Any, sections: list[dict[str, Any]]) -> dict[str, Any]
     def dyn_util(s: dict[str, Any]) -> float:
         return max(b["utilisation"] for b in s["dynamic"]["base"].values())
 
-    sec = max(cands, key=lambda s: (s["design_value"], dyn_util(s)))
+    sec = max(cands, key=lambda s: (0.0 if given else s["design_value"], dyn_util(s)))
     name, base = max(sec["dynamic"]["base"].items(), key=lambda kv: kv[1]["utilisation"])
     seed = base["seeds"][max(range(len(base["seeds"])), key=lambda k: base["max_displacement"][k])]
     return {
         "section": sec["name"],
         "index": sec["index"],
-        "design_value": sec["design_value"],
+        "design_value": None if given else sec["design_value"],
         "variable": case.solve_for,
         "combination": name,
         "seed": int(seed),
