@@ -219,13 +219,21 @@ def scan_dynamic(
 
 
 # ---- the cost-aware search (issue 32 item 7) --------------------------------------------------
+STOP_MARGIN = 1.0001
+"""A trial storm of :class:`DynamicTrials` stops when |y| reaches this × the allowable: its
+ratio is then above 1 (a fail) without running the rest of a storm in which the moving pipe
+forces small steps."""
+
+
 class DynamicTrials:
     """g(x) of a trial design with the (combination, seed) pairs run worst first.
 
     ``storm_doc(pipe)`` gives the storm documents of every combination for a trial ``[pipe]``
     table (as in :func:`dynamic_ratio`); ``allowable(D)`` [m]. Calling the object with x returns
     (g, storms run); with ``early_stop`` a trial stops at the first pair above the allowable
-    (g is then that pair's ratio, a lower bound of the maximum). The ratio of every pair run is
+    (g is then that pair's ratio, a lower bound of the maximum), and each storm stops once |y|
+    passes :data:`STOP_MARGIN` × the allowable (the ratio of a failing pair is then about
+    1.0001, a lower bound; a passing pair's ratio is exact). The ratio of every pair run is
     kept, and the next trial runs the pairs in decreasing order of their last ratio, so a
     failing trial usually costs one storm. :meth:`prime` seeds the order with runs already made
     (the given design).
@@ -267,7 +275,14 @@ class DynamicTrials:
             setup = setups[k]
             allow = self.allowable(setup.pipe.outer_diameter)
             kwargs = setup.kwargs()
-            kwargs["settings"] = replace(setup.settings, record_interval=None)
+            settings = replace(setup.settings, record_interval=None)
+            if early_stop:  # a storm is decided once |y| passes the allowable: stop there
+                stop = STOP_MARGIN * allow / setup.pipe.outer_diameter
+                if settings.stop_displacement_over_d is None or (
+                    stop < settings.stop_displacement_over_d
+                ):
+                    settings = replace(settings, stop_displacement_over_d=stop)
+            kwargs["settings"] = settings
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 r = simulate_storm_section(
