@@ -20,7 +20,9 @@ Run: ``PYTHONPATH=src nice python benchmarks/assess_route.py [--route default|bi
 Measured (2026-11-26, 2 cores shared with other agents' jobs, load average 18-20, run with
 nice): default route, 10 seeds, 2 local workers, pipeline FE on: 276.5 s wall (target 300 s:
 met); worker CPU 14.6 / 17.4 / 9.5 s per section, 71-88 storms each (0.18 s CPU per storm);
-pipeline FE 63 s wall. Big route (20 sections × 6 cases, --scheduler auto): 3103 s wall at load
+pipeline FE 63 s wall; rerun at load 10-11 (storms stopped at the allowable): 222.2 s wall,
+40.7 s worker CPU, pipeline FE 43.5 s wall.
+Big route (20 sections × 6 cases, --scheduler auto): 3103 s wall at load
 average 22 falling to 8.5 (target 1800 s: not met; 233 storms per section, before the guess
 fix); ``--route 3`` with this version: 215 storms, 34.5 / 40.9 / 25.5 s worker CPU per
 section (0.156 s per storm) → ~680 s CPU for 20 sections, ~6 min on 2 free cores.
