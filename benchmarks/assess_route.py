@@ -1,26 +1,47 @@
-"""Wall time of ``onbottom assess`` on the embedded default route (issue 32 item 7).
+"""Wall time of ``onbottom assess`` (issue 32 item 7), each figure printed against its target.
 
-Goal (issue 32): the default route, all levels, 10 seeds, in <= 5 min on 2 cores. Prints the
-wall time of the whole study (numba compilation in the workers included: the kernels are
-cached on disk after the first run, so run it twice to see both), and per section its task
-time and the storms it ran (base runs + bisection). ``--route N`` repeats the example's
-sections to N sections (KP shifted) to see the scaling.
+Targets (issue 32, on 2 cores):
 
-Measured (2026-11-26, 2 cores shared with other jobs, loaded): default route, wake model, 10
-seeds, 2 workers: 227 s wall (sections 116 / 131 / 90 s, 138-164 storms each). 20 sections
-(the example's 3 repeated, 2 combinations each, Morison model, 10 seeds, 2 workers): 1594 s
-wall, 156 s per section task (60-172 storms), ~1.6 s per 3.5-h storm under that load.
+* ``--route default``: the embedded example route (3 sections, 2 combinations each), all
+  levels, 10 seeds: <= 5 min;
+* ``--route big``: 20 sections (the example's 3 repeated, KP shifted), each in 3 conditions
+  (installation, hydrotest, operation) × 2 load combinations = 6 storm cases, all levels:
+  <= 30 min; ``--scheduler auto`` runs it on a Dask scheduler address (a ``dask scheduler``
+  and a ``dask worker --nworkers N --nthreads 1`` started here as subprocesses) and prints the
+  cost per section.
 
-Run: ``PYTHONPATH=src python benchmarks/assess_route.py [--seeds 10] [--workers 2]
-[--route 3] [--scheduler tcp://...]``.
+The numba kernels are cached on disk after a first run (the workers load them; a cold cache
+adds tens of seconds of compilation per worker). The machine's load average is printed before
+and after: on a shared machine every figure depends on it.
+
+Run: ``PYTHONPATH=src nice python benchmarks/assess_route.py [--route default|big|N]
+[--seeds 10] [--workers 2] [--scheduler auto|tcp://...]``.
+
+Measured (2026-11-26, 2 cores shared with other agents' jobs, load average 18-20, run with
+nice): default route, 10 seeds, 2 local workers, pipeline FE on: 276.5 s wall (target 300 s:
+met); worker CPU 14.6 / 17.4 / 9.5 s per section, 71-88 storms each (0.18 s CPU per storm);
+pipeline FE 63 s wall; rerun at load 10-11 (storms stopped at the allowable): 222.2 s wall,
+40.7 s worker CPU, pipeline FE 43.5 s wall.
+Big route (20 sections × 6 cases, --scheduler auto): 3103 s wall at load
+average 22 falling to 8.5 (target 1800 s: not met; 233 storms per section, before the guess
+fix); ``--route 3`` with this version: 215 storms, 34.5 / 40.9 / 25.5 s worker CPU per
+section (0.156 s per storm) → ~680 s CPU for 20 sections, ~6 min on 2 free cores.
+Earlier version (bisection over the full range, no worst-first
+order): default route 227 s at a lower load with 138-164 storms per section; 20 sections × 2
+combinations (Morison): 1594 s.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
+import socket
+import subprocess
+import sys
 import tempfile
 import time
+from pathlib import Path
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
@@ -29,46 +50,160 @@ from onbottom._casefile import read_toml
 from onbottom.assess import assess, parse_route_case
 from onbottom.cli.assess import example_path
 
+TARGET_S = {"default": 300.0, "big": 1800.0}
 
-def route(n_sections: int, seeds: int):
+# installation and hydrotest: a seasonal (1-year) sea state and current, F109 §3.4.3 for a
+# temporary phase; operation: the 100-year wave with the 10-year current and the converse
+CONDITIONS = (
+    ("installation", (("1-yr wave + 1-yr current", 0.60, 0.85, 0.70),
+                      ("1-yr current + 1-yr wave (swell)", 0.45, 1.00, 0.80))),
+    ("hydrotest", (("1-yr wave + 1-yr current", 0.60, 0.85, 0.70),
+                   ("1-yr current + 1-yr wave (swell)", 0.45, 1.00, 0.80))),
+    ("operation", (("100-yr wave + 10-yr current", 1.0, 1.0, 1.0),
+                   ("10-yr wave + 100-yr current", 0.85, 0.94, 1.25))),
+)  # fmt: skip
+
+
+def _three_conditions(section: dict, metocean: dict) -> dict:
+    """The section with its own metocean and 3 conditions × 2 combinations."""
+    s = {k: v for k, v in section.items() if k not in ("metocean", "combinations")}
+    met = metocean[section["metocean"]] if "metocean" in section else section
+    s["waves"], s["current"] = dict(met["waves"]), dict(met["current"])
+    hs, tp, u = s["waves"]["hs"], s["waves"]["tp"], s["current"]["velocity"]
+    s["combinations"] = [
+        {"name": f"{cond}: {name}", "condition": cond, "hs": round(fh * hs, 3),
+         "tp": round(ft * tp, 3), "current_velocity": round(fu * u, 3)}
+        for cond, combos in CONDITIONS
+        for name, fh, ft, fu in combos
+    ]  # fmt: skip
+    return s
+
+
+def route(kind: str, seeds: int):
     doc, _ = read_toml(example_path())
     base = doc["route"]["sections"]
+    n = {"default": len(base), "big": 20}.get(kind) or int(kind)
     secs = []
-    for k in range(n_sections):
+    for k in range(n):
         s = dict(base[k % len(base)])
-        s["name"] = f"{s['name']} {k // len(base)}" if n_sections > len(base) else s["name"]
-        s["kp_start_km"], s["kp_end_km"] = 10.0 * k, 10.0 * (k + 1)
+        if kind != "default":
+            s = _three_conditions(s, doc.get("metocean", {}))
+            s["name"] = f"{s['name']} {k // len(base)}"
+            s["kp_start_km"], s["kp_end_km"] = 10.0 * k, 10.0 * (k + 1)
         secs.append(s)
     doc["route"]["sections"] = secs
+    if kind != "default":
+        doc.pop("metocean", None)
     doc["dynamic"]["seeds"] = seeds
     return parse_route_case(doc)
 
 
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@contextlib.contextmanager
+def local_scheduler(workers: int):
+    """A ``dask scheduler`` and ``dask worker`` started here; yields the scheduler address."""
+    port = _free_port()
+    addr = f"tcp://127.0.0.1:{port}"
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    env = dict(os.environ, PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
+    log = tempfile.TemporaryFile()
+    sched = subprocess.Popen(
+        [*dask, "--host", "127.0.0.1", "--port", str(port), "--dashboard-address", ":0"],
+        env=env, stdout=log, stderr=log,
+    )  # fmt: skip
+    work = subprocess.Popen(
+        [sys.executable, "-m", "distributed.cli.dask_worker", addr, "--nworkers",
+         str(workers), "--nthreads", "1", "--memory-limit", "0", "--no-dashboard"],
+        env=env, stdout=log, stderr=log,
+    )  # fmt: skip
+    try:
+        from distributed import Client
+
+        with Client(addr, timeout=120) as c:
+            c.wait_for_workers(workers, timeout=300)
+        yield addr
+    finally:
+        for p in (work, sched):  # only the processes started here, by their handles
+            p.terminate()
+            try:
+                p.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--route", default="default", help="default, big, or a number of sections")
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--route", type=int, default=3, help="number of sections")
-    ap.add_argument("--scheduler", default=None)
+    ap.add_argument("--scheduler", default=None, help="a Dask address, or auto (start one)")
     args = ap.parse_args()
     case = route(args.route, args.seeds)
-    with tempfile.TemporaryDirectory() as out:
+    ncomb = sum(len(case.combination_names(i)) for i in range(len(case.route.sections)))
+    load0 = os.getloadavg()
+    with contextlib.ExitStack() as stack:
+        address = args.scheduler
+        if address == "auto":
+            address = stack.enter_context(local_scheduler(args.workers))
+        out = stack.enter_context(tempfile.TemporaryDirectory())
         t0 = time.perf_counter()
-        a = assess(case, out=out, n_workers=args.workers, scheduler=args.scheduler)
+        a = assess(case, out=out, n_workers=args.workers, scheduler=address)
         wall = time.perf_counter() - t0
+    load1 = os.getloadavg()
+    where = f"scheduler {address}" if address else f"{args.workers} local workers"
+    target = TARGET_S.get(args.route)
+    verdict = "" if target is None else (
+        f" — target <= {target:.0f} s: {'MET' if wall <= target else 'NOT MET'}"
+    )  # fmt: skip
     print(
-        f"default route: {len(a.sections)} sections, {args.seeds} seeds, all levels,"
-        f" {args.workers} workers{' at ' + args.scheduler if args.scheduler else ''}:"
-        f" wall {wall:.1f} s"
+        f"route {args.route!r}: {len(a.sections)} sections, {ncomb} storm cases, {args.seeds}"
+        f" seeds, all levels, {where}: wall {wall:.1f} s{verdict}"
     )
-    busy = 0.0
+    print(
+        f"load average (1/5/15 min) before {load0[0]:.2f}/{load0[1]:.2f}/{load0[2]:.2f}, after"
+        f" {load1[0]:.2f}/{load1[1]:.2f}/{load1[2]:.2f}; {os.cpu_count()} cores"
+    )
+    busy, cpu, storms_all = 0.0, 0.0, 0
     for s in a.sections:
-        storms = (s["levels"].get("dynamic") or {}).get("storms", 0) + sum(
-            len(b["seeds"]) for b in s["dynamic"].get("base", {}).values()
-        )
+        lv = s["levels"].get("dynamic") or {}
+        base = sum(len(b["seeds"]) + 1 for b in s["dynamic"].get("base", {}).values())
+        search = lv.get("storms", 0)
+        trials = len((s["dynamic"].get("bisection") or {}).get("trials", []))
         busy += s["wall_time_s"]
-        print(f"  {s['name']:<24} task {s['wall_time_s']:7.1f} s  storms {storms:4d}")
-    print(f"sum of section tasks {busy:.1f} s; mean per section {busy / len(a.sections):.1f} s")
+        cpu += s.get("cpu_time_s", float("nan"))
+        storms_all += base + search
+        levels = ", ".join(
+            f"{k} " + ("—" if v.get("value") is None else f"{1e3 * v['value']:.1f}")
+            for k, v in s["levels"].items()
+        )
+        print(
+            f"  {s['name']:<20} task {s['wall_time_s']:7.1f} s wall,"
+            f" {s.get('cpu_time_s', float('nan')):6.1f} s CPU; storms {base + search:4d}"
+            f" (given design + histories {base}, search {search} in {trials} trials);"
+            f" minimum per level [mm or N/m x 1e3]: {levels}; design ({s['governing_level']})"
+        )
+    n = len(a.sections)
+    print(
+        f"cost per section: {busy / n:.1f} s of worker wall time (sum {busy:.1f} s),"
+        f" {cpu / n:.1f} s of worker CPU (sum {cpu:.1f} s), {wall / n:.1f} s of study wall"
+        f" time; {storms_all / n:.0f} storms; {cpu / max(storms_all, 1):.3f} s CPU per storm"
+    )
+    print(
+        f"on 2 uncontended cores the sections' CPU alone would take ~{cpu / 2:.0f} s of wall"
+        " time (sum of worker CPU / 2; the machine's load sets the rest)"
+    )
+    if a.pipeline:
+        p = a.pipeline
+        print(
+            f"pipeline FE of {p['section']}: {p['n_nodes']} nodes, {p['wall_time_s']:.1f} s wall"
+            f" (in the main process), max strain {100 * p['max_strain']:.3g} %"
+        )
 
 
 if __name__ == "__main__":

@@ -4,7 +4,8 @@ Loads the embedded example route (shore approach, mid-route, deep end; ``onbotto
 --example`` prints it), shortens its storms and seeds so that the example runs in about a
 minute in one process, and runs :func:`onbottom.assess.assess`: per section the flotation,
 absolute and dynamic levels and their minimum concrete thickness, the governing design and
-the weight the dynamic level saves. The full study with its report is
+the weight the dynamic level saves, and the pipeline FE run of the governing section with its
+strain check. The full study with its report is
 ``onbottom assess --out assess_results``.
 Run: ``python examples/ex11_route_assessment.py``.
 """
@@ -25,5 +26,11 @@ table = a.summary[
 ]  # fmt: skip
 print(table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
 for s in a.sections:
-    trials = s["dynamic"]["bisection"]["trials"]
-    print(f"{s['name']}: {len(trials)} bisection trials, {s['levels']['dynamic']['message']}")
+    b = s["dynamic"]["bisection"]
+    print(f"{s['name']}: dynamic search {len(b['trials'])} trials, {b['storms']} storms")
+p = a.pipeline  # the pipeline FE of the governing section ([levels] pipeline_fe)
+print(
+    f"pipeline FE of {p['section']} ({p['combination']}, seed {p['seed']}): max |y|"
+    f" {p['max_displacement_over_D']:.3g}D, max strain {100 * p['max_strain']:.3g} %"
+    f" (limit {100 * p['strain_limit']:.3g} %)"
+)

@@ -65,7 +65,10 @@ def _toml(doc: dict) -> str:
 def run(tmp_path_factory):
     d = tmp_path_factory.mktemp("assess")
     case = d / "route.toml"
-    case.write_text(_toml(route_document(sections=2)), encoding="utf-8")
+    doc = route_document(sections=2)
+    doc["levels"]["pipeline_fe"] = True  # the report's pipeline page, opened in Chromium too
+    doc["pipeline"] = {"length": 60.0, "element_length": 5.0}
+    case.write_text(_toml(doc), encoding="utf-8")
     before = case.read_bytes()
     out = d / "out"
     rc = main(["assess", str(case), "--out", str(out), "--workers", "0", "--quiet", "--no-pdf"])

@@ -57,3 +57,14 @@ def test_only_unit_brackets_are_silenced(target, dropped):
         None,
     )
     assert hooks._UnitBrackets().filter(rec) is not dropped
+
+
+def test_every_library_package_has_an_api_page():
+    """Each subpackage of the library is in the API reference (cli: the CLI reference; data:
+    package data; peers: optional comparisons with other programs, documented on their
+    validation page)."""
+    src = ROOT / "src" / "onbottom"
+    packages = {p.parent.name for p in src.glob("*/__init__.py")} - {"cli", "data", "peers"}
+    listed = {mod for mod, _ in hooks.API_PACKAGES}
+    assert {f"onbottom.{p}" for p in packages} <= listed
+    assert "onbottom.assess" in listed

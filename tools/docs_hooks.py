@@ -48,6 +48,7 @@ API_PACKAGES = (
     ("onbottom.study", ""),
     ("onbottom.metocean", ""),
     ("onbottom.reliability", ""),
+    ("onbottom.assess", "Route assessment (`onbottom assess`): docs/assess.md."),
     ("onbottom.plotting", ""),
     ("onbottom.report", ""),
     ("onbottom.results", ""),

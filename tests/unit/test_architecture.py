@@ -40,8 +40,8 @@ ALLOWED: dict[str, set[str]] = {
     "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},
     # peers: other programs (OpenSees) solving onbottom's problems, for standing comparisons
     "peers": BASE | {"inputs", "hydro", "soil", "dynamics"},
-    # assess: a route through every F109 level (onbottom assess); its report is its own
-    "assess": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study"},
+    # assess: a route through every F109 level (onbottom assess); its report draws with plotting/
+    "assess": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "plotting"},
     "plotting": BASE
     | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study", "metocean"}
     | {"reliability"},

@@ -64,7 +64,8 @@ def test_named_errors_before_any_work():
     _bad(lambda d: secs(d)[0].update(kp_end_km=1.0), "KP end")
     _bad(lambda d: secs(d)[0].update(kp_start_m=1.0), "not both")
     _bad(lambda d: secs(d)[0].update(metocean="nowhere", waves=None), "metocean")
-    _bad(lambda d: d["levels"].update(pipeline_fe=True), "levels.pipeline_fe")
+    _bad(lambda d: d["levels"].update(pipeline_fe=True, dynamic=False), "levels.pipeline_fe")
+    _bad(lambda d: d.update(pipeline={"length": 50.0, "element_length": 30.0}), "half the")
     _bad(lambda d: d["dynamic"].update(allowable="user"), "allowable_displacement_m")
     _bad(lambda d: secs(d)[0].update(colour="red"), "colour")
     # physical consistency of a section (inputs/consistency.py via the stability loader):

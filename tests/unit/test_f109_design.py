@@ -98,3 +98,21 @@ def test_floating_condition_fails_without_crashing():
     rows = run_checks(light, SAND, ENV, [combo])
     lat = next(r for r in rows if r.name == "absolute_lateral")
     assert lat.passes is False and lat.details["message"] == "the pipe floats"
+
+
+def test_minimum_passing_is_public_and_finds_the_crossing():
+    """checks.design.minimum_passing on a hand-made check: utilisation 2 − x passes from x = 1
+    (the root, returned on the passing side to xtol); a range that passes at once returns lo
+    with status 1; a range with no pass raises NoFeasibleDesignError with the best point."""
+    from onbottom.checks.design import CheckRow, NoFeasibleDesignError, minimum_passing
+
+    def evaluate(x):
+        return [CheckRow("hand", "c", "operation", 2.0 - x, 2.0 - x <= 1.0, {})]
+
+    r = minimum_passing(lambda x: x, evaluate, 0.0, 3.0, 7, 1e-6, "x", "m")
+    assert r.status == 0 and 1.0 <= r.value <= 1.0 + 2e-6 and r.utilisation <= 1.0
+    r = minimum_passing(lambda x: x, evaluate, 1.5, 3.0, 4, 1e-6, "x", "m")
+    assert r.status == 1 and r.value == 1.5
+    with pytest.raises(NoFeasibleDesignError) as err:
+        minimum_passing(lambda x: x, evaluate, 0.0, 0.5, 6, 1e-6, "x", "m")
+    assert err.value.best_value == 0.5

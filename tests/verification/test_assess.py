@@ -106,6 +106,27 @@ def test_bisection_against_dense_scan():
     # bisection returns the passing end of a bracket of width <= tol around it
     tol = d.thickness_tolerance_m
     assert first - step < b["value"] < first + tol
+    # the cost-aware search (worst seed first, known given design, a guess) finds the same
+    # crossing to the same tolerance, with fewer storms than the bisection
+    trials = dyn.DynamicTrials(
+        lambda t: [case.storm_document(0, "design", pipe=t)],
+        pipe, "concrete_thickness", "concrete", [0, 1], d.allowable_for,
+    )  # fmt: skip
+    k0 = int(np.flatnonzero(np.isclose(xs, 0.04))[0])
+    s = dyn.search_dynamic(
+        trials, 0.0, 0.2, tol, known=[(0.04, float(gs[k0]))], guesses=[first + 2 * step]
+    )
+    assert s["status"] == 0
+    lo2, hi2 = s["bracket"]
+    assert hi2 - lo2 <= tol and s["value"] == hi2
+    assert g(hi2, False)[0] <= 1.0 < g(lo2, False)[0]
+    assert first - step < s["value"] < first + tol
+    assert s["storms"] < b["storms"]
+    # without a known passing design the guess bounds the climb (the upper bound not run)
+    s2 = dyn.search_dynamic(trials, 0.0, 0.2, tol, guesses=[first + 2 * step])
+    lo3, hi3 = s2["bracket"]
+    assert hi3 - lo3 <= tol and first - step < s2["value"] < first + tol
+    assert all(x < 0.2 for x, _ in s2["trials"])
 
 
 def test_dynamic_against_absolute_reported(one_section, tmp_path):
@@ -152,3 +173,63 @@ def test_resume_reuses_finished_sections(tmp_path):
     changed = assess(parse_route_case(doc), out=tmp_path, n_workers=0)
     assert changed.reused == ["section 0"]
     assert changed.sections[1]["water_depth"] == 45.0
+
+
+def test_pipeline_fe_of_the_governing_section(tmp_path):
+    """[levels] pipeline_fe: the pipeline FE runs the section with the heaviest design, in the
+    combination and seed with the largest displacement at the given design, at the design
+    value; its envelopes, strain check and report page follow from its own numbers."""
+    from onbottom.assess.pipeline import governing_storm
+
+    doc = route_document(sections=2, seeds=2)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"length": 60.0, "element_length": 5.0, "strain_limit": 1.0e-3}
+    case = parse_route_case(doc)
+    a = assess(case, out=tmp_path, n_workers=0)
+    p = a.pipeline
+    gov = governing_storm(case, a.sections)
+    sec = a.sections[gov["index"]]
+    assert sec["design_value"] == max(s["design_value"] for s in a.sections)
+    base = sec["dynamic"]["base"][p["combination"]]
+    assert base["utilisation"] == max(b["utilisation"] for b in sec["dynamic"]["base"].values())
+    assert p["seed"] == base["seeds"][int(np.argmax(base["max_displacement"]))]
+    # the line is the pipe at the design value: its D is the trial pipe's
+    trial = dyn._trial_pipe(
+        json.loads(case.pipe.model_dump_json(exclude_none=True)),
+        "concrete_thickness", "concrete", p["design_value"],
+    )  # fmt: skip
+    d = dyn._setup(case.storm_document(p["index"], p["combination"], pipe=trial)).pipe
+    assert p["diameter_m"] == pytest.approx(d.outer_diameter)
+    env = p["envelopes"]
+    assert len(env["x"]) == p["n_nodes"] == 13 and env["x"][-1] == pytest.approx(60.0)
+    assert max(env["max_abs_y"]) == pytest.approx(p["max_displacement_m"])
+    assert max(env["max_strain"]) == pytest.approx(p["max_strain"])
+    assert p["strain_check"] == (p["max_strain"] <= 1.0e-3)
+    assert env["max_abs_y"][0] == 0.0 == env["max_abs_y"][-1]  # fixed ends hold
+    # resumed: the same run is read back, not rerun
+    again = assess(case, out=tmp_path, n_workers=0)
+    assert again.pipeline["reused"] and again.pipeline["max_strain"] == p["max_strain"]
+    write_outputs(a, tmp_path / "out", pdf=False)
+    payload = json.loads((tmp_path / "out" / "results.json").read_text())
+    assert payload["pipeline"]["max_displacement_m"] == p["max_displacement_m"]
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert "Pipeline FE of the governing section" in html
+    for key in ("V–H diagram", "RECONSTRUCTED MODEL", "mean max |y|", "run identity"):
+        assert key in html, key
+
+
+def test_pipeline_fe_at_the_given_design_without_a_design_variable():
+    """solve_for = "none": the pipeline FE runs the section of the highest dynamic utilisation
+    at the given design (its D is the case's pipe)."""
+    doc = route_document(sections=2, seeds=1, peak_hours=0.05)
+    doc["levels"] = {"generalized": False, "absolute": False, "pipeline_fe": True}
+    doc["design"]["solve_for"] = "none"
+    doc["pipeline"] = {"length": 40.0, "element_length": 5.0}
+    case = parse_route_case(doc)
+    a = assess(case, n_workers=0)
+    p = a.pipeline
+    utils = {s["name"]: max(b["utilisation"] for b in s["dynamic"]["base"].values())
+             for s in a.sections}  # fmt: skip
+    assert p["design_value"] is None and p["section"] == max(utils, key=utils.get)
+    base = a.sections[p["index"]]["dynamic"]["base"][p["combination"]]
+    assert p["diameter_m"] == pytest.approx(base["diameter"])

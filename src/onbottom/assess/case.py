@@ -19,10 +19,12 @@ file, the line and the nearest valid key):
   ``solve_for = "auto"`` (concrete thickness of ``layer`` for a build-up pipe, submerged
   weight for a simple pipe), with its range;
 * ``[levels]`` — ``absolute``, ``generalized``, ``dynamic`` (booleans) and ``pipeline_fe``
-  (false; the pipeline FE run of the governing section is not part of this version);
+  (false: the pipeline FE run of the governing section, :mod:`onbottom.assess.pipeline`);
+* ``[pipeline]`` — that run's line length, element length, end conditions, strain limit and
+  optional duration;
 * ``[dynamic]`` — seeds, the allowable displacement (``allowable = "0.5D" | "10D" | "user"``
   with ``allowable_displacement_m``), the storm (build-up, peak, time step) and the
-  bisection tolerance.
+  search tolerance.
 
 Each section is turned into the case files of the single-section commands
 (:meth:`RouteCase.stability_document` → ``onbottom stability``,
@@ -177,10 +179,10 @@ class DynamicTable(StrictModel):
     peak_hours: float = Field(3.0, gt=0.0, le=100.0, description="storm peak duration [h]")
     time_step: float = Field(0.1, gt=0.0, le=5.0, description="largest solver step [s]")
     thickness_tolerance_m: float = Field(
-        1.0e-3, gt=0.0, le=0.05, description="bisection bracket on the thickness [m]"
+        1.0e-3, gt=0.0, le=0.05, description="search tolerance on the thickness [m]"
     )
     weight_tolerance_n_per_m: float = Field(
-        5.0, gt=0.0, le=1.0e3, description="bisection bracket on the submerged weight [N/m]"
+        5.0, gt=0.0, le=1.0e3, description="search tolerance on the submerged weight [N/m]"
     )
 
     @model_validator(mode="after")
@@ -200,6 +202,39 @@ class DynamicTable(StrictModel):
         return ALLOWABLE_OVER_D[self.allowable] * diameter
 
 
+class RoutePipelineTable(StrictModel):
+    """``[pipeline]``: the pipeline FE run of the governing section
+    (``[levels] pipeline_fe = true``; :mod:`onbottom.assess.pipeline`)."""
+
+    length: float = Field(200.0, gt=0.0, le=5000.0, description="modelled line length L [m]")
+    element_length: float = Field(5.0, gt=0.0, le=100.0, description="element length [m]")
+    end_conditions: Literal["fixed", "pinned", "free"] = "fixed"
+    strain_limit: float = Field(
+        2.0e-3,
+        gt=0.0,
+        le=0.05,
+        description="strain limit [-] (a fraction, not %); default 0.2 %, a screening value"
+        " below the yield strain of X65 (0.22 %)",
+    )
+    duration: float | None = Field(
+        None, gt=0.0, description="simulate only [0, duration] of the storm [s] (None: all)"
+    )
+
+    @model_validator(mode="after")
+    def _mesh(self) -> RoutePipelineTable:
+        if self.element_length > 0.5 * self.length:
+            raise ValueError(
+                f"element_length = {self.element_length:g} m must be at most half the length"
+                f" ({0.5 * self.length:g} m): the line needs free nodes between its ends"
+            )
+        if self.length / self.element_length > 2000:
+            raise ValueError(
+                f"length / element_length = {self.length / self.element_length:.0f} elements"
+                " is too many for a route study (at most 2000)"
+            )
+        return self
+
+
 class RouteCase(StrictModel):
     """Top level of a route case file."""
 
@@ -210,6 +245,7 @@ class RouteCase(StrictModel):
     design: RouteDesignTable = RouteDesignTable()
     levels: LevelsTable = LevelsTable()
     dynamic: DynamicTable = DynamicTable()
+    pipeline: RoutePipelineTable = RoutePipelineTable()
     metocean: dict[str, MetoceanTable] = Field(default_factory=dict)
 
     # ---- per-section metocean ---------------------------------------------------------------
@@ -346,14 +382,13 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
                 f"route.sections[{i}].metocean = {s.metocean!r} is invalid: no [metocean."
                 f"{s.metocean}] table (tables: {', '.join(map(repr, case.metocean)) or 'none'})",
             )
-    if case.levels.pipeline_fe:
+    if case.levels.pipeline_fe and not case.levels.dynamic:
         _fail(
             file,
             text,
             "levels.pipeline_fe",
-            "levels.pipeline_fe = true is invalid: the pipeline FE run of the governing section"
-            " is not part of this version of onbottom assess (run `onbottom storm` on a"
-            " pipeline case); set it to false",
+            "levels.pipeline_fe = true is invalid without levels.dynamic = true: the pipeline"
+            " FE runs the governing section in the governing storm of the dynamic level",
         )
     if not (case.levels.absolute or case.levels.generalized or case.levels.dynamic):
         _fail(file, text, "levels", "levels: every level is switched off; nothing to run")

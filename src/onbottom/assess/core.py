@@ -83,9 +83,10 @@ class _SectionJob:
 
     def __call__(self, _: Any = None) -> dict[str, Any]:
         case = RouteCase.model_validate_json(self.case_json)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         result = _run_section(case, self.index, self.curve_files)
         result["wall_time_s"] = time.perf_counter() - t0
+        result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
         result["identity"] = self.identity
         if self.out is not None:
             path = section_file(Path(self.out), self.index, case.route.sections[self.index].name)
@@ -158,7 +159,7 @@ def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -
             else:
                 build = lambda w: replace(section, submerged_weight=w, mass=None)  # noqa: E731
                 lo, hi, tol, unit = d.weight_min, d.weight_max, 0.1, "N/m"
-            res = dz._minimum_passing(build, evaluate, lo, hi, 51, tol, variable, unit)
+            res = dz.minimum_passing(build, evaluate, lo, hi, 51, tol, variable, unit)
         return {"success": True, "value": res.value, "utilisation": res.utilisation,
                 "governing_check": res.governing_check, "message": res.message}  # fmt: skip
     except dz.NoFeasibleDesignError as exc:
@@ -298,19 +299,35 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
             def docs(trial: dict[str, Any]) -> list[dict[str, Any]]:
                 return [case.storm_document(i, n, pipe=trial) for n in names]
 
-            def evaluate(x: float) -> tuple[float, int]:
-                return dyn.dynamic_ratio(
-                    docs, pipe_doc, variable, case.design.layer, x, seeds, d.allowable_for
-                )
-
+            evaluate = dyn.DynamicTrials(
+                docs, pipe_doc, variable, case.design.layer, seeds, d.allowable_for
+            )
+            evaluate.prime({
+                (k, sd): y / dynamic["base"][n]["allowable"]
+                for k, n in enumerate(names)
+                for sd, y in zip(dynamic["base"][n]["seeds"],
+                                 dynamic["base"][n]["max_displacement"], strict=True)
+            })  # fmt: skip
             lo, hi, tol = (
                 (case.design.thickness_min, case.design.thickness_max, d.thickness_tolerance_m)
                 if variable == "concrete_thickness"
                 else (case.design.weight_min, case.design.weight_max, d.weight_tolerance_n_per_m)
             )
-            b = dyn.bisect_dynamic(evaluate, lo, hi, tol)
-            dynamic["bisection"] = b
             vert = levels.get("vertical", {}).get("value")
+            if vert is not None and vert > lo:
+                lo = min(vert, hi)  # the design is raised to the flotation minimum anyway
+            given = _given_value(case, variable)
+            known = []
+            if given is not None and all(len(b["seeds"]) == len(seeds) for b in
+                                         dynamic["base"].values()):  # fmt: skip
+                known.append((given, max(b["utilisation"] for b in dynamic["base"].values())))
+            guesses = [
+                levels[k]["value"]
+                for k in ("generalized", "absolute")
+                if (levels.get(k) or {}).get("success") and levels[k].get("value") is not None
+            ]
+            b = dyn.search_dynamic(evaluate, lo, hi, tol, known=known, guesses=guesses)
+            dynamic["bisection"] = b
             value = b["value"]
             governed = "dynamic lateral (every seed <= allowable)"
             if value is not None and vert is not None and vert > value:
@@ -360,6 +377,17 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     })  # fmt: skip
 
 
+def _given_value(case: RouteCase, variable: str) -> float | None:
+    """The design variable of the case's ``[pipe]`` (the given design), if it has one."""
+    if variable == "concrete_thickness":
+        for lay in case.pipe.layers or ():
+            if lay.name == case.design.layer:
+                return float(lay.thickness)
+        return None
+    w = getattr(case.pipe, "submerged_weight", None)
+    return None if w is None else float(w)
+
+
 def _weight_saved(case: RouteCase, sc: Any, x_abs: float, x_dyn: float) -> dict[str, Any]:
     """Submerged weight [N/m] (operation condition of the pipe) at both designs, and the
     difference absolute − dynamic (positive: the dynamic level saves weight)."""
@@ -399,6 +427,9 @@ class Assessment:
         SHA-256 of the validated case.
     wall_time_s : float
         Wall time of the study [s]; ``reused`` lists the sections taken from a previous run.
+    pipeline : dict or None
+        The pipeline FE run of the governing section (``[levels] pipeline_fe``; keys of
+        :func:`onbottom.assess.pipeline.run_governing_pipeline`), None when not run.
     """
 
     case: RouteCase
@@ -407,6 +438,7 @@ class Assessment:
     wall_time_s: float
     reused: list[str] = field(default_factory=list)
     source: str = ""
+    pipeline: dict[str, Any] | None = None
 
     @property
     def summary(self) -> pd.DataFrame:
@@ -553,9 +585,41 @@ def assess(
         for r in done:
             results[r["index"]] = r
     sections = [results[i] for i in range(len(case.route.sections))]
+    pipe = _pipeline(case, sections, outp) if case.levels.pipeline_fe else None
     return Assessment(case=case, sections=sections, identity=case_identity(case),
                       wall_time_s=time.perf_counter() - t0, reused=reused,
-                      source=source)  # fmt: skip
+                      source=source, pipeline=pipe)  # fmt: skip
+
+
+def _pipeline(case: RouteCase, sections: list[dict[str, Any]], out: Path | None) -> dict | None:
+    """The pipeline FE run of the governing section, reused from ``sections/pipeline.json``
+    when its identity (the section results it depends on and ``[pipeline]``) matches."""
+    from onbottom.assess.pipeline import governing_storm, run_governing_pipeline
+
+    gov = governing_storm(case, sections)
+    if gov is None:
+        return None
+    ident = hashlib.sha256(
+        json.dumps(
+            {"governing": gov, "pipeline": json.loads(case.pipeline.model_dump_json()),
+             "section": next(s["identity"] for s in sections if s["index"] == gov["index"]),
+             "version": __version__},
+            sort_keys=True,
+        ).encode()
+    ).hexdigest()  # fmt: skip
+    f = None if out is None else out / SECTION_FOLDER / "pipeline.json"
+    if f is not None and f.is_file():
+        try:
+            old = json.loads(f.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            old = None
+        if old and old.get("identity") == ident:
+            return old | {"reused": True}
+    res = run_governing_pipeline(case, sections, out)
+    res = _clean(res | {"identity": ident})
+    if f is not None:
+        write_text_atomic(f, json.dumps(res, indent=1))
+    return res
 
 
 def _call(job: _SectionJob) -> dict[str, Any]:

@@ -11,9 +11,16 @@ the given design, variable, vertical_value / absolute_value / generalized_value 
 dynamic_value — the minimum of the design variable per level, m or N/m, null where the level
 has no solution or was not run — governing_level, design_value, saved_submerged_weight_n_per_m),
 ``sections`` (everything per section: checks with details, levels, per-seed dynamic results
-and the bisection trials, notes, the section's ``onbottom stability`` case document),
+and the search trials (key ``bisection``), notes, the section's ``onbottom stability`` case
+document),
 ``comparison`` (per section: which of the absolute and dynamic designs is heavier, and why),
-``validity`` (notes on reconstructed models), ``clauses`` (equation → clause reference).
+``validity`` (notes on reconstructed models), ``clauses`` (equation → clause reference),
+``pipeline`` (the pipeline FE run of the governing section, ``[levels] pipeline_fe``: section,
+combination, seed, design value, max_displacement_m / _over_D, max_strain, strain_limit,
+strain_check, worst_node_x_m, status, envelopes {x, max_abs_y, max_strain, max_abs_moment}
+[m, m, -, N·m], wall_time_s; null when not run).
+
+Figures are embedded (inline SVG, PNG as data URIs): the report is one self-contained file.
 """
 
 from __future__ import annotations
@@ -43,6 +50,7 @@ RESULTS_KEYS = (
     "comparison",
     "validity",
     "clauses",
+    "pipeline",
 )
 
 CLAUSES: dict[str, str] = {
@@ -56,6 +64,11 @@ CLAUSES: dict[str, str] = {
     " allowable displacement §3.4.1); storm section solver docs/theory/storm_section.md",
     "design_sea_state": "DNV-RP-F109 (2017) §3.4.3 (JONSWAP, transfer to the seabed, U_s,"
     " T_u; directional spreading R_D)",
+    "soil_resistance": "DNV-RP-F109 (2017) §3.4.6 (Coulomb friction μ and passive resistance"
+    " F_R, Eqs 3.29–3.32 sand, 3.33–3.36 clay), as in Eq 3.38",
+    "pipeline_strain": "DNV-RP-F109 (2017) §3.4.1 / §3.5 (displacement beyond 0.5D: check the"
+    " strain); DNV-ST-F101 (2021) §5.4.12 displacement-controlled criterion (the limit here is a"
+    " user value, default 0.2 %)",
 }
 
 VALIDITY: list[str] = [
@@ -73,8 +86,29 @@ VALIDITY: list[str] = [
     " (checks/f109_tables.py); check against the standard.",
     "The generalized level uses only the tool's own committed curve sweeps and never"
     " extrapolates; where none covers the point it says 'not covered'.",
-    "The pipeline FE of the governing section is not run in this version.",
+    "Pipeline FE of the governing section (when run): a straight stretch with fixed (or"
+    " pinned/free) ends, the section's soil and force model, one seed (the worst of the"
+    " section at the given design); its strain limit is a user value (default 0.2 %, a"
+    " screening value, not the DNV-ST-F101 design strain).",
 ]
+
+RECONSTRUCTED = {
+    "sand": VALIDITY[0],
+    "wake": VALIDITY[1],
+    "morison": VALIDITY[2],
+}
+"""The validity note of each reconstructed model, by seabed or force-model name."""
+
+WHY_LIGHTER = (
+    "Expected: the absolute method (F109 §3.6) is conservative by design — it asks for no"
+    " movement at all under the single design oscillation (U*, T*) with peak-load"
+    " coefficients and ignores the resistance the pipe gains as it penetrates and the"
+    " displacement the criterion allows (0.5D or 10D). The dynamic level lets the pipe move up"
+    " to the allowable displacement in a full storm with soil resistance that builds up. It"
+    " rests on reconstructed models (the wake force model, the default, calibrated to F109's"
+    " peak-load coefficients only; the Verley & Sotberg sand laws): read the saving with their"
+    " validity notes."
+)
 
 
 def _git_commit() -> str:
@@ -138,12 +172,7 @@ def comparison(a: Assessment) -> list[dict[str, Any]]:
             )
         elif xd < xa:
             verdict = "absolute"
-            why = (
-                "the absolute method (F109 §3.6) is conservative by design: it asks for no"
-                " movement at all under the design single oscillation and ignores the"
-                " resistance gained by penetration; the dynamic level allows movement up to the"
-                " allowable displacement"
-            )
+            why = WHY_LIGHTER
         elif xd > xa:
             verdict = "dynamic"
             why = (
@@ -191,6 +220,7 @@ def results_payload(a: Assessment, case_text: str | None) -> dict[str, Any]:
         "comparison": comparison(a),
         "validity": VALIDITY,
         "clauses": CLAUSES,
+        "pipeline": a.pipeline,
     })  # fmt: skip
 
 
@@ -280,6 +310,151 @@ def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
     )
 
 
+# ---- figures (PNG data URIs: the report stays one file) ---------------------------------------
+def _png(fig: Any, alt: str) -> str:
+    import base64
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=80)
+    data = base64.b64encode(buf.getvalue()).decode("ascii")
+    return f"<img alt='{html.escape(alt)}' src='data:image/png;base64,{data}'>"
+
+
+def _vh_figure(s: dict[str, Any], water_density: float) -> str:
+    """V–H diagram of the section at the given design: every wave cycle's peak load in the
+    design sea states (:func:`onbottom.hydro.load_envelope.load_envelope`, drawn by
+    :func:`onbottom.plotting.load_envelope.plot_load_envelope`), F109's design load point
+    (w_s − F*_Z, F*_Y) of the absolute check and the soil's resistance envelope H = μV + F_R
+    (Eq 3.38 without γ_SC) of the three combinations with the highest absolute utilisation."""
+    from onbottom.hydro.forces import MorisonCoefficients
+    from onbottom.hydro.load_envelope import load_envelope
+    from onbottom.plotting.load_envelope import plot_load_envelope
+
+    seas = {ss["combination"]: ss for ss in s["sea_states"]}
+    rows = [
+        c for c in s["checks"]
+        if c["name"] == "absolute_lateral" and "f_y" in (c.get("details") or {})
+        and c["combination"] in seas and c.get("utilisation") is not None
+    ]  # fmt: skip
+    rows = sorted(rows, key=lambda c: -c["utilisation"])[:3]
+    if not rows:
+        return ""
+    envs, labels = [], []
+    try:
+        for c in rows:
+            det, ss = c["details"], seas[c["combination"]]
+            envs.append(
+                load_envelope(
+                    hs=ss["hs"], tp=ss["tp"], depth=s["water_depth"], diameter=det["diameter"],
+                    submerged_weight=det["submerged_weight"], current=max(det["v_star"], 0.0),
+                    gamma=ss["gamma"], wave_direction_deg=ss["wave_direction_deg"] or 90.0,
+                    spreading_s=ss["spreading_s"], coefficients=MorisonCoefficients(),
+                    r_y=det["r_y"], r_z=det["r_z"], density=water_density,
+                )
+            )  # fmt: skip
+            labels.append(str(c["combination"])[:28])
+    except Exception as exc:  # a figure must not sink the report; the reason is shown
+        return f"<p class='note'>V–H diagram not drawn: {html.escape(str(exc))}</p>"
+    fig = plot_load_envelope(envs, labels, title=f"{s['name']}: V–H at the given design")
+    ax = fig.axes[0]
+    vmax = max(ax.get_xlim()[1], 1e-3)
+    for k, c in enumerate(rows):
+        det = c["details"]
+        mu, fr = det["friction_coefficient"], det.get("passive_resistance") or 0.0
+        ax.plot([0.0, vmax], [1e-3 * fr, mu * vmax + 1e-3 * fr], color=f"C{k}", lw=1.5,
+                label=f"resistance μV + F_R ({str(c['combination'])[:18]})")  # fmt: skip
+        ax.plot(1e-3 * (det["submerged_weight"] - det["f_z"]), 1e-3 * det["f_y"], marker="X",
+                ms=10, color=f"C{k}", mec="k", ls="none",
+                label=f"F109 design load, util. {c['utilisation']:.2f}")  # fmt: skip
+    ax.set_ylim(0.0, max(ax.get_ylim()[1], max(1e-3 * r["details"]["f_y"] for r in rows) * 1.2))
+    fig.set_size_inches(9.5, 5.0)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="x-small")
+    return _png(fig, f"V–H diagram of {s['name']}")
+
+
+def _pipeline_html(p: dict[str, Any], var: str) -> str:
+    """The pipeline FE run of the governing section: envelopes along the line and a table."""
+    from matplotlib.figure import Figure
+
+    e = html.escape
+    env = p["envelopes"]
+    fig = Figure(figsize=(7.5, 4.2), layout="constrained")
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    d = p["diameter_m"]
+    ax1.plot(env["x"], [v / d for v in env["max_abs_y"]], "k-", lw=1.2)
+    ax1.axhline(0.5, color="#c00", ls="--", lw=1.0, label="0.5D")
+    ax1.set_ylabel("max |y| / D [-]")
+    ax1.legend(fontsize="small")
+    ax2.plot(env["x"], [100.0 * v for v in env["max_strain"]], "C3-", lw=1.2)
+    ax2.axhline(100.0 * p["strain_limit"], color="#c00", ls="--", lw=1.0, label="strain limit")
+    ax2.set_ylabel("max strain [%]")
+    ax2.set_xlabel("x along the line [m]")
+    ax2.legend(fontsize="small")
+    for ax in (ax1, ax2):
+        ax.grid(True, alpha=0.3)
+    verdict = {None: "not checked", True: "pass", False: "FAIL"}[p.get("strain_check")]
+    rows = [
+        ("Governing storm", f"{p['combination']} (seed {p['seed']}), condition {p['condition']}"),
+        ("Design value", "the given design" if p["design_value"] is None
+         else _value(p["design_value"], var)),
+        ("Line", f"{p['length_m']:g} m, {p['n_nodes']} nodes, ends {p['end_conditions']}"),
+        ("D, w_s", f"{d:.4g} m, {p['submerged_weight_n_per_m']:.4g} N/m"),
+        ("Max lateral displacement", f"{p['max_displacement_m']:.3g} m"
+         f" = {p['max_displacement_over_D']:.3g} D at x = {p['worst_node_x_m']:.0f} m"),
+        ("Max strain", f"{100 * p['max_strain']:.3g} % (limit {100 * p['strain_limit']:.3g} %:"
+         f" {verdict})"),
+        ("F109 criteria", ", ".join(f"{k}: {'pass' if v else 'FAIL'}"
+                                    for k, v in p["criteria"].items())),
+        ("Run", f"{e(p['message'])} (status {p['status']}), {p['wall_time_s']:.0f} s"),
+    ]  # fmt: skip
+    out = [
+        "<h3>Pipeline FE of the governing section</h3>",
+        _png(fig, "pipeline envelopes along the line"),
+        "<table>",
+        *(f"<tr><th>{e(k)}</th><td>{e(str(v))}</td></tr>" for k, v in rows),
+        "</table>",
+        f"<p class='note'>{e(CLAUSES['pipeline_strain'])}. Theory: docs/theory/pipeline_fe.md.</p>",
+    ]
+    return "\n".join(out)
+
+
+def _seed_stats(base: dict[str, Any]) -> str:
+    """Distribution over seeds per combination: mean, standard deviation, largest, and the
+    final displacement's mean."""
+    import statistics as st
+
+    out = ["<table><tr><th>Combination</th><th>Seeds</th><th>mean max |y| [m]</th>"
+           "<th>std [m]</th><th>largest [m]</th><th>largest / allowable</th>"
+           "<th>mean final y [m]</th></tr>"]  # fmt: skip
+    for n, b in base.items():
+        ys = b["max_displacement"]
+        sd = st.stdev(ys) if len(ys) > 1 else 0.0
+        out.append(
+            f"<tr><td>{html.escape(n)}</td><td>{len(ys)}</td><td>{st.mean(ys):.3g}</td>"
+            f"<td>{sd:.3g}</td><td>{max(ys):.3g}</td><td>{max(ys) / b['allowable']:.3g}</td>"
+            f"<td>{st.mean(b['final_displacement']):.3g}</td></tr>"
+        )
+    out.append("</table>")
+    return "".join(out)
+
+
+def _section_validity(s: dict[str, Any], a: Assessment) -> list[str]:
+    """The assumptions and validity notes that apply to this section (reconstructed models
+    flagged)."""
+    notes = []
+    model = s["seabed_model"]
+    if model in RECONSTRUCTED and "dynamic" in s["levels"]:
+        notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[model])
+    force = (a.case.hydro.model or "wake") if "dynamic" in s["levels"] else None
+    if force in RECONSTRUCTED:
+        notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[force])
+    notes.append(VALIDITY[3])
+    if "generalized" in s["levels"]:
+        notes.append(VALIDITY[4])
+    return notes
+
+
 _SEA_STATE_KEYS = (
     "combination", "condition", "hs", "tp", "gamma", "wave_direction_deg", "spreading_s",
     "current_velocity", "current_reference_height", "current_direction_deg",
@@ -348,7 +523,10 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
         " Weight saved: submerged weight (pipe condition of [pipe]) at the absolute design"
         " minus at the dynamic design.</p>"
     )
-    out.append("<h2 id='comparison'>Absolute against dynamic</h2><table><tr><th>Section</th>"
+    out.append("<h2 id='comparison'>Absolute against dynamic</h2>")
+    out.append(f"<p class='note'>{e(WHY_LIGHTER)} Where the dynamic level asks for more than"
+               " the absolute method, the row says so as a finding to review.</p>")  # fmt: skip
+    out.append("<table><tr><th>Section</th>"
                "<th>Absolute</th><th>Dynamic</th><th>Heavier</th><th>Why</th></tr>")  # fmt: skip
     for c in payload["comparison"]:
         out.append(
@@ -399,10 +577,20 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                 f"<td class='note'>{e(str(v.get('message', '')))}</td></tr>"
             )
         out.append("</table>")
+        out.append("<h3>V–H diagram (given design)</h3>")
+        out.append(_vh_figure(s, a.case.environment.water_density))
+        out.append(
+            "<p class='note'>Dots: the peak load of every wave cycle of a 3-h record of the"
+            " design sea state on a fixed pipe (Morison C_D 0.9, C_M 3.29, C_L 0.9, times r_y,"
+            " r_z; seed 0), V = w_s − F_Z, H = |F_Y|. Crosses: the absolute check's design load"
+            " (F*_Y, w_s − F*_Z). Lines: the soil's resistance envelope H = μV + F_R at the"
+            f" as-laid penetration, without γ_SC. {e(CLAUSES['soil_resistance'])}.</p>"
+        )
         dyn = s.get("dynamic") or {}
         if dyn.get("base"):
             out.append("<h3>Dynamic level: max displacement over seeds (given design)</h3>")
             out.append(_strip_svg(dyn["base"]))
+            out.append(_seed_stats(dyn["base"]))
             out.append("<table><tr><th>Combination</th><th>D [m]</th><th>w_s [N/m]</th>"
                        "<th>Allowable [m]</th><th>max |y| per seed [m]</th><th>Status</th>"
                        "</tr>")  # fmt: skip
@@ -420,13 +608,23 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
         if dyn.get("bisection"):
             tr = "; ".join(f"{_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
             out.append(
-                "<p class='note'>Bisection on the design variable (g = max over combinations"
-                f" and seeds of max |y| / allowable; pass at g ≤ 1): {e(tr)}.</p>"
+                "<p class='note'>Search on the design variable (g = max over combinations"
+                " and seeds of max |y| / allowable; pass at g ≤ 1; a failing trial stops at its"
+                f" first seed above the allowable): {e(tr)}. {e(dyn['bisection']['message'])}"
+                f" — {dyn['bisection']['storms']} storms.</p>"
             )
-        if s["notes"]:
-            out.append("<h3>Notes</h3><ul>")
-            out += [f"<li class='note'>{e(n)}</li>" for n in s["notes"]]
-            out.append("</ul>")
+        if a.pipeline and a.pipeline.get("index") == s["index"]:
+            out.append(_pipeline_html(a.pipeline, var))
+        out.append("<h3>Assumptions and validity</h3><ul>")
+        out += [f"<li class='note'>{e(n)}</li>" for n in _section_validity(s, a) + s["notes"]]
+        out.append("</ul>")
+        out.append(
+            f"<p class='note'>Provenance: section run identity {e(str(s.get('identity')))}"
+            f" (SHA-256 of its inputs, levels, options and the onbottom version);"
+            f" {_fmt(s.get('wall_time_s'))} s of worker time"
+            + (", reused from a previous run" if s["name"] in a.reused else "")
+            + "; see <a href='#provenance'>Provenance</a>.</p>"
+        )
         out.append("</div>")
     out.append("<h2 id='validity'>Assumptions and validity</h2><ul>")
     out += [f"<li>{e(v)}</li>" for v in VALIDITY]

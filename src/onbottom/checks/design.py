@@ -53,6 +53,7 @@ __all__ = [
     "design_concrete_thickness",
     "design_submerged_weight",
     "governing",
+    "minimum_passing",
     "run_checks",
 ]
 
@@ -331,7 +332,7 @@ class DesignResult:
         }
 
 
-def _minimum_passing(
+def minimum_passing(
     build: Callable[[float], PipeBuildUp | Pipe],
     evaluate: Callable[[PipeBuildUp | Pipe], list[CheckRow]],
     lo: float,
@@ -341,6 +342,37 @@ def _minimum_passing(
     variable: str,
     unit: str,
 ) -> DesignResult:
+    """Smallest design value x in [lo, hi] whose check rows all pass (utilisation <= 1).
+
+    The solver behind :func:`design_concrete_thickness` and :func:`design_submerged_weight`,
+    for any set of checks: ``build(x)`` makes the trial section, ``evaluate(section)`` returns
+    its :class:`CheckRow` list (the governing row decides). ``n_scan`` (>= 2) values are
+    scanned from ``lo`` to ``hi``; the first passing one and its failing neighbour bracket
+    the crossing, refined by Brent's method to ``xtol`` (in the unit of x) and returned on
+    the passing side. Status 1: ``lo`` already passes; 0: a crossing found. A governing
+    utilisation that is not monotone in x between scan points can hide a narrower passing
+    window: refine ``n_scan``.
+
+    Parameters
+    ----------
+    build : callable
+        x → the trial :class:`PipeBuildUp` or :class:`Pipe`.
+    evaluate : callable
+        Section → check rows (e.g. :func:`run_checks` or a subset of its rows).
+    lo, hi : float
+        Range of x, in ``unit`` (m for a thickness, N/m for a submerged weight).
+    n_scan : int
+        Number of scanned values [-], >= 2.
+    xtol : float
+        Root tolerance, in ``unit``, > 0.
+    variable, unit : str
+        Name and unit of x, for the result and the messages.
+
+    Raises
+    ------
+    NoFeasibleDesignError
+        No scanned value passes.
+    """
     if n_scan < 2:
         raise InputError(f"n_scan = {n_scan!r} is invalid: must be >= 2")
     positive("xtol", xtol)
@@ -429,7 +461,7 @@ def design_concrete_thickness(
     hi = in_range("thickness_max", thickness_max, 0.0, 1.0)
     if hi <= lo:
         raise InputError(f"thickness_max = {hi!r} is invalid: must be > thickness_min = {lo!r}")
-    return _minimum_passing(
+    return minimum_passing(
         lambda t: buildup.with_layer_thickness(layer, t),
         lambda s: run_checks(s, seabed, environment, combinations, options),
         lo,
@@ -464,7 +496,7 @@ def design_submerged_weight(
     hi = positive("weight_max", weight_max)
     if hi <= lo:
         raise InputError(f"weight_max = {hi!r} is invalid: must be > weight_min = {lo!r}")
-    return _minimum_passing(
+    return minimum_passing(
         lambda w: replace(pipe, submerged_weight=w, mass=None),
         lambda s: run_checks(s, seabed, environment, combinations, options),
         lo,

@@ -93,12 +93,12 @@ def command(
     Per KP section, condition and load combination: flotation (F109 Eq 3.1), the absolute
     lateral check (Eqs 3.38/3.39), the generalized level where the tool's own curves cover
     the point, and storms on the section over seeds; per section the minimum concrete (or
-    submerged weight) per level — the dynamic one by bisection with every seed within the
+    submerged weight) per level — the dynamic one by a search with every seed within the
     allowable displacement — and the governing design. A killed run resumes from the
     sections already done (same inputs). See examples/assess_route.toml.
 
     --json prints the results.json document (keys: schema, provenance, route, summary,
-    sections, comparison, validity, clauses) plus "files" and "pdf". A section with no
+    sections, comparison, validity, clauses, pipeline) plus "files" and "pdf". A section with no
     passing design at any level run (the range is too narrow) exits 3 after writing the
     outputs; failing checks at the given design are a result (exit 0); input errors exit 1.
     """

@@ -187,10 +187,15 @@ CONTRACT: dict[str, Output] = {
             "route": "{name, sections, variable, allowable}",
             "summary": "one item per KP section",
             "sections": "everything per section: checks with details, levels, per-seed dynamic"
-            " results and bisection trials, notes, the section's stability case document",
+            " results and the search trials (key bisection), notes, the section's stability"
+            " case document",
             "comparison": "per section: absolute and dynamic designs, which is heavier, why",
             "validity": "assumptions and reconstructed models",
             "clauses": "check name -> F109 clause and equation",
+            "pipeline": "pipeline FE run of the governing section ([levels] pipeline_fe):"
+            " section, combination, seed, design_value, max_displacement_m, max_strain,"
+            " strain_limit, strain_check, envelopes {x, max_abs_y, max_strain, max_abs_moment};"
+            " null when not run",
             "files": "files written in --out",
             "pdf": "why report.pdf was not written, or null",
         },
