@@ -369,9 +369,12 @@ def search_dynamic(
         a = lo
     above: list[float] = []  # failing designs found above a passing one (g not monotone)
     while True:
-        while b - a > tol and len(trials) < max_trials:
+        # ``tol * (1 + 1e-9)``: a bracket wider than ``tol`` by round-off only is closed (it
+        # would give n = 1, a step onto b, and no progress); n >= 2 puts every first trial
+        # strictly inside the bracket, so each pass narrows it.
+        while b - a > tol * (1.0 + 1e-9) and len(trials) < max_trials:
             width = b - a
-            n = math.ceil(width / tol - 1e-9)
+            n = max(2, math.ceil(width / tol - 1e-9))
             step = width / n if n <= max_steps else width / levels_k
             x = a + step
             while x < b - 1e-12 * max(1.0, abs(b)) and len(trials) < max_trials:
