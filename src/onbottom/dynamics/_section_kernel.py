@@ -27,11 +27,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
-from onbottom.soil._dispatch import lateral_step
+from onbottom.soil._dispatch import lateral_step_of as lateral_step
 from onbottom.soil.base import (
     OUT_DISSIPATED,
     OUT_FRICTION,
@@ -164,6 +164,7 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
 @njit(cache=True)
 def initial_record(model_id, params, state, dyn, pt, ph, pv, settings, rec, n):
     """Write the record of the initial point and set the initial acceleration (Newmark)."""
+    literally(model_id)  # compile only the soil model used (soil._dispatch.lateral_step_of)
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
     h0, v0, _ = loads_at(dyn[D_T], pt, ph, pv, 0)
@@ -196,6 +197,7 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
     ``state`` (committed soil state) and ``dyn`` are updated in place; records are appended to
     ``rec`` from row ``n0``. Returns (rows written in total, status).
     """
+    literally(model_id)  # compile only the soil model used (soil._dispatch.lateral_step_of)
     m = settings[ST_MASS]
     scheme = int(settings[ST_SCHEME])
     dt_max = settings[ST_DT_MAX]

@@ -56,6 +56,7 @@ with that ``model_id`` (docs/contributing.md, "Add a force model").
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import overload
 
 from onbottom._jit import njit
 from onbottom.hydro._force_contract import FO_SIZE
@@ -87,3 +88,32 @@ force_step_inline = njit(cache=True, inline="always")(force_step.py_func)
 """:func:`force_step` inlined into its caller at numba-IR level (same source), for callers that
 loop over many nodes (the pipeline FE; a called dispatch costs about 40 ns per node call,
 issue 33). The one-node storm kernel keeps the called form (less to compile)."""
+
+
+_KERNELS = {FORCE_MORISON: morison_kernel, FORCE_WAKE: wake_kernel, FORCE_FOURIER: fourier_kernel}
+
+
+def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """:func:`force_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
+
+    In a kernel whose ``model_id`` is a numba literal (``numba.literally`` at the caller's entry
+    point) this is a direct call of that model's kernel, so the caller compiles one force
+    model, not all of them. With a non-literal id it is :func:`force_step`; in plain Python too.
+    """
+    force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+
+@overload(force_step_of, prefer_literal=True, jit_options={"error_model": "numpy"})
+def _force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    kernel = _KERNELS.get(getattr(model_id, "literal_value", None))
+    if kernel is None:
+
+        def general(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+            force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+        return general
+
+    def one(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+        kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+    return one
