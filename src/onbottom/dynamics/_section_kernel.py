@@ -132,8 +132,9 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
     """
     scale = abs(h1) + abs(v1) + 1.0
     tol_r = rtol * scale
-    have_lo = False
-    have_hi = False
+    # np.bool_, not the literal False: one specialisation of safeguarded_update, not two
+    have_lo = np.bool_(False)
+    have_hi = np.bool_(False)
     lo = 0.0
     hi = 0.0
     du = du_hat

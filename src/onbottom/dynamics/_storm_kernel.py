@@ -239,8 +239,9 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
     yd_base = yd0 + dt * (1.0 - gam) * a0
     scale = ws + abs(m * a0) + 1.0
     tol_r = rtol * scale
-    have_lo = False
-    have_hi = False
+    # np.bool_, not the literal False: one specialisation of safeguarded_update, not two
+    have_lo = np.bool_(False)
+    have_hi = np.bool_(False)
     lo = 0.0
     hi = 0.0
     dy = dy_hat

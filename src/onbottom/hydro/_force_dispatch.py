@@ -49,8 +49,10 @@ What the solver does, not the kernel: the added mass on the pipe's own accelerat
 ``params`` row (per kinematics sample when the model's parameters change with the sea state,
 blended with the stage weights; see :func:`onbottom.hydro.force_model.parameter_rows`).
 
-Adding a model: a kernel module, a new id below and a branch in :func:`force_step`, a class
-with that ``model_id`` (docs/contributing.md, "Add a force model").
+Adding a model: a kernel module, a new id below and a branch in :func:`force_step` and an entry
+in ``_KERNELS`` (without it the model's runs compile every force kernel; same results), a class
+with that ``model_id`` (docs/contributing.md, "Add a force model"). The storm and pipeline
+kernels call :func:`force_step_of` with a literal id: they compile the model used only.
 """
 
 from __future__ import annotations
