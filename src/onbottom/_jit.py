@@ -14,6 +14,8 @@ imported when this module is, i.e. only with a kernel module.
 
 from __future__ import annotations
 
+import operator
+
 import numba
 
 __all__ = ["call_literal", "njit"]
@@ -40,7 +42,7 @@ def call_literal(kernel, n_literal, *args):
     if overloads is None:
         return kernel(*args)
     sig = tuple(
-        numba.types.literal(a) if i < n_literal else kernel.typeof_pyval(a)
+        numba.types.literal(operator.index(a)) if i < n_literal else kernel.typeof_pyval(a)
         for i, a in enumerate(args)
     )
     cres = overloads.get(sig)
