@@ -16,6 +16,7 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 import numpy as np
 
+from onbottom._jit import call_literal
 from onbottom.dynamics import _section_kernel as K
 from onbottom.dynamics.centrifuge import (
     TESTS,
@@ -53,8 +54,9 @@ def kernel_only(name: str = "Inclined 1") -> tuple[int, float]:
     dyn[K.D_DT] = dt
     rec = np.empty((4 * pt.size, K.N_REC))
     params = soil.packed_parameters()
-    K.initial_record(soil.model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
-    n, _ = K.integrate(soil.model_id, params, state, dyn, pt, ph, pv, st, 1e30, rec, 1)
+    mid = int(soil.model_id)
+    call_literal(K.initial_record, 1, mid, params, state, dyn, pt, ph, pv, st, rec, 0)
+    n, _ = call_literal(K.integrate, 1, mid, params, state, dyn, pt, ph, pv, st, 1e30, rec, 1)
     return n - 1, float(dyn[K.D_T])
 
 

@@ -16,7 +16,8 @@ one (A B A B ...), so both see the same load.
 
 ``--first-run`` adds the cost a user pays once on a fresh install: numba compiles every
 kernel a command calls when its cache is empty. Each command (``stability``, ``storm
-examples/storm_case.toml``, ``storm examples/pipeline_case.toml``) runs with
+examples/storm_case.toml``, ``storm examples/pipeline_case.toml``, ``assess
+benchmarks/assess_tiny.toml``: one KP section, one short storm per evaluation) runs with
 ``NUMBA_CACHE_DIR`` pointed at a new empty folder, then again with that folder filled; the
 difference is the compile cost (target ≤ 5 s per command).
 
@@ -25,6 +26,7 @@ For the start-up figures Python's own bytecode cache is kept in a temporary
 ``PYTHONDONTWRITEBYTECODE``), unless ``--no-bytecode`` is given.
 
     python benchmarks/bench_startup.py [--runs 10] [--before /tmp/before/src] [--first-run]
+        [--skip-startup] [--only assess]
 """
 
 from __future__ import annotations
@@ -56,6 +58,10 @@ FIRST_RUN: tuple[tuple[str, list[str]], ...] = (
     ("stability", ["stability", "examples/stability_case.toml", "--json"]),
     ("storm (section)", ["storm", "examples/storm_case.toml", "--quiet", "--json"]),
     ("storm (pipeline)", ["storm", "examples/pipeline_case.toml", "--quiet", "--json"]),
+    (
+        "assess (tiny)",
+        ["assess", "benchmarks/assess_tiny.toml", "--no-pdf", "--quiet", "--json"],
+    ),
 )
 FIRST_RUN_TARGET_S = 5.0
 
@@ -128,7 +134,7 @@ def startup(trees: dict[str, Path], runs: int, bytecode: bool) -> None:
                 )
 
 
-def first_run(label: str, src: Path) -> None:
+def first_run(label: str, src: Path, only: str | None = None) -> None:
     print(
         f"\nfirst run from an empty numba cache, {label}"
         f" (target ≤ {FIRST_RUN_TARGET_S:g} s of compiling)"
@@ -137,6 +143,8 @@ def first_run(label: str, src: Path) -> None:
         out = Path(tmp) / "out"
         out.mkdir()
         for name, cmd in FIRST_RUN:
+            if only is not None and only not in name:
+                continue
             cache = Path(tmp) / f"numba-{len(list(Path(tmp).iterdir()))}"
             cache.mkdir()
             # no bytecode prefix here: a fresh one would add the compiling of every .py file
@@ -145,6 +153,8 @@ def first_run(label: str, src: Path) -> None:
             args = ["-m", "onbottom", *cmd]
             if cmd[0] == "storm":
                 args += ["--output", str(out / f"{Path(cmd[1]).stem}.nc"), "--workers", "0"]
+            elif cmd[0] == "assess":
+                args += ["--out", str(out / "assess"), "--workers", "0"]
             load0 = os.getloadavg()[0]
             CPU.clear()
             cold = _run(args, env, ROOT, "cold")
@@ -169,6 +179,7 @@ def main() -> None:
     ap.add_argument("--first-run", action="store_true", help="also the empty-cache compile cost")
     ap.add_argument("--no-bytecode", action="store_true", help="no .pyc cache (as this machine)")
     ap.add_argument("--skip-startup", action="store_true", help="only --first-run")
+    ap.add_argument("--only", help="--first-run: the commands whose name contains this")
     args = ap.parse_args()
     bytecode = not args.no_bytecode
     print(
@@ -182,7 +193,7 @@ def main() -> None:
         startup(trees, args.runs, bytecode)
     if args.first_run:
         for label, src in trees.items():
-            first_run(label, src)
+            first_run(label, src, args.only)
 
 
 if __name__ == "__main__":

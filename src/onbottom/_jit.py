@@ -14,12 +14,39 @@ imported when this module is, i.e. only with a kernel module.
 
 from __future__ import annotations
 
+import operator
+
 import numba
 
-__all__ = ["njit"]
+__all__ = ["call_literal", "njit"]
 
 
 def njit(*args, **kwargs):
     """:func:`numba.njit` with ``error_model="numpy"`` by default (same call forms)."""
     kwargs.setdefault("error_model", "numpy")
     return numba.njit(*args, **kwargs)
+
+
+def call_literal(kernel, n_literal, *args):
+    """Call ``kernel(*args)`` with its first ``n_literal`` arguments (ints) as numba literals.
+
+    For kernels that call ``numba.literally`` on those arguments (model ids: the kernel then
+    compiles only the models used, issue 33). Called from Python, such a kernel first types
+    its arguments as plain ints, raises inside numba and is retyped with literals; numba does
+    not remember that, and pays it again on every call (~0.05–0.3 s for a storm kernel). Here
+    the literal signature is built directly: the specialisation is compiled (or loaded from
+    numba's on-disk cache) once per process and called through its entry point. ``kernel`` a
+    plain Python function (a test's ``py_func``) is just called.
+    """
+    overloads = getattr(kernel, "overloads", None)
+    if overloads is None:
+        return kernel(*args)
+    sig = tuple(
+        numba.types.literal(operator.index(a)) if i < n_literal else kernel.typeof_pyval(a)
+        for i, a in enumerate(args)
+    )
+    cres = overloads.get(sig)
+    if cres is None:
+        kernel.compile(sig)
+        cres = overloads[sig]
+    return cres.entry_point(*args)

@@ -71,7 +71,7 @@ def test_kernel_force_law_matches_twin(z, u, dudt, ydot):
     fs, fs_new, fout = np.zeros(N_FORCE_STATE), np.zeros(N_FORCE_STATE), np.zeros(FO_SIZE)
 
     def loads(yd):
-        K.forces(st, fp[0], fs, 3.0, u, dudt, yd, fs_new, fout)
+        K.forces(int(st[K.ST_FORCE_MODEL]), st, fp[0], fs, 3.0, u, dudt, yd, fs_new, fout)
         r_y, r_z = K.load_reductions(st, z)
         return r_y * fout[FO_FY], r_y * fout[FO_DFY_DYD], r_z * fout[FO_FZ], r_y, r_z
 

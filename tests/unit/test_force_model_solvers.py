@@ -111,7 +111,7 @@ def test_section_commits_the_force_state_on_accepted_steps_only(monkeypatch):
             dt_max=0.2, max_displacement_increment_over_d=0.005, record_interval=0.0
         ),
     )
-    fstate = captured["args"][5]
+    fstate = captured["args"][6]  # integrate(model_id, force_id, params, state, st, fp, fstate, ..)
     s = res.summary
     assert res.success and s["n_rejected"] > 0 and s["mean_newton_iterations"] > 1.0
     # one count per accepted step, although the model was evaluated far more often
@@ -135,7 +135,7 @@ def test_pipeline_commits_the_force_state_on_accepted_steps_only(monkeypatch):
             dt_max=0.2, max_displacement_increment_over_d=0.01, record_interval=None
         ),
     )  # fmt: skip
-    fstate = captured["args"][10]
+    fstate = captured["args"][12]  # integrate(soil_id, force_id, settings, ..., fstate, ...)
     s = r.summary
     assert r.success and s["n_rejected"] > 0
     np.testing.assert_array_equal(fstate[:, 0], s["n_steps"])

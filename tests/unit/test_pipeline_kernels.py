@@ -209,7 +209,8 @@ def test_assemble_tangent_equals_the_full_evaluation():
         ab = np.zeros((3 * n, 6))
         ktu, ktv = np.zeros(n), np.zeros(n)
         fst = np.zeros((n, N_FORCE_STATE))
-        args = (st, a["props"], a["nodes"], a["fixed"], a["spring"], a["model_ids"], a["sparams"],
+        args = (int(a["model_ids"][0]), m.force_model.model_id,
+                st, a["props"], a["nodes"], a["fixed"], a["spring"], a["model_ids"], a["sparams"],
                 a["sstate"], a["axst"], m.force_model.parameter_table(1.0, 0.0), fst, 0.5,
                 d1, v1, uk, ak, vc, ry, 7.0, full, p, fh, fs, ab, a["sstate"].copy(), fst.copy(),
                 np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(6), np.zeros((6, 6)),

@@ -27,11 +27,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
-from onbottom.soil._dispatch import lateral_step
+from onbottom.soil._dispatch import lateral_step_of as lateral_step
 from onbottom.soil.base import (
     OUT_DISSIPATED,
     OUT_FRICTION,
@@ -132,8 +132,9 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
     """
     scale = abs(h1) + abs(v1) + 1.0
     tol_r = rtol * scale
-    have_lo = False
-    have_hi = False
+    # np.bool_, not the literal False: one specialisation of safeguarded_update, not two
+    have_lo = np.bool_(False)
+    have_hi = np.bool_(False)
     lo = 0.0
     hi = 0.0
     du = du_hat
@@ -164,6 +165,7 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
 @njit(cache=True)
 def initial_record(model_id, params, state, dyn, pt, ph, pv, settings, rec, n):
     """Write the record of the initial point and set the initial acceleration (Newmark)."""
+    literally(model_id)  # compile only the soil model used (soil._dispatch.lateral_step_of)
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
     h0, v0, _ = loads_at(dyn[D_T], pt, ph, pv, 0)
@@ -196,6 +198,7 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
     ``state`` (committed soil state) and ``dyn`` are updated in place; records are appended to
     ``rec`` from row ``n0``. Returns (rows written in total, status).
     """
+    literally(model_id)  # compile only the soil model used (soil._dispatch.lateral_step_of)
     m = settings[ST_MASS]
     scheme = int(settings[ST_SCHEME])
     dt_max = settings[ST_DT_MAX]

@@ -48,14 +48,15 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import literally
 
 from onbottom._jit import njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import force_step
+from onbottom.hydro._force_dispatch import force_step_of as force_step
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
-from onbottom.soil._dispatch import lateral_step
+from onbottom.soil._dispatch import lateral_step_of as lateral_step
 from onbottom.soil.base import (
     OUT_FRICTION,
     OUT_PASSIVE,
@@ -194,12 +195,13 @@ def load_reductions(settings, z):
 
 
 @njit(cache=True)
-def forces(settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
-    """The force model ``settings[ST_FORCE_MODEL]`` with the parameter row ``prow`` from the
-    committed ``fstate``: :func:`onbottom.hydro._force_dispatch.force_step` writing
-    ``fstate_new`` and ``fout`` (F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ before reductions)."""
+def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
+    """The force model ``force_id`` (``settings[ST_FORCE_MODEL]``, passed as a literal) with the
+    parameter row ``prow`` from the committed ``fstate``:
+    :func:`onbottom.hydro._force_dispatch.force_step` writing ``fstate_new`` and ``fout``
+    (F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ before reductions)."""
     force_step(
-        int(settings[ST_FORCE_MODEL]),
+        force_id,
         prow,
         fstate,
         t,
@@ -215,8 +217,8 @@ def forces(settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
 
 
 @njit(cache=True)
-def solve_step(model_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0, dt, ry,
-               rz, trial, out, fs_new, fout):  # fmt: skip
+def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0,
+               dt, ry, rz, trial, out, fs_new, fout):  # fmt: skip
     """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
 
     ``prow``, ``fs``: the force parameters of the step and the committed force state;
@@ -237,15 +239,16 @@ def solve_step(model_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, y
     yd_base = yd0 + dt * (1.0 - gam) * a0
     scale = ws + abs(m * a0) + 1.0
     tol_r = rtol * scale
-    have_lo = False
-    have_hi = False
+    # np.bool_, not the literal False: one specialisation of safeguarded_update, not two
+    have_lo = np.bool_(False)
+    have_hi = np.bool_(False)
     lo = 0.0
     hi = 0.0
     dy = dy_hat
     eps = 4.0e-16 * (abs(y0) + abs(dy_hat) + 1e-12)
     for it in range(max_iter):
         yd1 = yd_base + cv * (dy - dy_hat)
-        forces(settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+        forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
         fy = ry * fout[FO_FY]
         dfdyd = ry * fout[FO_DFY_DYD]
         lateral_step(model_id, params, state, y0 + dy, ws - rz * fout[FO_FZ], trial, out)
@@ -262,7 +265,7 @@ def solve_step(model_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, y
             return dy, True, it + 1
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
-            forces(settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+            forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
             lateral_step(model_id, params, state, y0 + dy_next, ws - rz * fout[FO_FZ], trial, out)
             return dy_next, True, it + 1
         dy = dy_next
@@ -291,8 +294,10 @@ def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
 
 
 @njit(cache=True)
-def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec):
+def initial(model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec):
     """Initial acceleration, running summary and first record (pipe at rest at y = 0)."""
+    literally(model_id)  # compile only the soil and force models used (module docstring)
+    literally(force_id)
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
     fs_new = np.zeros_like(fstate)
@@ -300,7 +305,18 @@ def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dy
     dts = settings[ST_DTS]
     u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
     ry, rz = load_reductions(settings, state[S_Z])
-    forces(settings, parameter_row(fparams, j), fstate, dyn[D_T], u0, a0, dyn[D_YD], fs_new, fout)
+    forces(
+        force_id,
+        settings,
+        parameter_row(fparams, j),
+        fstate,
+        dyn[D_T],
+        u0,
+        a0,
+        dyn[D_YD],
+        fs_new,
+        fout,
+    )
     fy = ry * fout[FO_FY]
     fz = rz * fout[FO_FZ]
     v = settings[ST_WS] - fz
@@ -334,12 +350,15 @@ def initial(model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dy
 
 @njit(cache=True)
 def integrate(
-    model_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, t_stop, rec, n0
-):
+    model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, t_stop, rec,
+    n0,
+):  # fmt: skip
     """Advance from dyn[D_T] to t_stop, the storm end, an event or a full record buffer.
 
     Returns (rows written in total, status).
     """
+    literally(model_id)  # compile only the soil and force models used (module docstring)
+    literally(force_id)
     dt_max = settings[ST_DT_MAX]
     dt_min = settings[ST_DT_MIN]
     du_max = settings[ST_DU_MAX]
@@ -373,8 +392,8 @@ def integrate(
         prow = parameter_row(fparams, j)
         ry, rz = load_reductions(settings, state[S_Z])
         dy, conv, iters = solve_step(
-            model_id, params, state, settings, prow, fstate, t1, u1, a1dot, y0, yd0, a0, dt, ry,
-            rz, trial, out, fs_new, fout,
+            model_id, force_id, params, state, settings, prow, fstate, t1, u1, a1dot, y0, yd0, a0,
+            dt, ry, rz, trial, out, fs_new, fout,
         )  # fmt: skip
         dyn[D_N_ITER] += iters
         if not math.isfinite(out[OUT_R]):
@@ -394,7 +413,7 @@ def integrate(
         a1 = (dy - dy_hat) / (beta * dt * dt)
         yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
         # the force model at the accepted (t₁, ẏ₁): its loads and the force state to commit
-        forces(settings, prow, fstate, t1, u1, a1dot, yd1, fs_new, fout)
+        forces(force_id, settings, prow, fstate, t1, u1, a1dot, yd1, fs_new, fout)
         fy = ry * fout[FO_FY]
         fz = rz * fout[FO_FZ]
         v = settings[ST_WS] - fz

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from onbottom._jit import call_literal
 from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics import _section_kernel as K
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
@@ -277,15 +278,15 @@ def simulate_section(
     dyn[K.D_DT] = dt_max
     cap = int(min(max(4 * pt.size, 4096), 5_000_000))
     rec = np.empty((cap, K.N_REC))
-    K.initial_record(model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
+    call_literal(K.initial_record, 1, model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
 
     t_end = float(pt[-1])
     chunk = (t_end - pt[0]) / int(s.chunks)
     recorder = Recorder(rec, 1)
     with progress_bar(progress, int(s.chunks), programme.name, "chunk") as bar:
         status = drive(
-            lambda t_stop, rows, n0: K.integrate(
-                model_id, params, state, dyn, pt, ph, pv, st, t_stop, rows, n0
+            lambda t_stop, rows, n0: call_literal(
+                K.integrate, 1, model_id, params, state, dyn, pt, ph, pv, st, t_stop, rows, n0
             ),
             lambda k: pt[0] + k * chunk if k < int(s.chunks) else t_end,
             recorder=recorder,

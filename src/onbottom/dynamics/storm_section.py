@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from onbottom._jit import call_literal
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
@@ -360,6 +361,7 @@ def simulate_storm_section(
     params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
     state = np.array(soil.initial_state(), dtype=float)
     model_id = int(soil.model_id)
+    force_id = int(fm.model_id)
     ku = np.ascontiguousarray(kin.velocity, dtype=float)
     ka = np.ascontiguousarray(kin.acceleration, dtype=float)
 
@@ -372,8 +374,15 @@ def simulate_storm_section(
         cap = int(min(kin.duration / per * 1.2 + 1024, 2_000_000))
         rec = np.empty((cap, K.N_REC))
     recorder = Recorder(
-        rec, K.initial(model_id, params, state, st, fparams, fstate, ku, ka, dyn, rec)
+        rec,
+        call_literal(
+            K.initial, 2, model_id, force_id, params, state, st, fparams, fstate, ku, ka, dyn, rec
+        ),
     )
+
+    def advance(t_stop, rows, n0):
+        args = (params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rows, n0)
+        return call_literal(K.integrate, 2, model_id, force_id, *args)
 
     chunks = int(s.chunks) if progress else 1
     status = K.STATUS_CHUNK
@@ -381,9 +390,7 @@ def simulate_storm_section(
         status = K.STATUS_LIFTOFF  # lifted off at the start
     with progress_bar(progress, chunks, "storm", "chunk") as bar:
         status = drive(
-            lambda t_stop, rows, n0: K.integrate(
-                model_id, params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rows, n0
-            ),
+            advance,
             lambda k: kin.duration * k / chunks if k < chunks else kin.duration,
             recorder=recorder,
             status=status,

@@ -49,13 +49,16 @@ What the solver does, not the kernel: the added mass on the pipe's own accelerat
 ``params`` row (per kinematics sample when the model's parameters change with the sea state,
 blended with the stage weights; see :func:`onbottom.hydro.force_model.parameter_rows`).
 
-Adding a model: a kernel module, a new id below and a branch in :func:`force_step`, a class
-with that ``model_id`` (docs/contributing.md, "Add a force model").
+Adding a model: a kernel module, a new id below and a branch in :func:`force_step` and an entry
+in ``_KERNELS`` (without it the model's runs compile every force kernel; same results), a class
+with that ``model_id`` (docs/contributing.md, "Add a force model"). The storm and pipeline
+kernels call :func:`force_step_of` with a literal id: they compile the model used only.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import overload
 
 from onbottom._jit import njit
 from onbottom.hydro._force_contract import FO_SIZE
@@ -87,3 +90,32 @@ force_step_inline = njit(cache=True, inline="always")(force_step.py_func)
 """:func:`force_step` inlined into its caller at numba-IR level (same source), for callers that
 loop over many nodes (the pipeline FE; a called dispatch costs about 40 ns per node call,
 issue 33). The one-node storm kernel keeps the called form (less to compile)."""
+
+
+_KERNELS = {FORCE_MORISON: morison_kernel, FORCE_WAKE: wake_kernel, FORCE_FOURIER: fourier_kernel}
+
+
+def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """:func:`force_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
+
+    In a kernel whose ``model_id`` is a numba literal (``numba.literally`` at the caller's entry
+    point) this is a direct call of that model's kernel, so the caller compiles one force
+    model, not all of them. With a non-literal id it is :func:`force_step`; in plain Python too.
+    """
+    force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+
+@overload(force_step_of, prefer_literal=True, jit_options={"error_model": "numpy"})
+def _force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    kernel = _KERNELS.get(getattr(model_id, "literal_value", None))
+    if kernel is None:
+
+        def general(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+            force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+        return general
+
+    def one(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+        kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+    return one

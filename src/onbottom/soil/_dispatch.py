@@ -2,7 +2,14 @@
 
 numba cannot cache functions that receive other jitted functions as arguments, so solvers call
 :func:`lateral_step` with the integer ``model_id`` of the model class instead. Adding a model:
-give its class a new ``model_id`` and add one branch here.
+give its class a new ``model_id``, add one branch here and its kernel to ``_KERNELS`` (without
+that entry its runs compile every model's kernel; the results are the same).
+
+Compile time (issue 33 item 2): the storm, section and pipeline kernels take the model id as a
+numba literal (``numba.literally``; called from Python through
+:func:`onbottom._jit.call_literal`) and call :func:`lateral_step_of` /
+:func:`lateral_step_node`, which compile to a direct call of that one model's kernel, so a run
+compiles only the models it uses (examples/storm_case.toml: 11.0 → 5.4 CPU-s of compiling).
 
 Speed (issue 33): the kernels use ``error_model="numpy"`` (a division by zero gives inf/NaN,
 which the solvers' finiteness checks catch, instead of a ZeroDivisionError test at every
@@ -15,6 +22,7 @@ kernel itself. The one-node solvers keep the called form (less to compile).
 from __future__ import annotations
 
 import numpy as np
+from numba.extending import overload
 
 from onbottom._jit import njit
 from onbottom.soil._coulomb_kernel import coulomb_kernel
@@ -48,3 +56,70 @@ def lateral_step(model_id, params, state_old, u_new, v_load, state_new, out):
 
 lateral_step_inline = njit(cache=True, inline="always")(lateral_step.py_func)
 """:func:`lateral_step` inlined into its caller at numba-IR level (same source)."""
+
+
+_KERNELS = {
+    MODEL_COULOMB: coulomb_kernel,
+    MODEL_VERLEY_SOTBERG: verley_sotberg_kernel,
+    MODEL_VERLEY_LUND: verley_lund_kernel,
+    MODEL_VH_PARABOLIC: vh_parabolic_kernel,
+}
+
+
+def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
+    """:func:`lateral_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
+
+    In a kernel whose ``model_id`` is a numba literal (the caller's entry point calls
+    ``numba.literally(model_id)``) this is a direct call of that model's kernel, so the caller
+    compiles one soil model, not all of them (numba's dead-branch pruning does not resolve
+    ``model_id == MODEL_*`` on literal integers). With a non-literal id it is
+    :func:`lateral_step`; in plain Python too (this body).
+    """
+    lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+
+
+@overload(lateral_step_of, prefer_literal=True, jit_options={"error_model": "numpy"})
+def _lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
+    kernel = _KERNELS.get(getattr(model_id, "literal_value", None))
+    if kernel is None:
+
+        def general(model_id, params, state_old, u_new, v_load, state_new, out):
+            lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+
+        return general
+
+    def one(model_id, params, state_old, u_new, v_load, state_new, out):
+        kernel(params, state_old, u_new, v_load, state_new, out)
+
+    return one
+
+
+MODELS_MIXED = -1
+"""``soil_id`` of :func:`lateral_step_node` when the nodes use several soil models."""
+
+
+def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+    """Soil step of one node of a solver whose nodes all use the literal model ``soil_id``.
+
+    For the pipeline FE (issue 33): with ``soil_id`` a numba literal model id (all nodes on one
+    soil model, the usual case) the caller compiles that model's kernel only; with
+    :data:`MODELS_MIXED` (or a non-literal) it is :data:`lateral_step_inline` on the node's
+    ``model_id``. In plain Python: :func:`lateral_step`.
+    """
+    lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+
+
+@overload(lateral_step_node, prefer_literal=True, jit_options={"error_model": "numpy"})
+def _lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+    kernel = _KERNELS.get(getattr(soil_id, "literal_value", None))
+    if kernel is None:
+
+        def mixed(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+            lateral_step_inline(model_id, params, state_old, u_new, v_load, state_new, out)
+
+        return mixed
+
+    def one(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+        kernel(params, state_old, u_new, v_load, state_new, out)
+
+    return one

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import literally
 
 from onbottom._jit import njit
 from onbottom.dynamics.pipeline._banded import ldl_factor, ldl_solve
@@ -46,10 +47,10 @@ from onbottom.dynamics.pipeline._beam_kernel import (
 )
 from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import force_step_inline as force_step  # issue 33
+from onbottom.hydro._force_dispatch import force_step_of as force_step  # issue 33
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 from onbottom.soil._coulomb_kernel import friction_return_map
-from onbottom.soil._dispatch import lateral_step_inline as lateral_step  # issue 33
+from onbottom.soil._dispatch import lateral_step_node as lateral_step  # issue 33
 from onbottom.soil.base import OUT_R, OUT_SIZE, OUT_TANGENT, S_Z
 
 # ---- settings ------------------------------------------------------------------------------
@@ -208,7 +209,8 @@ def parameter_row(settings, fparams, t):
 
 
 @njit(cache=True)
-def node_loads(settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry, fscr, fout):
+def node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry, fscr,
+               fout):  # fmt: skip
     """Contact load V = W_s − r_z F_Z and lateral reduction r_y of every node at time t.
 
     F_Z from the force model at the committed state ``fstate`` (``fscr`` receives the unused
@@ -217,7 +219,6 @@ def node_loads(settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, r
     """
     d = settings[ST_D]
     rho = settings[ST_RHO]
-    model = int(settings[ST_FORCE_MODEL])
     relvel = settings[ST_RELVEL] != 0.0
     prow = parameter_row(settings, fparams, t)
     pen = settings[ST_PEN_RED] != 0.0
@@ -230,14 +231,16 @@ def node_loads(settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, r
             r_y *= penetration_reduction_y(zd)
         ydot = v0[NDOF_NODE * i + 1] if relvel else 0.0
         force_step(
-            model, prow, fstate[i], t, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, d, rho, fscr, fout
-        )
+            force_id, prow, fstate[i], t, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, d, rho, fscr,
+            fout,
+        )  # fmt: skip
         vcont[i] = nodes[i, ND_WS] - rz * fout[FO_FZ]
         ry[i] = r_y
 
 
 @njit(cache=True)
 def evaluate(
+    soil_id, force_id,
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
     t1, d1, v1, uk, ak, vcont, ry, c_v, want_k,
     p, fh, fs, ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out, fout, mom, nax, kt_u,
@@ -270,7 +273,6 @@ def evaluate(
             ab[j, 0] += spring[j]
     dd = settings[ST_D]
     rho = settings[ST_RHO]
-    model = int(settings[ST_FORCE_MODEL])
     prow = parameter_row(settings, fparams, t1)
     relvel = settings[ST_RELVEL] != 0.0
     delta_ax = settings[ST_DELTA_AX]
@@ -280,12 +282,12 @@ def evaluate(
         ell = nodes[i, ND_TRIB]
         ydot = v1[iv] if relvel else 0.0
         force_step(
-            model, prow, fstate[i], t1, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, dd, rho,
+            force_id, prow, fstate[i], t1, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, dd, rho,
             ftrial[i], fout,
         )  # fmt: skip
         f_y = ry[i] * fout[FO_FY]
         dfdv = ry[i] * fout[FO_DFY_DYD] if relvel else 0.0
-        lateral_step(model_ids[i], sparams[i], sstate[i], d1[iv], vcont[i], trial[i], out)
+        lateral_step(soil_id, model_ids[i], sparams[i], sstate[i], d1[iv], vcont[i], trial[i], out)
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return False
@@ -386,11 +388,14 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
 
 @njit(cache=True)
 def initial_acceleration(
+    soil_id, force_id,
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
     kin_u, kin_a, uload, vec, scal, nodal,
 ):  # fmt: skip
     """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_ext (hydrodynamic + user load),
     f_soil at the start."""
+    literally(soil_id)  # compile only the models used (soil._dispatch.lateral_step_node)
+    literally(force_id)
     n_nodes = nodes.shape[0]
     ndof = NDOF_NODE * n_nodes
     uk = np.empty(n_nodes)
@@ -402,8 +407,9 @@ def initial_acceleration(
     t = scal[SC_T]
     kinematics_at(t, kin_u, kin_a, settings[ST_T_KIN0], settings[ST_DT_KIN], uk, ak)
     node_loads(
-        settings, nodes, sstate, fparams, fstate, t, uk, ak, vec[V_V], vcont, ry, ftrial[0], fout
-    )
+        force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, vec[V_V], vcont, ry,
+        ftrial[0], fout,
+    )  # fmt: skip
     ab = np.zeros((ndof, HALF_BAND + 1))
     trial = np.empty_like(sstate)
     node_r = nodal[0]
@@ -413,6 +419,7 @@ def initial_acceleration(
     ke = np.empty((6, 6))
     out = np.empty(OUT_SIZE)
     ok = evaluate(
+        soil_id, force_id,
         settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
         t, vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, np.bool_(False),
         vec[V_P], vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
@@ -490,6 +497,7 @@ def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
 
 @njit(cache=True)
 def integrate(
+    soil_id, force_id,
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
     kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
 ):  # fmt: skip
@@ -500,6 +508,8 @@ def integrate(
     (steps land on them) into ``rec``/``rec_t`` from row 0; ``vec``, ``scal``, ``sstate``,
     ``axst``, ``fstate`` and ``env`` are updated in place. Returns (rows written, status).
     """
+    literally(soil_id)  # compile only the models used (soil._dispatch.lateral_step_node)
+    literally(force_id)
     n_nodes = nodes.shape[0]
     ndof = NDOF_NODE * n_nodes
     alpha = settings[ST_ALPHA]
@@ -557,8 +567,8 @@ def integrate(
     n_out = t_out.shape[0]
     # initial record when the first output time is the current time
     kinematics_at(scal[SC_T], kin_u, kin_a, t0k, dtk, uk, ak)
-    node_loads(settings, nodes, sstate, fparams, fstate, scal[SC_T], uk, ak, v0, vcont, ry, fscr,
-               fout)  # fmt: skip
+    node_loads(force_id, settings, nodes, sstate, fparams, fstate, scal[SC_T], uk, ak, v0, vcont,
+               ry, fscr, fout)  # fmt: skip
     while True:
         t = scal[SC_T]
         k_out = int(scal[SC_K_OUT])
@@ -587,7 +597,8 @@ def integrate(
             clipped = True
         t1 = t + dt
         kinematics_at(t1, kin_u, kin_a, t0k, dtk, uk, ak)
-        node_loads(settings, nodes, sstate, fparams, fstate, t1, uk, ak, v0, vcont, ry, fscr, fout)
+        node_loads(force_id, settings, nodes, sstate, fparams, fstate, t1, uk, ak, v0, vcont, ry,
+                   fscr, fout)  # fmt: skip
         c_a = 1.0 / (beta * dt * dt)
         c_v = gam / (beta * dt)
         for j in range(ndof):
@@ -607,6 +618,7 @@ def integrate(
             # the tangent is assembled on the first iteration, later only when needed
             want_k = it == 0
             ok = evaluate(
+                soil_id, force_id,
                 settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
                 fparams, fstate, t1, d1, v1, uk, ak, vcont, ry, c_v, want_k,
                 p1, fh1, fs1, ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out, fout,

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from onbottom._jit import call_literal
 from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.dynamics.driver import drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
@@ -53,6 +54,7 @@ from onbottom.results import (
     provenance,
 )
 from onbottom.results import run_identity as results_run_identity
+from onbottom.soil._dispatch import MODELS_MIXED
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -650,6 +652,10 @@ def simulate_pipeline(
     arr = model.arrays()
     r_perm_z = float(arr["r_perm_z"][0])
     st = _kernel_settings(model, kinematics, s, r_perm_z)
+    # the kernels compile the soil and force models used only (numba literals, issue 33)
+    used = np.unique(arr["model_ids"])
+    soil_id = int(used[0]) if used.size == 1 else MODELS_MIXED
+    force_id = int(model.force_model.model_id)
     fparams = parameter_rows(
         model.force_model,
         kinematics.weights,
@@ -747,7 +753,8 @@ def simulate_pipeline(
         env[K.E_MIN_N] = math.inf
         env[K.E_MAX_N] = -math.inf
         env[K.E_MIN_VCONT] = math.inf
-        ok = K.initial_acceleration(
+        ok = call_literal(
+            K.initial_acceleration, 2, soil_id, force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
             arr["sparams"], sstate, axst, fparams, fstate, ku, ka, arr["uload"], vec, scal, nodal,
         )  # fmt: skip
@@ -782,7 +789,8 @@ def simulate_pipeline(
 
     def advance(t_stop: float, _rows: np.ndarray, _n: int) -> tuple[int, int]:
         while True:
-            m, status = K.integrate(
+            m, status = call_literal(
+                K.integrate, 2, soil_id, force_id,
                 st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
                 arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
                 arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
