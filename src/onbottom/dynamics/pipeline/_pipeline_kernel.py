@@ -24,12 +24,12 @@ more iterations, and a correction that raised the residual is halved (``MAX_BACK
 α = 0 is the average-acceleration Newmark rule. A step that does not converge in
 ``max_iter`` iterations, or moves any node laterally by more than ``du_max``, is cut to half;
 a step that converged in few iterations lets the next grow by ``growth`` up to ``dt_max``.
-Accepted steps commit the soil
-states and the force-model states ``fstate[node, :]`` (from the evaluation at the accepted d₁,
-v₁; iterations and rejected steps start from the committed state). Penetration reductions use
-the committed penetration of each node (lagged one step); the lift, and with it the contact
-load V, is evaluated once per step at t₁ from the committed force state (with the lagged
-lateral velocity when the model's lift uses the relative velocity). The force model's
+Accepted steps commit the soil states and the force-model states ``fstate[node, :]`` (from
+the evaluation at the accepted d₁, v₁; iterations and rejected steps start from the committed
+state). Penetration reductions use the committed penetration of each node (lagged one
+step); the lift, and with it the contact load V, is evaluated once per step at t₁ from the
+committed force state (with the lagged lateral velocity when the model's lift uses the
+relative velocity). The force model's
 parameters ``fparams`` are one row, or one row per kinematics sample (the left sample of t).
 """
 
