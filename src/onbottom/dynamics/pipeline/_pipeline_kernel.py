@@ -17,16 +17,19 @@ Time integration: HHT-α (Hilber, Hughes & Taylor 1977), α ∈ [−1/3, 0], β 
     r(d₁) = M a₁ − (1 + α) P(t₁, d₁, v₁) + α P_n,
     a₁ = (d₁ − d_n − Δt v_n − Δt²(½ − β) a_n)/(βΔt²),  v₁ = v_n + Δt((1 − γ) a_n + γ a₁),
 
-solved by full Newton on the consistent tangent J = M/(βΔt²) + (1 + α)(K_beam + K_spring +
-K_soil − ∂f_hyd/∂ḋ · γ/(βΔt)) — banded, factored by :mod:`._banded` in O(n). α = 0 is the
-average-acceleration Newmark rule. A step that does not converge in ``max_iter`` iterations,
-or moves any node laterally by more than ``du_max``, is cut to half; a step that converged in
-few iterations lets the next grow by ``growth`` up to ``dt_max``. Accepted steps commit the soil
-states and the force-model states ``fstate[node, :]`` (from the evaluation at the accepted d₁,
-v₁; iterations and rejected steps start from the committed state). Penetration reductions use
-the committed penetration of each node (lagged one step); the lift, and with it the contact
-load V, is evaluated once per step at t₁ from the committed force state (with the lagged
-lateral velocity when the model's lift uses the relative velocity). The force model's
+solved by Newton on the consistent tangent J = M/(βΔt²) + (1 + α)(K_beam + K_spring +
+K_soil − ∂f_hyd/∂ḋ · γ/(βΔt)) — banded, factored by :mod:`._banded` in O(n); the factor is
+kept (modified Newton) while its measured contraction predicts at most ``REFACTOR_ITERS``
+more iterations, and a correction that raised the residual is halved (``MAX_BACKTRACK``).
+α = 0 is the average-acceleration Newmark rule. A step that does not converge in
+``max_iter`` iterations, or moves any node laterally by more than ``du_max``, is cut to half;
+a step that converged in few iterations lets the next grow by ``growth`` up to ``dt_max``.
+Accepted steps commit the soil states and the force-model states ``fstate[node, :]`` (from
+the evaluation at the accepted d₁, v₁; iterations and rejected steps start from the committed
+state). Penetration reductions use the committed penetration of each node (lagged one
+step); the lift, and with it the contact load V, is evaluated once per step at t₁ from the
+committed force state (with the lagged lateral velocity when the model's lift uses the
+relative velocity). The force model's
 parameters ``fparams`` are one row, or one row per kinematics sample (the left sample of t).
 """
 
@@ -90,6 +93,10 @@ ST_UL_START = 31  # sine: switch-on time [s]
 ST_UL_T0 = 32  # table: time of the first row [s]
 ST_UL_DT = 33  # table: row interval [s]
 N_SETTINGS = 34
+
+# ---- Newton controls (docs/theory/pipeline_fe.md, "Newton and step control") ---------------
+REFACTOR_ITERS = 2.0  # refactor when modified Newton would need more iterations than this
+MAX_BACKTRACK = 3  # halvings of a correction that raised the residual, per step
 
 UL_NONE = 0
 UL_SINE = 1
@@ -558,6 +565,7 @@ def integrate(
     kt_u = np.empty(n_nodes)
     kt_v = np.empty(n_nodes)
     scratch = np.empty(ndof)
+    dlast = np.zeros(ndof)  # the last Newton correction (backtracking)
     d0 = vec[V_D]
     v0 = vec[V_V]
     a0 = vec[V_A]
@@ -610,6 +618,7 @@ def integrate(
         iters = 0
         neg = 0
         r_prev = math.inf
+        n_back = 0
         for it in range(max_iter):
             iters = it + 1
             for j in range(ndof):
@@ -641,9 +650,22 @@ def integrate(
             if rmax <= 1e-3 * tol:
                 conv = True
                 break
-            # modified Newton: keep the factor while the residual contracts fast (4×);
-            # otherwise assemble the consistent tangent at d₁ and refactor
-            if want_k or rmax > 0.25 * r_prev:
+            if it > 0 and rmax > r_prev and n_back < MAX_BACKTRACK:
+                # the last correction raised the residual (Newton cycling across a kink of the
+                # soil or friction law): backtrack to half of it and evaluate again
+                n_back += 1
+                for j in range(ndof):
+                    dlast[j] *= 0.5
+                    d1[j] -= dlast[j]
+                continue
+            # modified Newton: keep the factor while the iterations its contraction predicts
+            # to reach tol, log(tol/r)/log(r/r_prev), are at most REFACTOR_ITERS (a refactor
+            # costs about one residual evaluation); otherwise assemble the consistent tangent
+            # at d₁ and refactor
+            refactor = want_k or rmax >= r_prev
+            if not refactor:
+                refactor = math.log(tol / rmax) / math.log(rmax / r_prev) > REFACTOR_ITERS
+            if refactor:
                 if not want_k:
                     assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch)
                 # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
@@ -677,6 +699,7 @@ def integrate(
                 break
             for j in range(ndof):
                 d1[j] += res[j]
+                dlast[j] = res[j]
         scal[SC_NITER] += iters
         dv_max = 0.0
         for i in range(n_nodes):
