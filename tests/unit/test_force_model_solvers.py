@@ -185,4 +185,8 @@ def test_example_cases_match_the_results_before_the_force_contract():
         p_strain=p.max_strain,
     )
     for key, value in _BEFORE.items():
-        assert got[key] == pytest.approx(value, rel=1e-8), key
+        # the pipeline's Newton rule changed after these numbers (issue 33: backtracking and a
+        # cost-based refactorisation rule): its converged state moves within the Newton
+        # tolerance (p_ymax by 1.8e-9 m = 1e-7 relative); the step count is unchanged
+        rel = 1e-6 if key in ("p_ymax", "p_work_hydro", "p_strain") else 1e-8
+        assert got[key] == pytest.approx(value, rel=rel), key
