@@ -26,6 +26,8 @@ Big route (20 sections × 6 cases, --scheduler auto): 3103 s wall at load
 average 22 falling to 8.5 (target 1800 s: not met; 233 storms per section, before the guess
 fix); ``--route 3`` with this version: 215 storms, 34.5 / 40.9 / 25.5 s worker CPU per
 section (0.156 s per storm) → ~680 s CPU for 20 sections, ~6 min on 2 free cores.
+Idle machine, final code (load 0.4 -> 1.8): big route on --scheduler auto in 290.9 s wall
+(target met), 27.1 s worker CPU and 218 storms per section, 0.124 s CPU per storm.
 Earlier version (bisection over the full range, no worst-first
 order): default route 227 s at a lower load with 138-164 storms per section; 20 sections × 2
 combinations (Morison): 1594 s.
