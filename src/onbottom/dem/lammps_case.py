@@ -10,56 +10,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 
 from onbottom import _validate as v
 from onbottom.constants import GRAVITY
+from onbottom.dem.config import ContactParameters
 from onbottom.errors import InputError
 
 __all__ = ["LammpsContact", "LammpsPenetrationCase", "touch_surface"]
 
 
 # --------------------------------------------------------------------------- the case
-class _ContactLike(Protocol):
-    k_n: float
-    k_s: float
-    mu: float
-    mu_r: float
-
-
-@dataclass(frozen=True)
-class LammpsContact:
-    """Linear contact with Coulomb friction and linear rolling resistance (PFC ``rrlinear``).
-
-    Parameters
-    ----------
-    k_n
-        Normal stiffness [N/m] (per metre of disk thickness).
-    k_s
-        Shear stiffness [N/m]; also the rolling stiffness k_roll (k_r = k_s·R̄²).
-    mu
-        Sliding friction coefficient [-].
-    mu_r
-        Rolling-resistance coefficient [-] (moment cap μ_r·R̄·F_n); 0 = no rolling term.
-    """
-
-    k_n: float
-    k_s: float
-    mu: float
-    mu_r: float = 0.0
-
-    def __post_init__(self) -> None:
-        v.positive("k_n", self.k_n)
-        v.non_negative("k_s", self.k_s)
-        v.non_negative("mu", self.mu)
-        v.non_negative("mu_r", self.mu_r)
-
-    @classmethod
-    def of(cls, c: _ContactLike) -> LammpsContact:
-        """Copy any object with ``k_n``, ``k_s``, ``mu`` and ``mu_r`` attributes."""
-        return cls(float(c.k_n), float(c.k_s), float(c.mu), float(getattr(c, "mu_r", 0.0)))
+LammpsContact = ContactParameters
+"""The contact of a LAMMPS run: the engine's :class:`~onbottom.dem.config.ContactParameters`
+(linear contact, Coulomb friction, linear rolling resistance ``rrlinear``; k_r = k_s·R̄²).
+The name is kept for the LAMMPS backend's API."""
 
 
 def touch_surface(positions: np.ndarray, radii: np.ndarray, pipe_x: float, radius: float) -> float:
@@ -322,9 +289,9 @@ class LammpsPenetrationCase:
             surface_y = touch_surface(sample.positions, radii, float(pipe_x), 0.5 * D)
         if final_embedment is None:
             final_embedment = float(load.final_embedment_ratio) * D
-        soil = LammpsContact.of(config.contacts.soil)
-        pipe = LammpsContact.of(config.contacts.pipe)
-        wall = LammpsContact.of(config.contacts.wall)
+        soil = config.contacts.soil
+        pipe = config.contacts.pipe
+        wall = config.contacts.wall
         if dt is None:
             m_min = float(mat.density) * math.pi * float(radii.min()) ** 2
             k_max = max(soil.k_n, soil.k_s, pipe.k_n, wall.k_n)  # as the engine
