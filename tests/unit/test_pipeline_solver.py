@@ -58,10 +58,8 @@ def test_netcdf_in_chunks_matches_memory_records(tmp_path):
     assert json.loads(ds.attrs["summary"])["n_steps"] == mem.summary["n_steps"]
 
 
-def test_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
-    m, kin = _setup()
-    st = PipelineSettings(record_interval=1.0, chunk_duration=10.0)
-    ref = simulate_pipeline(m, kin, settings=st, output=tmp_path / "ref.nc").open_dataset()
+def _interrupt_at_the_third_chunk(monkeypatch, m, kin, st, out):
+    """Run to ``out`` with a Ctrl-C raised at the third kernel chunk (checkpoint left)."""
     calls = {"n": 0}
     real = S.K.integrate
 
@@ -72,10 +70,17 @@ def test_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
         return real(*args)
 
     monkeypatch.setattr(S.K, "integrate", flaky)
-    out = tmp_path / "run.nc"
     with pytest.raises(KeyboardInterrupt):
         simulate_pipeline(m, kin, settings=st, output=out)
     monkeypatch.setattr(S.K, "integrate", real)
+
+
+def test_interrupted_run_resumes_from_its_checkpoint(tmp_path, monkeypatch):
+    m, kin = _setup()
+    st = PipelineSettings(record_interval=1.0, chunk_duration=10.0)
+    ref = simulate_pipeline(m, kin, settings=st, output=tmp_path / "ref.nc").open_dataset()
+    out = tmp_path / "run.nc"
+    _interrupt_at_the_third_chunk(monkeypatch, m, kin, st, out)
     assert (tmp_path / "run.nc.ckpt.npz").exists()
     res = simulate_pipeline(m, kin, settings=st, output=out, resume="require")
     ds = res.open_dataset()
@@ -349,20 +354,8 @@ def test_checkpoint_without_the_vs_memo_slots_resumes_bitwise(tmp_path, monkeypa
     )
     st = PipelineSettings(record_interval=1.0, chunk_duration=10.0)
     ref = simulate_pipeline(m, kin, settings=st, output=tmp_path / "ref.nc").open_dataset()
-    calls = {"n": 0}
-    real = S.K.integrate
-
-    def flaky(*args):
-        calls["n"] += 1
-        if calls["n"] == 3:
-            raise KeyboardInterrupt
-        return real(*args)
-
-    monkeypatch.setattr(S.K, "integrate", flaky)
     out = tmp_path / "run.nc"
-    with pytest.raises(KeyboardInterrupt):
-        simulate_pipeline(m, kin, settings=st, output=out)
-    monkeypatch.setattr(S.K, "integrate", real)
+    _interrupt_at_the_third_chunk(monkeypatch, m, kin, st, out)
     ckpt = tmp_path / "run.nc.ckpt.npz"
     with np.load(ckpt) as z:
         parts = dict(z)
