@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from onbottom.dem.experiment import _LONG
 from onbottom.dem.lammps_case import LammpsPenetrationCase
 from onbottom.dem.lammps_deck import LammpsDeck
 from onbottom.results import provenance
@@ -18,14 +19,8 @@ from onbottom.results import provenance
 __all__ = ["CURVE_VARIABLES", "read_curve", "read_final"]
 
 CURVE_VARIABLES = {
-    # the names, long names and units of onbottom.dem.experiment.penetrate's record
-    "time": ("time since the pipe started", "s"),
-    "w": ("embedment of the pipe invert below the initial surface (model)", "m"),
-    "w_over_D": ("normalised embedment w/D", "1"),
-    "V": ("vertical soil force on the pipe per unit length (model)", "N/m"),
-    "H": ("horizontal soil force on the pipe per unit length (model)", "N/m"),
-    "w_prototype": ("embedment at prototype scale (w·N)", "m"),
-    "V_prototype": ("vertical force per unit length at prototype scale (V·N)", "N/m"),
+    # the names, long names and units of onbottom.dem.experiment.penetrate's record (one table)
+    **{k: _LONG[k] for k in ("time", "w", "w_over_D", "V", "H", "w_prototype", "V_prototype")},
     "n_contacts": ("number of disks touching the pipe", "1"),
 }
 
