@@ -29,8 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from onbottom.cases.reliability import load_reliability_case
 from onbottom.reliability.campaign import Campaign
-from onbottom.reliability.case import load_reliability_case
 from onbottom.reliability.climate import StormClimate
 from onbottom.reliability.dynamic import seeds_from_uniform
 from onbottom.reliability.storm_model import StormModel

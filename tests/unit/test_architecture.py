@@ -49,9 +49,13 @@ ALLOWED: dict[str, set[str]] = {
     "report": BASE
     | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
     | {"plotting", "metocean", "reliability"},
+    # cases: every case-file schema and case -> model builder, just below the command line
+    "cases": BASE
+    | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
+    | {"plotting", "metocean", "reliability", "assess", "peers"},
     "cli": BASE
     | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "report", "metocean", "reliability", "assess"},
+    | {"plotting", "report", "metocean", "reliability", "assess", "cases"},
 }
 
 
@@ -105,9 +109,9 @@ PRIVATE_MODULES_ALLOWED: dict[tuple[str, str], str] = {
 }
 PRIVATE_NAMES_ALLOWED: dict[tuple[str, str, str], str] = {
     # files of branch assess2 (#32), which owns them; public names exist or come with it
-    ("assess", "onbottom.inputs.stability_case", "_Checker"): "assess2: use Checker",
+    ("assess", "onbottom.cases.stability", "_Checker"): "assess2: use Checker",
     ("assess", "onbottom._casefile", "_find_line"): "assess2: use find_line",
-    ("assess", "onbottom.inputs.stability_case", "_check_section"): "assess2 (#32) area",
+    ("assess", "onbottom.cases.stability", "_check_section"): "assess2 (#32) area",
     ("assess", "onbottom.results", "_atomic_write"): "assess2 (#32) area",
     ("cli", "onbottom.assess.output", "_value"): "assess2 (#32) area",
     ("assess", "onbottom.checks.design", "_minimum_passing"): "made public in branch assess2",
@@ -171,3 +175,35 @@ def test_private_allow_list_is_still_needed():
     used = {(_package_of(p), m, n) for p in MODULES for m, n in _private_imports(p)}
     stale_mod = [k for k in PRIVATE_MODULES_ALLOWED if not any(u[:2] == k for u in used)]
     assert not stale_mod, f"allow-list entries no longer used: {stale_mod}"
+
+
+# ---- only cases/ and cli/ read case files ------------------------------------------------------
+# A case file is parsed through onbottom._casefile (strict schemas, file and line in errors) or
+# read with tomllib; issue 29 item 5 puts every schema and case -> model builder in cases/, so
+# the library's API takes built objects and no other package reads a case file.
+CASE_READERS = {"cases", "cli", "_casefile"}
+
+
+def _reads_case_files(path: pathlib.Path) -> list[str]:
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and node.module:
+            if node.module in {"onbottom._casefile", "tomllib"}:
+                found.append(node.module)
+            elif node.module == "onbottom" and any(a.name == "_casefile" for a in node.names):
+                found.append("onbottom._casefile")
+        elif isinstance(node, ast.Import):
+            found += [a.name for a in node.names if a.name in {"onbottom._casefile", "tomllib"}]
+    return found
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_only_cases_and_cli_read_case_files(path):
+    pkg = _package_of(path)
+    if pkg in CASE_READERS:
+        return
+    found = _reads_case_files(path)
+    assert not found, (
+        f"{path.relative_to(ROOT)} ({pkg}) reads case files ({sorted(set(found))}): the schema"
+        " and its builder belong in onbottom.cases, the API takes the built objects"
+    )

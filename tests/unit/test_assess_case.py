@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from onbottom._casefile import CaseFileError
-from onbottom.assess.case import load_route_case, parse_route_case
+from onbottom.cases.assess import load_route_case, parse_route_case
 from onbottom.cli.assess import example_path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))

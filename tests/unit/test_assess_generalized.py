@@ -19,8 +19,8 @@ from onbottom._casefile import parse_case
 from onbottom.assess import parse_route_case
 from onbottom.assess.core import _check_options
 from onbottom.assess.generalized import generalized_rows
+from onbottom.cases.stability import StabilityCase
 from onbottom.checks.design import run_checks
-from onbottom.inputs.stability_case import StabilityCase
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from assess_cases import route_document

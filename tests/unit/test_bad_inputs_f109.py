@@ -24,11 +24,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from onbottom._casefile import CaseFileError
+from onbottom.cases.stability import load_stability_case
 from onbottom.checks.f109_tables import peak_load_coefficients
 from onbottom.cli.main import main
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro.design_sea_state import design_oscillation
-from onbottom.inputs.stability_case import load_stability_case
 
 BUILDUP = """
 [pipe]

@@ -51,7 +51,7 @@ diameter = 0.5
 
 CHECK_TABLES = (
     "H12/H13: dynamics/storm_case.build_setup must call"
-    " onbottom.inputs.stability_case.check_common_tables(case, path, sea_states=<the"
+    " onbottom.cases.stability.check_common_tables(case, path, sea_states=<the"
     " [[storm.stages]]>) so the storm refuses impossible sea states and currents as"
     " `stability` does; today it runs them and reports success"
 )
@@ -588,8 +588,8 @@ def test_check_common_tables_catches_the_storm_defects(tmp_path, old, new, field
     """What dynamics/storm_case.build_setup should call (see CHECK_TABLES): it refuses the
     sea states and currents the storm command runs today."""
     from onbottom._casefile import CaseFileError, load_case_file
-    from onbottom.dynamics.storm_case import StormCase
-    from onbottom.inputs.stability_case import check_common_tables
+    from onbottom.cases.stability import check_common_tables
+    from onbottom.cases.storm import StormCase
 
     path = _write(tmp_path, _edit(SECTION, old, new))
     case = load_case_file(path, StormCase)
@@ -605,8 +605,8 @@ def test_check_common_tables_catches_the_storm_defects(tmp_path, old, new, field
 
 def test_check_common_tables_accepts_the_examples():
     from onbottom._casefile import load_case_file
-    from onbottom.dynamics.storm_case import StormCase
-    from onbottom.inputs.stability_case import check_common_tables
+    from onbottom.cases.stability import check_common_tables
+    from onbottom.cases.storm import StormCase
 
     for name in ("storm_case.toml", "pipeline_case.toml"):
         path = ROOT / "examples" / name
@@ -615,8 +615,8 @@ def test_check_common_tables_accepts_the_examples():
 
 def test_check_common_tables_names_the_stage(tmp_path):
     from onbottom._casefile import CaseFileError, load_case_file
-    from onbottom.dynamics.storm_case import StormCase
-    from onbottom.inputs.stability_case import check_common_tables
+    from onbottom.cases.stability import check_common_tables
+    from onbottom.cases.storm import StormCase
 
     text = _edit(SECTION, "peak_hours = 0.02", "") + (
         "\n[[storm.stages]]\nhs = 3.0\ntp = 9.0\nduration_hours = 0.01\n"

@@ -140,7 +140,7 @@ def _case_with(fragment: str, example: str = "stability_case.toml") -> str:
 
 
 def test_case_fragment_pastes_into_a_stability_case(run, tmp_path):
-    from onbottom.inputs.stability_case import load_stability_case
+    from onbottom.cases.stability import load_stability_case
 
     out, args = run
     if not (out / "case_W.toml").exists():
@@ -166,7 +166,7 @@ def test_case_fragment_pastes_into_a_stability_case(run, tmp_path):
     # waves from W on a N-S pipe: normal to the pipe
     assert combos[0].sea_state.direction_deg % 180.0 == pytest.approx(90.0)
     # the same fragment in the storm example: [waves] is the storm's peak, [current] its current
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     storm_path = tmp_path / "storm.toml"
     storm_path.write_text(_case_with(frag, "storm_case.toml"), encoding="utf-8")

@@ -14,8 +14,8 @@ pytest.importorskip("openturns")
 pytest.importorskip("zarr")
 pytest.importorskip("virocon")
 
+from onbottom.cases.reliability import parse_limit
 from onbottom.cli.main import main
-from onbottom.reliability.case import parse_limit
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "reliability_case.toml"
 

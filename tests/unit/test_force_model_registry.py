@@ -94,7 +94,7 @@ def _case(tmp_path: Path, extra: str) -> Path:
     ],
 )
 def test_storm_case_runs_each_force_model(tmp_path, extra, cls):
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
     from onbottom.dynamics.storm_section import simulate_storm_section
 
     setup = load_storm_case(_case(tmp_path, extra))
@@ -107,7 +107,7 @@ def test_storm_case_runs_each_force_model(tmp_path, extra, cls):
 
 def test_wake_switched_off_in_a_case_equals_morison_with_the_same_coefficients(tmp_path):
     """WakeModel(wake=False) with C_D∞, C_M, C_L∞ = the Morison case's C_D, C_M, C_L: same run."""
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
     from onbottom.dynamics.storm_section import simulate_storm_section
 
     off = load_storm_case(
@@ -173,7 +173,7 @@ def test_morison_coefficient_table_errors_are_named(tmp_path, body, match):
 def test_storm_case_runs_morison_per_sea_state_from_a_table(tmp_path):
     """Per-sea-state Morison from a case file; a table constant at the [hydro] values gives the
     same run as the constant model, bit for bit."""
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
     from onbottom.dynamics.storm_section import simulate_storm_section
 
     const = "K,M,C_D,C_M,C_L\n-,-,-,-,-\n1,0,0.7,3.29,0.9\n1,5,0.7,3.29,0.9\n"
@@ -194,7 +194,7 @@ def test_storm_case_runs_morison_per_sea_state_from_a_table(tmp_path):
 
 
 def test_coefficient_table_outside_the_case_folder_or_with_another_model_is_refused(tmp_path):
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     with pytest.raises(InputError, match="leaves the case file's folder"):
         load_storm_case(_case(tmp_path, 'coefficient_table = "../coefficients.csv"'))

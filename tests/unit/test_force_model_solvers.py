@@ -159,8 +159,8 @@ def test_example_cases_match_the_results_before_the_force_contract():
     import dataclasses
     from pathlib import Path
 
+    from onbottom.cases.storm import load_storm_case
     from onbottom.cli.storm_pipeline import build_pipeline_run
-    from onbottom.dynamics.storm_case import load_storm_case
 
     ex = Path(__file__).resolve().parents[2] / "examples"
     setup = load_storm_case(ex / "storm_case.toml")

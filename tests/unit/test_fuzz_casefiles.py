@@ -417,7 +417,7 @@ def test_fuzz_stability_and_loads_case_files(data, command):
 def test_fuzz_storm_case_files_load(data):
     """Section storm case files, loaded only (the storm is not run): a setup whose depth,
     peak duration and stop limit make sense, or a named error."""
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     base = copy.deepcopy(STABILITY)
     base["storm"] = {"build_up_hours": 0.0, "peak_hours": 0.02}

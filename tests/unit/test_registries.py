@@ -7,7 +7,6 @@ import pytest
 from onbottom import Clay, InputError, Pipe, Rock, Sand
 from onbottom.checks.design import CheckOptions, run_checks
 from onbottom.checks.registry import CHECKS, check_names, get_check
-from onbottom.dynamics.storm_case import soil_model
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.storm import Current, SeaState
 from onbottom.soil.coulomb import CoulombFriction
@@ -19,6 +18,7 @@ from onbottom.soil.registry import (
     soil_model_entry,
     soil_model_for_seabed,
 )
+from onbottom.soil.registry import soil_model_for_seabed as soil_model
 from onbottom.soil.verley_lund import VerleyLund
 from onbottom.soil.verley_sotberg import VerleySotberg
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from onbottom._casefile import parse_case
-from onbottom.dynamics.storm_case import StormCase, build_setup
+from onbottom.cases.storm import StormCase, build_setup
 from onbottom.errors import InputError
 from onbottom.reliability.dynamic import rank_importance, seeds_from_uniform
 from onbottom.reliability.storm_model import StormModel

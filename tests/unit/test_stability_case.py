@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from onbottom._casefile import CaseFileError
+from onbottom.cases.stability import load_stability_case
 from onbottom.inputs import Clay, Pipe, PipeBuildUp, Rock, Sand
-from onbottom.inputs.stability_case import load_stability_case
 
 BASE = """
 [seabed]

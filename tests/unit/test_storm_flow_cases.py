@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from onbottom._casefile import CaseFileError
+from onbottom.cases.storm import load_storm_case
 from onbottom.cli.main import main
-from onbottom.dynamics.storm_case import load_storm_case
 from onbottom.hydro.kinematics import regular_wave_bed_velocity
 from onbottom.hydro.storm_kinematics import StormKinematics
 

@@ -213,7 +213,7 @@ def test_cli_storm_dispatches_pipeline_cases(tmp_path, capsys, monkeypatch):
 
 
 def test_example_storm_case_parses():
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     setup = load_storm_case(EXAMPLES / "storm_case.toml")
     assert setup.storm.duration_s == 12600.0 and setup.storm.build_up_s == 1800.0
@@ -249,7 +249,7 @@ spreading_s = 4.0
 
 
 def test_staged_clay_case_and_text_output(tmp_path, capsys):
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     case = tmp_path / "s.toml"
     case.write_text(_STAGES, encoding="utf-8")

@@ -49,7 +49,7 @@ def test_one_section_equals_stability_command(one_section, tmp_path):
 
 
 def test_one_section_equals_storm_command(one_section, tmp_path):
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
     from onbottom.study.storm_seeds import run_storm_seeds
 
     case, a = one_section

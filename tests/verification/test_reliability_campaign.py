@@ -217,7 +217,7 @@ def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
     import tomllib
 
     from onbottom._casefile import parse_case
-    from onbottom.dynamics.storm_case import StormCase, build_setup
+    from onbottom.cases.storm import StormCase, build_setup
     from onbottom.reliability.storm_model import StormModel
 
     root = Path(__file__).resolve().parents[2]

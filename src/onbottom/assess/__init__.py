@@ -5,7 +5,7 @@ an :class:`Assessment` (pandas/xarray tables); :func:`write_outputs` writes the 
 (HTML, optional PDF), ``results.json`` and the NetCDF of the dynamic runs.
 """
 
-from onbottom.assess.case import RouteCase, load_route_case, parse_route_case
 from onbottom.assess.core import Assessment, assess
+from onbottom.cases.assess import RouteCase, load_route_case, parse_route_case
 
 __all__ = ["Assessment", "RouteCase", "assess", "load_route_case", "parse_route_case"]

@@ -41,7 +41,7 @@ import pandas as pd
 import xarray as xr
 
 from onbottom._version import __version__
-from onbottom.assess.case import RouteCase
+from onbottom.cases.assess import RouteCase
 from onbottom.results import annotate, provenance, write_text_atomic
 
 __all__ = ["Assessment", "assess", "section_identity"]
@@ -198,10 +198,10 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     from onbottom._casefile import parse_case
     from onbottom.assess import dynamic as dyn
     from onbottom.assess.generalized import generalized_rows
+    from onbottom.cases.stability import StabilityCase, penetration_outside_validity
     from onbottom.checks.design import run_checks
     from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.consistency import warnings_reported_by_case
-    from onbottom.inputs.stability_case import StabilityCase, penetration_outside_validity
 
     sec = case.route.sections[i]
     sc = parse_case(StabilityCase, case.stability_document(i))
@@ -532,7 +532,7 @@ def assess(
     Parameters
     ----------
     case : RouteCase
-        From :func:`onbottom.assess.case.load_route_case`.
+        From :func:`onbottom.cases.assess.load_route_case`.
     out : path or None
         Output folder of the per-section JSON files (resume); None: nothing written.
     n_workers : int or None
@@ -547,8 +547,8 @@ def assess(
     source : str
         Where the case came from (a path, or "embedded example").
     """
-    from onbottom.assess.case import case_identity
     from onbottom.assess.generalized import default_curve_files
+    from onbottom.cases.assess import case_identity
 
     t0 = time.perf_counter()
     files = tuple(default_curve_files() if curve_files is None else curve_files)

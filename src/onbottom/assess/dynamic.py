@@ -1,8 +1,8 @@
 """Dynamic level of a route section: storms over seeds, and the minimum weight.
 
 Each evaluation builds the ``onbottom storm`` case of the section in one load combination
-(:meth:`onbottom.assess.case.RouteCase.storm_document`) through its own loader
-(:func:`onbottom.dynamics.storm_case.build_setup`) and runs the seeds with
+(:meth:`onbottom.cases.assess.RouteCase.storm_document`) through its own loader
+(:func:`onbottom.cases.storm.build_setup`) and runs the seeds with
 :func:`onbottom.dynamics.storm_section.simulate_storm_section` (summary only), as
 ``onbottom storm --seeds N --workers 0`` does.
 
@@ -63,7 +63,7 @@ __all__ = [
 
 
 def _setup(doc: dict[str, Any]) -> Any:
-    from onbottom.dynamics.storm_case import StormCase, build_setup
+    from onbottom.cases.storm import StormCase, build_setup
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

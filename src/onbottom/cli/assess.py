@@ -102,9 +102,9 @@ def command(
     passing design at any level run (the range is too narrow) exits 3 after writing the
     outputs; failing checks at the given design are a result (exit 0); input errors exit 1.
     """
-    from onbottom.assess.case import load_route_case
     from onbottom.assess.core import assess
     from onbottom.assess.output import write_outputs
+    from onbottom.cases.assess import load_route_case
 
     path = example_path() if case is None else case
     if example:

@@ -26,6 +26,7 @@ import click
 from pydantic import Field, field_validator
 
 from onbottom._casefile import StrictModel, load_case_file, read_toml
+from onbottom.cases.stability import EnvironmentTable, HydroTable
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
     Number,
@@ -37,7 +38,6 @@ from onbottom.cli._common import (
     log_to_stderr,
 )
 from onbottom.errors import OutOfRangeWarning
-from onbottom.inputs.stability_case import EnvironmentTable, HydroTable
 
 #: Grid ranges [I]: F109's generalized-stability tables (§3.5; Tables 3-9/3-10 are the
 #: absolute method's peak-load coefficients, not these) span K from 5 to 160; K up to 1000 and
@@ -333,12 +333,12 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     state up front; errors name the case-file key (``curves.K[i]``, ``curves.l_max``)."""
     import math
 
+    from onbottom.cases.stability import Checker
+    from onbottom.cases.storm import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.constants import GRAVITY
-    from onbottom.dynamics.storm_case import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.errors import InputError
     from onbottom.hydro.registry import force_model_from_case
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
-    from onbottom.inputs.stability_case import Checker
     from onbottom.study.stability_curves import CurveSettings
 
     _, text = read_toml(case)

@@ -23,12 +23,12 @@ def evaluate_loads(
     case_path: Path, *, seed: int | None, duration_hours: float
 ) -> tuple[dict, list]:
     """Envelopes of every load combination of a case file: (JSON payload, envelopes)."""
+    from onbottom.cases.stability import load_stability_case, penetration_outside_validity
     from onbottom.checks.design import CheckOptions, run_checks
     from onbottom.cli.stability import check_reference_height
     from onbottom.errors import InputError, OutOfRangeWarning
     from onbottom.hydro.forces import MorisonCoefficients
     from onbottom.hydro.load_envelope import load_envelope
-    from onbottom.inputs.stability_case import load_stability_case, penetration_outside_validity
 
     caught: list[warnings.WarningMessage] = []
     with warnings.catch_warnings(record=True) as loading:
@@ -43,7 +43,7 @@ def evaluate_loads(
     storm_seed = 0
     if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
         from onbottom._casefile import parse_case
-        from onbottom.dynamics.storm_case import StormTable
+        from onbottom.cases.storm import StormTable
 
         storm_seed = parse_case(
             StormTable,

@@ -59,7 +59,7 @@ def run_case(
             f"onbottom reliability needs the optional package(s) {', '.join(missing)}:"
             " pip install 'onbottom[reliability,metocean]'"
         )
-    from onbottom.reliability.case import load_reliability_case
+    from onbottom.cases.reliability import load_reliability_case
     from onbottom.reliability.run import planned_storms, run_reliability
     from onbottom.results import write_text_atomic
 

@@ -42,7 +42,7 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     [programme] and optional [solver] tables; see examples/section_case.toml. Loads in the
     file are in kN/m.
     """
-    from onbottom.dynamics.case import load_case, run_case
+    from onbottom.cases.section import load_case, run_case
 
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")

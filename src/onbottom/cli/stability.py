@@ -47,6 +47,7 @@ def check_reference_height(case: Any, case_path: Path, seabed: Any) -> None:
 
 def evaluate_case(case_path: Path) -> dict[str, Any]:
     """Run the checks (and the design solve) of a case file; return the JSON payload."""
+    from onbottom.cases.stability import load_stability_case, penetration_outside_validity
     from onbottom.checks.design import (
         CheckOptions,
         NoFeasibleDesignError,
@@ -55,7 +56,6 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
         run_checks,
     )
     from onbottom.errors import OutOfRangeWarning
-    from onbottom.inputs.stability_case import load_stability_case, penetration_outside_validity
 
     caught: list[warnings.WarningMessage] = []
     with warnings.catch_warnings(record=True) as loading:
@@ -129,7 +129,7 @@ def evaluate_case(case_path: Path) -> dict[str, Any]:
     caught.extend(checking)
     invalid = penetration_outside_validity(rows)
     notes = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
-    from onbottom.inputs.stability_case import HydroTable
+    from onbottom.cases.stability import HydroTable
 
     if case.hydro != HydroTable():
         notes.append(

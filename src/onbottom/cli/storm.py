@@ -177,7 +177,7 @@ def _command(
                 raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
-    from onbottom.dynamics.storm_case import load_storm_case
+    from onbottom.cases.storm import load_storm_case
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", OutOfRangeWarning)

@@ -3,7 +3,7 @@
 ``onbottom storm`` (:mod:`onbottom.cli.storm`) hands a case with a ``[pipeline]`` table to
 :func:`run_pipeline_case`. The shared tables ([pipe], [seabed], [environment], [waves],
 [current], [hydro], [storm], [solver], [run]) are read by
-:func:`onbottom.dynamics.storm_case.load_storm_case`; this module validates ``[pipeline]``
+:func:`onbottom.cases.storm.load_storm_case`; this module validates ``[pipeline]``
 (strict: unknown keys are errors with their line) and runs
 :func:`onbottom.dynamics.pipeline.simulate_pipeline` for each seed.
 
@@ -124,7 +124,7 @@ def _soil_for(
     file: str | os.PathLike | None = None,
     text: str | None = None,
 ):
-    from onbottom.dynamics.storm_case import soil_model
+    from onbottom.soil.registry import soil_model_for_seabed as soil_model
 
     sb = case.seabed
     root = f"pipeline.sections[{index}]"
@@ -171,7 +171,7 @@ MAX_RUN_SECONDS = 24 * 3600.0
 
 
 def _fail(p: Path, text: str | None, field: str, message: str) -> None:
-    from onbottom.inputs.stability_case import Checker
+    from onbottom.cases.stability import Checker
 
     Checker(p, text).fail(field, message)
 
@@ -282,8 +282,8 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
 
 def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any) -> None:
     """At least three nodes free to move laterally (fixed and pinned ends hold theirs)."""
+    from onbottom.cases.stability import Checker
     from onbottom.inputs import consistency
-    from onbottom.inputs.stability_case import Checker
 
     nodes = round(table.length / table.element_length) + 1
     pair = (ends, ends) if isinstance(ends, str) else tuple(ends)
@@ -367,8 +367,8 @@ def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
 def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
     """Read and validate a pipeline case; return the model, storm setup and settings."""
     from onbottom._casefile import load_case_file
+    from onbottom.cases.storm import StormCase, build_setup
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, SoilSection
-    from onbottom.dynamics.storm_case import StormCase, build_setup
     from onbottom.hydro.storm_kinematics import current_normal_to_pipe
 
     p = Path(path)

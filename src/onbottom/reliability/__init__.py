@@ -9,7 +9,7 @@ dynamic limit state of a storm on a pipe section with the seed as an input
 (:mod:`~onbottom.reliability.dynamic`, :mod:`~onbottom.reliability.storm_model`), run as a
 campaign on Dask streamed to a resumable Zarr store (:mod:`~onbottom.reliability.campaign`),
 the response-based design on an environmental contour (:mod:`~onbottom.reliability.design`)
-and the case files of ``onbottom reliability`` (:mod:`~onbottom.reliability.case`,
+and the case files of ``onbottom reliability`` (:mod:`~onbottom.cases.reliability`,
 :mod:`~onbottom.reliability.run`). openturns and zarr are is the optional extra
 ``onbottom[reliability]``, imported only when an estimate or a store is made. Theory:
 ``docs/theory/reliability.md``.

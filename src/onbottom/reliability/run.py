@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from onbottom.cases.reliability import ReliabilitySetup
 from onbottom.reliability.campaign import Campaign, CampaignStats
-from onbottom.reliability.case import ReliabilitySetup
 from onbottom.reliability.design import DesignResult, response_based_design
 from onbottom.reliability.dynamic import ExceedanceEstimate, estimate_exceedance
 from onbottom.reliability.storm_model import StormModel

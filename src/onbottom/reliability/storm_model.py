@@ -71,7 +71,7 @@ class StormModel:
 
     Parameters
     ----------
-    setup : onbottom.dynamics.storm_case.StormSetup
+    setup : onbottom.dynamics.storm_setup.StormSetup
         The storm case (a spectral storm: ``setup.storm`` is a ``Storm``).
     inputs : tuple of str
         Names of the non-climate inputs, each in :data:`PHYSICAL_INPUTS`.
@@ -199,8 +199,8 @@ class StormModel:
 
     def build(self, x: np.ndarray, seed: int):
         """(soil, storm, current) of a row."""
-        from onbottom.dynamics.storm_case import soil_model
         from onbottom.inputs.storm import Storm
+        from onbottom.soil.registry import soil_model_for_seabed
 
         s = self.setup
         row = dict(zip(self.input_names, np.asarray(x, dtype=float).tolist(), strict=True))
@@ -214,7 +214,7 @@ class StormModel:
             kind = self.soil_kind or {"VerleySotberg": "sand", "VerleyLund": "clay"}.get(
                 type(s.soil).__name__, "coulomb"
             )
-            soil = soil_model(kind, s.pipe, seabed)
+            soil = soil_model_for_seabed(kind, s.pipe, seabed)
         else:
             soil = s.soil
         storm: Storm = s.storm

@@ -48,8 +48,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, _find_line, parse_case, read_toml
-from onbottom.errors import InputError
-from onbottom.inputs.stability_case import (
+from onbottom.cases.stability import (
     CombinationTable,
     CurrentTable,
     DesignTable,
@@ -61,6 +60,7 @@ from onbottom.inputs.stability_case import (
     _check_section,
     _Checker,
 )
+from onbottom.errors import InputError
 
 __all__ = [
     "ALLOWABLE_OVER_D",
@@ -395,7 +395,7 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
     if case.levels.dynamic and case.solve_for == "none":
         pass  # dynamic runs at the given weight only
     # each section through the stability and storm loaders (their checks, their messages)
-    from onbottom.dynamics.storm_case import StormCase, build_setup
+    from onbottom.cases.storm import StormCase, build_setup
 
     for i, s in enumerate(sections):
         key = f"route.sections[{i}]"

@@ -2,7 +2,7 @@
 
 Common layout (see CASE_LAYOUT in the docs and ``examples/storm_case.toml``): ``[pipe]``,
 ``[seabed]``, ``[environment]``, ``[waves]`` (the peak sea state), ``[current]``, ``[hydro]``
-share the strict tables of :mod:`onbottom.inputs.stability_case`; this module adds the strict
+share the strict tables of :mod:`onbottom.cases.stability`; this module adds the strict
 ``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE
 (issue 13); it is accepted here and validated by that command.
 
@@ -24,25 +24,13 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
-import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, load_case_file
-from onbottom.dynamics.storm_section import StormSolverSettings
-from onbottom.errors import InputError
-from onbottom.hydro.current import SEABED_ROUGHNESS
-from onbottom.hydro.force_model import ForceModel
-from onbottom.hydro.reductions import LoadReductions
-from onbottom.hydro.registry import force_model_from_case
-from onbottom.hydro.storm_kinematics import StormKinematics
-from onbottom.inputs import consistency
-from onbottom.inputs.pipe import Pipe
-from onbottom.inputs.soil import Clay, Rock, Sand
-from onbottom.inputs.stability_case import (
+from onbottom.cases.stability import (
     Checker,
     CurrentTable,
     EnvironmentTable,
@@ -52,8 +40,17 @@ from onbottom.inputs.stability_case import (
     WavesTable,
     check_common_tables,
 )
+from onbottom.checks.absolute import seabed_roughness
+from onbottom.dynamics.storm_section import StormSolverSettings
+from onbottom.dynamics.storm_setup import StormSetup
+from onbottom.errors import InputError
+from onbottom.hydro.reductions import LoadReductions
+from onbottom.hydro.registry import force_model_from_case
+from onbottom.hydro.storm_kinematics import StormKinematics
+from onbottom.inputs import consistency
+from onbottom.inputs.pipe import Pipe
+from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState, Storm
-from onbottom.soil.base import LateralResistanceModel
 from onbottom.soil.registry import soil_model_for_seabed
 
 __all__ = [
@@ -61,12 +58,7 @@ __all__ = [
     "StormSetup",
     "case_relative",
     "load_storm_case",
-    "seabed_roughness",
-    "soil_model",
 ]
-
-_D50 = np.array([0.0625, 0.25, 0.5, 1.0, 4.0, 25.0, 125.0, 500.0]) * 1e-3
-_Z0 = np.array(list(SEABED_ROUGHNESS.values()))
 
 
 class StageTable(StrictModel):
@@ -192,59 +184,6 @@ class StormCase(StrictModel):
         return self
 
 
-def seabed_roughness(seabed: Sand | Clay | Rock) -> float:
-    """z_0 [m] from DNV-RP-F109 Table 3-1 (log–log in d_50 for sand)."""
-    if isinstance(seabed, Clay):
-        return SEABED_ROUGHNESS["silt and clay"]
-    if isinstance(seabed, Rock):
-        return SEABED_ROUGHNESS["gravel"]
-    d50 = min(max(seabed.d50, _D50[0]), _D50[-1])
-    return float(np.exp(np.interp(np.log(d50), np.log(_D50), np.log(_Z0))))
-
-
-def soil_model(model: str, pipe: Pipe, seabed: Sand | Clay | Rock) -> LateralResistanceModel:
-    """The lateral soil model of ``[seabed].model`` for a pipe (installation load = w_s):
-    the seabed kind's model in :data:`onbottom.soil.registry.SEABED_MODELS`."""
-    return soil_model_for_seabed(model, pipe, seabed)
-
-
-@dataclass(frozen=True)
-class StormSetup:
-    """Everything :func:`simulate_storm_section` needs, built from a case.
-
-    ``storm`` is a :class:`Storm` (``[storm] kind = "spectral"``) or, for a regular wave or a
-    measured record, its :class:`StormKinematics` (current included; one deterministic run).
-    """
-
-    pipe: Pipe
-    soil: LateralResistanceModel
-    seabed: Sand | Clay | Rock
-    storm: Storm | StormKinematics
-    depth: float
-    current: Current
-    z0: float
-    force_model: ForceModel
-    reductions: LoadReductions
-    settings: StormSolverSettings
-    sample_interval: float | None
-    seeds: int
-    fractile: float
-    path: str | None
-    compression_level: int = 0
-
-    def kwargs(self) -> dict[str, Any]:
-        """Keyword arguments of :func:`onbottom.dynamics.storm_section.simulate_storm_section`."""
-        return {
-            "depth": self.depth,
-            "current": self.current,
-            "z0": self.z0,
-            "sample_interval": self.sample_interval,
-            "force_model": self.force_model,
-            "reductions": self.reductions,
-            "settings": self.settings,
-        }
-
-
 #: Fields of the input objects built here → the case-file keys they come from.
 _FIELD_KEYS = {
     "LoadReductions.trench_depth_over_d": "seabed.trench_depth",
@@ -358,7 +297,7 @@ def _check_durations_and_stop(case: StormCase, chk: Checker) -> None:
 def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> StormSetup:
     """Objects of a validated :class:`StormCase`.
 
-    Engineering plausibility first (:func:`onbottom.inputs.stability_case.check_common_tables`
+    Engineering plausibility first (:func:`onbottom.cases.stability.check_common_tables`
     on the shared tables and every sea state, the time-step rule, a trench no deeper than D);
     every error is a :class:`CaseFileError` naming the case-file key, its value and range.
     """
@@ -408,7 +347,7 @@ def _build_objects(
             field="seabed.initial_penetration",
             file=None if path is None else str(path),
         )
-    soil = soil_model(case.seabed.model, pipe, seabed)
+    soil = soil_model_for_seabed(case.seabed.model, pipe, seabed)
     st = case.storm
     c = case.current
     current = Current(

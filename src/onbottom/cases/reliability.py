@@ -112,7 +112,7 @@ class ReliabilitySetup:
         return [parameter_from_table(k, v) for k, v in self.table.inputs.items()]
 
     def hindcast_path(self) -> Path | None:
-        from onbottom.dynamics.storm_case import case_relative
+        from onbottom.cases.storm import case_relative
 
         c = self.table.climate
         return None if c is None else case_relative(self.path, c.hindcast)
@@ -124,7 +124,7 @@ class ReliabilitySetup:
 
 def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     """Read a reliability case (errors: :class:`CaseFileError` naming the key)."""
-    from onbottom.dynamics.storm_case import StormCase, build_setup
+    from onbottom.cases.storm import StormCase, build_setup
     from onbottom.errors import InputError
 
     p = Path(path)

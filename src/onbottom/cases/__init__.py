@@ -1,0 +1,16 @@
+"""Case files: every TOML/JSON schema onbottom reads, and every case → model builder.
+
+One module per file type; each holds the strict schema (:class:`onbottom._casefile.StrictModel`
+tables: unknown keys, wrong types and values out of range are errors naming the key, the file
+and the line), the cross-checks between tables, and the builder that turns a parsed case into
+the plain value types and models of the packages below (``inputs``, ``soil``, ``hydro``,
+``dynamics``, ``study``, ``assess``, ``reliability``, ``dem``). The library's API takes those
+built objects; only this package and ``cli`` read case files.
+
+* :mod:`~onbottom.cases.stability` — ``onbottom stability`` / ``loads`` (DNV-RP-F109 checks);
+* :mod:`~onbottom.cases.storm` — ``onbottom storm`` (storm section), shared by the pipeline,
+  curves, reliability and route cases;
+* :mod:`~onbottom.cases.section` — ``onbottom simulate`` (centrifuge section programmes).
+
+Submodules are imported when used (``import onbottom.cases`` stays light).
+"""
