@@ -435,4 +435,3 @@ def find_line(text: str, loc: Sequence[Any]) -> int | None:
     return None
 
 
-_find_line = find_line  # the former private name, still imported by assess/case.py

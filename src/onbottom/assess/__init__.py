@@ -1,11 +1,35 @@
 """Route assessment (``onbottom assess``): every F109 level on every KP section of a route.
 
-:func:`load_route_case` reads a route case file, :func:`assess` runs it (on Dask) and returns
-an :class:`Assessment` (pandas/xarray tables); :func:`write_outputs` writes the design report
-(HTML, optional PDF), ``results.json`` and the NetCDF of the dynamic runs.
+:func:`assess` runs a built :class:`Route` (on Dask) and returns an :class:`Assessment`
+(pandas/xarray tables); :func:`~onbottom.assess.output.write_outputs` writes the design report
+(HTML, optional PDF), ``results.json`` and the NetCDF of the dynamic runs. A route case file
+is read and built by :func:`onbottom.cases.assess.load_route`::
+
+    from onbottom.assess import assess
+    from onbottom.cases.assess import load_route
+
+    a = assess(load_route("examples/assess_route.toml"), n_workers=2)
 """
 
 from onbottom.assess.core import Assessment, assess
-from onbottom.cases.assess import RouteCase, load_route_case, parse_route_case
+from onbottom.assess.route import (
+    DesignRange,
+    DynamicSettings,
+    Levels,
+    PipelineSettings,
+    Route,
+    Section,
+    StormCombination,
+)
 
-__all__ = ["Assessment", "RouteCase", "assess", "load_route_case", "parse_route_case"]
+__all__ = [
+    "Assessment",
+    "DesignRange",
+    "DynamicSettings",
+    "Levels",
+    "PipelineSettings",
+    "Route",
+    "Section",
+    "StormCombination",
+    "assess",
+]

@@ -1,4 +1,7 @@
-"""``assess(case) -> Assessment``: every F109 level on every KP section of a route.
+"""``assess(route) -> Assessment``: every F109 level on every KP section of a route.
+
+The route is a built :class:`~onbottom.assess.route.Route`
+(:func:`onbottom.cases.assess.load_route` builds it from a route case file).
 
 For each section (one task on Dask, :mod:`onbottom.study.engine`), in every load combination
 (each in its pipe condition):
@@ -20,19 +23,20 @@ weight the dynamic level saves against the absolute one (negative: it needs more
 
 Resumable: each finished section writes ``sections/NN-<slug>.json`` in the output folder
 (atomic rename) holding the run identity (SHA-256 of the section's inputs, the levels and
-options, and the onbottom version); a rerun reuses a section whose identity matches and runs
-the others. The case file is only read.
+options, and the onbottom version: :attr:`Section.identity <onbottom.assess.route.Section>`);
+a rerun reuses a section whose identity matches and runs the others.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import math
 import re
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -41,26 +45,12 @@ import pandas as pd
 import xarray as xr
 
 from onbottom._version import __version__
-from onbottom.cases.assess import RouteCase
+from onbottom.assess.route import Route, Section
 from onbottom.results import annotate, provenance, write_text_atomic
 
-__all__ = ["Assessment", "assess", "section_identity"]
+__all__ = ["Assessment", "assess"]
 
 SECTION_FOLDER = "sections"
-
-
-def section_identity(case: RouteCase, i: int) -> str:
-    """SHA-256 of everything section ``i``'s results depend on."""
-    blob = {
-        "stability": case.stability_document(i),
-        "storms": {
-            n: case.storm_document(i, n) for n in case.combination_names(i)
-        },  # the dynamic inputs
-        "levels": json.loads(case.levels.model_dump_json()),
-        "dynamic": json.loads(case.dynamic.model_dump_json()),
-        "version": __version__,
-    }
-    return hashlib.sha256(json.dumps(blob, sort_keys=True).encode()).hexdigest()
 
 
 def _slug(name: str) -> str:
@@ -73,23 +63,23 @@ def section_file(out: Path, i: int, name: str) -> Path:
 
 @dataclass(frozen=True)
 class _SectionJob:
-    """A picklable section task: the route case as JSON, the index, the output folder."""
+    """A picklable section task: the route's settings (no sections), the section, its index,
+    the output folder."""
 
-    case_json: str
+    route: Route
+    section: Section
     index: int
     out: str | None
-    identity: str
     curve_files: tuple[str, ...] = ()
 
     def __call__(self, _: Any = None) -> dict[str, Any]:
-        case = RouteCase.model_validate_json(self.case_json)
         t0, c0 = time.perf_counter(), time.process_time()
-        result = _run_section(case, self.index, self.curve_files)
+        result = _run_section(self.route, self.section, self.index, self.curve_files)
         result["wall_time_s"] = time.perf_counter() - t0
         result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
-        result["identity"] = self.identity
+        result["identity"] = self.section.identity
         if self.out is not None:
-            path = section_file(Path(self.out), self.index, case.route.sections[self.index].name)
+            path = section_file(Path(self.out), self.index, self.section.name)
             write_text_atomic(path, json.dumps(result, indent=1, default=_jsonable))
         return result
 
@@ -115,22 +105,6 @@ def _clean(x: Any) -> Any:
     if isinstance(x, (str, int, float, bool)) or x is None:
         return x
     return str(x)
-
-
-def _check_options(sc: Any) -> Any:
-    from onbottom.checks.design import CheckOptions
-
-    d = sc.design
-    return CheckOptions(
-        safety_class=d.safety_class,
-        region=d.region,
-        vertical_conditions=tuple(d.vertical_conditions),
-        vertical_safety_factor=d.vertical_safety_factor,
-        penetration=sc.seabed.initial_penetration,
-        trench_depth=sc.seabed.trench_depth,
-        trench_angle_deg=sc.seabed.trench_angle_deg,
-        permeable=d.permeable,
-    )
 
 
 def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -> dict:
@@ -167,8 +141,7 @@ def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -
                 "governing_check": None, "message": str(exc)}  # fmt: skip
 
 
-def _generalized_design(variable, section, seabed, env, combos, options, sc, files, case,
-                        levels) -> dict:  # fmt: skip
+def _generalized_design(variable, sec: Section, files, route: Route, levels) -> dict:
     """Minimum of the design variable with every combination's generalized utilisation <= 1
     (the same scan + brentq as the static design), raised to the flotation minimum; a trial
     whose point leaves the curves' grid counts as failing (nothing is extrapolated)."""
@@ -177,9 +150,13 @@ def _generalized_design(variable, section, seabed, env, combos, options, sc, fil
     from onbottom.assess.generalized import generalized_rows
     from onbottom.checks.design import CheckRow, run_checks
 
+    seabed, env, combos, options = sec.seabed, sec.environment, sec.combinations, sec.options
+
     def evaluate(s: Any) -> list:
         rows = run_checks(s, seabed, env, combos, options)
-        gen = generalized_rows(sc, rows, list(files), case.dynamic.allowable)
+        gen = generalized_rows(rows, list(files), route.dynamic.allowable,
+                               seabed_model=sec.seabed_model,
+                               water_density=env.water_density)  # fmt: skip
         return [
             CheckRow(g["name"], g["combination"], g["condition"],
                      g["utilisation"] if g["covered"] else _m.inf,
@@ -187,28 +164,26 @@ def _generalized_design(variable, section, seabed, env, combos, options, sc, fil
             for g in gen
         ]  # fmt: skip
 
-    res = _design(variable, section, seabed, env, combos, options, sc.design, evaluate)
+    res = _design(variable, sec.pipe, seabed, env, combos, options, route.design, evaluate)
     vert = levels.get("vertical", {}).get("value")
     if res["success"] and vert is not None and vert > res["value"]:
         res |= {"value": vert, "governing_check": "flotation (F109 Eq 3.1)"}
     return res
 
 
-def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[str, Any]:
-    from onbottom._casefile import parse_case
+def _run_section(
+    route: Route, sec: Section, i: int, curve_files: tuple[str, ...]
+) -> dict[str, Any]:
     from onbottom.assess import dynamic as dyn
     from onbottom.assess.generalized import generalized_rows
-    from onbottom.cases.stability import StabilityCase, penetration_outside_validity
-    from onbottom.checks.design import run_checks
+    from onbottom.checks.design import penetration_outside_validity, run_checks
     from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.consistency import warnings_reported_by_case
 
-    sec = case.route.sections[i]
-    sc = parse_case(StabilityCase, case.stability_document(i))
-    section, seabed, env = sc.section(), sc.seabed.seabed(), sc.environment_object()
-    combos = sc.load_combinations()
-    options = _check_options(sc)
-    variable = case.solve_for
+    section, seabed, env = sec.pipe, sec.seabed, sec.environment
+    combos = sec.combinations
+    options = sec.options
+    variable = route.variable
     notes: list[str] = []
     with warnings.catch_warnings(record=True) as caught, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
@@ -219,11 +194,11 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
         ]
         if variable != "none":
             levels["vertical"] = _design(
-                variable, section, seabed, env, combos, options, sc.design, vertical_rows
+                variable, section, seabed, env, combos, options, route.design, vertical_rows
             )
-            if case.levels.absolute:
+            if route.levels.absolute:
                 levels["absolute"] = _design(
-                    variable, section, seabed, env, combos, options, sc.design
+                    variable, section, seabed, env, combos, options, route.design
                 )
     notes += sorted({str(w.message) for w in caught if issubclass(w.category, Warning)})
     notes += penetration_outside_validity(rows)
@@ -234,8 +209,10 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     ]  # fmt: skip
 
     # -- generalized ---------------------------------------------------------------------
-    if case.levels.generalized:
-        gen = generalized_rows(sc, rows, list(curve_files), case.dynamic.allowable)
+    if route.levels.generalized:
+        gen = generalized_rows(rows, list(curve_files), route.dynamic.allowable,
+                               seabed_model=sec.seabed_model,
+                               water_density=env.water_density)  # fmt: skip
         checks += [_clean(g) for g in gen]
         covered = [g for g in gen if g["covered"]]
         levels["generalized"] = {
@@ -249,20 +226,17 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
             " combination covered",
         }
         if gen and len(covered) == len(gen) and variable != "none":
-            levels["generalized"] |= _generalized_design(
-                variable, section, seabed, env, combos, options, sc, curve_files, case, levels
-            )
+            levels["generalized"] |= _generalized_design(variable, sec, curve_files, route, levels)
 
     # -- dynamic ---------------------------------------------------------------------------
     dynamic: dict[str, Any] = {}
-    if case.levels.dynamic:
-        d = case.dynamic
-        seeds = list(range(d.first_seed, d.first_seed + d.seeds))
-        names = case.combination_names(i)
+    if route.levels.dynamic:
+        d = route.dynamic
+        seeds = d.seed_list
+        names = [c.name for c in sec.storms]
         base = {}
-        for name in names:
-            doc = case.storm_document(i, name)
-            base[name] = dyn.run_seeds(doc, seeds)
+        for c in sec.storms:
+            base[c.name] = dyn.run_seeds(c.setup, seeds)
         allow = {
             n: d.allowable_for(base[n][0]["diameter"]) for n in names if base[n]
         }  # D of the given design
@@ -276,13 +250,14 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
                 "submerged_weight": base[n][0]["submerged_weight"],
                 "allowable": allow[n],
                 "utilisation": max(r["max_displacement"] for r in base[n]) / allow[n],
-                "condition": case.storm_document(i, n)["pipe"]["condition"],
+                "condition": c.condition,
             }
-            for n in names
+            for n, c in zip(names, sec.storms, strict=True)
         }
-        for n, b in dynamic["base"].items():  # the worst seed's history, for the report
+        for (n, b), c in zip(dynamic["base"].items(), sec.storms, strict=True):
+            # the worst seed's history, for the report
             worst = b["seeds"][int(np.argmax(b["max_displacement"]))]
-            b["history"] = {"seed": worst} | dyn.history(case.storm_document(i, n), worst)
+            b["history"] = {"seed": worst} | dyn.history(c.setup, worst, duration=d.duration_s)
             checks.append(
                 _clean({
                     "name": "dynamic_lateral", "combination": n, "condition": b["condition"],
@@ -294,29 +269,23 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
                 })
             )  # fmt: skip
         if variable != "none":
-            pipe_doc = json.loads(case.pipe.model_dump_json(exclude_none=True))
-
-            def docs(trial: dict[str, Any]) -> list[dict[str, Any]]:
-                return [case.storm_document(i, n, pipe=trial) for n in names]
-
-            evaluate = dyn.DynamicTrials(
-                docs, pipe_doc, variable, case.design.layer, seeds, d.allowable_for
-            )
+            evaluate = dyn.DynamicTrials(sec.trial_storm, len(names), seeds, d.allowable_for)
             evaluate.prime({
                 (k, sd): y / dynamic["base"][n]["allowable"]
                 for k, n in enumerate(names)
                 for sd, y in zip(dynamic["base"][n]["seeds"],
                                  dynamic["base"][n]["max_displacement"], strict=True)
             })  # fmt: skip
+            rng = route.design
             lo, hi, tol = (
-                (case.design.thickness_min, case.design.thickness_max, d.thickness_tolerance_m)
+                (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
                 if variable == "concrete_thickness"
-                else (case.design.weight_min, case.design.weight_max, d.weight_tolerance_n_per_m)
+                else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
             )
             vert = levels.get("vertical", {}).get("value")
             if vert is not None and vert > lo:
                 lo = min(vert, hi)  # the design is raised to the flotation minimum anyway
-            given = _given_value(case, variable)
+            given = sec.given_value
             known = []
             if given is not None and all(len(b["seeds"]) == len(seeds) for b in
                                          dynamic["base"].values()):  # fmt: skip
@@ -355,17 +324,17 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     )
     saved = None
     if "absolute" in candidates and "dynamic" in candidates:
-        saved = _weight_saved(case, sc, candidates["absolute"], candidates["dynamic"])
+        saved = _weight_saved(route, sec, candidates["absolute"], candidates["dynamic"])
     return _clean({
         "index": i, "name": sec.name, "kp_start_m": sec.kp_start, "kp_end_m": sec.kp_end,
-        "water_depth": sec.water_depth, "seabed_model": sec.seabed.model,
+        "water_depth": sec.water_depth, "seabed_model": sec.seabed_model,
         "variable": variable, "checks": checks, "levels": levels, "dynamic": dynamic,
         "governing_level": gov_level,
         "design_value": candidates.get(gov_level) if gov_level else None,
         "governing_check": f"{worst['name']} / {worst['combination']}",
         "max_utilisation": worst["utilisation"],
         "weight_saved": saved, "notes": notes,
-        "stability_document": case.stability_document(i),
+        "stability_document": sec.document,
         "sea_states": [{"combination": c.name, "condition": c.condition,
                         "hs": c.sea_state.hs, "tp": c.sea_state.tp,
                         "gamma": c.sea_state.gamma,
@@ -377,30 +346,19 @@ def _run_section(case: RouteCase, i: int, curve_files: tuple[str, ...]) -> dict[
     })  # fmt: skip
 
 
-def _given_value(case: RouteCase, variable: str) -> float | None:
-    """The design variable of the case's ``[pipe]`` (the given design), if it has one."""
-    if variable == "concrete_thickness":
-        for lay in case.pipe.layers or ():
-            if lay.name == case.design.layer:
-                return float(lay.thickness)
-        return None
-    w = getattr(case.pipe, "submerged_weight", None)
-    return None if w is None else float(w)
-
-
-def _weight_saved(case: RouteCase, sc: Any, x_abs: float, x_dyn: float) -> dict[str, Any]:
+def _weight_saved(route: Route, sec: Section, x_abs: float, x_dyn: float) -> dict[str, Any]:
     """Submerged weight [N/m] (operation condition of the pipe) at both designs, and the
     difference absolute − dynamic (positive: the dynamic level saves weight)."""
     from dataclasses import replace
 
     from onbottom.inputs.pipe_buildup import PipeBuildUp
 
-    section = sc.section()
-    cond = case.pipe.condition
+    section = sec.pipe
+    cond = sec.condition
 
     def ws(x: float) -> float:
         if isinstance(section, PipeBuildUp):
-            designed = section.with_layer_thickness(case.design.layer, x)
+            designed = section.with_layer_thickness(route.design.layer, x)
             return designed.properties(cond).submerged_weight
         return replace(section, submerged_weight=x, mass=None).submerged_weight
 
@@ -417,14 +375,15 @@ class Assessment:
 
     Attributes
     ----------
-    case : RouteCase
-        The validated route case.
+    route : Route
+        The route assessed.
     sections : list of dict
         Per section: name, KP range [m], checks (rows), levels (per level: success, value,
         governing check, message), dynamic (per-seed results at the given design and the
         bisection), governing_level, design_value, weight_saved, notes.
     identity : str
-        SHA-256 of the validated case.
+        The route's identity (:attr:`Route.identity <onbottom.assess.route.Route>`: the
+        SHA-256 of the validated case file).
     wall_time_s : float
         Wall time of the study [s]; ``reused`` lists the sections taken from a previous run.
     pipeline : dict or None
@@ -432,7 +391,7 @@ class Assessment:
         :func:`onbottom.assess.pipeline.run_governing_pipeline`), None when not run.
     """
 
-    case: RouteCase
+    route: Route
     sections: list[dict[str, Any]]
     identity: str
     wall_time_s: float
@@ -518,7 +477,7 @@ class Assessment:
 
 
 def assess(
-    case: RouteCase,
+    route: Route,
     *,
     out: str | Path | None = None,
     n_workers: int | None = None,
@@ -531,8 +490,9 @@ def assess(
 
     Parameters
     ----------
-    case : RouteCase
-        From :func:`onbottom.cases.assess.load_route_case`.
+    route : Route
+        The built route (:func:`onbottom.cases.assess.load_route` reads one from a route case
+        file).
     out : path or None
         Output folder of the per-section JSON files (resume); None: nothing written.
     n_workers : int or None
@@ -545,21 +505,20 @@ def assess(
         NetCDF curve sweeps for the generalized level (None: the default search,
         :func:`onbottom.assess.generalized.default_curve_files`).
     source : str
-        Where the case came from (a path, or "embedded example").
+        Where the route came from (a path, or "embedded example").
     """
     from onbottom.assess.generalized import default_curve_files
-    from onbottom.cases.assess import case_identity
 
     t0 = time.perf_counter()
     files = tuple(default_curve_files() if curve_files is None else curve_files)
-    case_json = case.model_dump_json()
+    settings = replace(route, sections=())  # each job carries its own section only
     outp = None if out is None else Path(out)
     results: dict[int, dict[str, Any]] = {}
     jobs = []
     reused = []
-    for i, s in enumerate(case.route.sections):
-        ident = section_identity(case, i)
-        if outp is not None:
+    for i, s in enumerate(route.sections):
+        ident = s.identity
+        if outp is not None and ident:  # a section without an identity is always run
             f = section_file(outp, i, s.name)
             if f.is_file():
                 try:
@@ -570,7 +529,7 @@ def assess(
                     results[i] = old
                     reused.append(s.name)
                     continue
-        jobs.append(_SectionJob(case_json, i, None if outp is None else str(outp), ident, files))
+        jobs.append(_SectionJob(settings, s, i, None if outp is None else str(outp), files))
     if jobs:
         if n_workers == 0 and scheduler is None:
             from tqdm.auto import tqdm
@@ -584,24 +543,24 @@ def assess(
                 done = ParallelMap(c, batch_size=1, progress=progress)(_call, jobs)
         for r in done:
             results[r["index"]] = r
-    sections = [results[i] for i in range(len(case.route.sections))]
-    pipe = _pipeline(case, sections, outp) if case.levels.pipeline_fe else None
-    return Assessment(case=case, sections=sections, identity=case_identity(case),
+    sections = [results[i] for i in range(len(route.sections))]
+    pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
+    return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
                       source=source, pipeline=pipe)  # fmt: skip
 
 
-def _pipeline(case: RouteCase, sections: list[dict[str, Any]], out: Path | None) -> dict | None:
+def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) -> dict | None:
     """The pipeline FE run of the governing section, reused from ``sections/pipeline.json``
-    when its identity (the section results it depends on and ``[pipeline]``) matches."""
+    when its identity (the section results it depends on and the pipeline settings) matches."""
     from onbottom.assess.pipeline import governing_storm, run_governing_pipeline
 
-    gov = governing_storm(case, sections)
+    gov = governing_storm(route, sections)
     if gov is None:
         return None
     ident = hashlib.sha256(
         json.dumps(
-            {"governing": gov, "pipeline": json.loads(case.pipeline.model_dump_json()),
+            {"governing": gov, "pipeline": dataclasses.asdict(route.pipeline),
              "section": next(s["identity"] for s in sections if s["index"] == gov["index"]),
              "version": __version__},
             sort_keys=True,
@@ -615,7 +574,7 @@ def _pipeline(case: RouteCase, sections: list[dict[str, Any]], out: Path | None)
             old = None
         if old and old.get("identity") == ident:
             return old | {"reused": True}
-    res = run_governing_pipeline(case, sections, out)
+    res = run_governing_pipeline(route, sections, out)
     res = _clean(res | {"identity": ident})
     if f is not None:
         write_text_atomic(f, json.dumps(res, indent=1))

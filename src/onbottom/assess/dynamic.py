@@ -1,10 +1,12 @@
 """Dynamic level of a route section: storms over seeds, and the minimum weight.
 
-Each evaluation builds the ``onbottom storm`` case of the section in one load combination
-(:meth:`onbottom.cases.assess.RouteCase.storm_document`) through its own loader
-(:func:`onbottom.cases.storm.build_setup`) and runs the seeds with
+Each evaluation runs the seeds of one load combination's
+:class:`~onbottom.dynamics.storm_setup.StormSetup` (built by :mod:`onbottom.cases.assess`
+through the ``onbottom storm`` loader: the section in that combination, the same case as
+``onbottom storm`` on the section's storm document) with
 :func:`onbottom.dynamics.storm_section.simulate_storm_section` (summary only), as
-``onbottom storm --seeds N --workers 0`` does.
+``onbottom storm --seeds N --workers 0`` does; a trial design's setups come from the
+section's :data:`~onbottom.assess.route.TrialStorm`.
 
 Minimum weight (concrete thickness, or submerged weight of a simple pipe). The design passes
 when **every seed's** largest lateral displacement in **every** combination is at most the
@@ -40,7 +42,6 @@ averaged over the pipe.
 
 from __future__ import annotations
 
-import copy
 import math
 import warnings
 from collections.abc import Callable
@@ -49,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from onbottom._casefile import parse_case
+from onbottom.dynamics.storm_setup import StormSetup
 
 __all__ = [
     "DynamicTrials",
@@ -62,18 +63,10 @@ __all__ = [
 ]
 
 
-def _setup(doc: dict[str, Any]) -> Any:
-    from onbottom.cases.storm import StormCase, build_setup
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return build_setup(parse_case(StormCase, doc), None)
-
-
 def run_seeds(
-    doc: dict[str, Any], seeds: list[int], *, allowable: float | None = None
+    setup: StormSetup, seeds: list[int], *, allowable: float | None = None
 ) -> list[dict[str, Any]]:
-    """Run the storm case ``doc`` for ``seeds`` in this process.
+    """Run the storm ``setup`` for ``seeds`` in this process.
 
     Returns one row per seed run: seed, max_displacement [m], final_displacement [m], status,
     message, diameter [m]. With ``allowable`` [m] the loop stops after the first seed whose
@@ -81,7 +74,6 @@ def run_seeds(
     """
     from onbottom.dynamics.storm_section import simulate_storm_section
 
-    setup = _setup(doc)
     kwargs = setup.kwargs()
     kwargs["settings"] = replace(setup.settings, record_interval=None)
     rows = []
@@ -107,15 +99,15 @@ def run_seeds(
     return rows
 
 
-def history(doc: dict[str, Any], seed: int, *, points: int = 400) -> dict[str, list[float]]:
-    """Time history of one seed of the storm case ``doc`` (the same run as in
-    :func:`run_seeds`, recorded every ``record_interval`` = peak duration / ``points``):
-    ``time`` [s], ``y`` lateral displacement [m], ``z`` penetration [m]."""
+def history(
+    setup: StormSetup, seed: int, *, duration: float, points: int = 400
+) -> dict[str, list[float]]:
+    """Time history of one seed of the storm ``setup`` (the same run as in :func:`run_seeds`,
+    recorded every ``record_interval`` = ``duration`` [s] (of the storm) / ``points``, at least
+    0.1 s): ``time`` [s], ``y`` lateral displacement [m], ``z`` penetration [m]."""
     from onbottom.dynamics.storm_section import simulate_storm_section
 
-    setup = _setup(doc)
-    total = 3600.0 * (doc["storm"]["build_up_hours"] + doc["storm"]["peak_hours"])
-    settings = replace(setup.settings, record_interval=max(total / points, 0.1))
+    settings = replace(setup.settings, record_interval=max(duration / points, 0.1))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         r = simulate_storm_section(
@@ -128,22 +120,9 @@ def history(doc: dict[str, Any], seed: int, *, points: int = 400) -> dict[str, l
             for k, name in (("time", "time"), ("y", "y"), ("z", "z"))}  # fmt: skip
 
 
-def _trial_pipe(pipe_doc: dict[str, Any], variable: str, layer: str, x: float) -> dict:
-    p = copy.deepcopy(pipe_doc)
-    if variable == "submerged_weight":
-        p["submerged_weight"] = float(x)
-    else:
-        for lay in p["layers"]:
-            if lay["name"] == layer:
-                lay["thickness"] = float(x)
-    return p
-
-
 def dynamic_ratio(
-    storm_doc: Callable[[dict[str, Any]], list[dict[str, Any]]],
-    pipe_doc: dict[str, Any],
-    variable: str,
-    layer: str,
+    trial: Callable[[int, float], StormSetup],
+    combinations: int,
     x: float,
     seeds: list[int],
     allowable: Callable[[float], float],
@@ -151,17 +130,17 @@ def dynamic_ratio(
     early_stop: bool = True,
 ) -> tuple[float, int]:
     """g(x) = max over combinations and seeds of max|y|/allowable at design value ``x``, and
-    the number of storms run. ``storm_doc(pipe)`` gives the storm documents of every
-    combination for a trial ``[pipe]`` table; ``allowable(D)`` [m]."""
-    trial = _trial_pipe(pipe_doc, variable, layer, x)
+    the number of storms run. ``trial(k, x)`` gives the storm setup of combination ``k`` (of
+    ``combinations``) at a trial design (:data:`~onbottom.assess.route.TrialStorm`);
+    ``allowable(D)`` [m]."""
     worst, n = 0.0, 0
-    for doc in storm_doc(trial):
+    for k in range(combinations):
         try:
-            d = _setup(doc).pipe.outer_diameter
+            setup = trial(k, x)
         except Exception:  # the trial pipe floats in this condition: fails
             return math.inf, n
-        allow = allowable(d)
-        rows = run_seeds(doc, seeds, allowable=allow if early_stop else None)
+        allow = allowable(setup.pipe.outer_diameter)
+        rows = run_seeds(setup, seeds, allowable=allow if early_stop else None)
         n += len(rows)
         ratio = max(r["max_displacement"] for r in rows) / allow
         worst = max(worst, ratio)
@@ -228,8 +207,8 @@ forces small steps."""
 class DynamicTrials:
     """g(x) of a trial design with the (combination, seed) pairs run worst first.
 
-    ``storm_doc(pipe)`` gives the storm documents of every combination for a trial ``[pipe]``
-    table (as in :func:`dynamic_ratio`); ``allowable(D)`` [m]. Calling the object with x returns
+    ``trial(k, x)`` gives the storm setup of combination ``k`` (of ``combinations``) at a trial
+    design (as in :func:`dynamic_ratio`); ``allowable(D)`` [m]. Calling the object with x returns
     (g, storms run); with ``early_stop`` a trial stops at the first pair above the allowable
     (g is then that pair's ratio, a lower bound of the maximum), and each storm stops once |y|
     passes :data:`STOP_MARGIN` × the allowable (the ratio of a failing pair is then about
@@ -241,15 +220,12 @@ class DynamicTrials:
 
     def __init__(
         self,
-        storm_doc: Callable[[dict[str, Any]], list[dict[str, Any]]],
-        pipe_doc: dict[str, Any],
-        variable: str,
-        layer: str,
+        trial: Callable[[int, float], StormSetup],
+        combinations: int,
         seeds: list[int],
         allowable: Callable[[float], float],
     ) -> None:
-        self.storm_doc, self.pipe_doc = storm_doc, pipe_doc
-        self.variable, self.layer = variable, layer
+        self.trial, self.combinations = trial, int(combinations)
         self.seeds = [int(s) for s in seeds]
         self.allowable = allowable
         self.last: dict[tuple[int, int], float] = {}
@@ -261,15 +237,14 @@ class DynamicTrials:
     def __call__(self, x: float, *, early_stop: bool = True) -> tuple[float, int]:
         from onbottom.dynamics.storm_section import simulate_storm_section
 
-        docs = self.storm_doc(_trial_pipe(self.pipe_doc, self.variable, self.layer, x))
         setups: dict[int, Any] = {}
-        pairs = [(k, s) for k in range(len(docs)) for s in self.seeds]
+        pairs = [(k, s) for k in range(self.combinations) for s in self.seeds]
         pairs.sort(key=lambda p: -self.last.get(p, math.inf))  # never run first: first
         worst, n = 0.0, 0
         for k, seed in pairs:
             if k not in setups:
                 try:
-                    setups[k] = _setup(docs[k])
+                    setups[k] = self.trial(k, x)
                 except Exception:  # the trial pipe floats in this condition: fails
                     return math.inf, n
             setup = setups[k]

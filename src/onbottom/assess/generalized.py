@@ -55,14 +55,23 @@ def _soil_label(model: str) -> str | None:
     return {"sand": "sand", "clay": "clay"}.get(model)
 
 
-def generalized_rows(sc: Any, rows: list[Any], files: list[str], allowable: str = "0.5D") -> list:
-    """One row per absolute-lateral row of ``rows``: level ``generalized``, ``covered`` and
-    ``message``; where covered, ``utilisation`` and the point (K, M, N, L)."""
+def generalized_rows(
+    rows: list[Any],
+    files: list[str],
+    allowable: str = "0.5D",
+    *,
+    seabed_model: str,
+    water_density: float,
+) -> list:
+    """One row per absolute-lateral row of ``rows`` (:func:`onbottom.checks.design.run_checks`
+    on the section): level ``generalized``, ``covered`` and ``message``; where covered,
+    ``utilisation`` and the point (K, M, N, L). ``seabed_model``: the section's soil model name
+    (curves exist for ``sand`` and ``clay``); ``water_density``: ρ_w [kg/m³] of L."""
     out = []
     lat = [r for r in rows if r.name == "absolute_lateral" and "us" in r.details]
     sweeps = [(f, ds) for f in files if (ds := _load(f)) is not None]
     crit = CRITERION.get(allowable)
-    rho = sc.environment.water_density
+    rho = water_density
     for r in lat:
         det = r.details
         d, us, tu, v = det["diameter"], det["us"], det["tu"], det.get("v_star", 0.0)
@@ -75,7 +84,7 @@ def generalized_rows(sc: Any, rows: list[Any], files: list[str], allowable: str 
         k, n, m = us * tu / d, us / (GRAVITY * tu), v / us
         lact = det["submerged_weight"] / (0.5 * rho * d * us**2)
         point = {"K": k, "M": m, "N": n, "L_actual": lact}
-        soil = _soil_label(sc.seabed.model)
+        soil = _soil_label(seabed_model)
         msg = None
         if crit is None:
             msg = f"allowable {allowable!r}: the curves give 0.5D and 10D only"
@@ -85,7 +94,7 @@ def generalized_rows(sc: Any, rows: list[Any], files: list[str], allowable: str 
                 " onbottom/data/stability_curves/ or docs/validation/stability_curves/)"
             )
         elif soil is None:
-            msg = f"seabed model {sc.seabed.model!r} has no curves (sand and clay only)"
+            msg = f"seabed model {seabed_model!r} has no curves (sand and clay only)"
         found = None
         if msg is None:
             reasons = []

@@ -37,9 +37,18 @@ from typing import Any
 
 from onbottom._version import __version__
 from onbottom.assess.core import Assessment
-from onbottom.results import _atomic_write, save_dataset, write_text_atomic
+from onbottom.results import atomic_write, save_dataset, write_text_atomic
 
-__all__ = ["CLAUSES", "RESULTS_KEYS", "VALIDITY", "provenance_block", "write_outputs"]
+__all__ = [
+    "CLAUSES",
+    "RESULTS_KEYS",
+    "VALIDITY",
+    "comparison",
+    "format_value",
+    "provenance_block",
+    "results_payload",
+    "write_outputs",
+]
 
 RESULTS_KEYS = (
     "schema",
@@ -210,11 +219,11 @@ def results_payload(a: Assessment, case_text: str | None) -> dict[str, Any]:
     return _json_safe({
         "schema": "onbottom.assess/1",
         "provenance": provenance_block(a, case_text),
-        "route": {"name": a.case.route.name, "sections": len(a.sections),
-                  "variable": a.case.solve_for,
-                  "allowable": a.case.dynamic.allowable
-                  if a.case.dynamic.allowable != "user"
-                  else f"{a.case.dynamic.allowable_displacement_m} m"},
+        "route": {"name": a.route.name, "sections": len(a.sections),
+                  "variable": a.route.variable,
+                  "allowable": a.route.dynamic.allowable
+                  if a.route.dynamic.allowable != "user"
+                  else f"{a.route.dynamic.allowable_displacement_m} m"},
         "summary": summary.astype(object).where(summary.notna(), None).to_dict("records"),
         "sections": a.sections,
         "comparison": comparison(a),
@@ -235,7 +244,8 @@ def _fmt(x: Any, unit: str = "", digits: int = 3) -> str:
     return html.escape(str(x))
 
 
-def _value(x: Any, variable: str) -> str:
+def format_value(x: Any, variable: str) -> str:
+    """A design value as text: mm of concrete, N/m of submerged weight, or "no solution"."""
     if x is None:
         return "no solution"
     if variable == "concrete_thickness":
@@ -397,7 +407,7 @@ def _pipeline_html(p: dict[str, Any], var: str) -> str:
     rows = [
         ("Governing storm", f"{p['combination']} (seed {p['seed']}), condition {p['condition']}"),
         ("Design value", "the given design" if p["design_value"] is None
-         else _value(p["design_value"], var)),
+         else format_value(p["design_value"], var)),
         ("Line", f"{p['length_m']:g} m, {p['n_nodes']} nodes, ends {p['end_conditions']}"),
         ("D, w_s", f"{d:.4g} m, {p['submerged_weight_n_per_m']:.4g} N/m"),
         ("Max lateral displacement", f"{p['max_displacement_m']:.3g} m"
@@ -446,7 +456,7 @@ def _section_validity(s: dict[str, Any], a: Assessment) -> list[str]:
     model = s["seabed_model"]
     if model in RECONSTRUCTED and "dynamic" in s["levels"]:
         notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[model])
-    force = (a.case.hydro.model or "wake") if "dynamic" in s["levels"] else None
+    force = a.route.force_model if "dynamic" in s["levels"] else None
     if force in RECONSTRUCTED:
         notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[force])
     notes.append(VALIDITY[3])
@@ -472,17 +482,17 @@ font-size:.9em;text-align:left}th{background:#eef}.fail{color:#b00;font-weight:b
 
 def report_html(a: Assessment, payload: dict[str, Any]) -> str:
     """The design report (self-contained HTML: inline CSS and SVG, no external resource)."""
-    var = a.case.solve_for
-    e = html.escape
+    var = a.route.variable
+    e, fv = html.escape, format_value
     out = [
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
-        f"<title>On-bottom stability assessment — {e(a.case.route.name)}</title>",
+        f"<title>On-bottom stability assessment — {e(a.route.name)}</title>",
         f"<style>{_CSS}</style></head><body>",
-        f"<h1>On-bottom stability assessment — {e(a.case.route.name)}</h1>",
+        f"<h1>On-bottom stability assessment — {e(a.route.name)}</h1>",
         f"<p class='note'>onbottom {e(__version__)} · design variable: {e(var)} · allowable"
         f" displacement of the dynamic level: {e(str(payload['route']['allowable']))} (every"
-        f" seed) · {a.case.dynamic.seeds} seeds · storms {a.case.dynamic.build_up_hours:g} h"
-        f" build-up + {a.case.dynamic.peak_hours:g} h peak.</p>",
+        f" seed) · {a.route.dynamic.seeds} seeds · storms {a.route.dynamic.build_up_hours:g} h"
+        f" build-up + {a.route.dynamic.peak_hours:g} h peak.</p>",
         "<h2 id='summary'>Summary per KP section</h2><table><tr><th>Section</th><th>KP [km]"
         "</th><th>Depth [m]</th><th>Seabed</th><th>Governing check (given design)</th>"
         "<th>Utilisation</th><th>Flotation min.</th><th>Absolute min.</th><th>Generalized</th>"
@@ -497,7 +507,7 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
         if gen is None:
             gtxt = "not run"
         elif gen.get("value") is not None:
-            gtxt = _value(gen["value"], var)
+            gtxt = format_value(gen["value"], var)
         else:
             gtxt = "not covered" if not gen["covered"] else "partly covered"
         out.append(
@@ -507,12 +517,12 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
             f"<td>{e(s['governing_check'])}</td>"
             f"<td class='{'fail' if u and u > 1 else 'pass'}'>{_fmt(u)}</td>"
             + "".join(
-                f"<td>{_value((lv.get(k) or {}).get('value'), var) if k in lv else 'not run'}</td>"
+                f"<td>{fv((lv.get(k) or {}).get('value'), var) if k in lv else 'not run'}</td>"
                 for k in ("vertical", "absolute")
             )
             + f"<td>{gtxt}</td>"
-            + f"<td>{_value(lv['dynamic']['value'], var) if 'dynamic' in lv else 'not run'}</td>"
-            + f"<td>{_value(s['design_value'], var) if s['governing_level'] else 'no solution'}"
+            + f"<td>{fv(lv['dynamic']['value'], var) if 'dynamic' in lv else 'not run'}</td>"
+            + f"<td>{fv(s['design_value'], var) if s['governing_level'] else 'no solution'}"
             f" ({e(str(s['governing_level']))})</td>"
             f"<td>{_fmt(ws.get('saved_submerged_weight'), digits=4)}</td></tr>"
         )
@@ -530,8 +540,8 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                "<th>Absolute</th><th>Dynamic</th><th>Heavier</th><th>Why</th></tr>")  # fmt: skip
     for c in payload["comparison"]:
         out.append(
-            f"<tr><td>{e(c['section'])}</td><td>{_value(c['absolute_value'], var)}</td>"
-            f"<td>{_value(c['dynamic_value'], var)}</td><td>{e(c['heavier'])}</td>"
+            f"<tr><td>{e(c['section'])}</td><td>{format_value(c['absolute_value'], var)}</td>"
+            f"<td>{format_value(c['dynamic_value'], var)}</td><td>{e(c['heavier'])}</td>"
             f"<td>{e(c['reason'])}</td></tr>"
         )
     out.append("</table>")
@@ -572,13 +582,13 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                    "<th>Minimum</th><th>Governed by</th><th>Message</th></tr>")  # fmt: skip
         for k, v in s["levels"].items():
             out.append(
-                f"<tr><td>{e(k)}</td><td>{_value(v.get('value'), var)}</td>"
+                f"<tr><td>{e(k)}</td><td>{format_value(v.get('value'), var)}</td>"
                 f"<td>{e(str(v.get('governing_check') or '—'))}</td>"
                 f"<td class='note'>{e(str(v.get('message', '')))}</td></tr>"
             )
         out.append("</table>")
         out.append("<h3>V–H diagram (given design)</h3>")
-        out.append(_vh_figure(s, a.case.environment.water_density))
+        out.append(_vh_figure(s, a.route.water_density))
         out.append(
             "<p class='note'>Dots: the peak load of every wave cycle of a 3-h record of the"
             " design sea state on a fixed pipe (Morison C_D 0.9, C_M 3.29, C_L 0.9, times r_y,"
@@ -606,7 +616,9 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                 if b.get("history"):
                     out.append(_history_svg(n, b["history"], b["allowable"]))
         if dyn.get("bisection"):
-            tr = "; ".join(f"{_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
+            tr = "; ".join(
+                f"{format_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"]
+            )
             out.append(
                 "<p class='note'>Search on the design variable (g = max over combinations"
                 " and seeds of max |y| / allowable; pass at g ≤ 1; a failing trial stops at its"
@@ -657,7 +669,7 @@ def write_outputs(
         except (ImportError, OSError) as exc:
             why = f"report.pdf not written: WeasyPrint is not available ({type(exc).__name__})"
         else:
-            _atomic_write(outp / "report.pdf", lambda tmp: HTML(string=text).write_pdf(tmp))
+            atomic_write(outp / "report.pdf", lambda tmp: HTML(string=text).write_pdf(tmp))
             files.append(outp / "report.pdf")
     else:
         why = "report.pdf not asked for"

@@ -14,8 +14,10 @@ straight stretch of the governing section:
   dynamic level at the given design (the same storm: the section's ``onbottom storm``
   document, its seed), synthesised short-crested along the line
   (:func:`onbottom.hydro.short_crested.pipeline_kinematics`);
-* the pipe, soil model, force model, F109 load reductions and current of that storm case;
-  ``[pipeline]`` of the route case gives the length, element length, end conditions and
+* the pipe, soil model, force model, F109 load reductions and current of that storm (the
+  section's :data:`~onbottom.assess.route.TrialStorm` at the design value);
+  :class:`~onbottom.assess.route.PipelineSettings` (``[pipeline]`` of the route case) give the
+  length, element length, end conditions and
   strain limit (default 0.2 %: a screening value below the yield strain of X65 line pipe,
   448 MPa / 207 GPa = 0.22 %; the DNV-ST-F101 displacement-controlled criterion allows more —
   give the project's design value).
@@ -32,15 +34,17 @@ import time
 from pathlib import Path
 from typing import Any
 
+from onbottom.assess.route import Route
+
 __all__ = ["governing_storm", "run_governing_pipeline"]
 
 
-def governing_storm(case: Any, sections: list[dict[str, Any]]) -> dict[str, Any] | None:
+def governing_storm(route: Route, sections: list[dict[str, Any]]) -> dict[str, Any] | None:
     """The governing section, its design value, combination and seed (None: no candidate —
     no section has a design value and a dynamic run at the given design). Without a design
     variable (``solve_for = "none"``) the section with the highest dynamic utilisation, at the
     given design (design value None)."""
-    given = case.solve_for == "none"  # no design variable: the given design is the design
+    given = route.variable == "none"  # no design variable: the given design is the design
     cands = [
         s
         for s in sections
@@ -59,40 +63,36 @@ def governing_storm(case: Any, sections: list[dict[str, Any]]) -> dict[str, Any]
         "section": sec["name"],
         "index": sec["index"],
         "design_value": None if given else sec["design_value"],
-        "variable": case.solve_for,
+        "variable": route.variable,
         "combination": name,
         "seed": int(seed),
     }
 
 
 def run_governing_pipeline(
-    case: Any, sections: list[dict[str, Any]], out: str | Path | None
+    route: Route, sections: list[dict[str, Any]], out: str | Path | None
 ) -> dict[str, Any] | None:
     """Run the pipeline FE of the governing section (see the module); None when no section
     qualifies. ``out``: folder of ``pipeline.nc`` (None: kept in memory)."""
     import warnings
 
-    from onbottom.assess import dynamic as dyn
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, simulate_pipeline
     from onbottom.hydro.short_crested import pipeline_kinematics
     from onbottom.hydro.storm_kinematics import current_normal_to_pipe
 
-    gov = governing_storm(case, sections)
+    gov = governing_storm(route, sections)
     if gov is None:
         return None
     t0 = time.perf_counter()
-    p = case.pipeline
-    pipe_doc = case.pipe.model_dump(mode="json", exclude_none=True)
-    trial = (
-        pipe_doc
-        if case.solve_for == "none"
-        else dyn._trial_pipe(pipe_doc, case.solve_for, case.design.layer, gov["design_value"])
+    p = route.pipeline
+    sec = route.sections[gov["index"]]
+    k = sec.storm_index(gov["combination"])
+    setup = (
+        sec.storms[k].setup if route.variable == "none" else sec.trial_storm(k, gov["design_value"])
     )
-    doc = case.storm_document(gov["index"], gov["combination"], pipe=trial)
-    setup = dyn._setup(doc)
     pipe = setup.pipe
     d = pipe.outer_diameter
-    steel = case.pipe.steel_outer_diameter
+    steel = getattr(sec.pipe, "steel_outer_diameter", None)
     model = PipelineModel(
         pipe=pipe,
         length=p.length,
@@ -140,7 +140,7 @@ def run_governing_pipeline(
         "end_conditions": p.end_conditions,
         "diameter_m": d,
         "submerged_weight_n_per_m": float(pipe.submerged_weight),
-        "condition": doc["pipe"].get("condition"),
+        "condition": sec.storms[k].condition,
         "max_displacement_m": float(r.max_displacement),
         "max_displacement_over_D": float(r.max_displacement) / d,
         "worst_node_x_m": r.worst_node_x,

@@ -31,10 +31,17 @@ Each section is turned into the case files of the single-section commands
 :meth:`RouteCase.storm_document` → ``onbottom storm``) and validated by their own loaders
 before any work, so a route of one section runs exactly what those commands run; an error is
 re-raised under the route key it came from (``route.sections[1].water_depth``).
+
+:func:`build_route` turns a validated case into the plain :class:`~onbottom.assess.route.Route`
+that :func:`onbottom.assess.assess` takes (each section's check inputs and the storm setups of
+its load combinations, built by those same loaders, and a :class:`StormTrials` for the trial
+designs of the dynamic search); :func:`load_route` reads a file and builds it in one call;
+:func:`example_path` is the embedded example route (``onbottom assess`` without a CASE).
 """
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import itertools
 import json
@@ -42,13 +49,26 @@ import math
 import os
 import re
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, _find_line, parse_case, read_toml
+from onbottom._casefile import CaseFileError, StrictModel, find_line, parse_case, read_toml
+from onbottom._version import __version__
+from onbottom.assess.route import (
+    ALLOWABLE_OVER_D,
+    DesignRange,
+    DynamicSettings,
+    Levels,
+    PipelineSettings,
+    Route,
+    Section,
+    StormCombination,
+)
 from onbottom.cases.stability import (
+    Checker,
     CombinationTable,
     CurrentTable,
     DesignTable,
@@ -58,26 +78,35 @@ from onbottom.cases.stability import (
     StabilityCase,
     WavesTable,
     _check_section,
-    _Checker,
 )
+from onbottom.checks.design import CheckOptions
+from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
 __all__ = [
     "ALLOWABLE_OVER_D",
+    "EXAMPLE",
     "RouteCase",
     "RouteSection",
+    "StormTrials",
+    "build_route",
     "case_identity",
+    "check_options",
+    "example_path",
+    "load_route",
     "load_route_case",
     "parse_route_case",
+    "section_identity",
+    "trial_pipe",
 ]
+
+EXAMPLE = "assess_example.toml"
+"""The embedded example route (package data ``onbottom/data/``)."""
 
 DEFAULT_FORCE_MODEL = "wake"
 """Force model of the dynamic level when ``[hydro] model`` is unset: the wake model, as for
 the curves (``onbottom curves``; issue 30: constant Morison coefficients give peak loads about
 2.5 times below F109's C*_Y, C*_Z, so a design weight from them would be unconservative)."""
-
-ALLOWABLE_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
-"""Allowable lateral displacement of the dynamic level as a multiple of D (F109 §3.5)."""
 
 
 class MetoceanTable(StrictModel):
@@ -200,6 +229,19 @@ class DynamicTable(StrictModel):
         if self.allowable == "user":
             return float(self.allowable_displacement_m)
         return ALLOWABLE_OVER_D[self.allowable] * diameter
+
+    def settings(self) -> DynamicSettings:
+        """The built settings of the dynamic level."""
+        return DynamicSettings(
+            seeds=self.seeds,
+            first_seed=self.first_seed,
+            allowable=self.allowable,
+            allowable_displacement_m=self.allowable_displacement_m,
+            build_up_hours=self.build_up_hours,
+            peak_hours=self.peak_hours,
+            thickness_tolerance_m=self.thickness_tolerance_m,
+            weight_tolerance_n_per_m=self.weight_tolerance_n_per_m,
+        )
 
 
 class RoutePipelineTable(StrictModel):
@@ -349,7 +391,7 @@ def _fail(file: str, text: str | None, field: str, message: str) -> None:
         loc.append(name)
         if idx:
             loc.append(int(idx.rstrip("]")))
-    line = _find_line(text, loc) if text else None
+    line = find_line(text, loc) if text else None
     where = f"{file}{f', line {line}' if line else ''}: "
     raise CaseFileError(where + message, field=field, file=file, line=line)
 
@@ -403,7 +445,7 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
         try:
             doc = case.stability_document(i)
             sc = parse_case(StabilityCase, doc, file=label)
-            _check_section(sc, _Checker(label, None))
+            _check_section(sc, Checker(label, None))
             if case.levels.dynamic:
                 for name in case.combination_names(i):
                     with warnings.catch_warnings():
@@ -455,7 +497,7 @@ def _line_of(text: str | None, field: str) -> int | None:
         loc.append(name)
         if idx:
             loc.append(int(idx.rstrip("]")))
-    return _find_line(text, loc)
+    return find_line(text, loc)
 
 
 def parse_route_case(
@@ -484,3 +526,169 @@ def case_identity(case: RouteCase) -> str:
     """SHA-256 of the validated case (canonical JSON): the run identity of a study."""
     blob = json.dumps(json.loads(case.model_dump_json()), sort_keys=True).encode()
     return hashlib.sha256(blob).hexdigest()
+
+
+def section_identity(case: RouteCase, i: int) -> str:
+    """SHA-256 of everything section ``i``'s results depend on (its case documents, the
+    levels, the dynamic settings and the onbottom version): the resume key of
+    ``sections/*.json``."""
+    blob = {
+        "stability": case.stability_document(i),
+        "storms": {
+            n: case.storm_document(i, n) for n in case.combination_names(i)
+        },  # the dynamic inputs
+        "levels": json.loads(case.levels.model_dump_json()),
+        "dynamic": json.loads(case.dynamic.model_dump_json()),
+        "version": __version__,
+    }
+    return hashlib.sha256(json.dumps(blob, sort_keys=True).encode()).hexdigest()
+
+
+def example_path() -> Path:
+    """The embedded example route (package data ``data/assess_example.toml``: shore
+    approach, mid-route, deep end)."""
+    from importlib.resources import files
+
+    return Path(str(files("onbottom") / "data" / EXAMPLE))
+
+
+# ---- the built route -------------------------------------------------------------------------
+def trial_pipe(pipe: dict[str, Any], variable: str, layer: str, x: float) -> dict[str, Any]:
+    """A ``[pipe]`` table at design value ``x``: the submerged weight [N/m] of a simple pipe,
+    or the thickness [m] of the build-up's layer ``layer`` (``variable``)."""
+    p = copy.deepcopy(pipe)
+    if variable == "submerged_weight":
+        p["submerged_weight"] = float(x)
+    else:
+        for lay in p["layers"]:
+            if lay["name"] == layer:
+                lay["thickness"] = float(x)
+    return p
+
+
+def _storm_setup(doc: dict[str, Any]) -> StormSetup:
+    """A section's storm document through the ``onbottom storm`` loader (its warnings were
+    reported when the route was loaded)."""
+    from onbottom.cases.storm import StormCase, build_setup
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return build_setup(parse_case(StormCase, doc), None)
+
+
+@dataclass(frozen=True)
+class StormTrials:
+    """The :data:`~onbottom.assess.route.TrialStorm` of a route section: the storm documents
+    of its load combinations at the given design; ``trials(k, x)`` puts the pipe at design
+    value ``x`` (:func:`trial_pipe`) into document ``k`` and builds it through the
+    ``onbottom storm`` loader (a pipe that floats in the combination's condition raises)."""
+
+    documents: tuple[dict[str, Any], ...]
+    variable: str
+    layer: str
+
+    def __call__(self, k: int, x: float) -> StormSetup:
+        doc = dict(self.documents[k])
+        doc["pipe"] = trial_pipe(doc["pipe"], self.variable, self.layer, x)
+        return _storm_setup(doc)
+
+
+def check_options(sc: StabilityCase) -> CheckOptions:
+    """The F109 check settings of a section's stability case (as ``onbottom assess`` runs
+    them: the default design checks)."""
+    d = sc.design
+    return CheckOptions(
+        safety_class=d.safety_class,
+        region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        penetration=sc.seabed.initial_penetration,
+        trench_depth=sc.seabed.trench_depth,
+        trench_angle_deg=sc.seabed.trench_angle_deg,
+        permeable=d.permeable,
+    )
+
+
+def _given_value(case: RouteCase) -> float | None:
+    """The design variable of the case's ``[pipe]`` (the given design), if it has one."""
+    if case.solve_for == "concrete_thickness":
+        for lay in case.pipe.layers or ():
+            if lay.name == case.design.layer:
+                return float(lay.thickness)
+        return None
+    w = getattr(case.pipe, "submerged_weight", None)
+    return None if w is None else float(w)
+
+
+def _build_section(case: RouteCase, i: int) -> Section:
+    s = case.route.sections[i]
+    doc = case.stability_document(i)
+    sc = parse_case(StabilityCase, doc)
+    storms: tuple[StormCombination, ...] = ()
+    trials = None
+    if case.levels.dynamic:
+        names = case.combination_names(i)
+        docs = tuple(case.storm_document(i, n) for n in names)
+        storms = tuple(
+            StormCombination(n, d["pipe"]["condition"], _storm_setup(d))
+            for n, d in zip(names, docs, strict=True)
+        )
+        if case.solve_for != "none":
+            trials = StormTrials(docs, case.solve_for, case.design.layer)
+    return Section(
+        name=s.name,
+        kp_start=s.kp_start,
+        kp_end=s.kp_end,
+        water_depth=s.water_depth,
+        seabed_model=s.seabed.model,
+        pipe=sc.section(),
+        condition=case.pipe.condition,
+        seabed=sc.seabed.seabed(),
+        environment=sc.environment_object(),
+        combinations=sc.load_combinations(),
+        options=check_options(sc),
+        given_value=_given_value(case),
+        storms=storms,
+        trial_storm=trials,
+        identity=section_identity(case, i),
+        document=doc,
+    )
+
+
+def build_route(case: RouteCase) -> Route:
+    """The :class:`~onbottom.assess.route.Route` of a validated route case (from
+    :func:`load_route_case` or :func:`parse_route_case`)."""
+    d = case.design
+    return Route(
+        name=case.route.name,
+        sections=tuple(_build_section(case, i) for i in range(len(case.route.sections))),
+        design=DesignRange(
+            variable=case.solve_for,
+            layer=d.layer,
+            thickness_min=d.thickness_min,
+            thickness_max=d.thickness_max,
+            weight_min=d.weight_min,
+            weight_max=d.weight_max,
+        ),
+        levels=Levels(
+            absolute=case.levels.absolute,
+            generalized=case.levels.generalized,
+            dynamic=case.levels.dynamic,
+            pipeline_fe=case.levels.pipeline_fe,
+        ),
+        dynamic=case.dynamic.settings(),
+        pipeline=PipelineSettings(**case.pipeline.model_dump()),
+        water_density=case.environment.water_density,
+        force_model=case.hydro.model or DEFAULT_FORCE_MODEL,
+        identity=case_identity(case),
+    )
+
+
+def load_route(path: str | os.PathLike, *, seeds: int | None = None) -> Route:
+    """Read, validate and build a route case file (:func:`load_route_case`, then
+    :func:`build_route`); ``seeds`` replaces ``[dynamic] seeds`` (storms per evaluation)."""
+    case = load_route_case(path)
+    if seeds is not None:
+        dyn = case.dynamic.model_copy(update={"seeds": seeds})
+        case = case.model_copy(update={"dynamic": dyn})
+    return build_route(case)

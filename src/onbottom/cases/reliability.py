@@ -23,20 +23,25 @@ table (``examples/reliability_case.toml``).
   ``seeds`` per contour point, ``top_points`` and ``top_seeds`` (the highest-response points
   rerun with more seeds), ``fractile`` of the design displacement
   (:mod:`onbottom.reliability.design`).
+
+:func:`load_reliability_case` reads such a file and builds the plain
+:class:`~onbottom.reliability.setup.ReliabilitySetup` that
+:func:`onbottom.reliability.run.run_reliability` takes (the limits in metres, the hindcast
+path resolved against the case file's folder).
 """
 
 from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
 from pydantic import Field
 
 from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_json, read_toml
-from onbottom.reliability.distributions import UncertainParameter, parameter_from_table
+from onbottom.reliability.distributions import parameter_from_table
+from onbottom.reliability.setup import ClimateSettings, ContourDesign, ReliabilitySetup
 
 __all__ = ["ReliabilityCase", "ReliabilitySetup", "load_reliability_case", "parse_limit"]
 
@@ -98,33 +103,10 @@ def parse_limit(value: str | float, diameter: float) -> tuple[str, float]:
     return f"{float(m.group(1)):g}D", float(m.group(1)) * diameter
 
 
-@dataclass(frozen=True)
-class ReliabilitySetup:
-    """A read reliability case: the storm setup, the ``[reliability]`` table, its path."""
-
-    storm: Any
-    table: ReliabilityTable
-    seabed_model: str
-    path: str
-
-    def inputs(self) -> list[UncertainParameter]:
-        """The ``[reliability.inputs]`` as uncertain parameters (in file order)."""
-        return [parameter_from_table(k, v) for k, v in self.table.inputs.items()]
-
-    def hindcast_path(self) -> Path | None:
-        from onbottom.cases.storm import case_relative
-
-        c = self.table.climate
-        return None if c is None else case_relative(self.path, c.hindcast)
-
-    def limits(self) -> list[tuple[str, float]]:
-        d = float(self.storm.pipe.outer_diameter)
-        return [parse_limit(v, d) for v in self.table.limits]
-
-
 def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
-    """Read a reliability case (errors: :class:`CaseFileError` naming the key)."""
-    from onbottom.cases.storm import StormCase, build_setup
+    """Read a reliability case and build its :class:`ReliabilitySetup` (errors:
+    :class:`CaseFileError` naming the key)."""
+    from onbottom.cases.storm import StormCase, build_setup, case_relative
     from onbottom.errors import InputError
 
     p = Path(path)
@@ -139,24 +121,52 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     rest = {k: v for k, v in doc.items() if k != "reliability"}
     storm_case = parse_case(StormCase, rest, file=p, text=text)
     setup = build_setup(storm_case, p)
-    out = ReliabilitySetup(
-        storm=setup, table=rel.reliability, seabed_model=storm_case.seabed.model, path=str(p)
-    )
+    t = rel.reliability
     try:
-        out.inputs()
-        out.limits()
+        inputs = tuple(parameter_from_table(k, v) for k, v in t.inputs.items())
+        d = float(setup.pipe.outer_diameter)
+        limits = tuple(parse_limit(v, d) for v in t.limits)
     except InputError as exc:
         raise CaseFileError(f"{p}: {exc}", field="reliability", file=str(p)) from None
-    if rel.reliability.climate is None and rel.reliability.storms_per_year is None:
+    if t.climate is None and t.storms_per_year is None:
         raise CaseFileError(
             f"{p}: reliability.storms_per_year is needed without [reliability.climate]",
             field="reliability.storms_per_year",
             file=str(p),
         )
-    if rel.reliability.design is not None and rel.reliability.climate is None:
+    if t.design is not None and t.climate is None:
         raise CaseFileError(
             f"{p}: [reliability.design] needs [reliability.climate] (the contour's joint model)",
             field="reliability.design",
             file=str(p),
         )
-    return out
+    c = t.climate
+    climate = (
+        None
+        if c is None
+        else ClimateSettings(
+            hindcast=case_relative(p, c.hindcast),
+            sectors=c.sectors,
+            pipe_heading_deg=c.pipe_heading_deg,
+            storm_rate=c.storm_rate,
+            current=c.current,
+        )
+    )
+    design = None if t.design is None else ContourDesign(**t.design.model_dump())
+    return ReliabilitySetup(
+        storm=setup,
+        limits=limits,
+        seabed_model=storm_case.seabed.model,
+        inputs=inputs,
+        method=t.method,
+        target_cv=t.target_cv,
+        max_storms=t.max_storms,
+        block_size=t.block_size,
+        task_size=t.task_size,
+        seed=t.seed,
+        storms_per_year=t.storms_per_year,
+        design_life_years=t.design_life_years,
+        form_storms=t.form_storms,
+        climate=climate,
+        design=design,
+    )

@@ -26,6 +26,7 @@ from typing import Any, Literal, NoReturn
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, find_line, load_case_file
+from onbottom.checks.design import penetration_outside_validity
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.inputs import consistency
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -425,7 +426,6 @@ class Checker:
         self.fail(field or "", text)
 
 
-_Checker = Checker  # the former private name, still imported by assess/case.py
 
 
 def _plain(text: str) -> str:
@@ -671,24 +671,6 @@ def _check_section(case: StabilityCase, chk: Checker) -> None:
                 f"seabed.{key} = {z!r} m is invalid: deeper than the pipe's outer diameter"
                 f" {diameter:.4g} m (must lie in [0, D]; F109 §3.6 covers an on-bottom pipe)",
             )
-
-
-def penetration_outside_validity(rows: Any) -> list[str]:
-    """Rows of the absolute check whose embedment z_p exceeds D/2 (outside F109 Eqs
-    3.19–3.22 and the soil resistance models): one line per combination, empty if none."""
-    out = []
-    for r in rows:
-        det = r.details
-        if r.name != "absolute_lateral" or "penetration" not in det or "diameter" not in det:
-            continue
-        ratio = det["penetration"] / det["diameter"]
-        if ratio > 0.5:
-            out.append(
-                f"combination {r.combination!r} ({r.condition}): embedment z_p/D = {ratio:.3g}"
-                " > 0.5 lies outside the validity of F109 Eqs 3.19–3.22 (check the soil"
-                " strength and its unit)"
-            )
-    return out
 
 
 def load_stability_case(path: str | os.PathLike) -> StabilityCase:

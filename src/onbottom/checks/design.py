@@ -54,6 +54,7 @@ __all__ = [
     "design_submerged_weight",
     "governing",
     "minimum_passing",
+    "penetration_outside_validity",
     "run_checks",
 ]
 
@@ -292,6 +293,24 @@ def _to_half_turn(angle_deg: float) -> float:
     """Map a direction in [0, 360] to [0, 180] with the same |sin| (current normal part)."""
     a = angle_deg % 360.0
     return a if a <= 180.0 else 360.0 - a
+
+
+def penetration_outside_validity(rows: Sequence[CheckRow]) -> list[str]:
+    """Rows of the absolute check whose embedment z_p exceeds D/2 (outside F109 Eqs
+    3.19–3.22 and the soil resistance models): one line per combination, empty if none."""
+    out = []
+    for r in rows:
+        det = r.details
+        if r.name != "absolute_lateral" or "penetration" not in det or "diameter" not in det:
+            continue
+        ratio = det["penetration"] / det["diameter"]
+        if ratio > 0.5:
+            out.append(
+                f"combination {r.combination!r} ({r.condition}): embedment z_p/D = {ratio:.3g}"
+                " > 0.5 lies outside the validity of F109 Eqs 3.19–3.22 (check the soil"
+                " strength and its unit)"
+            )
+    return out
 
 
 def governing(rows: Sequence[CheckRow]) -> CheckRow:

@@ -21,16 +21,7 @@ from onbottom.cli._common import (
     json_option,
 )
 
-__all__ = ["EXAMPLE", "command"]
-
-EXAMPLE = "assess_example.toml"
-
-
-def example_path() -> Path:
-    """The embedded example route (package data)."""
-    from importlib.resources import files
-
-    return Path(str(files("onbottom") / "data" / EXAMPLE))
+__all__ = ["command"]
 
 
 def _refuse_case_in_out(case: Path, out: Path) -> None:
@@ -104,17 +95,14 @@ def command(
     """
     from onbottom.assess.core import assess
     from onbottom.assess.output import write_outputs
-    from onbottom.cases.assess import load_route_case
+    from onbottom.cases.assess import example_path, load_route
 
     path = example_path() if case is None else case
     if example:
         click.echo(path.read_text(encoding="utf-8"), nl=False)
         return
     _refuse_case_in_out(path, out)
-    route = load_route_case(path)  # every bad input raises here, before any work
-    if seeds is not None:
-        dyn = route.dynamic.model_copy(update={"seeds": seeds})
-        route = route.model_copy(update={"dynamic": dyn})
+    route = load_route(path, seeds=seeds)  # every bad input raises here, before any work
     text = path.read_text(encoding="utf-8")
     source = "embedded example" if case is None else str(case)
     a = assess(
@@ -133,7 +121,7 @@ def command(
         emit_json(payload)
     else:
         _print(a, out, written)
-    if route.solve_for != "none" and any(s["governing_level"] is None for s in a.sections):
+    if route.variable != "none" and any(s["governing_level"] is None for s in a.sections):
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
 
 
@@ -147,11 +135,11 @@ def _print(a: Any, out: Path, written: dict[str, Any]) -> None:
 
 
 def _table(a: Any) -> str:
-    from onbottom.assess.output import _value
+    from onbottom.assess.output import format_value as fv
 
-    var = a.case.solve_for
+    var = a.route.variable
     lines = [
-        f"{a.case.route.name}: {len(a.sections)} sections, {a.wall_time_s:.1f} s",
+        f"{a.route.name}: {len(a.sections)} sections, {a.wall_time_s:.1f} s",
         f"{'section':<20} {'KP [km]':<12} {'util.':>7}  {'absolute':>12} {'dynamic':>12}  design",
     ]
     for s in a.sections:
@@ -160,10 +148,10 @@ def _table(a: Any) -> str:
         lines.append(
             f"{s['name'][:20]:<20} {s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g}".ljust(33)
             + f" {u:>7.3f}  "
-            + f"{_value((lv.get('absolute') or {}).get('value'), var):>12} "
-            + f"{_value((lv.get('dynamic') or {}).get('value'), var):>12}  "
+            + f"{fv((lv.get('absolute') or {}).get('value'), var):>12} "
+            + f"{fv((lv.get('dynamic') or {}).get('value'), var):>12}  "
             + (
-                f"{_value(s['design_value'], var)} ({s['governing_level']})"
+                f"{fv(s['design_value'], var)} ({s['governing_level']})"
                 if s["governing_level"]
                 else "no solution"
             )

@@ -26,15 +26,16 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import click
 
 from onbottom.cli._common import EXIT_INVALID_RESULT, Number, emit_json, handle_errors, json_option
 
-__all__ = ["command", "run_case"]
+__all__ = ["command"]
 
 
-def run_case(
+def _write_run(
     case: Path,
     out: Path | None,
     *,
@@ -44,25 +45,23 @@ def run_case(
     figures: bool = True,
     report: bool = True,
 ) -> dict:
-    """Run the case and write the outputs; returns the JSON payload."""
-    import importlib.util
-    import math
+    """Read the case, run it (:func:`onbottom.reliability.run.run_reliability`) and write the
+    outputs; returns the JSON payload."""
+    import json
     import time
 
-    t0 = time.perf_counter()
-
-    from onbottom.errors import InputError
-
-    missing = [m for m in ("openturns", "zarr") if importlib.util.find_spec(m) is None]
-    if missing:
-        raise InputError(
-            f"onbottom reliability needs the optional package(s) {', '.join(missing)}:"
-            " pip install 'onbottom[reliability,metocean]'"
-        )
     from onbottom.cases.reliability import load_reliability_case
-    from onbottom.reliability.run import planned_storms, run_reliability
+    from onbottom.errors import InputError
+    from onbottom.reliability.run import (
+        planned_storms,
+        require_packages,
+        run_payload,
+        run_reliability,
+    )
     from onbottom.results import write_text_atomic
 
+    t0 = time.perf_counter()
+    require_packages()
     setup = load_reliability_case(case)
     out = out if out is not None else case.resolve().parent / f"{case.stem}_reliability"
     if out.exists() and not out.is_dir():
@@ -85,58 +84,18 @@ def run_case(
     finally:
         if bar is not None:
             bar.close()
-    stats = [s for s in (r.stats, r.design_stats) if s is not None]
-    computed = sum(s.computed for s in stats)
     files = [str(out / "campaign.zarr")] + ([str(out / "design.zarr")] if r.design else [])
-    fig_files: dict[str, str] = {}
-    if figures:
-        import matplotlib.pyplot as plt
-
-        from onbottom.plotting.reliability import (
-            plot_convergence,
-            plot_design,
-            plot_exceedance,
-            plot_importance,
-        )
-
-        figs = [
-            ("exceedance.png", plot_exceedance(r.estimates, r.diameter, title=case.name)),
-            ("convergence.png", plot_convergence(r.estimates)),
-            ("importance.png", plot_importance(r.estimates)),
-        ]
-        if r.design is not None:
-            figs.append(("design.png", plot_design(r.design, r.diameter)))
-        for name, fig in figs:
-            fig.savefig(out / name, dpi=110)
-            plt.close(fig)
-            files.append(str(out / name))
-            fig_files[name.removesuffix(".png")] = name
-    failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
-    payload = {
-        "success": failed == 0,
-        "case": str(case),
-        "out": str(out),
-        "diameter": r.diameter,
-        "storms_per_year": r.storms_per_year,
-        "inputs": [*r.inputs, "storm_seed"],
-        "climate": r.climate,
-        "estimates": [e.to_dict() for e in r.estimates],
-        "design": None if r.design is None else r.design.to_dict(),
-        "campaign": {
-            "requested": sum(s.requested for s in stats),
-            "computed": computed,
-            "reused": sum(s.reused for s in stats),
-            "failed": sum(s.failed for s in stats),
-            "seconds_per_storm": (
-                sum(s.compute_seconds for s in stats) / computed if computed else math.nan
-            ),
-        },
-        "files": [*files, str(out / "reliability.json")]
-        + ([str(out / "report.html")] if report else []),
-        "notes": r.notes,
-    }
-    import json
-
+    fig_files = _figures(r, out, case.name, files) if figures else {}
+    res = run_payload(r)
+    payload = (
+        {"success": res["success"], "case": str(case), "out": str(out)}
+        | {k: v for k, v in res.items() if k not in ("success", "notes")}
+        | {
+            "files": [*files, str(out / "reliability.json")]
+            + ([str(out / "report.html")] if report else []),
+            "notes": res["notes"],
+        }
+    )
     from onbottom.cli._common import _jsonable
 
     write_text_atomic(out / "reliability.json", json.dumps(_jsonable(payload), indent=1))
@@ -154,6 +113,33 @@ def run_case(
             json_name="reliability.json",
         )
     return payload
+
+
+def _figures(r: Any, out: Path, title: str, files: list[str]) -> dict[str, str]:
+    """Write the figures of a run into ``out`` (appended to ``files``); name -> file."""
+    import matplotlib.pyplot as plt
+
+    from onbottom.plotting.reliability import (
+        plot_convergence,
+        plot_design,
+        plot_exceedance,
+        plot_importance,
+    )
+
+    figs = [
+        ("exceedance.png", plot_exceedance(r.estimates, r.diameter, title=title)),
+        ("convergence.png", plot_convergence(r.estimates)),
+        ("importance.png", plot_importance(r.estimates)),
+    ]
+    if r.design is not None:
+        figs.append(("design.png", plot_design(r.design, r.diameter)))
+    names = {}
+    for name, fig in figs:
+        fig.savefig(out / name, dpi=110)
+        plt.close(fig)
+        files.append(str(out / name))
+        names[name.removesuffix(".png")] = name
+    return names
 
 
 @click.command("reliability")
@@ -196,7 +182,7 @@ def command(
     in a storm > limit] per storm, year and design life, with its CV and the importance of the
     inputs; the response-based design on an environmental contour.
     """
-    payload = run_case(
+    payload = _write_run(
         case,
         out,
         n_workers=workers,

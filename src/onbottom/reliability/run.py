@@ -13,13 +13,19 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from onbottom.cases.reliability import ReliabilitySetup
 from onbottom.reliability.campaign import Campaign, CampaignStats
 from onbottom.reliability.design import DesignResult, response_based_design
 from onbottom.reliability.dynamic import ExceedanceEstimate, estimate_exceedance
+from onbottom.reliability.setup import ReliabilitySetup
 from onbottom.reliability.storm_model import StormModel
 
-__all__ = ["ReliabilityRun", "run_reliability"]
+__all__ = [
+    "ReliabilityRun",
+    "planned_storms",
+    "require_packages",
+    "run_payload",
+    "run_reliability",
+]
 
 
 @dataclass
@@ -46,28 +52,27 @@ def run_reliability(
     progress: Callable[[int], None] | None = None,
 ) -> ReliabilityRun:
     """Estimate every limit of the case and, with ``[reliability.design]``, the design."""
-    t = setup.table
     climate = None
     result = None
     info: dict[str, Any] = {}
-    if t.climate is not None:
+    if setup.climate is not None:
         from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
         from onbottom.reliability.climate import StormClimate
 
         rps = {1.0, 10.0, 100.0}
-        if t.design is not None:
-            rps.add(float(t.design.return_period))
+        if setup.design is not None:
+            rps.add(float(setup.design.return_period))
         result = analyse_hindcast(
-            read_hindcast(setup.hindcast_path()),
+            read_hindcast(setup.climate.hindcast),
             MetoceanOptions(
-                sectors=t.climate.sectors,
+                sectors=setup.climate.sectors,
                 return_periods=tuple(sorted(rps)),
-                storm_rate=t.climate.storm_rate,
+                storm_rate=setup.climate.storm_rate,
             ),
         )
-        climate = StormClimate.from_result(result, current=t.climate.current)
+        climate = StormClimate.from_result(result, current=setup.climate.current)
         info = {
-            "hindcast": str(setup.hindcast_path()),
+            "hindcast": str(setup.climate.hindcast),
             "rate": climate.rate,
             "threshold": climate.threshold,
             "gpd_scale": climate.gpd_scale,
@@ -77,13 +82,13 @@ def run_reliability(
             "current_model": None if climate.current is None else climate.current.as_dict(),
             "joint_model": climate.joint.as_dict(),
         }
-    rate = climate.rate if climate is not None else float(t.storms_per_year)
-    user = setup.inputs()
+    rate = climate.rate if climate is not None else float(setup.storms_per_year)
+    user = list(setup.inputs)
     model = StormModel(
         setup.storm,
         inputs=tuple(p.name for p in user),
         climate=climate,
-        pipe_heading_deg=t.climate.pipe_heading_deg if t.climate else 0.0,
+        pipe_heading_deg=setup.climate.pipe_heading_deg if setup.climate else 0.0,
         soil_kind=setup.seabed_model,
     )
     params = (climate.parameters() if climate is not None else []) + user
@@ -93,26 +98,26 @@ def run_reliability(
     with Campaign(
         model,
         out / "campaign.zarr",
-        task_size=t.task_size,
+        task_size=setup.task_size,
         n_workers=n_workers,
         scheduler=scheduler,
         progress=progress,
     ) as camp:
-        for label, limit in setup.limits():
+        for label, limit in setup.limits:
             estimates.append(
                 estimate_exceedance(
                     camp,
                     params,
                     limit,
                     label=label,
-                    method=t.method,
-                    target_cv=t.target_cv,
-                    max_storms=t.max_storms,
-                    block_size=t.block_size,
-                    seed=t.seed,
+                    method=setup.method,
+                    target_cv=setup.target_cv,
+                    max_storms=setup.max_storms,
+                    block_size=setup.block_size,
+                    seed=setup.seed,
                     storms_per_year=rate,
-                    design_life_years=t.design_life_years,
-                    form_storms=t.form_storms,
+                    design_life_years=setup.design_life_years,
+                    form_storms=setup.form_storms,
                 )
             )
         stats = camp.stats
@@ -120,14 +125,16 @@ def run_reliability(
     if fails:
         notes.append(f"{len(fails)} storm runs raised (counted as exceedances); see the store")
     for e in estimates:
-        if e.method != "subset" and e.cv > t.target_cv:
-            notes.append(f"{e.label}: CV {e.cv:.2f} above the target {t.target_cv:g} at max_storms")
+        if e.method != "subset" and e.cv > setup.target_cv:
+            notes.append(
+                f"{e.label}: CV {e.cv:.2f} above the target {setup.target_cv:g} at max_storms"
+            )
     design = None
     dstats = None
-    if t.design is not None and result is not None:
+    if setup.design is not None and result is not None:
         from onbottom.metocean.joint import iform_contour
 
-        d = t.design
+        d = setup.design
         peak_h = setup.storm.storm.stages[0].duration_s / 3600.0
         contour = iform_contour(result.joint, d.return_period, peak_h, d.contour_points)
         omni = result.hs["omni"]
@@ -178,14 +185,58 @@ def run_reliability(
 
 def planned_storms(setup: ReliabilitySetup) -> int:
     """An upper estimate of the storms a case runs (progress bar total)."""
-    t = setup.table
-    n = len(t.limits) * t.max_storms
-    if t.method == "importance":
-        n += len(t.limits) * t.form_storms
-    if t.design is not None:
-        d = t.design
+    n = len(setup.limits) * setup.max_storms
+    if setup.method == "importance":
+        n += len(setup.limits) * setup.form_storms
+    if setup.design is not None:
+        d = setup.design
         n += d.contour_points * d.seeds + d.top_points * d.top_seeds + d.top_seeds
     return int(n)
+
+
+def require_packages() -> None:
+    """Raise :class:`~onbottom.errors.InputError` naming the optional packages a reliability
+    run needs (openturns, zarr) when they are not installed."""
+    import importlib.util
+
+    from onbottom.errors import InputError
+
+    missing = [m for m in ("openturns", "zarr") if importlib.util.find_spec(m) is None]
+    if missing:
+        raise InputError(
+            f"onbottom reliability needs the optional package(s) {', '.join(missing)}:"
+            " pip install 'onbottom[reliability,metocean]'"
+        )
+
+
+def run_payload(r: ReliabilityRun) -> dict[str, Any]:
+    """The results of a run as plain data (the ``onbottom reliability --json`` keys except
+    ``case``, ``out`` and ``files``): ``success`` (false when a storm run failed numerically),
+    ``diameter`` [m], ``storms_per_year`` [1/year], ``inputs`` (the random inputs, the storm
+    seed last), ``climate``, ``estimates``, ``design``, ``campaign`` (requested, computed,
+    reused, failed, seconds_per_storm [s]) and ``notes``."""
+    stats = [s for s in (r.stats, r.design_stats) if s is not None]
+    computed = sum(s.computed for s in stats)
+    failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
+    return {
+        "success": failed == 0,
+        "diameter": r.diameter,
+        "storms_per_year": r.storms_per_year,
+        "inputs": [*r.inputs, "storm_seed"],
+        "climate": r.climate,
+        "estimates": [e.to_dict() for e in r.estimates],
+        "design": None if r.design is None else r.design.to_dict(),
+        "campaign": {
+            "requested": sum(s.requested for s in stats),
+            "computed": computed,
+            "reused": sum(s.reused for s in stats),
+            "failed": sum(s.failed for s in stats),
+            "seconds_per_storm": (
+                sum(s.compute_seconds for s in stats) / computed if computed else math.nan
+            ),
+        },
+        "notes": r.notes,
+    }
 
 
 def _finite(v: float) -> float | None:
