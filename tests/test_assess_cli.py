@@ -113,7 +113,7 @@ def test_bad_case_named_error(tmp_path, capsys):
 
 
 def test_embedded_example_printed(capsys):
-    from onbottom.cli.assess import example_path
+    from onbottom.cases.assess import example_path
 
     assert main(["assess", "--example"]) == 0
     assert capsys.readouterr().out == example_path().read_text(encoding="utf-8")

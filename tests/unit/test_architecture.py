@@ -108,13 +108,8 @@ PRIVATE_MODULES_ALLOWED: dict[tuple[str, str], str] = {
     ("peers", "onbottom.dynamics.pipeline._pipeline_kernel"): "OpenSees peer: node-array layout",
 }
 PRIVATE_NAMES_ALLOWED: dict[tuple[str, str, str], str] = {
-    # files of branch assess2 (#32), which owns them; public names exist or come with it
-    ("assess", "onbottom.cases.stability", "_Checker"): "assess2: use Checker",
-    ("assess", "onbottom._casefile", "_find_line"): "assess2: use find_line",
-    ("assess", "onbottom.cases.stability", "_check_section"): "assess2 (#32) area",
-    ("assess", "onbottom.results", "_atomic_write"): "assess2 (#32) area",
-    ("cli", "onbottom.assess.output", "_value"): "assess2 (#32) area",
-    ("assess", "onbottom.checks.design", "_minimum_passing"): "made public in branch assess2",
+    # (package, module, name): reason — none today (the assess entries went with issue 29
+    # item 5: Checker, find_line, atomic_write, format_value and minimum_passing are public)
 }
 _BASE_PRIVATE = {m for m in BASE if m.startswith("_")}
 
@@ -175,6 +170,8 @@ def test_private_allow_list_is_still_needed():
     used = {(_package_of(p), m, n) for p in MODULES for m, n in _private_imports(p)}
     stale_mod = [k for k in PRIVATE_MODULES_ALLOWED if not any(u[:2] == k for u in used)]
     assert not stale_mod, f"allow-list entries no longer used: {stale_mod}"
+    stale_names = [k for k in PRIVATE_NAMES_ALLOWED if k not in used]
+    assert not stale_names, f"allow-list entries no longer used: {stale_names}"
 
 
 # ---- only cases/ and cli/ read case files ------------------------------------------------------

@@ -9,8 +9,7 @@ from pathlib import Path
 import pytest
 
 from onbottom._casefile import CaseFileError
-from onbottom.cases.assess import load_route_case, parse_route_case
-from onbottom.cli.assess import example_path
+from onbottom.cases.assess import example_path, load_route_case, parse_route_case
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from assess_cases import route_document

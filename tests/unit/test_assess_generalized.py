@@ -15,11 +15,8 @@ import numpy as np
 import pytest
 from scipy.interpolate import RegularGridInterpolator
 
-from onbottom._casefile import parse_case
-from onbottom.assess import parse_route_case
-from onbottom.assess.core import _check_options
 from onbottom.assess.generalized import generalized_rows
-from onbottom.cases.stability import StabilityCase
+from onbottom.cases.assess import build_route, parse_route_case
 from onbottom.checks.design import run_checks
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -46,17 +43,20 @@ def sweep(tmp_path_factory):
 
 
 def _rows(doc):
-    case = parse_route_case(doc)
-    sc = parse_case(StabilityCase, case.stability_document(0))
-    rows = run_checks(sc.section(), sc.seabed.seabed(), sc.environment_object(),
-                      sc.load_combinations(), _check_options(sc))  # fmt: skip
-    return sc, rows
+    s = build_route(parse_route_case(doc)).sections[0]
+    rows = run_checks(s.pipe, s.seabed, s.environment, s.combinations, s.options)
+    return s, rows
+
+
+def _gen(s, rows, files, allowable):
+    return generalized_rows(rows, files, allowable, seabed_model=s.seabed_model,
+                            water_density=s.environment.water_density)  # fmt: skip
 
 
 def test_covered_points_are_interpolated(sweep):
     path, ds = sweep
     sc, rows = _rows(route_document())
-    out = generalized_rows(sc, rows, [str(path)], "0.5D")
+    out = _gen(sc, rows, [str(path)], "0.5D")
     assert len(out) == 2
     interp = RegularGridInterpolator(
         (ds.N.values, ds.M.values, ds.K.values), ds["L_stable"].sel(soil="sand").values
@@ -80,16 +80,16 @@ def test_covered_points_are_interpolated(sweep):
 def test_not_covered_reasons(sweep):
     path, _ = sweep
     sc, rows = _rows(route_document())
-    none = generalized_rows(sc, rows, [], "0.5D")
+    none = _gen(sc, rows, [], "0.5D")
     assert all(not g["covered"] and "no committed" in g["message"] for g in none)
-    user = generalized_rows(sc, rows, [str(path)], "user")
+    user = _gen(sc, rows, [str(path)], "user")
     assert all(not g["covered"] and "0.5D and 10D only" in g["message"] for g in user)
-    ten = generalized_rows(sc, rows, [str(path)], "10D")  # the sweep has no L_10
+    ten = _gen(sc, rows, [str(path)], "10D")  # the sweep has no L_10
     assert all(not g["covered"] and "no sand/L_10" in g["message"] for g in ten)
     doc = route_document()
     doc["route"]["sections"][0]["seabed"] = {"model": "rock", "friction_coefficient": 0.6}
     sc, rows = _rows(doc)
-    rock = generalized_rows(sc, rows, [str(path)], "0.5D")
+    rock = _gen(sc, rows, [str(path)], "0.5D")
     assert all(not g["covered"] and "no curves" in g["message"] for g in rock)
     assert np.isfinite([g["details"]["K"] for g in rock]).all()
 
@@ -100,7 +100,7 @@ def test_generalized_minimum_weight(sweep):
     path, _ = sweep
     doc = route_document()
     doc["levels"] = {"generalized": True, "dynamic": False}
-    a = assess(parse_route_case(doc), n_workers=0, curve_files=[str(path)])
+    a = assess(build_route(parse_route_case(doc)), n_workers=0, curve_files=[str(path)])
     lv = a.sections[0]["levels"]["generalized"]
     assert lv["covered"] == lv["points"] == 2
     assert lv["success"], lv
@@ -109,10 +109,9 @@ def test_generalized_minimum_weight(sweep):
     sc, _ = _rows(doc)
 
     def worst(thickness: float) -> float:
-        s = sc.section().with_layer_thickness("concrete", thickness)
-        rows = run_checks(s, sc.seabed.seabed(), sc.environment_object(),
-                          sc.load_combinations(), _check_options(sc))  # fmt: skip
-        gen = generalized_rows(sc, rows, [str(path)], "0.5D")
+        s = sc.pipe.with_layer_thickness("concrete", thickness)
+        rows = run_checks(s, sc.seabed, sc.environment, sc.combinations, sc.options)
+        gen = _gen(sc, rows, [str(path)], "0.5D")
         return max(g["utilisation"] if g["covered"] else np.inf for g in gen)
 
     assert worst(t) <= 1.0

@@ -17,9 +17,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from onbottom.assess import assess, parse_route_case
+from onbottom.assess import assess
 from onbottom.assess import dynamic as dyn
 from onbottom.assess.output import comparison, write_outputs
+from onbottom.cases.assess import build_route, parse_route_case
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from assess_cases import route_document
@@ -30,22 +31,41 @@ pytestmark = pytest.mark.verification
 @pytest.fixture(scope="module")
 def one_section():
     case = parse_route_case(route_document())
-    return case, assess(case, n_workers=0)
+    return case, assess(build_route(case), n_workers=0)
 
 
 def test_one_section_equals_stability_command(one_section, tmp_path):
-    from onbottom.cli.stability import evaluate_case
+    """The section's checks and absolute design are those of its ``onbottom stability``
+    case file, read by that command's loader and run by the library's checks and design."""
+    from onbottom.cases.stability import load_stability_case
+    from onbottom.checks.design import CheckOptions, design_concrete_thickness, run_checks
 
     case, a = one_section
     path = tmp_path / "section.json"
     path.write_text(json.dumps(case.stability_document(0)), encoding="utf-8")
-    ref = evaluate_case(path)
+    sc = load_stability_case(path)
+    d = sc.design
+    assert d.solve_for == "concrete_thickness"
+    options = CheckOptions(
+        safety_class=d.safety_class, region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        penetration=sc.seabed.initial_penetration, trench_depth=sc.seabed.trench_depth,
+        trench_angle_deg=sc.seabed.trench_angle_deg, permeable=d.permeable,
+        checks=tuple(d.checks),
+    )  # fmt: skip
+    inputs = (sc.section(), sc.seabed.seabed(), sc.environment_object(), sc.load_combinations())
+    ref = run_checks(*inputs, options)
+    design = design_concrete_thickness(
+        *inputs, options, layer=d.layer, thickness_min=d.thickness_min,
+        thickness_max=d.thickness_max,
+    )  # fmt: skip
     s = a.sections[0]
     static = [c for c in s["checks"] if c["level"] in ("vertical", "absolute")]
     assert [(c["name"], c["combination"], c["utilisation"]) for c in static] == [
-        (c["name"], c["combination"], c["utilisation"]) for c in ref["checks"]
+        (r.name, r.combination, r.utilisation) for r in ref
     ]
-    assert s["levels"]["absolute"]["value"] == ref["design"]["value"]
+    assert s["levels"]["absolute"]["value"] == design.value
 
 
 def test_one_section_equals_storm_command(one_section, tmp_path):
@@ -76,20 +96,16 @@ def _harsh_case():
     s["waves"] = {"hs": 7.0, "tp": 11.0, "direction_deg": 90.0}
     s["current"]["velocity"] = 0.6
     s["combinations"] = [{"name": "design"}]
-    return parse_route_case(doc)
+    return build_route(parse_route_case(doc))
 
 
 def test_bisection_against_dense_scan():
-    case = _harsh_case()
-    pipe = json.loads(case.pipe.model_dump_json(exclude_none=True))
-    d = case.dynamic
+    route = _harsh_case()
+    trial = route.sections[0].trial_storm
+    d = route.dynamic
 
     def g(x: float, early: bool = True) -> tuple[float, int]:
-        return dyn.dynamic_ratio(
-            lambda t: [case.storm_document(0, "design", pipe=t)],
-            pipe, "concrete_thickness", "concrete", x, [0, 1], d.allowable_for,
-            early_stop=early,
-        )  # fmt: skip
+        return dyn.dynamic_ratio(trial, 1, x, [0, 1], d.allowable_for, early_stop=early)
 
     step = 0.01
     xs = np.arange(0.0, 0.2 + 1e-9, step)
@@ -108,10 +124,7 @@ def test_bisection_against_dense_scan():
     assert first - step < b["value"] < first + tol
     # the cost-aware search (worst seed first, known given design, a guess) finds the same
     # crossing to the same tolerance
-    trials = dyn.DynamicTrials(
-        lambda t: [case.storm_document(0, "design", pipe=t)],
-        pipe, "concrete_thickness", "concrete", [0, 1], d.allowable_for,
-    )  # fmt: skip
+    trials = dyn.DynamicTrials(trial, 1, [0, 1], d.allowable_for)
     k0 = int(np.flatnonzero(np.isclose(xs, 0.04))[0])
     s = dyn.search_dynamic(
         trials, 0.0, 0.2, tol, known=[(0.04, float(gs[k0]))], guesses=[first + 2 * step]
@@ -164,17 +177,17 @@ def test_dynamic_against_absolute_reported(one_section, tmp_path):
 
 
 def test_resume_reuses_finished_sections(tmp_path):
-    case = parse_route_case(route_document(sections=2))
-    first = assess(case, out=tmp_path, n_workers=0)
+    route = build_route(parse_route_case(route_document(sections=2)))
+    first = assess(route, out=tmp_path, n_workers=0)
     assert first.reused == []
     files = sorted((tmp_path / "sections").glob("*.json"))
     assert len(files) == 2
-    again = assess(case, out=tmp_path, n_workers=0)
+    again = assess(route, out=tmp_path, n_workers=0)
     assert again.reused == ["section 0", "section 1"]
     assert again.summary.equals(first.summary)
     doc = route_document(sections=2)
     doc["route"]["sections"][1]["water_depth"] = 45.0
-    changed = assess(parse_route_case(doc), out=tmp_path, n_workers=0)
+    changed = assess(build_route(parse_route_case(doc)), out=tmp_path, n_workers=0)
     assert changed.reused == ["section 0"]
     assert changed.sections[1]["water_depth"] == 45.0
 
@@ -188,21 +201,18 @@ def test_pipeline_fe_of_the_governing_section(tmp_path):
     doc = route_document(sections=2, seeds=2)
     doc["levels"]["pipeline_fe"] = True
     doc["pipeline"] = {"length": 60.0, "element_length": 5.0, "strain_limit": 1.0e-3}
-    case = parse_route_case(doc)
-    a = assess(case, out=tmp_path, n_workers=0)
+    route = build_route(parse_route_case(doc))
+    a = assess(route, out=tmp_path, n_workers=0)
     p = a.pipeline
-    gov = governing_storm(case, a.sections)
+    gov = governing_storm(route, a.sections)
     sec = a.sections[gov["index"]]
     assert sec["design_value"] == max(s["design_value"] for s in a.sections)
     base = sec["dynamic"]["base"][p["combination"]]
     assert base["utilisation"] == max(b["utilisation"] for b in sec["dynamic"]["base"].values())
     assert p["seed"] == base["seeds"][int(np.argmax(base["max_displacement"]))]
     # the line is the pipe at the design value: its D is the trial pipe's
-    trial = dyn._trial_pipe(
-        json.loads(case.pipe.model_dump_json(exclude_none=True)),
-        "concrete_thickness", "concrete", p["design_value"],
-    )  # fmt: skip
-    d = dyn._setup(case.storm_document(p["index"], p["combination"], pipe=trial)).pipe
+    built = route.sections[p["index"]]
+    d = built.trial_storm(built.storm_index(p["combination"]), p["design_value"]).pipe
     assert p["diameter_m"] == pytest.approx(d.outer_diameter)
     env = p["envelopes"]
     assert len(env["x"]) == p["n_nodes"] == 13 and env["x"][-1] == pytest.approx(60.0)
@@ -211,7 +221,7 @@ def test_pipeline_fe_of_the_governing_section(tmp_path):
     assert p["strain_check"] == (p["max_strain"] <= 1.0e-3)
     assert env["max_abs_y"][0] == 0.0 == env["max_abs_y"][-1]  # fixed ends hold
     # resumed: the same run is read back, not rerun
-    again = assess(case, out=tmp_path, n_workers=0)
+    again = assess(route, out=tmp_path, n_workers=0)
     assert again.pipeline["reused"] and again.pipeline["max_strain"] == p["max_strain"]
     write_outputs(a, tmp_path / "out", pdf=False)
     payload = json.loads((tmp_path / "out" / "results.json").read_text())
@@ -229,8 +239,7 @@ def test_pipeline_fe_at_the_given_design_without_a_design_variable():
     doc["levels"] = {"generalized": False, "absolute": False, "pipeline_fe": True}
     doc["design"]["solve_for"] = "none"
     doc["pipeline"] = {"length": 40.0, "element_length": 5.0}
-    case = parse_route_case(doc)
-    a = assess(case, n_workers=0)
+    a = assess(build_route(parse_route_case(doc)), n_workers=0)
     p = a.pipeline
     utils = {s["name"]: max(b["utilisation"] for b in s["dynamic"]["base"].values())
              for s in a.sections}  # fmt: skip
