@@ -49,8 +49,8 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 from onbottom._casefile import read_toml
-from onbottom.assess import assess, parse_route_case
-from onbottom.cli.assess import example_path
+from onbottom.assess import assess
+from onbottom.cases.assess import build_route, example_path, parse_route_case
 
 TARGET_S = {"default": 300.0, "big": 1800.0}
 
@@ -97,7 +97,7 @@ def route(kind: str, seeds: int):
     if kind != "default":
         doc.pop("metocean", None)
     doc["dynamic"]["seeds"] = seeds
-    return parse_route_case(doc)
+    return build_route(parse_route_case(doc))
 
 
 def _free_port() -> int:
@@ -146,8 +146,8 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--scheduler", default=None, help="a Dask address, or auto (start one)")
     args = ap.parse_args()
-    case = route(args.route, args.seeds)
-    ncomb = sum(len(case.combination_names(i)) for i in range(len(case.route.sections)))
+    built = route(args.route, args.seeds)  # read and built before the clock starts
+    ncomb = sum(len(s.storms) for s in built.sections)
     load0 = os.getloadavg()
     with contextlib.ExitStack() as stack:
         address = args.scheduler
@@ -155,7 +155,7 @@ def main() -> None:
             address = stack.enter_context(local_scheduler(args.workers))
         out = stack.enter_context(tempfile.TemporaryDirectory())
         t0 = time.perf_counter()
-        a = assess(case, out=out, n_workers=args.workers, scheduler=address)
+        a = assess(built, out=out, n_workers=args.workers, scheduler=address)
         wall = time.perf_counter() - t0
     load1 = os.getloadavg()
     where = f"scheduler {address}" if address else f"{args.workers} local workers"

@@ -12,14 +12,15 @@ Run: ``python examples/ex11_route_assessment.py``.
 
 from __future__ import annotations
 
-from onbottom._casefile import read_toml
-from onbottom.assess import assess, parse_route_case
-from onbottom.cli.assess import example_path
+import tomllib
 
-doc, _ = read_toml(example_path())
+from onbottom.assess import assess
+from onbottom.cases.assess import build_route, example_path, parse_route_case
+
+doc = tomllib.loads(example_path().read_text(encoding="utf-8"))
 doc["dynamic"].update(seeds=2, build_up_hours=0.1, peak_hours=0.5)  # short, for the gallery
-case = parse_route_case(doc)
-a = assess(case, n_workers=0)
+route = build_route(parse_route_case(doc))  # the case validated, then built
+a = assess(route, n_workers=0)
 table = a.summary[
     ["section", "water_depth_m", "max_utilisation", "absolute_value", "dynamic_value",
      "governing_level", "saved_submerged_weight_n_per_m"]

@@ -11,6 +11,8 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.storm` — ``onbottom storm`` (storm section), shared by the pipeline,
   curves, reliability and route cases;
 * :mod:`~onbottom.cases.section` — ``onbottom simulate`` (centrifuge section programmes).
+* :mod:`~onbottom.cases.assess` — ``onbottom assess`` (a route → ``assess.Route``).
+* :mod:`~onbottom.cases.reliability` — ``onbottom reliability`` (→ ``ReliabilitySetup``).
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """
