@@ -9,9 +9,11 @@ dynamic limit state of a storm on a pipe section with the seed as an input
 (:mod:`~onbottom.reliability.dynamic`, :mod:`~onbottom.reliability.storm_model`), run as a
 campaign on Dask streamed to a resumable Zarr store (:mod:`~onbottom.reliability.campaign`),
 the response-based design on an environmental contour (:mod:`~onbottom.reliability.design`)
-and the case files of ``onbottom reliability`` (:mod:`~onbottom.cases.reliability`,
-:mod:`~onbottom.reliability.run`). openturns and zarr are is the optional extra
-``onbottom[reliability]``, imported only when an estimate or a store is made. Theory:
+and the run of ``onbottom reliability`` (:mod:`~onbottom.reliability.run`) on a
+:class:`~onbottom.reliability.setup.ReliabilitySetup` — a plain value type that
+:mod:`onbottom.cases.reliability` builds from a case file, or built by hand. openturns and
+zarr are the optional extra ``onbottom[reliability]``, imported only when an estimate or a
+store is made. Theory:
 ``docs/theory/reliability.md``.
 """
 
@@ -33,6 +35,7 @@ from onbottom.reliability.estimators import (
     estimate_failure_probability,
     lifetime_probability,
 )
+from onbottom.reliability.setup import ClimateSettings, ContourDesign, ReliabilitySetup
 from onbottom.reliability.storm_model import StormModel
 
 __all__ = [
@@ -40,8 +43,11 @@ __all__ = [
     "DYNAMIC_METHODS",
     "METHODS",
     "Campaign",
+    "ClimateSettings",
+    "ContourDesign",
     "ExceedanceEstimate",
     "FailureProbability",
+    "ReliabilitySetup",
     "ResultStore",
     "StormClimate",
     "StormModel",
