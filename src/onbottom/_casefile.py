@@ -433,5 +433,3 @@ def find_line(text: str, loc: Sequence[Any]) -> int | None:
             if table + key == keys[: len(table) + len(key)] and "{" in raw:
                 return i
     return None
-
-

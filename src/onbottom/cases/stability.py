@@ -426,8 +426,6 @@ class Checker:
         self.fail(field or "", text)
 
 
-
-
 def _plain(text: str) -> str:
     """Messages with plain numbers (``np.float64(7.0)`` → ``7.0``)."""
     import re
