@@ -252,7 +252,7 @@ class Section:
     identity : str
         A key that changes with every input of the section's results (the resume key of
         ``sections/*.json``; :mod:`onbottom.cases.assess` hashes the section's case documents
-        and the onbottom version).
+        and the onbottom version); empty: the section is always run, never resumed.
     document : dict
         The section's inputs as plain data, reported in ``results.json``
         (``stability_document``: the ``onbottom stability`` case of the section).
