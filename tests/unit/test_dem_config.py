@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from onbottom.cases.dem import dem_config_from_json
 from onbottom.dem.analysis import (
     band_void_ratio,
     circle_disk_overlap_area,
@@ -18,7 +19,6 @@ from onbottom.dem.config import (
     SD,
     SM,
     ContactParameters,
-    DEMConfig,
     Geometry,
     ParticleSizeDistribution,
     get_preset,
@@ -64,7 +64,7 @@ def test_psd_reproduces_d50_and_cu():
 
 
 def test_config_roundtrip_and_validation():
-    assert DEMConfig.from_json(SM.to_json()) == SM
+    assert dem_config_from_json(SM.to_json()) == SM
     assert get_preset("SD-reduced").name == "SD-reduced"
     with pytest.raises(InputError, match="k_n"):
         ContactParameters(-1.0, 1.0, 0.3)

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from onbottom.cases.force import force_model_from_case
 from onbottom.errors import InputError
 from onbottom.hydro import _force_dispatch as fd
 from onbottom.hydro.force_model import MorisonLift
@@ -16,7 +17,6 @@ from onbottom.hydro.registry import (
     FORCE_MODELS,
     build_force_model,
     force_model_class,
-    force_model_from_case,
     model_options,
 )
 from onbottom.hydro.wake import WakeModel
@@ -54,7 +54,9 @@ def test_fourier_table_path_missing_or_absent(tmp_path):
     with pytest.raises(InputError, match="hydro.fourier.table is missing"):
         build_force_model("fourier", {})
     with pytest.raises(InputError, match="no such file"):
-        build_force_model("fourier", {"table": "nope.csv"}, base_dir=tmp_path)
+        build_force_model("fourier", {"table": str(tmp_path / "nope.csv")})
+    with pytest.raises(InputError, match=r"hydro.fourier.table = 'nope.csv' is invalid: no such"):
+        force_model_from_case(_Hydro("fourier", fourier={"table": "nope.csv"}), base_dir=tmp_path)
 
 
 class _Hydro:

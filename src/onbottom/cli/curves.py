@@ -337,7 +337,7 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     from onbottom.cases.storm import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.constants import GRAVITY
     from onbottom.errors import InputError
-    from onbottom.hydro.registry import force_model_from_case
+    from onbottom.cases.force import force_model_from_case
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
     from onbottom.study.stability_curves import CurveSettings
 
