@@ -495,9 +495,9 @@ def plot_cmd(
     one preset are plotted together.
     """
     import matplotlib.pyplot as plt
-    import xarray as xr
 
     from onbottom.cases.dem import load_run
+    from onbottom.dem.experiment import initial_state_of
     from onbottom.plotting import dem as P
 
     if phi_lower_deg > phi_upper_deg:
@@ -533,18 +533,7 @@ def plot_cmd(
         )
         save(fig, "dem_V_w_f114.png")
     save(P.plot_surface(runs), "dem_heave.png")
-    inis = []
-    for ds in runs:
-        if "initial_porosity" in ds:
-            ini = xr.Dataset(
-                {
-                    k[8:]: ds[k].rename({"circle_depth": "depth"})
-                    for k in ds.data_vars
-                    if str(k).startswith("initial_")
-                }
-            )
-            ini.attrs["preset"] = ds.attrs.get("preset", "")
-            inis.append(ini)
+    inis = [ini for ini in map(initial_state_of, runs) if ini is not None]
     if inis:
         save(
             P.plot_initial_state(inis, float(runs[0].attrs["pipe_diameter"])),

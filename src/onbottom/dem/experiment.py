@@ -57,6 +57,7 @@ from onbottom.results import load_dataset, provenance, save_dataset
 __all__ = [
     "DEFAULT_SNAPSHOTS",
     "initial_state",
+    "initial_state_of",
     "make_simulation",
     "penetrate",
     "with_initial_state",
@@ -145,6 +146,23 @@ def with_initial_state(ds: xr.Dataset, config: DEMConfig, sample: Sample) -> xr.
     ds = ds.assign_coords(circle_depth=("circle_depth", ini["depth"].values))
     ds.attrs["circle_diameter"] = ini.attrs["circle_diameter"]
     return ds
+
+
+def initial_state_of(ds: xr.Dataset) -> xr.Dataset | None:
+    """The initial-state profiles a run or summary carries (:func:`with_initial_state`), as
+    :func:`initial_state` returns them (coordinate ``depth``), with the run's ``preset``
+    attribute; None when it carries none."""
+    if "initial_porosity" not in ds:
+        return None
+    ini = xr.Dataset(
+        {
+            k[8:]: ds[k].rename({"circle_depth": "depth"})
+            for k in ds.data_vars
+            if str(k).startswith("initial_")
+        }
+    )
+    ini.attrs["preset"] = ds.attrs.get("preset", "")
+    return ini
 
 
 def _touch_height(sample: Sample, xc: float, radius: float) -> float:
