@@ -232,3 +232,36 @@ def test_compaction_step_is_validated_and_defaults_to_the_plain_step():
     assert differences(saved, now) == [
         "config.numerics.compaction_dt_safety: '(absent)' in the file, 1.0 now"
     ]
+
+
+def test_dem_config_file_reads_back_and_errors_name_the_key_and_file(tmp_path):
+    import json
+
+    from onbottom._casefile import CaseFileError
+    from onbottom.cases.dem import load_dem_config
+
+    p = tmp_path / "config.json"
+    p.write_text(SM.to_json(), encoding="utf-8")
+    assert load_dem_config(p) == SM
+    doc = json.loads(SM.to_json())
+    doc["geometry"]["widht"] = doc["geometry"].pop("width")
+    p.write_text(json.dumps(doc, indent=1, sort_keys=True), encoding="utf-8")
+    with pytest.raises(CaseFileError) as err:
+        load_dem_config(p)
+    assert err.value.field == "geometry.widht" and str(p) in str(err.value)
+    assert "did you mean 'width'" in str(err.value)
+    p.write_text('{\n  "name": "x",\n  "seed": \n}\n', encoding="utf-8")
+    with pytest.raises(CaseFileError) as err:  # malformed JSON: the line the parser stopped at
+        load_dem_config(p)
+    assert err.value.line == 4 and str(p) in str(err.value)
+
+
+def test_sample_and_run_loaders_name_the_file(tmp_path):
+    from onbottom.cases.dem import load_run, load_sample
+
+    p = tmp_path / "not_netcdf.nc"
+    p.write_text("plain text", encoding="utf-8")
+    with pytest.raises(InputError, match=r"--sample = .*not_netcdf.nc.* not a readable specimen"):
+        load_sample(p)
+    with pytest.raises(InputError, match=r"results = .*not_netcdf.nc.* not a readable NetCDF"):
+        load_run(p)
