@@ -76,6 +76,21 @@ def test_options_for_a_model_not_selected_are_an_error():
         force_model_from_case(_Hydro("morison", wake={"wake_ratio": 0.3}))
 
 
+def test_case_fourier_table_is_read_relative_to_the_case_folder_and_stays_inside(tmp_path):
+    """cases.force: a [hydro.fourier] table path is relative to the case file's folder and may
+    not leave it; the registry (hydro/) takes the loaded table."""
+    from onbottom.hydro.fourier_table import FourierTable
+
+    FourierTable.example().to_csv(tmp_path / "table.csv")
+    fm = force_model_from_case(_Hydro("fourier", fourier={"table": "table.csv"}), base_dir=tmp_path)
+    assert isinstance(fm, FourierModel)
+    assert fm.table.rows() == FourierTable.load(tmp_path / "table.csv").rows()
+    inner = tmp_path / "case"
+    inner.mkdir()
+    with pytest.raises(InputError, match="hydro.fourier.table.*leaves the case file's folder"):
+        force_model_from_case(_Hydro("fourier", fourier={"table": "../table.csv"}), base_dir=inner)
+
+
 def _case(tmp_path: Path, extra: str) -> Path:
     text = (EXAMPLES / "storm_case.toml").read_text(encoding="utf-8")
     text = text.replace("peak_hours = 3.0", "peak_hours = 0.25").replace(
