@@ -51,6 +51,7 @@ API_PACKAGES = (
     ("onbottom.assess", "Route assessment (`onbottom assess`): docs/assess.md."),
     ("onbottom.plotting", ""),
     ("onbottom.report", ""),
+    ("onbottom.cases", "Case files: every TOML/JSON schema and case → model builder."),
     ("onbottom.results", ""),
     ("onbottom.errors", ""),
 )

@@ -12,6 +12,10 @@ then :func:`parse_case`) with a schema derived from :class:`StrictModel`:
 All of these raise :class:`CaseFileError`, an :class:`~onbottom.errors.InputError`, so the CLI
 reports them like any other input error (exit code >= 1, ``--json`` error object).
 
+Only :mod:`onbottom.cases` (every case-file schema and case → model builder) and
+:mod:`onbottom.cli` import this module (``tests/unit/test_architecture.py``); the library's
+API takes the built objects, never a case file.
+
 pydantic (v2) is used rather than hand-written checks: it is well kept, validates nested
 tables with exact locations, and its strict mode refuses the silent coercions that made wrong
 results possible (see issue #10).

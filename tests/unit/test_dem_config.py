@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from onbottom.cases.dem import dem_config_from_json
 from onbottom.dem.analysis import (
     band_void_ratio,
     circle_disk_overlap_area,
@@ -18,7 +19,6 @@ from onbottom.dem.config import (
     SD,
     SM,
     ContactParameters,
-    DEMConfig,
     Geometry,
     ParticleSizeDistribution,
     get_preset,
@@ -64,7 +64,7 @@ def test_psd_reproduces_d50_and_cu():
 
 
 def test_config_roundtrip_and_validation():
-    assert DEMConfig.from_json(SM.to_json()) == SM
+    assert dem_config_from_json(SM.to_json()) == SM
     assert get_preset("SD-reduced").name == "SD-reduced"
     with pytest.raises(InputError, match="k_n"):
         ContactParameters(-1.0, 1.0, 0.3)
@@ -232,3 +232,36 @@ def test_compaction_step_is_validated_and_defaults_to_the_plain_step():
     assert differences(saved, now) == [
         "config.numerics.compaction_dt_safety: '(absent)' in the file, 1.0 now"
     ]
+
+
+def test_dem_config_file_reads_back_and_errors_name_the_key_and_file(tmp_path):
+    import json
+
+    from onbottom._casefile import CaseFileError
+    from onbottom.cases.dem import load_dem_config
+
+    p = tmp_path / "config.json"
+    p.write_text(SM.to_json(), encoding="utf-8")
+    assert load_dem_config(p) == SM
+    doc = json.loads(SM.to_json())
+    doc["geometry"]["widht"] = doc["geometry"].pop("width")
+    p.write_text(json.dumps(doc, indent=1, sort_keys=True), encoding="utf-8")
+    with pytest.raises(CaseFileError) as err:
+        load_dem_config(p)
+    assert err.value.field == "geometry.widht" and str(p) in str(err.value)
+    assert "did you mean 'width'" in str(err.value)
+    p.write_text('{\n  "name": "x",\n  "seed": \n}\n', encoding="utf-8")
+    with pytest.raises(CaseFileError) as err:  # malformed JSON: the line the parser stopped at
+        load_dem_config(p)
+    assert err.value.line == 4 and str(p) in str(err.value)
+
+
+def test_sample_and_run_loaders_name_the_file(tmp_path):
+    from onbottom.cases.dem import load_run, load_sample
+
+    p = tmp_path / "not_netcdf.nc"
+    p.write_text("plain text", encoding="utf-8")
+    with pytest.raises(InputError, match=r"--sample = .*not_netcdf.nc.* not a readable specimen"):
+        load_sample(p)
+    with pytest.raises(InputError, match=r"results = .*not_netcdf.nc.* not a readable NetCDF"):
+        load_run(p)

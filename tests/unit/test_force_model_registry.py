@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from onbottom.cases.force import force_model_from_case
 from onbottom.errors import InputError
 from onbottom.hydro import _force_dispatch as fd
 from onbottom.hydro.force_model import MorisonLift
@@ -16,7 +17,6 @@ from onbottom.hydro.registry import (
     FORCE_MODELS,
     build_force_model,
     force_model_class,
-    force_model_from_case,
     model_options,
 )
 from onbottom.hydro.wake import WakeModel
@@ -54,7 +54,9 @@ def test_fourier_table_path_missing_or_absent(tmp_path):
     with pytest.raises(InputError, match="hydro.fourier.table is missing"):
         build_force_model("fourier", {})
     with pytest.raises(InputError, match="no such file"):
-        build_force_model("fourier", {"table": "nope.csv"}, base_dir=tmp_path)
+        build_force_model("fourier", {"table": str(tmp_path / "nope.csv")})
+    with pytest.raises(InputError, match=r"hydro.fourier.table = 'nope.csv' is invalid: no such"):
+        force_model_from_case(_Hydro("fourier", fourier={"table": "nope.csv"}), base_dir=tmp_path)
 
 
 class _Hydro:
@@ -72,6 +74,21 @@ def test_from_case_morison_takes_the_hydro_coefficients():
 def test_options_for_a_model_not_selected_are_an_error():
     with pytest.raises(InputError, match=r"\[hydro.wake\] is given but hydro.model = 'morison'"):
         force_model_from_case(_Hydro("morison", wake={"wake_ratio": 0.3}))
+
+
+def test_case_fourier_table_is_read_relative_to_the_case_folder_and_stays_inside(tmp_path):
+    """cases.force: a [hydro.fourier] table path is relative to the case file's folder and may
+    not leave it; the registry (hydro/) takes the loaded table."""
+    from onbottom.hydro.fourier_table import FourierTable
+
+    FourierTable.example().to_csv(tmp_path / "table.csv")
+    fm = force_model_from_case(_Hydro("fourier", fourier={"table": "table.csv"}), base_dir=tmp_path)
+    assert isinstance(fm, FourierModel)
+    assert fm.table.rows() == FourierTable.load(tmp_path / "table.csv").rows()
+    inner = tmp_path / "case"
+    inner.mkdir()
+    with pytest.raises(InputError, match="hydro.fourier.table.*leaves the case file's folder"):
+        force_model_from_case(_Hydro("fourier", fourier={"table": "../table.csv"}), base_dir=inner)
 
 
 def _case(tmp_path: Path, extra: str) -> Path:

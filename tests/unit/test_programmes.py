@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from onbottom import InputError
+from onbottom.cases.programme import programme_from_toml
 from onbottom.dynamics.programmes import (
     LoadProgramme,
     from_arrays,
-    from_toml,
     inclined_cyclic,
     irregular_wave_current_groups,
     regular_wave_current_groups,
@@ -84,7 +84,7 @@ def test_irregular_groups_seeded_and_incremented():
 def test_from_arrays_and_toml_kinds(tmp_path):
     p = from_arrays([0.0, 1.0, 2.0], [0.0, 5.0, 0.0], [10.0, 9.0, 10.0], cycle_period=2.0)
     assert p.n_cycles == 1 and p.loads_at(0.5)[0] == pytest.approx(2.5)
-    q = from_toml(
+    q = programme_from_toml(
         {
             "programme": {
                 "kind": "inclined_cyclic",
@@ -102,10 +102,10 @@ def test_from_arrays_and_toml_kinds(tmp_path):
     csv.write_text("t,H,V\n0,0,10\n1,1,9\n2,0,10\n")
     toml = tmp_path / "case.toml"
     toml.write_text('[programme]\nkind = "csv"\nfile = "loads.csv"\ncycle_period = 2.0\n')
-    r = from_toml(toml)
+    r = programme_from_toml(toml)
     assert r.horizontal_load[1] == 1e3 and r.vertical_load[1] == 9e3
     with pytest.raises(InputError, match="unknown keys"):
-        from_toml(
+        programme_from_toml(
             {
                 "kind": "arrays",
                 "time": [0, 1],
@@ -115,4 +115,4 @@ def test_from_arrays_and_toml_kinds(tmp_path):
             }
         )
     with pytest.raises(InputError, match="missing"):
-        from_toml({"kind": "regular"})
+        programme_from_toml({"kind": "regular"})

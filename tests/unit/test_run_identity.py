@@ -296,3 +296,17 @@ def test_summaries_of_two_runs_of_one_preset_do_not_overwrite_each_other(sample,
     r = runner.invoke(cli, [*args, str(tmp_path / "b.nc")])  # another run, same preset
     assert json.loads(r.output)[0]["summary"].endswith("tiny_b_summary.nc")
     assert (outdir / "tiny_summary.nc").exists()
+
+
+def test_guard_output_refuses_a_file_of_another_run_unless_restart(tmp_path):
+    """dem.identity.guard_output (the check of 'dem prepare/penetrate --out'), as a library call."""
+    from onbottom.dem.identity import guard_output, recorded_identity
+
+    ident = run_identity(SD_REDUCED, "preparation")
+    out = tmp_path / "out.nc"
+    guard_output(out, ident, restart=False, field="--out")  # no file: nothing to refuse
+    out.write_text("not a result", encoding="utf-8")
+    assert recorded_identity(out) is None
+    with pytest.raises(InputError, match=r"--out = .* already holds a file without a run identity"):
+        guard_output(out, ident, restart=False, field="--out")
+    guard_output(out, ident, restart=True, field="--out")  # --restart replaces it

@@ -13,6 +13,9 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.section` — ``onbottom simulate`` (centrifuge section programmes).
 * :mod:`~onbottom.cases.assess` — ``onbottom assess`` (a route → ``assess.Route``).
 * :mod:`~onbottom.cases.reliability` — ``onbottom reliability`` (→ ``ReliabilitySetup``).
+* :mod:`~onbottom.cases.programme` — load-programme tables and files (TOML, CSV) of ``simulate``.
+* :mod:`~onbottom.cases.force` — a case's ``[hydro]`` table → a force model (storm-type cases).
+* :mod:`~onbottom.cases.dem` — DEM config files (JSON) of ``onbottom dem`` and ``dem-lammps``.
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """

@@ -20,7 +20,7 @@ Schema (loads in kN/m, unit weights in kN/m³, lengths in m, times in s; see
     submerged_unit_weight_kn = 7.5        # not for coulomb
     # A = 0.25, B = 0.35, C = 0.98        # calcareous defaults (Table 3)
 
-    [programme]                   # see onbottom.dynamics.programmes.from_toml
+    [programme]                   # see onbottom.cases.programme.programme_from_toml
     kind = "inclined_cyclic"
     ...
 
@@ -47,8 +47,8 @@ from onbottom._casefile import (
     read_toml,
     resolve_path,
 )
+from onbottom.cases.programme import programme_from_toml
 from onbottom.dynamics import centrifuge
-from onbottom.dynamics.programmes import from_toml as programme_from_toml
 from onbottom.dynamics.section import (
     SectionResult,
     SolverSettings,

@@ -30,6 +30,7 @@ from typing import Any, Literal
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, load_case_file
+from onbottom.cases.force import force_model_from_case
 from onbottom.cases.stability import (
     Checker,
     CurrentTable,
@@ -45,7 +46,6 @@ from onbottom.dynamics.storm_section import StormSolverSettings
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 from onbottom.hydro.reductions import LoadReductions
-from onbottom.hydro.registry import force_model_from_case
 from onbottom.hydro.storm_kinematics import StormKinematics
 from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe

@@ -333,11 +333,11 @@ def _settings(case: Path, cfg: CurvesCase) -> Any:
     state up front; errors name the case-file key (``curves.K[i]``, ``curves.l_max``)."""
     import math
 
+    from onbottom.cases.force import force_model_from_case
     from onbottom.cases.stability import Checker
     from onbottom.cases.storm import TIME_STEP_MAX_FRACTION, TIME_STEP_WARN_FRACTION
     from onbottom.constants import GRAVITY
     from onbottom.errors import InputError
-    from onbottom.hydro.registry import force_model_from_case
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
     from onbottom.study.stability_curves import CurveSettings
 

@@ -34,7 +34,9 @@ os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 def _config(preset: str, seed: int | None, config_file: Path | None) -> DEMConfig:
     if config_file is not None:
-        cfg = DEMConfig.from_file(config_file)
+        from onbottom.cases.dem import load_dem_config
+
+        cfg = load_dem_config(config_file)
     else:
         cfg = get_preset(preset)
     if seed is not None:
@@ -46,76 +48,6 @@ def _check_out(path: Path, field: str) -> None:
     from onbottom.cli._common import check_output_path
 
     check_output_path(path, field=field)
-
-
-def _existing_identity(path: Path) -> dict | None:
-    """The run identity recorded in a result or specimen file (None if none/unreadable)."""
-    import xarray as xr
-
-    try:
-        with xr.open_dataset(path, engine="h5netcdf") as ds:
-            attrs = dict(ds.attrs)
-        if "sample_attrs" in attrs and "run_identity" not in attrs:
-            attrs = json.loads(attrs["sample_attrs"])
-        return {**json.loads(attrs["run_identity"]), "config": json.loads(attrs["config"])}
-    except Exception:  # unreadable or without identity: not a result of this run either
-        return None
-
-
-def _guard_output(path: Path, identity: dict, restart: bool, field: str) -> None:
-    """Refuse to overwrite a file that holds the result of another run (unless --restart)."""
-    from onbottom.dem.identity import differences
-
-    if restart or not path.exists():
-        return
-    found = _existing_identity(path)
-    if found == identity:
-        return
-    what = (
-        "a file without a run identity"
-        if found is None
-        else "the result of another run (" + "; ".join(differences(found, identity)[:8]) + ")"
-    )
-    err = InputError(
-        f"{field} = {str(path)!r} is invalid: it already holds {what}; give another {field},"
-        " or --restart to replace it"
-    )
-    err.field = field  # type: ignore[attr-defined]
-    raise err
-
-
-def _load_sample(path: Path):
-    """A specimen file; a file that is not one is an input error naming it."""
-    from onbottom.dem.sample import Sample
-
-    try:
-        return Sample.load(path)
-    except Exception as exc:  # unreadable, truncated or another kind of file
-        err = InputError(
-            f"--sample = {str(path)!r} is invalid: not a readable specimen file"
-            f" ({type(exc).__name__}: {exc}); prepare one with 'onbottom dem prepare'"
-        )
-        err.field = "--sample"  # type: ignore[attr-defined]
-        raise err from None
-
-
-def _load_run(path: Path):
-    """A run or summary file of ``dem penetrate`` / ``dem summarize``."""
-    from onbottom.results import load_dataset
-
-    try:
-        ds = load_dataset(path)
-    except Exception as exc:  # unreadable, truncated or not NetCDF
-        raise InputError(
-            f"results = {str(path)!r} is invalid: not a readable NetCDF file"
-            f" ({type(exc).__name__}: {exc})"
-        ) from None
-    if not ({"V_prototype", "V_prototype_mean"} & set(ds.data_vars)):
-        raise InputError(
-            f"results = {str(path)!r} is invalid: not a 'dem penetrate' run or a"
-            " 'dem summarize' summary"
-        )
-    return ds
 
 
 class _Bar:
@@ -191,36 +123,16 @@ def command() -> None:
 
 
 def _prepare(cfg: DEMConfig, out: Path, progress: bool, restart: bool = False):
-    """Prepare and save the specimen; resumable per compacted layer.
-
-    The layer checkpoint ``<out>.prep-checkpoint.nc`` is written after every layer, read when a
-    previous run was interrupted (if it belongs to the same run), and removed once the specimen
-    is saved.
-    """
-    from onbottom.dem.identity import run_identity
-    from onbottom.dem.preparation import prepare_sample
-    from onbottom.results import clean_stale_temporaries
+    """Prepare and save the specimen (resumable per compacted layer: ``prepare_to_file``)."""
+    from onbottom.dem.preparation import prepare_to_file
 
     _check_out(out, "--out")
-    _guard_output(out, run_identity(cfg, "preparation"), restart, "--out")
-    checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
-    clean_stale_temporaries(out)
-    clean_stale_temporaries(checkpoint)
     bar = _Bar(progress, f"prepare {cfg.name}")
     t0 = time.perf_counter()
     try:
-        sample = prepare_sample(
-            cfg,
-            progress=lambda stage, f: bar(
-                0.8 * f if stage == "compaction" else (0.8 if stage == "1g" else 0.9) + 0.1 * f
-            ),
-            checkpoint=checkpoint,
-            restart=restart,
-        )
+        sample = prepare_to_file(cfg, out, progress=bar, restart=restart, field="--out")
     finally:
         bar.close()
-    sample.save(out)
-    checkpoint.unlink(missing_ok=True)
     return sample, time.perf_counter() - t0
 
 
@@ -372,21 +284,24 @@ def penetrate_cmd(
     same run (configuration, seed, velocity, specimen, engine); otherwise the command stops
     and names the differing fields (--restart discards the checkpoint).
     """
-    from onbottom.dem.experiment import initial_state, penetrate
-    from onbottom.dem.identity import check_sample_config, run_identity
+    from onbottom.cases.dem import load_sample
+    from onbottom.dem.experiment import penetrate, with_initial_state
+    from onbottom.dem.identity import check_sample_config, guard_output, run_identity
     from onbottom.results import clean_stale_temporaries, save_dataset
 
     cfg = _config(preset, seed, config_file)
     show = progress and not as_json
     _check_out(out, "--out")
     if sample_path.exists():
-        sample = _load_sample(sample_path)
+        sample = load_sample(sample_path)
         check_sample_config(sample, cfg, sample_path)
     else:
         sample, _ = _prepare(cfg, sample_path, show)
     ck = checkpoint if checkpoint is not None else out.with_suffix(".checkpoint.nc")
     if not ck.exists():  # else the checkpoint's own identity check decides (in penetrate)
-        _guard_output(out, run_identity(cfg, "penetration", sample=sample), restart, "--out")
+        guard_output(
+            out, run_identity(cfg, "penetration", sample=sample), restart=restart, field="--out"
+        )
     if ck.resolve() in (out.resolve(), sample_path.resolve()):
         raise InputError(
             f"--checkpoint = {str(ck)!r} is invalid: it must differ from --out and --sample"
@@ -413,11 +328,7 @@ def penetrate_cmd(
     finally:
         bar.close()
     wall = time.perf_counter() - t0
-    ini = initial_state(cfg, sample)
-    for name, da in ini.data_vars.items():
-        ds[f"initial_{name}"] = da.rename({"depth": "circle_depth"})
-    ds = ds.assign_coords(circle_depth=("circle_depth", ini["depth"].values))
-    ds.attrs["circle_diameter"] = ini.attrs["circle_diameter"]
+    ds = with_initial_state(ds, cfg, sample)
     save_dataset(ds, out)
     if bool(ds.attrs["complete"]) and ck.exists():
         ck.unlink()
@@ -584,8 +495,9 @@ def plot_cmd(
     one preset are plotted together.
     """
     import matplotlib.pyplot as plt
-    import xarray as xr
 
+    from onbottom.cases.dem import load_run
+    from onbottom.dem.experiment import initial_state_of
     from onbottom.plotting import dem as P
 
     if phi_lower_deg > phi_upper_deg:
@@ -593,7 +505,7 @@ def plot_cmd(
             f"--phi-lower-deg = {phi_lower_deg:g} is invalid: must not exceed --phi-upper-deg"
             f" = {phi_upper_deg:g}"
         )
-    runs = [_load_run(p) for p in results]
+    runs = [load_run(p) for p in results]
     outdir.mkdir(parents=True, exist_ok=True)
     written: list[str] = []
 
@@ -621,18 +533,7 @@ def plot_cmd(
         )
         save(fig, "dem_V_w_f114.png")
     save(P.plot_surface(runs), "dem_heave.png")
-    inis = []
-    for ds in runs:
-        if "initial_porosity" in ds:
-            ini = xr.Dataset(
-                {
-                    k[8:]: ds[k].rename({"circle_depth": "depth"})
-                    for k in ds.data_vars
-                    if str(k).startswith("initial_")
-                }
-            )
-            ini.attrs["preset"] = ds.attrs.get("preset", "")
-            inis.append(ini)
+    inis = [ini for ini in map(initial_state_of, runs) if ini is not None]
     if inis:
         save(
             P.plot_initial_state(inis, float(runs[0].attrs["pipe_diameter"])),
@@ -713,10 +614,11 @@ def summarize_cmd(
     episode the w/D of its peak and trough snapshots, the drop, whether a band of disks
     rotated by more than --band-threshold-deg joins the pipe to the surface, and where.
     """
+    from onbottom.cases.dem import load_run
     from onbottom.dem.summary import summarize_run
     from onbottom.results import save_dataset, write_text_atomic
 
-    runs = [_load_run(p) for p in results]
+    runs = [load_run(p) for p in results]
     for path, ds in zip(results, runs, strict=True):
         if "V_prototype" not in ds:
             raise InputError(f"results = {str(path)!r} is invalid: already a summary")

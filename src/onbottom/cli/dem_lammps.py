@@ -20,7 +20,7 @@ import click
 import numpy as np
 
 from onbottom.cli._common import Number, emit_json, handle_errors, json_option
-from onbottom.dem.config import PRESETS, DEMConfig, get_preset
+from onbottom.dem.config import PRESETS, get_preset
 from onbottom.dem.lammps_backend import (
     LammpsError,
     LammpsPenetrationCase,
@@ -102,10 +102,10 @@ def command(
     as_json: bool,
 ) -> None:
     """Run the pipe-penetration experiment with LAMMPS (cross-check of 'onbottom dem')."""
-    config = DEMConfig.from_file(config_file) if config_file is not None else get_preset(preset)
-    from onbottom.cli.dem import _load_sample
+    from onbottom.cases.dem import load_dem_config, load_sample
 
-    sample = _load_sample(sample_file)
+    config = load_dem_config(config_file) if config_file is not None else get_preset(preset)
+    sample = load_sample(sample_file)
     case = LammpsPenetrationCase.from_config(
         config, sample, settle_time=settle_time, ramp_gravity=ramp_gravity
     )

@@ -21,12 +21,10 @@ most likely Itasca PFC2D); decoded in ``shared/spec/dem-penetration.md``.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
 import math
-import os
 from dataclasses import dataclass, field
-from typing import Any, get_type_hints
+from typing import Any
 
 from onbottom import _validate as v
 from onbottom.errors import InputError
@@ -529,85 +527,10 @@ class DEMConfig:
         return dataclasses.asdict(self)
 
     def to_json(self) -> str:
-        """JSON string of :meth:`to_dict`."""
+        """JSON string of :meth:`to_dict` (a DEM config file; read back with
+        :func:`onbottom.cases.dem.load_dem_config` or
+        :func:`~onbottom.cases.dem.dem_config_from_json`)."""
         return json.dumps(self.to_dict(), sort_keys=True)
-
-    @classmethod
-    def from_dict(
-        cls, d: Any, *, file: str | os.PathLike | None = None, text: str | None = None
-    ) -> DEMConfig:
-        """Inverse of :meth:`to_dict`, checked against the strict schema of a DEM config.
-
-        Unknown keys, wrong types and missing required keys raise
-        :class:`~onbottom._casefile.CaseFileError` naming the key (and the file and line when
-        ``file``/``text`` are given); sections left out take their defaults.
-        """
-        from onbottom._casefile import parse_case
-
-        doc = parse_case(_config_schema(), d, file=file, text=text)
-        return _build(cls, doc)
-
-    @classmethod
-    def from_json(cls, s: str) -> DEMConfig:
-        """Inverse of :meth:`to_json`."""
-        from onbottom._casefile import CaseFileError
-
-        try:
-            d = json.loads(s)
-        except json.JSONDecodeError as exc:
-            raise CaseFileError(
-                f"DEM config is not valid JSON: {exc.msg} (line {exc.lineno}, column {exc.colno})",
-                line=exc.lineno,
-            ) from None
-        return cls.from_dict(d, text=s)
-
-    @classmethod
-    def from_file(cls, path: str | os.PathLike) -> DEMConfig:
-        """Read a DEM config JSON file (:meth:`to_json`); errors name the file, key and line."""
-        from onbottom._casefile import read_json
-
-        d, text = read_json(path)
-        return cls.from_dict(d, file=path, text=text)
-
-
-@functools.cache
-def _schema_of(dc: type) -> type:
-    """A strict pydantic schema (``_casefile.StrictModel``) mirroring the dataclass ``dc``."""
-    import pydantic
-
-    from onbottom._casefile import StrictModel
-
-    hints = get_type_hints(dc)
-    fields: dict[str, Any] = {}
-    for f in dataclasses.fields(dc):
-        t = hints[f.name]
-        if dataclasses.is_dataclass(t):
-            required = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
-            sub = _schema_of(t)
-            fields[f.name] = (sub, ...) if required else (sub | None, None)
-        elif f.default is not dataclasses.MISSING:
-            fields[f.name] = (t, f.default)
-        else:
-            fields[f.name] = (t, ...)
-    return pydantic.create_model(f"{dc.__name__}Schema", __base__=StrictModel, **fields)
-
-
-def _config_schema() -> type:
-    return _schema_of(DEMConfig)
-
-
-def _build(dc: type, model: Any) -> Any:
-    """The dataclass ``dc`` from a validated schema instance (None → the dataclass default)."""
-    hints = get_type_hints(dc)
-    kwargs: dict[str, Any] = {}
-    for f in dataclasses.fields(dc):
-        value = getattr(model, f.name)
-        if dataclasses.is_dataclass(hints[f.name]):
-            if value is None:
-                continue
-            value = _build(hints[f.name], value)
-        kwargs[f.name] = value
-    return dc(**kwargs)
 
 
 _D = 0.020  # pipe diameter of the paper [m]

@@ -54,7 +54,14 @@ from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
 from onbottom.results import load_dataset, provenance, save_dataset
 
-__all__ = ["DEFAULT_SNAPSHOTS", "initial_state", "make_simulation", "penetrate"]
+__all__ = [
+    "DEFAULT_SNAPSHOTS",
+    "initial_state",
+    "initial_state_of",
+    "make_simulation",
+    "penetrate",
+    "with_initial_state",
+]
 
 log = logging.getLogger(__name__)
 
@@ -124,6 +131,38 @@ def initial_state(
     return measuring_circles(
         sim.pos, sim.rad, sim.contact_forces(), sample.box, surf, circle_diameter
     )
+
+
+def with_initial_state(ds: xr.Dataset, config: DEMConfig, sample: Sample) -> xr.Dataset:
+    """The run ``ds`` of :func:`penetrate` with the specimen's :func:`initial_state` added.
+
+    Each profile becomes ``initial_<name>`` on the coordinate ``circle_depth`` [m], and the
+    attribute ``circle_diameter`` [m] is the measuring circles' diameter (what ``onbottom dem
+    penetrate`` writes, and ``onbottom dem plot`` draws).
+    """
+    ini = initial_state(config, sample)
+    for name, da in ini.data_vars.items():
+        ds[f"initial_{name}"] = da.rename({"depth": "circle_depth"})
+    ds = ds.assign_coords(circle_depth=("circle_depth", ini["depth"].values))
+    ds.attrs["circle_diameter"] = ini.attrs["circle_diameter"]
+    return ds
+
+
+def initial_state_of(ds: xr.Dataset) -> xr.Dataset | None:
+    """The initial-state profiles a run or summary carries (:func:`with_initial_state`), as
+    :func:`initial_state` returns them (coordinate ``depth``), with the run's ``preset``
+    attribute; None when it carries none."""
+    if "initial_porosity" not in ds:
+        return None
+    ini = xr.Dataset(
+        {
+            k[8:]: ds[k].rename({"circle_depth": "depth"})
+            for k in ds.data_vars
+            if str(k).startswith("initial_")
+        }
+    )
+    ini.attrs["preset"] = ds.attrs.get("preset", "")
+    return ini
 
 
 def _touch_height(sample: Sample, xc: float, radius: float) -> float:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 from collections.abc import Mapping
 from typing import Any
 
@@ -31,6 +32,8 @@ __all__ = [
     "check_sample_config",
     "differences",
     "fingerprint",
+    "guard_output",
+    "recorded_identity",
     "run_identity",
     "sample_fingerprint",
 ]
@@ -189,3 +192,45 @@ def check_sample_config(sample: Any, config: Any, path: Any) -> None:
             diff,
             field="sample",
         )
+
+
+def recorded_identity(path: str | os.PathLike) -> dict[str, Any] | None:
+    """The run identity recorded in a result or specimen file, its ``config`` included (None if
+    the file has none or cannot be read)."""
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(path, engine="h5netcdf") as ds:
+            attrs = dict(ds.attrs)
+        if "sample_attrs" in attrs and "run_identity" not in attrs:
+            attrs = json.loads(attrs["sample_attrs"])
+        return {**json.loads(attrs["run_identity"]), "config": json.loads(attrs["config"])}
+    except Exception:  # unreadable or without identity: not a result of this run either
+        return None
+
+
+def guard_output(
+    path: str | os.PathLike, identity: Mapping[str, Any], *, restart: bool, field: str = "out"
+) -> None:
+    """Refuse to overwrite a file that holds the result of another run (unless ``restart``).
+
+    ``identity`` is the :func:`run_identity` of the run about to write ``path``; a file whose
+    recorded identity (:func:`recorded_identity`) differs, or that has none, is an
+    :class:`~onbottom.errors.InputError` naming ``field`` and the differing fields.
+    """
+    if restart or not os.path.exists(path):
+        return
+    found = recorded_identity(path)
+    if found == identity:
+        return
+    what = (
+        "a file without a run identity"
+        if found is None
+        else "the result of another run (" + "; ".join(differences(found, identity)[:8]) + ")"
+    )
+    err = InputError(
+        f"{field} = {str(path)!r} is invalid: it already holds {what}; give another {field},"
+        " or --restart to replace it"
+    )
+    err.field = field  # type: ignore[attr-defined]
+    raise err

@@ -44,7 +44,13 @@ from onbottom.constants import GRAVITY
 from onbottom.dem._generation import rsa_positions
 from onbottom.dem.config import LID_PAUSE_CHECK, LID_PAUSE_STEPS, ContactParameters, DEMConfig
 from onbottom.dem.engine import Simulation, step_sizes
-from onbottom.dem.identity import CheckpointError, check_identity, fingerprint, run_identity
+from onbottom.dem.identity import (
+    CheckpointError,
+    check_identity,
+    fingerprint,
+    guard_output,
+    run_identity,
+)
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
 
@@ -54,6 +60,7 @@ __all__ = [
     "draw_diameters",
     "layer_targets",
     "prepare_sample",
+    "prepare_to_file",
     "settle",
 ]
 
@@ -333,6 +340,42 @@ def prepare_sample(
     if ck is not None and ck.exists():
         ck.unlink()
     return out
+
+
+def prepare_to_file(
+    config: DEMConfig,
+    out: str | Path,
+    *,
+    progress: Callable[[float], None] | None = None,
+    restart: bool = False,
+    field: str = "out",
+) -> Sample:
+    """Prepare the specimen of ``config`` and save it to ``out``; resumable per compacted layer.
+
+    ``out`` is refused when it holds the result of another run, unless ``restart``
+    (:func:`~onbottom.dem.identity.guard_output`, errors naming ``field``). The layer
+    checkpoint ``<out>.prep-checkpoint.nc`` is written after every layer, read when a previous
+    run was interrupted (if it belongs to the same run), and removed once the specimen is
+    saved. ``progress(fraction_done)`` (optional) gets the fraction of the whole preparation:
+    compaction 0–0.8, 1 g equilibrium 0.8–0.9, the gravity ramp and N g equilibrium 0.9–1.
+    """
+    from onbottom.results import clean_stale_temporaries
+
+    out = Path(out)
+    guard_output(out, run_identity(config, "preparation"), restart=restart, field=field)
+    checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
+    clean_stale_temporaries(out)
+    clean_stale_temporaries(checkpoint)
+
+    def report(stage: str, f: float) -> None:
+        if progress is not None:
+            start = 0.8 if stage == "1g" else 0.9
+            progress(0.8 * f if stage == "compaction" else start + 0.1 * f)
+
+    sample = prepare_sample(config, progress=report, checkpoint=checkpoint, restart=restart)
+    sample.save(out)
+    checkpoint.unlink(missing_ok=True)
+    return sample
 
 
 class _Run:

@@ -23,7 +23,6 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
     from onbottom.dynamics.programmes import (
         LoadProgramme,
         from_arrays,
-        from_toml,
         inclined_cyclic,
         irregular_wave_current_groups,
         regular_wave_current_groups,
@@ -50,7 +49,6 @@ __all__ = [
     "build_programme",
     "build_soil",
     "from_arrays",
-    "from_toml",
     "get_test",
     "inclined_cyclic",
     "irregular_wave_current_groups",
@@ -76,7 +74,6 @@ __getattr__, __dir__ = attach(
         "onbottom.dynamics.programmes": (
             "LoadProgramme",
             "from_arrays",
-            "from_toml",
             "inclined_cyclic",
             "irregular_wave_current_groups",
             "regular_wave_current_groups",

@@ -12,7 +12,8 @@ Youssef & Cassidy (2014), ISOPE, pp. 141–148:
 * :func:`regular_wave_current_groups` — groups of identical regular wave-plus-current load
   sub-cycles, each later group scaled up by a fixed increment of the first group's loads.
 * :func:`irregular_wave_current_groups` — the same with a seeded irregular (JONSWAP) sea.
-* :func:`from_arrays`, :func:`from_toml` — a user's own programme.
+* :func:`from_arrays` — a user's own programme (from a case file's ``[programme]`` table, a
+  TOML file or a CSV: :func:`onbottom.cases.programme.programme_from_toml`).
 
 The wave-plus-current shapes come from the Morison model of :mod:`onbottom.hydro` and are then
 scaled to the paper's first-cycle peaks (the paper's own histories came from UWAHYDRO, which is
@@ -22,15 +23,13 @@ not available); see docs/validation/youssef_cassidy_2014.md.
 from __future__ import annotations
 
 import math
-import os
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from onbottom._validate import in_range, integer, non_negative, one_of, positive
+from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.errors import InputError
 from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
 from onbottom.hydro.timeseries import near_bed_velocity_series, regular_velocity_series
@@ -40,7 +39,6 @@ _DEFAULT_COEFFICIENTS = MorisonCoefficients()
 __all__ = [
     "LoadProgramme",
     "from_arrays",
-    "from_toml",
     "inclined_cyclic",
     "irregular_wave_current_groups",
     "regular_wave_current_groups",
@@ -569,146 +567,3 @@ def from_arrays(
         name=name,
         metadata={"builder": "from_arrays"},
     )
-
-
-_KN = 1.0e3
-
-
-def _read_programme_csv(path: str) -> np.ndarray:
-    """Columns time [s], H [kN/m], V [kN/m] of a programme CSV (one header line)."""
-    if not os.path.isfile(path):
-        raise InputError(f"programme.file = {path!r} is invalid: file not found")
-    try:
-        with warnings.catch_warnings():  # an empty file is reported below, not warned
-            warnings.simplefilter("ignore", UserWarning)
-            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
-    except (ValueError, UnicodeDecodeError) as exc:
-        # never echo the file's contents (numpy quotes the offending text): row/column only
-        import re
-
-        m = re.search(r"at row (\d+), column (\d+)", str(exc))
-        where = f" (row {int(m.group(1)) + 2}, column {m.group(2)})" if m else ""
-        raise InputError(
-            f"programme.file = {path!r} is invalid: expected numeric CSV columns time [s],"
-            f" H [kN/m], V [kN/m] after one header line{where}"
-        ) from None
-    if data.ndim != 2 or data.shape[1] < 3 or data.shape[0] < 2:
-        raise InputError(
-            f"programme.file = {path!r} is invalid: expected at least 2 rows of 3 columns"
-            f" (time, H, V), got shape {tuple(data.shape)}"
-        )
-    if not np.all(np.isfinite(data[:, :3])):
-        raise InputError(f"programme.file = {path!r} is invalid: contains NaN or inf")
-    return data
-
-
-def from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadProgramme:
-    """Build a programme from a TOML file (its ``[programme]`` table) or an equivalent mapping.
-
-    Loads in the TOML file are in **kN/m** (keys end in ``_kn``); times in s; see
-    ``examples/section_case.toml`` for every kind. ``kind`` selects the builder:
-
-    * ``"inclined_cyclic"``: ``vertical_load_kn``, ``amplitude_step_kn``, ``period``,
-      ``alpha_deg``, ``n_cycles``, optional ``shape``, ``points_per_cycle``.
-    * ``"regular"``: ``vertical_load_kn``, ``n_groups``, optional ``group_period``,
-      ``sub_cycles``, ``h_peak_kn``, ``h_trough_kn``, ``v_peak_kn``, ``increment``.
-    * ``"irregular"``: as regular plus ``hs``, ``tp``, ``depth``, ``seed``,
-      ``waves_per_group``.
-    * ``"arrays"``: ``time`` [s], ``horizontal_load_kn``, ``vertical_load_kn`` lists, optional
-      ``cycle_period``.
-    * ``"csv"``: ``file`` (relative to the TOML file) with columns time [s], H [kN/m],
-      V [kN/m] (one header line), optional ``cycle_period``.
-
-    All kinds accept ``installation_load_kn`` (V_peak) and ``name``.
-    """
-    base = None
-    if isinstance(source, Mapping):
-        table = dict(source.get("programme", source))
-    else:
-        from onbottom._casefile import read_toml
-
-        doc, _ = read_toml(source)
-        if "programme" not in doc:
-            raise InputError(f"{source}: no [programme] table")
-        table = dict(doc["programme"])
-        base = os.path.dirname(os.fspath(source))
-    kind = one_of(
-        "programme.kind",
-        table.pop("kind", None),
-        ("inclined_cyclic", "regular", "irregular", "arrays", "csv"),
-    )
-    v_peak = table.pop("installation_load_kn", None)
-    v_peak = None if v_peak is None else float(v_peak) * _KN
-    name = str(table.pop("name", kind))
-
-    def take(key: str, *, kn: bool = False, default: Any = ...) -> Any:
-        if key not in table:
-            if default is ...:
-                raise InputError(f"programme.{key} is missing (required for kind = {kind!r})")
-            return default
-        val = table.pop(key)
-        return float(val) * _KN if kn else val
-
-    if kind == "inclined_cyclic":
-        prog = inclined_cyclic(
-            take("vertical_load_kn", kn=True),
-            take("amplitude_step_kn", kn=True),
-            float(take("period")),
-            float(take("alpha_deg")),
-            integer("programme.n_cycles", take("n_cycles"), 1),
-            shape=str(take("shape", default="sine")),
-            points_per_cycle=integer(
-                "programme.points_per_cycle", take("points_per_cycle", default=200), 4
-            ),
-            installation_load=v_peak,
-            name=name,
-        )
-    elif kind in ("regular", "irregular"):
-        kwargs: dict[str, Any] = {}
-        for key in ("h_peak_kn", "h_trough_kn", "v_peak_kn"):
-            if key in table:
-                kwargs[key[:-3]] = take(key, kn=True)
-        for key in ("group_period", "increment", "hs", "tp", "depth", "waves_per_group"):
-            if key in table:
-                kwargs[key] = float(take(key))
-        for key in ("sub_cycles", "seed"):
-            if key in table:
-                kwargs[key] = integer(f"programme.{key}", take(key), 0)
-        builder = (
-            regular_wave_current_groups if kind == "regular" else irregular_wave_current_groups
-        )
-        prog = builder(
-            take("vertical_load_kn", kn=True),
-            integer("programme.n_groups", take("n_groups"), 1),
-            installation_load=v_peak,
-            name=name,
-            **kwargs,
-        )
-    else:
-        if kind == "arrays":
-            t = np.asarray(take("time"), dtype=float)
-            h = np.asarray(take("horizontal_load_kn"), dtype=float) * _KN
-            v = np.asarray(take("vertical_load_kn"), dtype=float) * _KN
-        else:
-            path = str(take("file"))
-            if base is not None:
-                from onbottom._casefile import contained
-
-                value = path
-                if not os.path.isabs(path):
-                    path = os.path.join(base, path)
-                contained(value, path, folder=base, field="programme.file")
-            data = _read_programme_csv(path)
-            t, h, v = data[:, 0], data[:, 1] * _KN, data[:, 2] * _KN
-        period = table.pop("cycle_period", None)
-        prog = from_arrays(
-            t,
-            h,
-            v,
-            installation_load=v_peak,
-            cycle_period=None if period is None else float(period),
-            name=name,
-        )
-    if table:
-        raise InputError(f"programme has unknown keys {sorted(table)} for kind = {kind!r}")
-    return prog

@@ -9,10 +9,11 @@ Sørensen et al. 1986 / Bryndum et al. 1992 form with a user coefficient table).
 name, an unknown option or a bad value is an :class:`~onbottom.errors.InputError` naming it and
 the choices.
 
-Options of a model come from a case file's sub-table (``[hydro.wake]``, ``[hydro.fourier]``)
-and are the keyword arguments of the class; the Fourier model's ``table`` is a path (CSV or
-NetCDF, resolved against ``base_dir``: the case file's folder) or ``"example"`` for the
-synthetic table the package ships.
+Options of a model are the keyword arguments of the class (in a case file, its sub-table
+``[hydro.wake]``, ``[hydro.fourier]``); the Fourier model's ``table`` is a coefficient table, a
+path (CSV or NetCDF) or ``"example"`` for the synthetic table the package ships. A case file's
+``[hydro]`` table (paths relative to the case file's folder) is built into a model by
+:func:`onbottom.cases.force.force_model_from_case`.
 """
 
 from __future__ import annotations
@@ -94,7 +95,6 @@ def build_force_model(
     name: str,
     options: Mapping[str, Any] | None = None,
     *,
-    base_dir: str | Path | None = None,
     where: str = "hydro",
 ) -> Any:
     """An instance of force model ``name`` with ``options`` (keyword arguments of its class).
@@ -105,10 +105,10 @@ def build_force_model(
         A key of :data:`FORCE_MODELS`.
     options : mapping or None
         Keyword arguments of the class; unknown keys are named errors listing the allowed ones.
-        For ``"fourier"``, ``table`` is a path [-] to a CSV/NetCDF coefficient table (relative
-        paths against ``base_dir``) or ``"example"``.
-    base_dir : path or None
-        Folder that relative paths are resolved against (the case file's folder).
+        For ``"fourier"``, ``table`` is a :class:`~onbottom.hydro.fourier_table.FourierTable`,
+        the path [-] of a CSV/NetCDF coefficient table, or ``"example"``. (A case file's
+        ``[hydro]`` table, with paths relative to its folder, is built by
+        :func:`onbottom.cases.force.force_model_from_case`.)
     where : str
         Prefix of the error messages (the case-file table).
     """
@@ -122,7 +122,7 @@ def build_force_model(
                 f" {', '.join(allowed)}"
             )
     if name == "fourier":
-        opts["table"] = _fourier_table(opts.get("table"), base_dir, f"{where}.{name}.table")
+        opts["table"] = _fourier_table(opts.get("table"), f"{where}.{name}.table")
     try:
         return cls(**opts)
     except InputError as exc:
@@ -131,7 +131,7 @@ def build_force_model(
         raise InputError(f"[{where}.{name}] invalid options: {exc}") from None
 
 
-def _fourier_table(value: Any, base_dir: str | Path | None, where: str) -> Any:
+def _fourier_table(value: Any, where: str) -> Any:
     from onbottom.hydro.fourier_table import FourierTable
 
     if isinstance(value, FourierTable):
@@ -145,61 +145,7 @@ def _fourier_table(value: Any, base_dir: str | Path | None, where: str) -> Any:
         raise InputError(f"{where} = {value!r} is invalid: expected a path or 'example'")
     if value == "example":
         return FourierTable.example()
-    return FourierTable.load(_case_file(value, base_dir, where))
-
-
-def _case_file(value: str, base_dir: str | Path | None, where: str) -> Path:
-    """A file named in a case file: relative to (and contained in) the case file's folder."""
-    from onbottom._casefile import contained
-
     p = Path(value)
-    if base_dir is not None:
-        if not p.is_absolute():
-            p = Path(base_dir) / p
-        p = contained(value, p, folder=base_dir, field=where)
     if not p.is_file():
         raise InputError(f"{where} = {value!r} is invalid: no such file ({p})")
-    return p
-
-
-def force_model_from_case(
-    hydro: Any, *, base_dir: str | Path | None = None, default: str = "morison"
-) -> Any:
-    """The force model of a case file's ``[hydro]`` table.
-
-    ``model`` not given (None) → ``default`` (the command's default model). ``model =
-    "morison"`` with ``coefficient_table`` (a CSV of C_D, C_M, C_L over K, M:
-    :mod:`onbottom.hydro.morison_table`) is Morison per sea state; without it, it takes
-    ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of ``[hydro]``; ``"wake"`` and
-    ``"fourier"`` take their options from ``[hydro.wake]`` or ``[hydro.fourier]``. Options
-    given for a model that is not selected are a named error (a sub-table that silently does
-    nothing would be a silent wrong result).
-    """
-    name = default if hydro.model is None else hydro.model
-    force_model_class(name)
-    for other in ("wake", "fourier"):
-        if other != name and getattr(hydro, other):
-            raise InputError(
-                f"[hydro.{other}] is given but hydro.model = {name!r}: set model = {other!r}"
-                f" or remove [hydro.{other}]"
-            )
-    table = getattr(hydro, "coefficient_table", None)
-    if table is not None and name != "morison":
-        raise InputError(
-            f"hydro.coefficient_table is given but hydro.model = {name!r}: a coefficient table"
-            " is for model = 'morison' (per-sea-state C_D, C_M, C_L)"
-        )
-    if name == "morison":
-        from onbottom.hydro.force_model import MorisonLift
-
-        if table is not None:
-            from onbottom.hydro.morison_table import MorisonCoefficientTable
-
-            rule = MorisonCoefficientTable.from_csv(
-                _case_file(table, base_dir, "hydro.coefficient_table")
-            )
-            return MorisonLift.per_sea_state(rule, added_mass=hydro.added_mass_coefficient)
-        return MorisonLift(
-            cd=hydro.cd, cm=hydro.cm, cl=hydro.cl, added_mass=hydro.added_mass_coefficient
-        )
-    return build_force_model(name, getattr(hydro, name), base_dir=base_dir)
+    return FourierTable.load(p)

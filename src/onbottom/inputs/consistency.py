@@ -9,7 +9,7 @@ Each rule returns a list of :class:`Finding` (an error or a warning, with the fi
 about and a message naming the field, the value and the allowed range). The callers decide how
 to report them: the API with :func:`report` (the first error raises
 :class:`~onbottom.errors.InputError` naming the field; warnings are issued), the case layer with
-the file and line of the key (``inputs/stability_case.py``). The field names are parameters, so
+the file and line of the key (:mod:`onbottom.cases`). The field names are parameters, so
 a message names the key the user typed (``environment.water_depth`` or ``depth``).
 
 Rules and their sources:
