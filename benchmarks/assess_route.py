@@ -43,12 +43,12 @@ import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 from pathlib import Path
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-from onbottom._casefile import read_toml
 from onbottom.assess import assess
 from onbottom.cases.assess import build_route, example_path, parse_route_case
 
@@ -82,7 +82,7 @@ def _three_conditions(section: dict, metocean: dict) -> dict:
 
 
 def route(kind: str, seeds: int):
-    doc, _ = read_toml(example_path())
+    doc = tomllib.loads(example_path().read_text(encoding="utf-8"))
     base = doc["route"]["sections"]
     n = {"default": len(base), "big": 20}.get(kind) or int(kind)
     secs = []
