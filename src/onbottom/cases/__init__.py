@@ -11,6 +11,7 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.storm` — ``onbottom storm`` (storm section), shared by the pipeline,
   curves, reliability and route cases;
 * :mod:`~onbottom.cases.section` — ``onbottom simulate`` (centrifuge section programmes).
+* :mod:`~onbottom.cases.pipeline` — ``onbottom storm`` with a ``[pipeline]`` table (pipeline FE).
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """
