@@ -1,4 +1,4 @@
-"""Pipeline case files (TOML/JSON): ``onbottom storm CASE`` with a ``[pipeline]`` table.
+"""Pipeline case files (TOML): ``onbottom storm CASE`` with a ``[pipeline]`` table.
 
 The shared tables ([pipe], [seabed], [environment], [waves], [current], [hydro], [storm],
 [solver], [run]) are read and built by :mod:`onbottom.cases.storm` (:func:`build_setup`: its
@@ -173,6 +173,8 @@ def _soil_for(
         ) from None
 
 
+#: Largest pipeline mesh accepted, as limits of one storm run: its kinematics [bytes] and its
+#: computing time [s], estimated by :func:`onbottom.dynamics.pipeline.storm_run.run_cost`.
 MAX_KINEMATICS_BYTES = 4 * 1024**3
 MAX_RUN_SECONDS = 24 * 3600.0
 
