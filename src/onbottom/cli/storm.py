@@ -277,7 +277,6 @@ def _command(
             raise click.exceptions.Exit(res.exit_code)
         return
 
-    from onbottom.dynamics.status import Status
     from onbottom.results import TaskStore, save_dataset
     from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
@@ -310,30 +309,7 @@ def _command(
     )
     save_dataset(study.data, nc, compression_level=setup.compression_level)
     TaskStore.delete(store)  # the result holds every seed now
-    st = study.statistics
-    d = setup.pipe.outer_diameter
-    ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)
-    final = study.data["final_displacement"].values[ok_rows]
-    payload = {
-        "max_displacement_m": st["max"],
-        "mean_max_displacement_m": st["mean"],
-        "final_displacement_m": float(abs(final).mean()) if final.size else None,
-        "criteria": study.criteria,
-        "status": int(Status.END if study.success else Status.RAISED),
-        "success": study.success,
-        "message": (
-            f"{n} seeds: seed-averaged maximum displacement {st['mean'] / d:.3g}D"
-            f" (max {st['max'] / d:.3g}D, {st['fractile_level']:g} fractile"
-            f" {st['fractile'] / d:.3g}D)"
-            + (f"; {st['n_failed']} seed(s) failed" if study.failures else "")
-        ),
-        "statistics": st,
-        "failures": study.failures,
-        "seeds": n,
-        "diameter_m": d,
-        "netcdf": str(nc),
-        "warnings": notes,
-    }
+    payload = {**study.to_dict(), "netcdf": str(nc), "warnings": notes}
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
