@@ -69,3 +69,28 @@ def test_programmes_and_soils_of_presets():
     s2 = build_soil("Inclined 3", C=1.0, gamma=8e3)
     assert s2.C == 1.0 and s2.submerged_unit_weight == 8e3 and s2.B == 0.45
     assert build_soil("Regular", model="coulomb").friction_coefficient == 0.85
+
+
+def test_centrifuge_run_is_the_built_simulation():
+    """run_centrifuge_test is centrifuge_run(...).simulate(): the built run holds the
+    programme, soil, mass and limit of the test, and simulating it gives the same numbers."""
+    import dataclasses
+
+    from onbottom.dynamics.centrifuge import (
+        ADDED_MASS_COEFFICIENT,
+        build_pipe,
+        centrifuge_run,
+        run_centrifuge_test,
+    )
+    from onbottom.dynamics.section import section_mass
+
+    t = TESTS["Inclined 1"]
+    run = centrifuge_run("Inclined 1", n_cycles=2, dt=0.05)
+    assert run.displacement_limit == t.displacement_limit and run.settings.dt_max == 0.05
+    assert run.mass == section_mass(build_pipe(t), ADDED_MASS_COEFFICIENT)
+    assert run.attrs["test"] == "Inclined 1" and run.attrs["parameter_set"] == "table2"
+    a = run.simulate()
+    b = run_centrifuge_test("Inclined 1", n_cycles=2, dt=0.05)
+    assert a.summary == b.summary and a.status == b.status
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        run.mass = 1.0  # type: ignore[misc]

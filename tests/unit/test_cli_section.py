@@ -57,6 +57,17 @@ def test_simulate_preset_and_bad_case(tmp_path, capsys):
     assert "Inclined 9" in capsys.readouterr().err
 
 
+def test_the_section_case_builds_the_run_that_simulate_runs():
+    from onbottom.cases.section import build_section_run
+    from onbottom.dynamics.section_run import SectionRun
+
+    run = build_section_run(EXAMPLES / "section_case.toml")
+    assert isinstance(run, SectionRun)
+    assert run.attrs == {"case_file": str(EXAMPLES / "section_case.toml")}
+    preset = build_section_run(EXAMPLES / "section_preset.toml")
+    assert preset.attrs["source"].startswith("Youssef & Cassidy (2014)")
+
+
 def test_reproduce_fast(tmp_path, capsys):
     code = main(["reproduce", "--out", str(tmp_path), "--no-plots", "--no-sensitivity", "--quiet"])
     assert code == 0

@@ -159,8 +159,8 @@ def test_example_cases_match_the_results_before_the_force_contract():
     import dataclasses
     from pathlib import Path
 
+    from onbottom.cases.pipeline import load_pipeline_run
     from onbottom.cases.storm import load_storm_case
-    from onbottom.cli.storm_pipeline import build_pipeline_run
 
     ex = Path(__file__).resolve().parents[2] / "examples"
     setup = load_storm_case(ex / "storm_case.toml")
@@ -172,11 +172,11 @@ def test_example_cases_match_the_results_before_the_force_contract():
     got = {k: r.summary[k] for k in ("n_steps", "work_hydro", "max_penetration")}
     got["min_contact_force"] = r.summary["min_contact_force"]
     got.update(ymax=r.max_displacement, yfin=r.final_displacement)
-    run = build_pipeline_run(ex / "pipeline_case.toml")
-    model = dataclasses.replace(run["model"], length=24.0)
-    s = run["setup"]
+    run = load_pipeline_run(ex / "pipeline_case.toml")
+    model = dataclasses.replace(run.model, length=24.0)
+    s = run.setup
     kin = pipeline_kinematics(s.storm, s.depth, model.x, sample_interval=s.sample_interval)
-    settings = dataclasses.replace(run["settings"], record_interval=None)
+    settings = dataclasses.replace(run.settings, record_interval=None)
     p = simulate_pipeline(model, kin, duration=60.0, settings=settings)
     got.update(
         p_ymax=p.max_displacement,

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from onbottom.cli.storm_pipeline import run_pipeline_case
+from onbottom.cases.pipeline import load_pipeline_run
 from onbottom.dynamics.pipeline import (
     PipelineModel,
     PipelineSettings,
@@ -25,6 +25,7 @@ from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
 from onbottom.soil.coulomb import CoulombFriction
 from onbottom.soil.verley_sotberg import VerleySotberg
+from onbottom.study.pipeline_seeds import run_pipeline_seeds
 
 PIPE = Pipe(outer_diameter=0.4, submerged_weight=600.0, bending_stiffness=5e7, axial_stiffness=5e9)
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "pipeline_case.toml"
@@ -176,10 +177,19 @@ def test_run_pipeline_case_example(tmp_path):
     shutil.copy(EXAMPLE, case)
     text = case.read_text().replace("peak_hours = 0.0667             # 4 min", "peak_hours = 0.01")
     case.write_text(text)
-    payload = run_pipeline_case(case, plot=tmp_path / "p.png")
+    study = run_pipeline_seeds(load_pipeline_run(case), output=case.with_suffix(".nc"))
+    payload = study.to_dict()
     for key in ("max_displacement_m", "max_strain", "worst_node_x_m", "criteria", "netcdf"):
         assert key in payload
     assert payload["success"] and payload["n_nodes"] == 51
+    import matplotlib.pyplot as plt
+
+    from onbottom.plotting.pipeline import plot_pipeline_result
+    from onbottom.results import save_figure
+
+    fig = plot_pipeline_result(study.result, title="example")
+    save_figure(fig, tmp_path / "p.png", dpi=110)
+    plt.close(fig)
     assert (tmp_path / "p.png").stat().st_size > 1000
     with xr.open_dataset(payload["netcdf"], engine="h5netcdf") as ds:
         assert "strain" in ds and "max_strain" in ds
@@ -191,7 +201,7 @@ def test_pipeline_table_errors(tmp_path):
     case = tmp_path / "bad.toml"
     case.write_text(EXAMPLE.read_text().replace("element_length = 4.0", "element_lenght = 4.0"))
     with pytest.raises(CaseFileError, match="did you mean 'element_length'"):
-        run_pipeline_case(case)
+        load_pipeline_run(case)
 
 
 def test_onbottom_storm_dispatches_a_pipeline_case(tmp_path, capsys):
@@ -234,15 +244,16 @@ def test_animation_is_a_gif(tmp_path):
 @pytest.mark.dask
 @pytest.mark.slow
 @pytest.mark.long
-def test_several_seeds_on_dask_and_in_process(tmp_path):
+def test_several_seeds_on_dask_and_in_process(tmp_path, capsys):
     case = tmp_path / "pipeline_case.toml"
     text = EXAMPLE.read_text().replace(  # 0.01 h: a peak of 3 T_p at least (issue #31)
         "peak_hours = 0.0667             # 4 min", "peak_hours = 0.01"
     )
     text = text.replace("build_up_hours = 0.0167         # 1 min", "build_up_hours = 0.003")
     case.write_text(text)
-    serial = run_pipeline_case(case, seeds=2, workers=0, output=tmp_path / "s.nc")
-    dask = run_pipeline_case(case, seeds=2, workers=2, output=tmp_path / "d.nc")
+    run = load_pipeline_run(case)
+    serial = run_pipeline_seeds(run, seeds=2, workers=0, output=tmp_path / "s.nc").to_dict()
+    dask = run_pipeline_seeds(run, seeds=2, workers=2, output=tmp_path / "d.nc").to_dict()
     assert serial["seeds"] == 2 and len(serial["netcdf"]) == 2
     assert [r["seed"] for r in dask["per_seed"]] == [1, 2]
     for a, b in zip(serial["per_seed"], dask["per_seed"], strict=True):
@@ -250,8 +261,11 @@ def test_several_seeds_on_dask_and_in_process(tmp_path):
     assert (
         serial["per_seed"][0]["max_displacement_m"] != serial["per_seed"][1]["max_displacement_m"]
     )
-    with pytest.raises(InputError, match="one seed"):
-        run_pipeline_case(case, seeds=2, workers=0, plot=tmp_path / "p.png")
+    from onbottom.cli.main import main
+
+    args = ["storm", str(case), "--seeds", "2", "--workers", "0", "--plot", str(tmp_path / "p.png")]
+    assert main([*args, "--json"]) == 1
+    assert "one seed" in json.loads(capsys.readouterr().out)["error"]["message"]
 
 
 def test_rerun_of_a_finished_or_stopped_run_returns_it(tmp_path):
@@ -275,7 +289,6 @@ def test_rerun_of_a_finished_or_stopped_run_returns_it(tmp_path):
 
 
 def test_case_file_route_sections(tmp_path):
-    from onbottom.cli.storm_pipeline import build_pipeline_run
 
     case = tmp_path / "route.toml"
     case.write_text(
@@ -296,19 +309,18 @@ friction_coefficient = 0.2
 axial_friction_coefficient = 0.3
 """
     )
-    run = build_pipeline_run(case)
-    m = run["model"]
+    run = load_pipeline_run(case)
+    m = run.model
     ids = m.arrays()["model_ids"]
     x = m.x
     assert set(ids[x < 120.0]) == {1} and set(ids[x >= 120.0]) == {2}
     assert m.sections[1].mu_axial == 0.3 and m.sections[0].mu_axial == 0.6
-    assert run["settings"].strain_limit == 0.002
+    assert run.settings.strain_limit == 0.002
     assert m.fibre_distance == pytest.approx(0.2191 / 2)
 
 
 def test_simple_pipe_form_takes_ei_ea_mass_from_the_pipeline_table(tmp_path):
     from onbottom._casefile import CaseFileError
-    from onbottom.cli.storm_pipeline import build_pipeline_run
 
     text = EXAMPLE.read_text()
     _head, tail = text.split("[seabed]", 1)
@@ -316,14 +328,14 @@ def test_simple_pipe_form_takes_ei_ea_mass_from_the_pipeline_table(tmp_path):
     case = tmp_path / "simple.toml"
     case.write_text(simple)
     with pytest.raises(CaseFileError, match="EI must be > 0"):
-        build_pipeline_run(case)
+        load_pipeline_run(case)
     case.write_text(
         simple.replace(
             "[pipeline]\n",
             "[pipeline]\nbending_stiffness = 9.1e6\naxial_stiffness = 1.7e9\nmass = 150.0\n",
         )
     )
-    m = build_pipeline_run(case)["model"]
+    m = load_pipeline_run(case).model
     assert (m.ei, m.ea, m.pipe.structural_mass) == (9.1e6, 1.7e9, 150.0)
     assert m.fibre_distance == pytest.approx(0.15)  # D/2 without a build-up
 
@@ -331,15 +343,14 @@ def test_simple_pipe_form_takes_ei_ea_mass_from_the_pipeline_table(tmp_path):
 def test_case_file_displacement_increment_is_taken_as_given(tmp_path):
     """[solver] max_displacement_increment_over_d reaches the pipeline unchanged (it was raised
     silently to at least 0.05 before)."""
-    from onbottom.cli.storm_pipeline import build_pipeline_run
 
     case = tmp_path / "small_increment.toml"
     text = EXAMPLE.read_text().replace(
         "[solver]\n", "[solver]\nmax_displacement_increment_over_d = 0.01\n", 1
     )
     case.write_text(text)
-    assert build_pipeline_run(case)["settings"].max_displacement_increment_over_d == 0.01
-    assert build_pipeline_run(EXAMPLE)["settings"].max_displacement_increment_over_d == 0.05
+    assert load_pipeline_run(case).settings.max_displacement_increment_over_d == 0.01
+    assert load_pipeline_run(EXAMPLE).settings.max_displacement_increment_over_d == 0.05
 
 
 def test_checkpoint_without_the_vs_memo_slots_resumes_bitwise(tmp_path, monkeypatch):

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import sys
-import types
 from pathlib import Path
 
 import numpy as np
@@ -194,19 +193,21 @@ def test_cli_storm_dispatches_pipeline_cases(tmp_path, capsys, monkeypatch):
     case.write_text(_CASE + "\n[pipeline]\nlength = 100.0\n", encoding="utf-8")
     calls = {}
 
-    def run_pipeline_case(path, **options):
+    def run_pipeline(path, **options):
         calls["path"] = path
         calls["options"] = options
         return {"max_displacement_m": 0.1, "criteria": {"0.5D": True, "10D": True}}
 
-    fake = types.ModuleType("onbottom.cli.storm_pipeline")
-    fake.run_pipeline_case = run_pipeline_case
-    monkeypatch.setitem(sys.modules, "onbottom.cli.storm_pipeline", fake)
+    import onbottom.cli.storm as storm_cli
+
+    real = storm_cli._run_pipeline
+    monkeypatch.setattr(storm_cli, "_run_pipeline", run_pipeline)
     assert main(["storm", str(case), "--json", "--seeds", "2"]) == 0
     assert calls["path"] == case and calls["options"]["seeds"] == 2
     assert json.loads(capsys.readouterr().out)["max_displacement_m"] == 0.1
     # without the pipeline module: a clear input error naming [pipeline]
-    monkeypatch.setitem(sys.modules, "onbottom.cli.storm_pipeline", None)
+    monkeypatch.setattr(storm_cli, "_run_pipeline", real)
+    monkeypatch.setitem(sys.modules, "onbottom.cases.pipeline", None)
     assert main(["storm", str(case), "--json"]) == 1
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["field"] == "pipeline" and "issue 13" in err["message"]

@@ -295,12 +295,12 @@ def test_storm_seeds_beyond_the_budget_are_refused(tmp_path, capsys, no_runs):
 
 
 def test_pipeline_seeds_beyond_the_budget_are_refused(tmp_path, capsys, monkeypatch):
-    import onbottom.cli.storm_pipeline as sp
+    import onbottom.study.pipeline_seeds as sp
 
     def never(*args, **kwargs):
         raise AssertionError("the run started: the budget check did not refuse it")
 
-    monkeypatch.setattr(sp, "run_pipeline_case", never)
+    monkeypatch.setattr(sp, "run_pipeline_seeds", never)
     text = (EXAMPLES / "pipeline_case.toml").read_text(encoding="utf-8")
     text = _edit(text, "length = 200.0 ", "length = 1000.0 ")
     text = _edit(text, "element_length = 4.0 ", "element_length = 2.0 ")

@@ -47,9 +47,20 @@ def test_statistics_and_failures_are_recorded(case):
     assert st.statistics["mean"] == pytest.approx(np.mean(y))
     assert st.statistics["max"] == np.max(y) and st.statistics["fractile"] == np.median(y)
     assert st.criteria["10D"]
+    summary = st.to_dict()  # the payload of `onbottom storm --seeds N --json`
+    assert summary["seeds"] == 3 and summary["diameter_m"] == 0.3951 and summary["success"]
+    assert summary["max_displacement_m"] == np.max(y) and summary["status"] == 1
+    assert summary["final_displacement_m"] == pytest.approx(
+        np.mean(np.abs(st.data["final_displacement"].values))
+    )
+    assert summary["message"].startswith(
+        f"3 seeds: seed-averaged maximum displacement {np.mean(y) / 0.3951:.3g}D"
+    )
     # a seed that raises is recorded, not dropped
     bad = run_storm_seeds(pipe, soil, storm, seeds=2, n_workers=0, depth=None)
     assert not bad.success and len(bad.failures) == 2
     assert all(f["status"] == STATUS_ERROR and "depth" in f["message"] for f in bad.failures)
     assert np.all(np.isnan(bad.data["max_displacement"].values))
+    assert bad.to_dict()["final_displacement_m"] is None and bad.to_dict()["status"] == -9
+    assert bad.to_dict()["message"].endswith("; 2 seed(s) failed")
     assert seed_list(5, 3) == [5, 6, 7]

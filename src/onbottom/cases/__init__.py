@@ -16,6 +16,7 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.programme` — load-programme tables and files (TOML, CSV) of ``simulate``.
 * :mod:`~onbottom.cases.force` — a case's ``[hydro]`` table → a force model (storm-type cases).
 * :mod:`~onbottom.cases.dem` — DEM config files (JSON) of ``onbottom dem`` and ``dem-lammps``.
+* :mod:`~onbottom.cases.pipeline` — ``onbottom storm`` with a ``[pipeline]`` table (pipeline FE).
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """

@@ -53,13 +53,13 @@ from onbottom.dynamics.section import (
     SectionResult,
     SolverSettings,
     section_mass,
-    simulate_section,
 )
+from onbottom.dynamics.section_run import SectionRun
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
 from onbottom.soil.coulomb import CoulombFriction
 
-__all__ = ["SectionCase", "load_case", "run_case"]
+__all__ = ["SectionCase", "build_section_run", "load_case", "run_case"]
 
 _KN = 1.0e3
 _SOIL_MODELS = ("verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb")
@@ -287,11 +287,17 @@ def run_case(
     source: str | os.PathLike | Mapping[str, Any], *, progress: bool = False
 ) -> SectionResult:
     """Run the case of a TOML file or mapping (schema in the module docstring)."""
+    return build_section_run(source).simulate(progress=progress)
+
+
+def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionRun:
+    """Read, check and build the case of a TOML file or mapping: the
+    :class:`~onbottom.dynamics.section_run.SectionRun` that ``onbottom simulate`` runs."""
     loaded = load_case(source)
     case: SectionCase = loaded["case"]
     if case.preset is not None:
         p = case.preset
-        return centrifuge.run_centrifuge_test(
+        return centrifuge.centrifuge_run(
             p.test,
             parameters=p.parameters,
             A=p.A,
@@ -304,7 +310,6 @@ def run_case(
             shape=p.shape,
             after_limit=p.after_limit,
             dt=p.dt,
-            progress=progress,
         )
     pt, st, sv = case.pipe, case.soil, case.solver
     pipe = Pipe(
@@ -365,13 +370,12 @@ def run_case(
             if getattr(sv, k) is not None
         }
     )
-    return simulate_section(
-        prog,
-        soil,
+    return SectionRun(
+        programme=prog,
+        soil=soil,
         mass=section_mass(pipe, pt.added_mass_coefficient),
         displacement_limit=sv.displacement_limit,
         after_limit=sv.after_limit,
         settings=settings,
-        progress=progress,
         attrs={"case_file": loaded["path"] or "<mapping>"},
     )

@@ -1,9 +1,9 @@
 """``onbottom storm``: dynamic on-bottom stability of a pipe section (or a pipeline) in a storm.
 
-A case file with a ``[pipeline]`` table is handed to the pipeline FE
-(``onbottom.cli.storm_pipeline.run_pipeline_case``, issue 13); otherwise the rigid section is
-simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`) for one seed, or for
-``--seeds N`` seeds on Dask with statistics of the maximum displacement.
+A case file with a ``[pipeline]`` table is built by :mod:`onbottom.cases.pipeline` and run by
+the pipeline FE (:func:`onbottom.study.pipeline_seeds.run_pipeline_seeds`, issue 13); otherwise
+the rigid section is simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`)
+for one seed, or for ``--seeds N`` seeds on Dask with statistics of the maximum displacement.
 """
 
 from __future__ import annotations
@@ -38,18 +38,72 @@ def _has_pipeline_table(case: Path) -> bool:
     return isinstance(doc, dict) and "pipeline" in doc
 
 
-def _run_pipeline(case: Path, **options: Any) -> Any:
+def _run_pipeline(
+    case: Path,
+    *,
+    seeds: int | None,
+    scheduler: str | None,
+    workers: int | None,
+    output: Path | None,
+    plot: Path | None,
+    progress: bool,
+    restart: bool,
+    force: bool,
+) -> dict[str, Any]:
+    """The pipeline FE (issue 13): build the case, check the seeds' budget, run, draw."""
     try:
-        from onbottom.cli.storm_pipeline import run_pipeline_case
+        from onbottom.cases.pipeline import load_pipeline_run
+        from onbottom.study.pipeline_seeds import (
+            estimate_pipeline_seeds,
+            pipeline_seed_count,
+            run_pipeline_seeds,
+        )
     except ImportError as exc:
         err = InputError(
             f"{case}: the case has a [pipeline] table but the pipeline FE"
-            " (onbottom.cli.storm_pipeline, issue 13) is not available in this installation;"
+            " (onbottom.cases.pipeline, issue 13) is not available in this installation;"
             " remove [pipeline] to run the pipe section"
         )
         err.field = "pipeline"  # type: ignore[attr-defined]
         raise err from exc
-    return run_pipeline_case(case, **options)
+    from onbottom.study import budget
+
+    run = load_pipeline_run(case)
+    if seeds is not None and seeds > 1 and not force:
+        budget.check(estimate_pipeline_seeds(run, seeds, workers), force=False, field="--seeds")
+    n = pipeline_seed_count(run, seeds)
+    if n > 1 and plot is not None:
+        raise InputError("--plot/animation are for one seed: run the seed of interest alone")
+    study = run_pipeline_seeds(
+        run,
+        output=output if output is not None else case.with_suffix(".nc"),
+        seeds=n,
+        progress=progress,
+        scheduler=scheduler,
+        workers=workers,
+        restart=restart,
+    )
+    res = study.result
+    if res is None:  # several seeds: no figure
+        return study.to_dict()
+    plot_file = None
+    if plot is not None:
+        import matplotlib.pyplot as plt
+
+        from onbottom.plotting.pipeline import plot_pipeline_result
+        from onbottom.results import save_figure
+
+        fig = plot_pipeline_result(res, title=f"{case.stem}: {res.message}")
+        save_figure(fig, plot, dpi=110)
+        plt.close(fig)
+        plot_file = str(plot)
+    anim_file = None
+    if run.animation is not None:
+        from onbottom.plotting.pipeline import animate_pipeline
+
+        animate_pipeline(res, run.animation)
+        anim_file = str(run.animation)
+    return study.to_dict(plot=plot_file, animation=anim_file)
 
 
 @click.command("storm")
@@ -154,8 +208,6 @@ def _command(
     if _has_pipeline_table(case):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", OutOfRangeWarning)
-            if seeds is not None and seeds > 1 and not force:
-                _check_pipeline_budget(case, seeds, workers)
             payload = _run_pipeline(
                 case,
                 seeds=seeds,
@@ -164,8 +216,8 @@ def _command(
                 output=output,
                 plot=plot,
                 progress=progress,
-                as_json=as_json,
                 restart=restart,
+                force=force,
             )
         notes = _split_warnings(caught, as_json)
         if isinstance(payload, dict):
@@ -225,7 +277,6 @@ def _command(
             raise click.exceptions.Exit(res.exit_code)
         return
 
-    from onbottom.dynamics.status import Status
     from onbottom.results import TaskStore, save_dataset
     from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds
@@ -258,30 +309,7 @@ def _command(
     )
     save_dataset(study.data, nc, compression_level=setup.compression_level)
     TaskStore.delete(store)  # the result holds every seed now
-    st = study.statistics
-    d = setup.pipe.outer_diameter
-    ok_rows = (study.data["status"].values > 0) | (study.data["out_of_range"].values == 1)
-    final = study.data["final_displacement"].values[ok_rows]
-    payload = {
-        "max_displacement_m": st["max"],
-        "mean_max_displacement_m": st["mean"],
-        "final_displacement_m": float(abs(final).mean()) if final.size else None,
-        "criteria": study.criteria,
-        "status": int(Status.END if study.success else Status.RAISED),
-        "success": study.success,
-        "message": (
-            f"{n} seeds: seed-averaged maximum displacement {st['mean'] / d:.3g}D"
-            f" (max {st['max'] / d:.3g}D, {st['fractile_level']:g} fractile"
-            f" {st['fractile'] / d:.3g}D)"
-            + (f"; {st['n_failed']} seed(s) failed" if study.failures else "")
-        ),
-        "statistics": st,
-        "failures": study.failures,
-        "seeds": n,
-        "diameter_m": d,
-        "netcdf": str(nc),
-        "warnings": notes,
-    }
+    payload = {**study.to_dict(), "netcdf": str(nc), "warnings": notes}
     _report(payload, as_json)
     if not study.success:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
@@ -294,17 +322,6 @@ def _seeds_error(n: int) -> InputError:
     )
     err.field = "--seeds"  # type: ignore[attr-defined]
     return err
-
-
-def _check_pipeline_budget(case: Path, seeds: int, workers: int | None) -> None:
-    """Refuse pipeline seeds beyond the budget (onbottom.study.budget) before any run."""
-    try:
-        from onbottom.cli.storm_pipeline import estimate_seeds
-    except ImportError:
-        return  # reported by _run_pipeline
-    from onbottom.study import budget
-
-    budget.check(estimate_seeds(case, seeds, workers), force=False, field="--seeds")
 
 
 def _split_warnings(caught: list[warnings.WarningMessage], as_json: bool) -> list[str]:

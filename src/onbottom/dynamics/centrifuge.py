@@ -56,12 +56,8 @@ from onbottom.dynamics.programmes import (
     irregular_wave_current_groups,
     regular_wave_current_groups,
 )
-from onbottom.dynamics.section import (
-    SectionResult,
-    SolverSettings,
-    section_mass,
-    simulate_section,
-)
+from onbottom.dynamics.section import SectionResult, SolverSettings, section_mass
+from onbottom.dynamics.section_run import SectionRun
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
@@ -82,6 +78,7 @@ __all__ = [
     "build_pipe",
     "build_programme",
     "build_soil",
+    "centrifuge_run",
     "get_test",
     "run_centrifuge_test",
 ]
@@ -476,6 +473,47 @@ def run_centrifuge_test(
     SectionResult
         ``cycles_to_limit`` compares with Table 1 "load cycles used".
     """
+    return centrifuge_run(
+        name,
+        A=A,
+        B=B,
+        C=C,
+        mu=mu,
+        gamma=gamma,
+        dt=dt,
+        parameters=parameters,
+        model=model,
+        after_limit=after_limit,
+        alpha_deg=alpha_deg,
+        time_basis=time_basis,
+        shape=shape,
+        n_cycles=n_cycles,
+        settings=settings,
+        soil_options=soil_options,
+    ).simulate(progress=progress)
+
+
+def centrifuge_run(
+    name: str,
+    *,
+    A: float | None = None,
+    B: float | None = None,
+    C: float | None = None,
+    mu: float | None = None,
+    gamma: float | None = None,
+    dt: float | None = None,
+    parameters: str = "table2",
+    model: str = "verley_sotberg",
+    after_limit: str = "stop",
+    alpha_deg: float | None = None,
+    time_basis: str = "paper",
+    shape: str = "sine",
+    n_cycles: int | None = None,
+    settings: SolverSettings | None = None,
+    soil_options: dict[str, Any] | None = None,
+) -> SectionRun:
+    """The :class:`~onbottom.dynamics.section_run.SectionRun` of one centrifuge test, built
+    (programme, soil, mass, limit, settings; parameters as :func:`run_centrifuge_test`)."""
     test = get_test(name)
     prog = build_programme(
         test, n_cycles=n_cycles, time_basis=time_basis, shape=shape, alpha_deg=alpha_deg
@@ -504,14 +542,13 @@ def run_centrifuge_test(
         )
     pipe = build_pipe(test)
     g = SUBMERGED_UNIT_WEIGHT if gamma is None else gamma
-    return simulate_section(
-        prog,
-        soil,
+    return SectionRun(
+        programme=prog,
+        soil=soil,
         mass=section_mass(pipe, ADDED_MASS_COEFFICIENT),
         displacement_limit=test.displacement_limit,
         after_limit=after_limit,
         settings=s,
-        progress=progress,
         attrs={
             "test": test.name,
             "parameter_set": parameters,

@@ -158,8 +158,8 @@ def pipeline_storms(
     workers: int | None,
 ) -> Estimate:
     """``n_storms`` pipeline-FE storms, each estimated at ``run_seconds`` [s] on one core and
-    ``memory_bytes`` of kinematics (``cli/storm_pipeline.py``: ~1 µs per node-step, ~0.5 MB
-    per node-hour)."""
+    ``memory_bytes`` of kinematics (:func:`onbottom.dynamics.pipeline.storm_run.run_cost`:
+    ~1 µs per node-step, ~0.5 MB per node-hour)."""
     w = min(_workers(workers), max(n_storms, 1))
     wall = run_seconds * math.ceil(n_storms / w)
     mem = w * memory_bytes + n_storms * RESULT_BYTES_PER_RUN

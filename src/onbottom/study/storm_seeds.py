@@ -120,6 +120,33 @@ class SeedStudy:
         """True when no seed failed."""
         return not self.failures
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (keys of ``onbottom storm --seeds N --json`` for a pipe section):
+        the worst and mean maximum displacement [m], the mean |final displacement| [m] of the
+        seeds that ran to their end, the F109 criteria, status, message and statistics."""
+        st = self.statistics
+        d = float(self.data.attrs["diameter"])
+        ok_rows = (self.data["status"].values > 0) | (self.data["out_of_range"].values == 1)
+        final = self.data["final_displacement"].values[ok_rows]
+        return {
+            "max_displacement_m": st["max"],
+            "mean_max_displacement_m": st["mean"],
+            "final_displacement_m": float(abs(final).mean()) if final.size else None,
+            "criteria": self.criteria,
+            "status": int(Status.END if self.success else Status.RAISED),
+            "success": self.success,
+            "message": (
+                f"{self.data.sizes['seed']} seeds: seed-averaged maximum displacement"
+                f" {st['mean'] / d:.3g}D (max {st['max'] / d:.3g}D, {st['fractile_level']:g}"
+                f" fractile {st['fractile'] / d:.3g}D)"
+                + (f"; {st['n_failed']} seed(s) failed" if self.failures else "")
+            ),
+            "statistics": st,
+            "failures": self.failures,
+            "seeds": self.data.sizes["seed"],
+            "diameter_m": d,
+        }
+
 
 def _collect(
     rows: list[dict[str, Any]], diameter: float, fractile: float, attrs: dict

@@ -20,6 +20,7 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         run_identity,
         simulate_pipeline,
     )
+    from onbottom.dynamics.pipeline.storm_run import PipelineStormRun, simulate_pipeline_storm
     from onbottom.dynamics.pipeline.user_load import (
         TableLoad,
         TravellingSineLoad,
@@ -33,12 +34,14 @@ __all__ = [
     "PipelineModel",
     "PipelineResult",
     "PipelineSettings",
+    "PipelineStormRun",
     "SoilSection",
     "TableLoad",
     "TravellingSineLoad",
     "UserLoad",
     "run_identity",
     "simulate_pipeline",
+    "simulate_pipeline_storm",
     "still_water",
 ]
 
@@ -57,6 +60,7 @@ __getattr__, __dir__ = attach(
             "run_identity",
             "simulate_pipeline",
         ),
+        "onbottom.dynamics.pipeline.storm_run": ("PipelineStormRun", "simulate_pipeline_storm"),
         "onbottom.dynamics.pipeline.user_load": (
             "TableLoad",
             "TravellingSineLoad",

@@ -1,18 +1,20 @@
-"""Pipeline FE storm runs from a case file: ``onbottom storm CASE`` with a ``[pipeline]`` table.
+"""Pipeline case files (TOML): ``onbottom storm CASE`` with a ``[pipeline]`` table.
 
-``onbottom storm`` (:mod:`onbottom.cli.storm`) hands a case with a ``[pipeline]`` table to
-:func:`run_pipeline_case`. The shared tables ([pipe], [seabed], [environment], [waves],
-[current], [hydro], [storm], [solver], [run]) are read by
-:func:`onbottom.cases.storm.load_storm_case`; this module validates ``[pipeline]``
-(strict: unknown keys are errors with their line) and runs
-:func:`onbottom.dynamics.pipeline.simulate_pipeline` for each seed.
+The shared tables ([pipe], [seabed], [environment], [waves], [current], [hydro], [storm],
+[solver], [run]) are read and built by :mod:`onbottom.cases.storm` (:func:`build_setup`: its
+rules, the time-step rule among them, hold here unchanged); this module validates the strict
+``[pipeline]`` table and its ``[[pipeline.sections]]`` (unknown keys are errors with their
+line), checks the mesh, chunks, structure and animation file, and builds the
+:class:`~onbottom.dynamics.pipeline.storm_run.PipelineStormRun` that
+:func:`onbottom.study.pipeline_seeds.run_pipeline_seeds` runs.
 
 From the shared tables the pipeline uses: the pipe (D, w_s, mass; EI and EA from the build-up
 form, or ``[pipeline] bending_stiffness / axial_stiffness / mass`` with the simple form), the soil
 model of [seabed] (or ``[[pipeline.sections]]`` along the route), the storm and its seed,
-current (normal component, mean over D), [hydro] coefficients and reductions, ``[storm]
-time_step`` (largest step) and ``sample_interval``, ``[solver] max_displacement_over_d``
-(runaway stop), ``dt_min`` and ``max_displacement_increment_over_d``, ``[run] seeds``.
+current (normal component, mean over D), [hydro] coefficients and reductions, the storm
+solver's largest and smallest steps (``[storm] time_step``, ``[solver] dt_min``),
+``sample_interval``, ``[solver] max_displacement_over_d`` (runaway stop) and
+``max_displacement_increment_over_d``, ``compression_level``, ``[run] seeds``.
 """
 
 from __future__ import annotations
@@ -22,14 +24,26 @@ import os
 from pathlib import Path
 from typing import Any, Literal
 
-import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
-from onbottom.dynamics.status import Status
+from onbottom.dynamics.pipeline.storm_run import (
+    BYTES_PER_NODE_HOUR,
+    SECONDS_PER_NODE_STEP,
+    PipelineStormRun,
+    run_cost,
+)
+from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
-__all__ = ["PipelineTable", "RouteSectionTable", "build_pipeline_run", "run_pipeline_case"]
+__all__ = [
+    "MAX_CHUNKS",
+    "MAX_KINEMATICS_BYTES",
+    "MAX_RUN_SECONDS",
+    "PipelineTable",
+    "RouteSectionTable",
+    "load_pipeline_run",
+]
 
 EndName = Literal["fixed", "pinned", "free", "spring"]
 
@@ -159,13 +173,8 @@ def _soil_for(
         ) from None
 
 
-#: Cost figures of the pipeline FE used to refuse a mesh up front: about 1 µs per node and
-#: time step (H13's benchmark); 0.5 MB per node and hour of storm for the kinematics, a
-#: conservative figure (H18 measured 0.13 MB per node-hour in the final arrays of
-#: examples/pipeline_case.toml at the default sample interval T_p/50; synthesis needs
-#: working copies on top).
-SECONDS_PER_NODE_STEP = 1.0e-6
-BYTES_PER_NODE_HOUR = 0.5e6
+#: Largest pipeline mesh accepted, as limits of one storm run: its kinematics [bytes] and its
+#: computing time [s], estimated by :func:`onbottom.dynamics.pipeline.storm_run.run_cost`.
 MAX_KINEMATICS_BYTES = 4 * 1024**3
 MAX_RUN_SECONDS = 24 * 3600.0
 
@@ -176,20 +185,11 @@ def _fail(p: Path, text: str | None, field: str, message: str) -> None:
     Checker(p, text).fail(field, message)
 
 
-def _storm_duration(storm: Any) -> float:
-    """Duration [s] of a spectral :class:`Storm` or of given kinematics (regular, measured)."""
-    return float(storm.duration_s if hasattr(storm, "duration_s") else storm.duration)
-
-
-def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
+def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: StormSetup) -> None:
     """Refuse a mesh whose memory or run time is excessive, with the estimate."""
     nodes = round(table.length / table.element_length) + 1
-    storm = setup.storm
-    storm_s = _storm_duration(storm)
-    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
-    steps = run_s / setup.settings.dt_max
-    mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
-    cpu = SECONDS_PER_NODE_STEP * nodes * steps
+    cost = run_cost(nodes, setup.storm, table.duration, setup.settings.dt_max)
+    storm_s, steps, mem, cpu = cost.storm_s, cost.steps, cost.memory_bytes, cost.cpu_s
     if mem > MAX_KINEMATICS_BYTES or cpu > MAX_RUN_SECONDS:
         max_nodes = min(
             MAX_KINEMATICS_BYTES / (BYTES_PER_NODE_HOUR * storm_s / 3600.0),
@@ -298,30 +298,14 @@ def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any
     )
 
 
-def estimate_seeds(path: str | os.PathLike, seeds: int | None, workers: int | None) -> Any:
-    """:class:`onbottom.study.budget.Estimate` of the seeds of a pipeline case (validated)."""
-    from onbottom.study import budget
-
-    run = build_pipeline_run(path)
-    table, setup = run["table"], run["setup"]
-    n = setup.seeds if seeds is None else int(seeds)
-    nodes = int(run["model"].x.size)
-    storm_s = _storm_duration(setup.storm)
-    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
-    cpu = SECONDS_PER_NODE_STEP * nodes * run_s / run["settings"].dt_max
-    mem = BYTES_PER_NODE_HOUR * nodes * storm_s / 3600.0
-    return budget.pipeline_storms(n, cpu, mem, workers=workers)
-
-
 MAX_CHUNKS = 10_000
 """Most NetCDF/checkpoint chunks of one run: each chunk costs a file write and a checkpoint
 (~0.1 s), so 10⁴ chunks add ~20 min of writing; ``chunk_duration`` must not be shorter."""
 
 
-def _check_chunks(p: Path, text: str | None, table: PipelineTable, setup: Any) -> None:
+def _check_chunks(p: Path, text: str | None, table: PipelineTable, setup: StormSetup) -> None:
     """Refuse a ``chunk_duration`` that splits the run into more than :data:`MAX_CHUNKS`."""
-    storm_s = _storm_duration(setup.storm)
-    run_s = storm_s if table.duration is None else min(table.duration, storm_s)
+    run_s = run_cost(0, setup.storm, table.duration, setup.settings.dt_max).run_s
     n = math.ceil(run_s / table.chunk_duration)
     if n > MAX_CHUNKS:
         _fail(
@@ -364,8 +348,14 @@ def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
         )
 
 
-def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
-    """Read and validate a pipeline case; return the model, storm setup and settings."""
+def load_pipeline_run(path: str | os.PathLike) -> PipelineStormRun:
+    """Read, validate and build a pipeline case file (errors: :class:`CaseFileError`).
+
+    Returns the built run: the pipeline model, the storm setup of the shared tables
+    (:func:`onbottom.cases.storm.build_setup`), the pipeline settings, ``duration``, the
+    ``animation`` file (relative names: in the case's folder), ``attrs`` (``case_file``) and
+    ``identity`` (``case``: the file's text, so a changed case never resumes an old run).
+    """
     from onbottom._casefile import load_case_file
     from onbottom.cases.storm import StormCase, build_setup
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, SoilSection
@@ -446,260 +436,31 @@ def build_pipeline_run(path: str | os.PathLike) -> dict[str, Any]:
         ) from None
     _check_structure(p, text, table, model)
     _check_free_nodes(p, text, table, ends)
-    sv = case.solver
+    solver = setup.settings  # [storm] time_step and [solver], as built for the storm section
     settings = PipelineSettings(
         alpha=table.hht_alpha,
-        dt_max=case.storm.time_step,
-        dt_min=sv.dt_min,
+        dt_max=solver.dt_max,
+        dt_min=solver.dt_min,
         max_iterations=table.max_iterations,
         force_tolerance=table.force_tolerance,
-        max_displacement_increment_over_d=sv.max_displacement_increment_over_d,
-        stop_displacement_over_d=sv.max_displacement_over_d,
+        max_displacement_increment_over_d=solver.max_displacement_increment_over_d,
+        stop_displacement_over_d=solver.stop_displacement_over_d,
         record_interval=table.record_interval,
         chunk_duration=table.chunk_duration,
         strain_limit=table.strain_limit,
-        compression_level=sv.compression_level,
+        compression_level=setup.compression_level,
     )
-    return {
-        "model": model,
-        "setup": setup,
-        "settings": settings,
-        "table": table,
-        "text": text,
-        "path": p,
-    }
-
-
-STATUS_ERROR = int(Status.RAISED)
-"""Status recorded for a seed whose run raised an exception."""
-
-
-class _SeedJob:
-    """One seed of a pipeline case (picklable: workers re-read the case file)."""
-
-    def __init__(self, path: str, base: str, n: int, progress: bool, restart: bool = False) -> None:
-        self.path, self.base, self.n, self.progress = path, base, n, progress
-        self.restart = restart
-
-    def output(self, seed: int) -> Path:
-        b = Path(self.base)
-        return b if self.n == 1 else b.with_name(f"{b.stem}.seed{seed}{b.suffix}")
-
-    def run(self, seed: int):
-        from onbottom.dynamics.pipeline import simulate_pipeline
-        from onbottom.hydro.short_crested import long_crested_node_kinematics, pipeline_kinematics
-        from onbottom.hydro.storm_kinematics import StormKinematics
-
-        run = build_pipeline_run(self.path)
-        setup, model, table = run["setup"], run["model"], run["table"]
-        if isinstance(setup.storm, StormKinematics):
-            # a regular wave (travelling along the line at its angle) or a measured record
-            # (in phase along the line): long-crested
-            kin = long_crested_node_kinematics(setup.storm, model.x.size, model.x)
-        else:
-            storm = setup.storm.with_seed(int(seed))
-            kin = pipeline_kinematics(
-                storm, setup.depth, model.x, sample_interval=setup.sample_interval
-            )
-        return simulate_pipeline(
-            model,
-            kin,
-            duration=table.duration,
-            settings=run["settings"],
-            output=self.output(seed),
-            progress=self.progress,
-            attrs={"case_file": str(self.path), "seed": int(seed)},
-            identity_extra={"case": run["text"], "seed": int(seed)},
-            resume="never" if self.restart else "auto",
-        )
-
-    def __call__(self, seed: int) -> dict[str, Any]:
-        import traceback
-
-        try:
-            r = self.run(seed)
-        except Exception as exc:  # recorded, not raised: one bad seed must not sink N
-            return {
-                "seed": int(seed),
-                "status": STATUS_ERROR,
-                "success": False,
-                "message": f"{type(exc).__name__}: {exc}",
-                "traceback": traceback.format_exc(limit=3),
-            }
-        return {"seed": int(seed), **r.to_dict()}
-
-
-def run_pipeline_case(
-    path: str | os.PathLike,
-    *,
-    seeds: int | None = None,
-    output: str | os.PathLike | None = None,
-    plot: str | os.PathLike | None = None,
-    animation: str | os.PathLike | None = None,
-    progress: bool = False,
-    as_json: bool = False,
-    scheduler: str | None = None,
-    workers: int | None = None,
-    restart: bool = False,
-    **_ignored: Any,
-) -> dict[str, Any]:
-    """Run the pipeline FE for a case file; return the JSON payload of ``onbottom storm``.
-
-    Parameters
-    ----------
-    path : path
-        TOML case with a ``[pipeline]`` table.
-    seeds : int or None
-        Number of storms (seeds storm.seed, storm.seed + 1, ...); default ``[run] seeds``.
-        Several seeds run on Dask (:func:`onbottom.study.engine.dask_client`: ``scheduler``
-        address or a local cluster of ``workers`` processes; ``workers=0`` → in this
-        process); a seed that raises is recorded (status −9), never dropped.
-    output : path or None
-        NetCDF file (default: CASE with suffix .nc; with several seeds ``stem.seedN.nc``),
-        written as ``<output>.part`` during the run and renamed when complete; its checkpoint
-        ``<output>.ckpt.npz`` resumes an interrupted run of the same case (removed at the
-        end). A finished output of the same case is returned as it is.
-    plot : path or None
-        Figure of the envelopes, deflected-shape snapshots and worst-node histories.
-    animation : path or None
-        GIF of the line in the storm (default ``[pipeline] animation``).
-    progress, as_json : bool
-        Progress bar; JSON output (the payload is returned either way).
-    restart : bool
-        Discard checkpoints and partial files of an earlier run and start afresh.
-
-    Returns
-    -------
-    dict
-        ``max_displacement_m`` (worst seed), ``max_strain``, ``worst_node_x_m``,
-        ``criteria`` (F109 0.5D/10D), ``strain_check`` (None without ``strain_limit``),
-        ``status``, ``success``, ``message``, ``diameter_m``, ``netcdf``, ``plot``,
-        ``animation``, ``seeds``, ``per_seed``.
-    """
-
-    run = build_pipeline_run(path)
-    p: Path = run["path"]
-    model = run["model"]
-    setup = run["setup"]
-    table: PipelineTable = run["table"]
-    n = setup.seeds if seeds is None else int(seeds)
-    if n > 1 and not hasattr(setup.storm, "with_seed"):
-        raise InputError(
-            f"seeds = {n} is invalid with a regular wave or a measured record ([storm] kind):"
-            " the flow is deterministic, run one seed"
-        )
-    base = Path(output) if output is not None else p.with_suffix(".nc")
-    if n > 1 and (plot is not None or animation is not None):
-        raise InputError("--plot/animation are for one seed: run the seed of interest alone")
-    job = _SeedJob(str(p), str(base), n, progress and n == 1, restart)
-    first = setup.storm.seed
-    try:
-        if n == 1:
-            res = job.run(first)
-            rows = [{"seed": int(first), **res.to_dict()}]
-        elif workers == 0:
-            rows = [job(first + k) for k in range(n)]
-        else:
-            from onbottom.study.engine import ParallelMap, dask_client
-
-            with dask_client(scheduler_address=scheduler, n_workers=workers) as client:
-                rows = ParallelMap(client, batch_size=1, progress=progress)(
-                    job, [first + k for k in range(n)]
-                )
-    except KeyboardInterrupt:
-        from onbottom.errors import RunInterrupted
-
-        raise RunInterrupted(
-            "interrupted: finished seeds and the checkpoints of unfinished ones are kept"
-            f" beside {base}: run the same command again to resume"
-        ) from None
-    ok = [r for r in rows if r["success"]]
-    failures = [
-        {"seed": r["seed"], "status": r["status"], "message": r["message"]}
-        for r in rows
-        if not r["success"]
-    ]
-    d = model.pipe.outer_diameter
-    plot_file = None
-    anim_file = None
-    if n == 1:
-        if plot is not None:
-            import matplotlib.pyplot as plt
-
-            from onbottom.plotting.pipeline import plot_pipeline_result
-            from onbottom.results import save_figure
-
-            fig = plot_pipeline_result(res, title=f"{p.stem}: {res.message}")
-            save_figure(fig, plot, dpi=110)
-            plt.close(fig)
-            plot_file = str(plot)
-        anim = animation if animation is not None else table.animation
-        if anim is not None:
-            from onbottom.plotting.pipeline import animate_pipeline
-
-            ap = Path(anim)
-            if not ap.is_absolute() and animation is None:
-                ap = p.parent / ap
-            animate_pipeline(res, ap)
-            anim_file = str(ap)
-    if not ok:
-        worst: dict[str, Any] = rows[0]
-        maxes = np.array([math.nan])
-    else:
-        worst = max(ok, key=lambda r: r["max_displacement_m"])
-        maxes = np.array([r["max_displacement_m"] for r in ok])
-    criteria = {
-        key: bool(ok) and all(bool(r["criteria"][key]) for r in ok) for key in ("0.5D", "10D")
-    }
-    strain_check = (
-        None
-        if table.strain_limit is None or not ok
-        else all(bool(r["criteria"]["strain"]) for r in ok)
+    animation = None
+    if table.animation is not None:
+        animation = Path(table.animation)
+        if not animation.is_absolute():
+            animation = p.parent / animation
+    return PipelineStormRun(
+        model=model,
+        setup=setup,
+        settings=settings,
+        duration=table.duration,
+        animation=animation,
+        attrs={"case_file": str(p)},
+        identity={"case": text},
     )
-    success = not failures and all(r["success"] for r in rows)
-    detail = ""
-    verdict = {None: "", True: "PASS", False: "FAIL"}[strain_check]
-    if ok:
-        eps = max(r["max_strain"] for r in ok)
-        detail = (
-            f"; worst node x = {worst['worst_node_x_m']:.1f} m; max strain {100 * eps:.3g} %"
-            + (
-                ""
-                if strain_check is None
-                else f" (limit {100 * table.strain_limit:.3g} %: {verdict})"
-            )
-        )
-    message = (
-        worst["message"] + detail
-        if n == 1
-        else (
-            f"{n} seeds: seed-averaged maximum displacement {np.mean(maxes) / d:.3g}D"
-            f" (max {np.max(maxes) / d:.3g}D)"
-            + (f"; {len(failures)} seed(s) failed" if failures else "")
-            + detail
-        )
-    )
-    payload = {
-        "max_displacement_m": worst.get("max_displacement_m"),
-        "max_displacement_over_D": worst.get("max_displacement_over_D"),
-        "mean_max_displacement_m": float(np.mean(maxes)),
-        "max_strain": max((r["max_strain"] for r in ok), default=None),
-        "worst_node_x_m": worst.get("worst_node_x_m"),
-        "criteria": criteria,
-        "strain_limit": table.strain_limit,
-        "strain_check": strain_check,
-        "status": worst["status"] if success else min(r["status"] for r in rows),
-        "success": success,
-        "message": message,
-        "diameter_m": d,
-        "n_nodes": int(model.x.size),
-        "seeds": n,
-        "netcdf": str(job.output(first)) if n == 1 else [str(job.output(r["seed"])) for r in rows],
-        "plot": plot_file,
-        "animation": anim_file,
-        "failures": failures,
-        "per_seed": rows,
-        "model": "pipeline_fe",
-    }
-    del as_json  # the command formats the payload
-    return payload
