@@ -26,7 +26,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
-from onbottom.dynamics.status import Status
+from onbottom.dynamics.status import Status, status_message
 from onbottom.errors import InputError
 
 __all__ = ["PipelineTable", "RouteSectionTable", "build_pipeline_run", "run_pipeline_case"]
@@ -523,7 +523,7 @@ class _SeedJob:
                 "seed": int(seed),
                 "status": STATUS_ERROR,
                 "success": False,
-                "message": f"{type(exc).__name__}: {exc}",
+                "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
                 "traceback": traceback.format_exc(limit=3),
             }
         return {"seed": int(seed), **r.to_dict()}

@@ -6,20 +6,24 @@ whose attributes hold the provenance: :func:`onbottom.results.provenance`) — a
 :class:`~onbottom.dynamics.section.SectionResult`,
 :class:`~onbottom.dynamics.storm_section.StormSectionResult` and
 :class:`~onbottom.dynamics.pipeline.PipelineResult` derive from it, adding their own summary.
+
+:func:`end_message` and :func:`outside_validity` word a run's end for all three (the one table
+:data:`onbottom.dynamics.status.MESSAGES`) and log a failed or flagged run as a warning.
 """
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 from typing import Any
 
 import xarray as xr
 
-from onbottom.dynamics.status import Status, exit_code
+from onbottom.dynamics.status import Status, exit_code, status_message
 from onbottom.errors import InputError
 from onbottom.results import save_dataset
 
-__all__ = ["SolverResult"]
+__all__ = ["SolverResult", "end_message", "outside_validity", "penetration_reason"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -65,3 +69,58 @@ class SolverResult:
         if self.data is None:
             raise InputError(f"{type(self).__name__}.data = None: run with record_interval set")
         return save_dataset(self.data, path, compression_level=compression_level)
+
+
+def end_message(
+    logger: logging.Logger,
+    solver: str,
+    status: int,
+    *,
+    run: str,
+    t: float,
+    dt_min: float,
+    detail: str = "",
+) -> str:
+    """The message of a run that ended with ``status`` (:func:`~.status.status_message`).
+
+    A failed run (``not Status(status).success``) gets ``t`` [s] and ``dt_min`` [s] as its
+    detail and is logged as a warning on ``logger`` ("``solver``: message"); a normal end
+    gets ``detail`` (e.g. which limit it reached and when).
+    """
+    if Status(int(status)).success:
+        return status_message(status, detail, run=run)
+    message = status_message(status, f"t = {t:.6g} s, dt_min = {dt_min:.3g} s", run=run)
+    logger.warning("%s: %s", solver, message)
+    return message
+
+
+def outside_validity(logger: logging.Logger, solver: str, reason: str, before: str) -> str:
+    """The message of a run flagged :attr:`~.status.Status.OUTSIDE_VALIDITY` after it ended
+    with the message ``before``: "outside the model's validity: ``reason`` (the run went on:
+    ``before``)", logged as a warning on ``logger``."""
+    message = status_message(Status.OUTSIDE_VALIDITY, f"{reason} (the run went on: {before})")
+    logger.warning("%s: %s", solver, message)
+    return message
+
+
+def penetration_reason(
+    limit: float,
+    t: float,
+    where: str,
+    largest: float,
+    diameter: float,
+    model: str,
+    largest_at: str = "",
+) -> str:
+    """Why a run left its soil model's range (the reason of :func:`outside_validity`).
+
+    The penetration exceeded D/2 = ``limit`` [m] first at time ``t`` [s] and place ``where``
+    (text: "y = 0.2 m", "node 12, x = 24 m"); the largest was ``largest`` [m] (D =
+    ``diameter`` [m]), at ``largest_at`` (text, optional); ``model`` names the soil model(s)
+    valid for z <= D/2 ("the verley_sotberg model").
+    """
+    at = f" at {largest_at}" if largest_at else ""
+    return (
+        f"penetration exceeded D/2 = {limit:.4g} m at t = {t:.1f} s ({where}); largest"
+        f" {largest:.4g} m = {largest / diameter:.3g}D{at}; {model} valid for z <= D/2"
+    )

@@ -27,7 +27,12 @@ from onbottom._validate import in_range, one_of, positive
 from onbottom.dynamics import _section_kernel as K
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.programmes import LoadProgramme
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    SolverResult,
+    end_message,
+    outside_validity,
+    penetration_reason,
+)
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
@@ -43,13 +48,6 @@ _AFTER = {
     "stop": K.AFTER_STOP,
     "runaway_end": K.AFTER_RUNAWAY_END,
     "continue": K.AFTER_CONTINUE,
-}
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the load programme",
-    K.STATUS_LIMIT: "reached the displacement limit (terminal event)",
-    K.STATUS_RUNAWAY_END: "reached the displacement limit; ran on until the pipe stopped",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
 }
 
 
@@ -294,15 +292,21 @@ def simulate_section(
         )
     n = recorder.n
     rec = recorder.records()
-    success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if status == K.STATUS_STEP_FAILED:
-        message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
-        logger.warning("simulate_section: %s", message)
     t_cross = float(dyn[K.D_T_CROSS]) if dyn[K.D_CROSSED] == 1.0 else None
     cycles = None
     if t_cross is not None and programme.cycle_period is not None:
         cycles = (t_cross - float(pt[0])) / programme.cycle_period
+    success = Status(status).success
+    limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
+    message = end_message(
+        logger,
+        "simulate_section",
+        status,
+        run="load programme",
+        t=float(dyn[K.D_T]),
+        dt_min=dt_min,
+        detail=f"|u| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
+    )
     u = rec[:, K.REC_U]
     w = rec[:, K.REC_W]
     # lift-off: the vertical load of the programme (up to the end of the run) or of a step
@@ -316,22 +320,32 @@ def simulate_section(
         i = int(np.argmin(v_all))
         success = False
         status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: lift-off, the vertical load falls to"
-            f" {float(v_all[i]):.4g} N/m at t = {float(t_all[i]):.4g} s (the soil models hold"
-            f" for a pipe resting on the seabed, V > 0; {message})"
+        message = outside_validity(
+            logger,
+            "simulate_section",
+            f"lift-off, the vertical load falls to {float(v_all[i]):.4g} N/m at t ="
+            f" {float(t_all[i]):.4g} s; the soil models hold for a pipe resting on the seabed,"
+            " V > 0",
+            message,
         )
-        logger.warning("simulate_section: %s", message)
     d_soil = getattr(soil, "outer_diameter", None)
     if success and d_soil is not None and float(np.max(w)) > 0.5 * float(d_soil):
         success = False
         status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: penetration {float(np.max(w)):.4g} m exceeds D/2 ="
-            f" {0.5 * float(d_soil):.4g} m (the Verley & Sotberg sand models hold for z <= D/2;"
-            f" {message})"
+        i = int(np.argmax(w > 0.5 * float(d_soil)))  # the first row beyond D/2
+        message = outside_validity(
+            logger,
+            "simulate_section",
+            penetration_reason(
+                0.5 * float(d_soil),
+                float(rec[i, K.REC_T]),
+                f"u = {float(u[i]):.4g} m",
+                float(np.max(w)),
+                float(d_soil),
+                f"the {soil.name} model",
+            ),
+            message,
         )
-        logger.warning("simulate_section: %s", message)
     summary = {
         "initial_penetration": float(w[0]),
         "max_penetration": float(np.max(w)),

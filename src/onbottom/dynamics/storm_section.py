@@ -29,7 +29,12 @@ from onbottom._jit import call_literal
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    SolverResult,
+    end_message,
+    outside_validity,
+    penetration_reason,
+)
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
@@ -58,13 +63,6 @@ CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
 """F109 dynamic lateral-stability criteria: displacement limits over D."""
 
 _LIFTOFF = {"free": K.LIFTOFF_FREE, "stop": K.LIFTOFF_STOP}
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the storm",
-    K.STATUS_LIMIT: "runaway: the displacement reached the stop limit",
-    K.STATUS_LIFTOFF: "lift-off: the lift exceeded the submerged weight (run stopped)",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
-}
 
 
 def penetration_limit(soil: LateralResistanceModel) -> float:
@@ -398,29 +396,42 @@ def simulate_storm_section(
         )
 
     success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if status in (K.STATUS_STEP_FAILED, K.STATUS_SOIL_NAN):
-        message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
-        logger.warning("simulate_storm_section: %s", message)
+    message = end_message(
+        logger,
+        "simulate_storm_section",
+        status,
+        run="storm",
+        t=float(dyn[K.D_T]),
+        dt_min=dt_min,
+        detail=(
+            f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
+            if status == K.STATUS_LIMIT
+            else ""
+        ),
+    )
     ymax = float(dyn[K.D_YMAX])
     runaway = status == K.STATUS_LIMIT
     criteria = {
         name: bool(ymax <= lim * d and not (runaway and s.stop_displacement_over_d <= lim))
         for name, lim in CRITERIA_OVER_D.items()
     }
-    if status == K.STATUS_LIMIT:
-        message += f" ({s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s)"
     t_out = float(dyn[K.D_T_ZLIMIT])
     if success and t_out >= 0.0:
         success = False
         status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: penetration exceeded D/2 = {z_lim:.4g} m at"
-            f" t = {t_out:.1f} s (y = {dyn[K.D_Y_ZLIMIT]:.4g} m), largest"
-            f" {dyn[K.D_ZMAX]:.4g} m = {dyn[K.D_ZMAX] / d:.3g}D (the {soil.name} model holds"
-            f" for z <= D/2; the run went on: {message})"
+        message = outside_validity(
+            logger,
+            "simulate_storm_section",
+            penetration_reason(
+                z_lim,
+                t_out,
+                f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m",
+                float(dyn[K.D_ZMAX]),
+                d,
+                f"the {soil.name} model",
+            ),
+            message,
         )
-        logger.warning("simulate_storm_section: %s", message)
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),
         "n_rejected": int(dyn[K.D_N_REJECT]),

@@ -41,7 +41,12 @@ from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    SolverResult,
+    end_message,
+    outside_validity,
+    penetration_reason,
+)
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro.force_model import N_FORCE_STATE, parameter_rows
@@ -73,14 +78,6 @@ criteria")."""
 _PREDICTOR = 0.0
 """Weight of Δt²·a_n in the Newton starting point (0: d_n + Δt v_n; 0.5, constant
 acceleration, needed more iterations in the benchmark storm)."""
-
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the storm",
-    K.STATUS_LIMIT: "runaway: a node reached the stop displacement",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "a soil kernel returned NaN (unknown model id or invalid state)",
-    K.STATUS_SINGULAR: "the Jacobian became singular (mechanism: check the end conditions)",
-}
 
 FIELDS: dict[str, tuple[int, str, str]] = {
     "u_axial": (K.F_U, "axial displacement of the pipe", "m"),
@@ -872,10 +869,20 @@ def simulate_pipeline(
         "n_nodes": float(n),
     }
     success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if not success:
-        message += f" (t = {scal[K.SC_T]:.6g} s, dt_min = {st[K.ST_DT_MIN]:.3g} s)"
-        logger.warning("simulate_pipeline: %s", message)
+    message = end_message(
+        logger,
+        "simulate_pipeline",
+        status,
+        run="storm",
+        t=float(scal[K.SC_T]),
+        dt_min=float(st[K.ST_DT_MIN]),
+        detail=(
+            f"{s.stop_displacement_over_d:g}D at t = {scal[K.SC_T_LIMIT]:.1f} s; largest |y| at"
+            f" x = {x[k_worst]:.4g} m"
+            if stopped
+            else ""
+        ),
+    )
     z_node = int(scal[K.SC_ZLIMIT_NODE])
     summary["out_of_range_time"] = float(scal[K.SC_T_ZLIMIT])
     summary["out_of_range_node"] = float(z_node)
@@ -885,14 +892,20 @@ def simulate_pipeline(
         success = False
         status = Status.OUTSIDE_VALIDITY
         zmax = float(np.max(env[K.E_MAX_Z]))
-        message = (
-            f"outside the model's validity: penetration exceeded D/2 ="
-            f" {st[K.ST_Z_LIMIT]:.4g} m at t = {scal[K.SC_T_ZLIMIT]:.1f} s, node {z_node}"
-            f" (x = {x[z_node]:.4g} m); largest {zmax:.4g} m = {zmax / d:.3g}D at x ="
-            f" {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m (the soil models hold for z <= D/2;"
-            f" the run went on: {message})"
+        message = outside_validity(
+            logger,
+            "simulate_pipeline",
+            penetration_reason(
+                float(st[K.ST_Z_LIMIT]),
+                float(scal[K.SC_T_ZLIMIT]),
+                f"node {z_node}, x = {x[z_node]:.4g} m",
+                zmax,
+                d,
+                "the soil models",
+                f"x = {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m",
+            ),
+            message,
         )
-        logger.warning("simulate_pipeline: %s", message)
     final_attrs = {
         "status": int(status),
         "message": message,
