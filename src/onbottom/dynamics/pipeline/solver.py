@@ -36,7 +36,7 @@ import xarray as xr
 
 from onbottom._jit import call_literal
 from onbottom._validate import in_range, integer, one_of, positive
-from onbottom.dynamics.driver import drive, progress_bar
+from onbottom.dynamics.driver import SpillRecorder, drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
@@ -784,22 +784,27 @@ def simulate_pipeline(
     rec = np.zeros((per_chunk, K.N_FIELDS, n))
     rec_t = np.zeros(per_chunk)
 
+    def keep(t: np.ndarray, r: np.ndarray) -> None:
+        if writer is not None:
+            writer.append(t.copy(), r)
+        else:
+            mem_t.append(t.copy())
+            mem_r.append(r.copy())
+
+    # the kernel fills rec/rec_t from row 0 at each call: the driver spills them to ``keep``
+    recorder = SpillRecorder(keep, rec_t, rec)
+
     def advance(t_stop: float, _rows: np.ndarray, _n: int) -> tuple[int, int]:
-        while True:
-            m, status = call_literal(
-                K.integrate, 2, soil_id, force_id,
-                st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-                arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
-                arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
-            )  # fmt: skip
-            if writer is not None:
-                writer.append(rec_t[:m].copy(), rec[:m])
-            elif m:
-                mem_t.append(rec_t[:m].copy())
-                mem_r.append(rec[:m].copy())
-            # a full buffer returns STATUS_CHUNK before t_stop: continue the chunk
-            if status != K.STATUS_CHUNK or scal[K.SC_T] >= t_stop - 1e-9 * (1 + t_stop):
-                return 0, status
+        m, status = call_literal(
+            K.integrate, 2, soil_id, force_id,
+            st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
+            arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
+            arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+        )  # fmt: skip
+        # a full buffer returns STATUS_CHUNK before t_stop
+        if status == K.STATUS_CHUNK and scal[K.SC_T] < t_stop - 1e-9 * (1 + t_stop):
+            return m, Status.BUFFER_FULL
+        return m, status
 
     def after_chunk(status: int) -> None:
         if writer is not None:
@@ -820,6 +825,7 @@ def simulate_pipeline(
             status = drive(
                 advance,
                 lambda _k: min(float(scal[K.SC_T]) + s.chunk_duration, t_end),
+                recorder=recorder,
                 status=done,
                 bar=bar,
                 position=lambda: round(scal[K.SC_T]),
