@@ -14,6 +14,7 @@ whose attributes hold the provenance: :func:`onbottom.results.provenance`) — a
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -23,7 +24,19 @@ from onbottom.dynamics.status import Status, exit_code, status_message
 from onbottom.errors import InputError
 from onbottom.results import save_dataset
 
-__all__ = ["SolverResult", "end_message", "outside_validity", "penetration_reason"]
+__all__ = [
+    "CRITERIA_OVER_D",
+    "SolverResult",
+    "dynamic_criteria",
+    "end_message",
+    "outside_validity",
+    "penetration_limit",
+    "penetration_reason",
+]
+
+CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
+"""F109 dynamic lateral-stability criteria (DNV-RP-F109 §3.5; spec "Dynamic criteria"):
+lateral displacement limits over D — 0.5D "virtually stable", 10D."""
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -124,3 +137,32 @@ def penetration_reason(
         f"penetration exceeded D/2 = {limit:.4g} m at t = {t:.1f} s ({where}); largest"
         f" {largest:.4g} m = {largest / diameter:.3g}D{at}; {model} valid for z <= D/2"
     )
+
+
+def dynamic_criteria(
+    max_displacement: float, diameter: float, stop_over_d: float | None, stopped: bool
+) -> dict[str, bool]:
+    """The F109 dynamic criteria (:data:`CRITERIA_OVER_D`) of a run: met when the largest
+    displacement [m] is within the limit × D [m] and the run did not stop as a runaway at a
+    stop limit ``stop_over_d`` [-] at or below it (the displacement would have grown on)."""
+    return {
+        name: bool(
+            max_displacement <= lim * diameter
+            and not (stopped and stop_over_d is not None and stop_over_d <= lim)
+        )
+        for name, lim in CRITERIA_OVER_D.items()
+    }
+
+
+def penetration_limit(soil: Any, diameter: float | None = None) -> float:
+    """Penetration [m] beyond which a soil model is used outside its range (∞: no limit).
+
+    D/2 for the models that carry the pipe diameter (Verley & Sotberg: the power laws in z/D
+    are used for a pipe at most half buried, :data:`onbottom.soil.verley_sotberg`
+    ``Z_OVER_D_RANGE``; Verley & Lund likewise); none for Coulomb friction. ``diameter``
+    [m]: D to use (default: the model's own); the rule of the three solvers.
+    """
+    d = getattr(soil, "outer_diameter", None)
+    if d is None:
+        return math.inf
+    return 0.5 * float(d if diameter is None else diameter)

@@ -23,14 +23,16 @@ import numpy as np
 import xarray as xr
 
 from onbottom._jit import call_literal
-from onbottom._validate import in_range, one_of, positive
+from onbottom._validate import one_of, positive
 from onbottom.dynamics import _section_kernel as K
+from onbottom.dynamics._settings import check_chunks, check_newton, check_steps
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.programmes import LoadProgramme
 from onbottom.dynamics.result import (
     SolverResult,
     end_message,
     outside_validity,
+    penetration_limit,
     penetration_reason,
 )
 from onbottom.dynamics.status import Status
@@ -100,24 +102,12 @@ class SolverSettings:
     chunks: int = 20
 
     def __post_init__(self) -> None:
-        one_of("SolverSettings.integrator", self.integrator, _SCHEMES)
-        if self.dt_max is not None:
-            positive("SolverSettings.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            positive("SolverSettings.dt_min", self.dt_min)
-        positive("SolverSettings.max_displacement_increment", self.max_displacement_increment)
-        in_range(
-            "SolverSettings.force_tolerance",
-            self.force_tolerance,
-            0.0,
-            1e-3,
-            low_inclusive=False,
-        )
-        if int(self.max_iterations) < 5 or int(self.chunks) < 1:
-            raise InputError(
-                f"SolverSettings.max_iterations = {self.max_iterations!r} / chunks ="
-                f" {self.chunks!r} are invalid: need max_iterations >= 5 and chunks >= 1"
-            )
+        c = "SolverSettings"
+        one_of(f"{c}.integrator", self.integrator, _SCHEMES)
+        check_steps(c, self.dt_max, self.dt_min)
+        positive(f"{c}.max_displacement_increment", self.max_displacement_increment)
+        check_newton(c, self.force_tolerance, 1e-3, self.max_iterations, 5)
+        check_chunks(c, self.chunks)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -328,20 +318,20 @@ def simulate_section(
             " V > 0",
             message,
         )
-    d_soil = getattr(soil, "outer_diameter", None)
-    if success and d_soil is not None and float(np.max(w)) > 0.5 * float(d_soil):
+    z_lim = penetration_limit(soil)
+    if success and float(np.max(w)) > z_lim:
         success = False
         status = STATUS_OUTSIDE_VALIDITY
-        i = int(np.argmax(w > 0.5 * float(d_soil)))  # the first row beyond D/2
+        i = int(np.argmax(w > z_lim))  # the first row beyond D/2
         message = outside_validity(
             logger,
             "simulate_section",
             penetration_reason(
-                0.5 * float(d_soil),
+                z_lim,
                 float(rec[i, K.REC_T]),
                 f"u = {float(u[i]):.4g} m",
                 float(np.max(w)),
-                float(d_soil),
+                2.0 * z_lim,
                 f"the {soil.name} model",
             ),
             message,

@@ -28,11 +28,15 @@ import xarray as xr
 from onbottom._jit import call_literal
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
+from onbottom.dynamics._settings import check_chunks, check_newton, check_steps
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.result import (
+    CRITERIA_OVER_D,
     SolverResult,
+    dynamic_criteria,
     end_message,
     outside_validity,
+    penetration_limit,
     penetration_reason,
 )
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
@@ -59,22 +63,7 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
-"""F109 dynamic lateral-stability criteria: displacement limits over D."""
-
 _LIFTOFF = {"free": K.LIFTOFF_FREE, "stop": K.LIFTOFF_STOP}
-
-
-def penetration_limit(soil: LateralResistanceModel) -> float:
-    """Penetration [m] beyond which a soil model is used outside its range (∞: no limit).
-
-    D/2 for the models that carry the pipe diameter (Verley & Sotberg: the power laws in z/D
-    are used for a pipe at most half buried, :data:`onbottom.soil.verley_sotberg`
-    ``Z_OVER_D_RANGE``; Verley & Lund likewise) — the rule of
-    :func:`onbottom.dynamics.section.simulate_section`; none for Coulomb friction.
-    """
-    d = getattr(soil, "outer_diameter", None)
-    return 0.5 * float(d) if d is not None else math.inf
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -120,25 +109,10 @@ class StormSolverSettings:
     chunks: int = 20
 
     def __post_init__(self) -> None:
-        positive("StormSolverSettings.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            positive("StormSolverSettings.dt_min", self.dt_min)
-            if self.dt_min > self.dt_max:
-                raise InputError(
-                    f"StormSolverSettings.dt_min = {self.dt_min!r} is invalid: must be <="
-                    f" dt_max = {self.dt_max!r}"
-                )
-        positive(
-            "StormSolverSettings.max_displacement_increment_over_d",
-            self.max_displacement_increment_over_d,
-        )
-        in_range(
-            "StormSolverSettings.force_tolerance",
-            self.force_tolerance,
-            0.0,
-            1e-3,
-            low_inclusive=False,
-        )
+        c = "StormSolverSettings"
+        check_steps(c, self.dt_max, self.dt_min)
+        positive(f"{c}.max_displacement_increment_over_d", self.max_displacement_increment_over_d)
+        check_newton(c, self.force_tolerance, 1e-3, self.max_iterations, 5)
         in_range("StormSolverSettings.newmark_gamma", self.newmark_gamma, 0.5, 1.0)
         in_range(
             "StormSolverSettings.newmark_beta",
@@ -150,11 +124,7 @@ class StormSolverSettings:
         one_of("StormSolverSettings.liftoff", self.liftoff, _LIFTOFF)
         if self.record_interval is not None:
             non_negative("StormSolverSettings.record_interval", self.record_interval)
-        if int(self.max_iterations) < 5 or int(self.chunks) < 1:
-            raise InputError(
-                f"StormSolverSettings.max_iterations = {self.max_iterations!r} / chunks ="
-                f" {self.chunks!r} are invalid: need max_iterations >= 5 and chunks >= 1"
-            )
+        check_chunks(c, self.chunks)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -410,11 +380,9 @@ def simulate_storm_section(
         ),
     )
     ymax = float(dyn[K.D_YMAX])
-    runaway = status == K.STATUS_LIMIT
-    criteria = {
-        name: bool(ymax <= lim * d and not (runaway and s.stop_displacement_over_d <= lim))
-        for name, lim in CRITERIA_OVER_D.items()
-    }
+    criteria = dynamic_criteria(
+        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
+    )
     t_out = float(dyn[K.D_T_ZLIMIT])
     if success and t_out >= 0.0:
         success = False

@@ -36,15 +36,19 @@ import xarray as xr
 
 from onbottom._jit import call_literal
 from onbottom._validate import in_range, integer, one_of, positive
+from onbottom.dynamics._settings import check_newton, check_steps
 from onbottom.dynamics.driver import SpillRecorder, drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
 from onbottom.dynamics.result import (
+    CRITERIA_OVER_D,
     SolverResult,
+    dynamic_criteria,
     end_message,
     outside_validity,
+    penetration_limit,
     penetration_reason,
 )
 from onbottom.dynamics.status import Status
@@ -70,10 +74,6 @@ __all__ = [
 ]
 
 logger = logging.getLogger(__name__)
-
-CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
-"""F109 dynamic lateral-stability criteria: displacement limits over D (spec, "Dynamic
-criteria")."""
 
 _PREDICTOR = 0.0
 """Weight of Δt²·a_n in the Newton starting point (0: d_n + Δt v_n; 0.5, constant
@@ -160,12 +160,8 @@ class PipelineSettings:
     def __post_init__(self) -> None:
         c = "PipelineSettings"
         in_range(f"{c}.alpha", self.alpha, -1.0 / 3.0, 0.0)
-        positive(f"{c}.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            in_range(f"{c}.dt_min", self.dt_min, 0.0, self.dt_max, low_inclusive=False)
-        if int(self.max_iterations) < 3:
-            raise InputError(f"{c}.max_iterations = {self.max_iterations!r} is invalid: >= 3")
-        in_range(f"{c}.force_tolerance", self.force_tolerance, 0.0, 1e-2, low_inclusive=False)
+        check_steps(c, self.dt_max, self.dt_min)
+        check_newton(c, self.force_tolerance, 1e-2, self.max_iterations, 3)
         positive(f"{c}.max_displacement_increment_over_d", self.max_displacement_increment_over_d)
         in_range(f"{c}.growth", self.growth, 1.0, 4.0)
         if self.stop_displacement_over_d is not None:
@@ -326,9 +322,8 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
 def _penetration_limit(model: PipelineModel) -> float:
     """D/2 when a section's soil model carries D (Verley & Sotberg, Verley & Lund; the rule of
     the section solvers), else ∞ (Coulomb)."""
-    if any(getattr(sec.model, "outer_diameter", None) is not None for sec in model.sections):
-        return 0.5 * model.pipe.outer_diameter
-    return math.inf
+    d = model.pipe.outer_diameter
+    return min(penetration_limit(sec.model, d) for sec in model.sections)
 
 
 def partial_path(output: str | os.PathLike) -> Path:
@@ -974,10 +969,8 @@ def _criteria(
     vmax: float, emax: float, d: float, stopped: bool, s: PipelineSettings
 ) -> dict[str, bool | None]:
     criteria: dict[str, bool | None] = {
-        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
-                                         and s.stop_displacement_over_d <= f))
-        for k, f in CRITERIA_OVER_D.items()
-    }  # fmt: skip
+        **dynamic_criteria(vmax, d, s.stop_displacement_over_d, stopped)
+    }
     criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
     return criteria
 
