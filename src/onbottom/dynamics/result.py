@@ -7,31 +7,35 @@ whose attributes hold the provenance: :func:`onbottom.results.provenance`) — a
 :class:`~onbottom.dynamics.storm_section.StormSectionResult` and
 :class:`~onbottom.dynamics.pipeline.PipelineResult` derive from it, adding their own summary.
 
-:func:`end_message` and :func:`outside_validity` word a run's end for all three (the one table
-:data:`onbottom.dynamics.status.MESSAGES`) and log a failed or flagged run as a warning.
+Shared by the three: :func:`run_outcome` words a run's end (the one table
+:data:`onbottom.dynamics.status.MESSAGES`), flags a run that left its model's validity and logs
+a failed or flagged run; :func:`penetration_limit` and :func:`penetration_reason` are the D/2
+rule; :func:`dynamic_criteria` the F109 criteria.
 """
 
 from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
 import xarray as xr
 
 from onbottom.dynamics.status import Status, exit_code, status_message
 from onbottom.errors import InputError
-from onbottom.results import save_dataset
+from onbottom.results import annotate, save_dataset
 
 __all__ = [
     "CRITERIA_OVER_D",
     "SolverResult",
     "dynamic_criteria",
-    "end_message",
-    "outside_validity",
     "penetration_limit",
     "penetration_reason",
+    "records_dataset",
+    "run_outcome",
 ]
 
 CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
@@ -84,7 +88,7 @@ class SolverResult:
         return save_dataset(self.data, path, compression_level=compression_level)
 
 
-def end_message(
+def run_outcome(
     logger: logging.Logger,
     solver: str,
     status: int,
@@ -93,27 +97,43 @@ def end_message(
     t: float,
     dt_min: float,
     detail: str = "",
-) -> str:
-    """The message of a run that ended with ``status`` (:func:`~.status.status_message`).
+    outside: str | None = None,
+) -> tuple[bool, int, str]:
+    """``(success, status, message)`` of a run that ended with ``status``, worded by
+    :func:`~.status.status_message` (the one table, :data:`~.status.MESSAGES`).
 
-    A failed run (``not Status(status).success``) gets ``t`` [s] and ``dt_min`` [s] as its
-    detail and is logged as a warning on ``logger`` ("``solver``: message"); a normal end
-    gets ``detail`` (e.g. which limit it reached and when).
+    Parameters
+    ----------
+    logger : logging.Logger
+        The solver's logger: a failed or flagged run is logged as a warning ("``solver``:
+        message"); solvers never print.
+    solver : str
+        The solver's function name.
+    status : int
+        The kernel's final :class:`~.status.Status`.
+    run : str
+        What the run went through ("load programme", "storm").
+    t, dt_min : float
+        Time reached and smallest step [s]: the detail of a failed run.
+    detail : str
+        The detail of a normal end (which limit, when, where).
+    outside : str or None
+        Why the run left its model's validity (:func:`penetration_reason`, lift-off), or None.
+        A run that ended normally is then flagged :attr:`~.status.Status.OUTSIDE_VALIDITY`:
+        "outside the model's validity: ``outside`` (the run went on: <its message>)".
     """
-    if Status(int(status)).success:
-        return status_message(status, detail, run=run)
-    message = status_message(status, f"t = {t:.6g} s, dt_min = {dt_min:.3g} s", run=run)
+    success = Status(int(status)).success
+    if not success:
+        message = status_message(status, f"t = {t:.6g} s, dt_min = {dt_min:.3g} s", run=run)
+        logger.warning("%s: %s", solver, message)
+        return False, int(status), message
+    message = status_message(status, detail, run=run)
+    if outside is None:
+        return True, int(status), message
+    status = Status.OUTSIDE_VALIDITY
+    message = status_message(status, f"{outside} (the run went on: {message})")
     logger.warning("%s: %s", solver, message)
-    return message
-
-
-def outside_validity(logger: logging.Logger, solver: str, reason: str, before: str) -> str:
-    """The message of a run flagged :attr:`~.status.Status.OUTSIDE_VALIDITY` after it ended
-    with the message ``before``: "outside the model's validity: ``reason`` (the run went on:
-    ``before``)", logged as a warning on ``logger``."""
-    message = status_message(Status.OUTSIDE_VALIDITY, f"{reason} (the run went on: {before})")
-    logger.warning("%s: %s", solver, message)
-    return message
+    return False, int(status), message
 
 
 def penetration_reason(
@@ -125,7 +145,7 @@ def penetration_reason(
     model: str,
     largest_at: str = "",
 ) -> str:
-    """Why a run left its soil model's range (the reason of :func:`outside_validity`).
+    """Why a run left its soil model's range (``outside`` of :func:`run_outcome`).
 
     The penetration exceeded D/2 = ``limit`` [m] first at time ``t`` [s] and place ``where``
     (text: "y = 0.2 m", "node 12, x = 24 m"); the largest was ``largest`` [m] (D =
@@ -166,3 +186,17 @@ def penetration_limit(soil: Any, diameter: float | None = None) -> float:
     if d is None:
         return math.inf
     return 0.5 * float(d if diameter is None else diameter)
+
+
+def records_dataset(
+    rows: np.ndarray, columns: Mapping[str, int], time_column: int, attrs: Mapping[str, Any]
+) -> xr.Dataset:
+    """The records of a section run (rows × columns of its kernel) as a Dataset over time:
+    variable ``name`` from column ``columns[name]``, the time from ``time_column``, the
+    provenance ``attrs``; long names and units from :func:`onbottom.results.annotate`."""
+    ds = xr.Dataset(
+        {k: ("time", np.ascontiguousarray(rows[:, i])) for k, i in columns.items()},
+        coords={"time": np.ascontiguousarray(rows[:, time_column])},
+        attrs=dict(attrs),
+    )
+    return annotate(ds)

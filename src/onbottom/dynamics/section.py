@@ -30,15 +30,15 @@ from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.programmes import LoadProgramme
 from onbottom.dynamics.result import (
     SolverResult,
-    end_message,
-    outside_validity,
     penetration_limit,
     penetration_reason,
+    records_dataset,
+    run_outcome,
 )
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
-from onbottom.results import annotate, provenance
+from onbottom.results import provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = ["SectionResult", "SolverSettings", "section_mass", "simulate_section"]
@@ -160,27 +160,21 @@ STATUS_OUTSIDE_VALIDITY = int(Status.OUTSIDE_VALIDITY)
 """Status of a run that left its soil model's validity (e.g. penetration > D/2)."""
 
 
-def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset:
-    names = {
-        "H": K.REC_H,
-        "V": K.REC_V,
-        "y": K.REC_U,  # lateral displacement (0.1: "u"; docs/conventions.md)
-        "y_dot": K.REC_UDOT,
-        "z": K.REC_W,  # penetration (0.1: "w")
-        "F_friction": K.REC_FF,
-        "F_passive": K.REC_FP,
-        "F_soil": K.REC_FS,
-        "work": K.REC_WORK,
-        "region": K.REC_REGION,
-        "soil_energy_stored": K.REC_E_STORED,
-        "soil_energy_dissipated": K.REC_E_DISSIPATED,
-    }
-    ds = xr.Dataset(
-        {k: ("time", np.ascontiguousarray(rec[:, i])) for k, i in names.items()},
-        coords={"time": np.ascontiguousarray(rec[:, K.REC_T])},
-        attrs=dict(attrs),
-    )
-    return annotate(ds)
+_REC_NAMES = {
+    "H": K.REC_H,
+    "V": K.REC_V,
+    "y": K.REC_U,  # lateral displacement (0.1: "u"; docs/conventions.md)
+    "y_dot": K.REC_UDOT,
+    "z": K.REC_W,  # penetration (0.1: "w")
+    "F_friction": K.REC_FF,
+    "F_passive": K.REC_FP,
+    "F_soil": K.REC_FS,
+    "work": K.REC_WORK,
+    "region": K.REC_REGION,
+    "soil_energy_stored": K.REC_E_STORED,
+    "soil_energy_dissipated": K.REC_E_DISSIPATED,
+}
+"""Recorded variables: kernel column of each."""
 
 
 def simulate_section(
@@ -286,17 +280,6 @@ def simulate_section(
     cycles = None
     if t_cross is not None and programme.cycle_period is not None:
         cycles = (t_cross - float(pt[0])) / programme.cycle_period
-    success = Status(status).success
-    limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
-    message = end_message(
-        logger,
-        "simulate_section",
-        status,
-        run="load programme",
-        t=float(dyn[K.D_T]),
-        dt_min=dt_min,
-        detail=f"|u| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
-    )
     u = rec[:, K.REC_U]
     w = rec[:, K.REC_W]
     # lift-off: the vertical load of the programme (up to the end of the run) or of a step
@@ -306,36 +289,36 @@ def simulate_section(
     tp = tp[tp <= t_end + 1e-12]
     v_all = np.concatenate([vp, rec[:, K.REC_V]])
     t_all = np.concatenate([tp, rec[:, K.REC_T]])
-    if success and v_all.size and float(np.min(v_all)) <= 0.0:
+    z_lim = penetration_limit(soil)
+    outside = None
+    if v_all.size and float(np.min(v_all)) <= 0.0:
         i = int(np.argmin(v_all))
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
-        message = outside_validity(
-            logger,
-            "simulate_section",
+        outside = (
             f"lift-off, the vertical load falls to {float(v_all[i]):.4g} N/m at t ="
             f" {float(t_all[i]):.4g} s; the soil models hold for a pipe resting on the seabed,"
-            " V > 0",
-            message,
+            " V > 0"
         )
-    z_lim = penetration_limit(soil)
-    if success and float(np.max(w)) > z_lim:
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
+    elif float(np.max(w)) > z_lim:
         i = int(np.argmax(w > z_lim))  # the first row beyond D/2
-        message = outside_validity(
-            logger,
-            "simulate_section",
-            penetration_reason(
-                z_lim,
-                float(rec[i, K.REC_T]),
-                f"u = {float(u[i]):.4g} m",
-                float(np.max(w)),
-                2.0 * z_lim,
-                f"the {soil.name} model",
-            ),
-            message,
+        outside = penetration_reason(
+            z_lim,
+            float(rec[i, K.REC_T]),
+            f"u = {float(u[i]):.4g} m",
+            float(np.max(w)),
+            2.0 * z_lim,
+            f"the {soil.name} model",
         )
+    limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
+    success, status, message = run_outcome(
+        logger,
+        "simulate_section",
+        status,
+        run="load programme",
+        t=float(dyn[K.D_T]),
+        dt_min=dt_min,
+        detail=f"|u| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
+        outside=outside,
+    )
     summary = {
         "initial_penetration": float(w[0]),
         "max_penetration": float(np.max(w)),
@@ -363,7 +346,7 @@ def simulate_section(
     )
     if cycles is not None:
         prov["cycles_to_limit"] = cycles
-    data = _records_to_dataset(rec, prov)
+    data = records_dataset(rec, _REC_NAMES, K.REC_T, prov)
     return SectionResult(
         success=bool(success),
         status=int(status),

@@ -34,13 +34,12 @@ from onbottom.dynamics.result import (
     CRITERIA_OVER_D,
     SolverResult,
     dynamic_criteria,
-    end_message,
-    outside_validity,
     penetration_limit,
     penetration_reason,
+    records_dataset,
+    run_outcome,
 )
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
-from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.hydro.force_model import N_FORCE_STATE, ForceModel, MorisonLift, parameter_rows
 from onbottom.hydro.reductions import LoadReductions
@@ -48,7 +47,7 @@ from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
 from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Current, Storm
-from onbottom.results import annotate, provenance
+from onbottom.results import provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = [
@@ -365,8 +364,8 @@ def simulate_storm_section(
             bar=bar,
         )
 
-    success = Status(status).success
-    message = end_message(
+    t_out = float(dyn[K.D_T_ZLIMIT])
+    success, status, message = run_outcome(
         logger,
         "simulate_storm_section",
         status,
@@ -378,28 +377,21 @@ def simulate_storm_section(
             if status == K.STATUS_LIMIT
             else ""
         ),
+        outside=None
+        if t_out < 0.0
+        else penetration_reason(
+            z_lim,
+            t_out,
+            f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m",
+            float(dyn[K.D_ZMAX]),
+            d,
+            f"the {soil.name} model",
+        ),
     )
     ymax = float(dyn[K.D_YMAX])
     criteria = dynamic_criteria(
         ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
     )
-    t_out = float(dyn[K.D_T_ZLIMIT])
-    if success and t_out >= 0.0:
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
-        message = outside_validity(
-            logger,
-            "simulate_storm_section",
-            penetration_reason(
-                z_lim,
-                t_out,
-                f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m",
-                float(dyn[K.D_ZMAX]),
-                d,
-                f"the {soil.name} model",
-            ),
-            message,
-        )
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),
         "n_rejected": int(dyn[K.D_N_REJECT]),
@@ -453,12 +445,7 @@ def simulate_storm_section(
             **fm.describe(),
             **(dict(attrs) if attrs else {}),
         )
-        data = xr.Dataset(
-            {k2: ("time", np.ascontiguousarray(rec[:, i])) for k2, i in _REC_NAMES.items()},
-            coords={"time": np.ascontiguousarray(rec[:, K.REC_T])},
-            attrs=prov,
-        )
-        data = annotate(data)
+        data = records_dataset(rec, _REC_NAMES, K.REC_T, prov)
     return StormSectionResult(
         success=bool(success),
         status=int(status),

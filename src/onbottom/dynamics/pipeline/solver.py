@@ -43,13 +43,11 @@ from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
 from onbottom.dynamics.result import (
-    CRITERIA_OVER_D,
     SolverResult,
     dynamic_criteria,
-    end_message,
-    outside_validity,
     penetration_limit,
     penetration_reason,
+    run_outcome,
 )
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
@@ -66,7 +64,6 @@ from onbottom.results import run_identity as results_run_identity
 from onbottom.soil._dispatch import MODELS_MIXED
 
 __all__ = [
-    "CRITERIA_OVER_D",
     "PipelineResult",
     "PipelineSettings",
     "run_identity",
@@ -869,8 +866,12 @@ def simulate_pipeline(
         "n_factorisations": float(scal[K.SC_N_FACTOR]),
         "n_nodes": float(n),
     }
-    success = Status(status).success
-    message = end_message(
+    z_node = int(scal[K.SC_ZLIMIT_NODE])
+    summary["out_of_range_time"] = float(scal[K.SC_T_ZLIMIT])
+    summary["out_of_range_node"] = float(z_node)
+    summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
+    summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
+    success, status, message = run_outcome(
         logger,
         "simulate_pipeline",
         status,
@@ -883,30 +884,18 @@ def simulate_pipeline(
             if stopped
             else ""
         ),
+        outside=None
+        if z_node < 0
+        else penetration_reason(
+            float(st[K.ST_Z_LIMIT]),
+            float(scal[K.SC_T_ZLIMIT]),
+            f"node {z_node}, x = {x[z_node]:.4g} m",
+            float(np.max(env[K.E_MAX_Z])),
+            d,
+            "the soil models",
+            f"x = {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m",
+        ),
     )
-    z_node = int(scal[K.SC_ZLIMIT_NODE])
-    summary["out_of_range_time"] = float(scal[K.SC_T_ZLIMIT])
-    summary["out_of_range_node"] = float(z_node)
-    summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
-    summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
-    if success and z_node >= 0:
-        success = False
-        status = Status.OUTSIDE_VALIDITY
-        zmax = float(np.max(env[K.E_MAX_Z]))
-        message = outside_validity(
-            logger,
-            "simulate_pipeline",
-            penetration_reason(
-                float(st[K.ST_Z_LIMIT]),
-                float(scal[K.SC_T_ZLIMIT]),
-                f"node {z_node}, x = {x[z_node]:.4g} m",
-                zmax,
-                d,
-                "the soil models",
-                f"x = {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m",
-            ),
-            message,
-        )
     final_attrs = {
         "status": int(status),
         "message": message,
