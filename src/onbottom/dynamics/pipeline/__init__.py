@@ -14,6 +14,7 @@ from onbottom._lazy import attach
 if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
     from onbottom.dynamics.pipeline.model import END_CONDITIONS, PipelineModel, SoilSection
     from onbottom.dynamics.pipeline.solver import (
+        CRITERIA_OVER_D,
         PipelineResult,
         PipelineSettings,
         run_identity,
@@ -25,7 +26,6 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         UserLoad,
         still_water,
     )
-    from onbottom.dynamics.result import CRITERIA_OVER_D
 
 __all__ = [
     "CRITERIA_OVER_D",
@@ -51,12 +51,12 @@ __getattr__, __dir__ = attach(
             "SoilSection",
         ),
         "onbottom.dynamics.pipeline.solver": (
+            "CRITERIA_OVER_D",
             "PipelineResult",
             "PipelineSettings",
             "run_identity",
             "simulate_pipeline",
         ),
-        "onbottom.dynamics.result": ("CRITERIA_OVER_D",),
         "onbottom.dynamics.pipeline.user_load": (
             "TableLoad",
             "TravellingSineLoad",

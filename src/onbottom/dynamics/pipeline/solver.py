@@ -43,6 +43,7 @@ from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
 from onbottom.dynamics.result import (
+    CRITERIA_OVER_D,
     SolverResult,
     dynamic_criteria,
     penetration_limit,
@@ -64,6 +65,7 @@ from onbottom.results import run_identity as results_run_identity
 from onbottom.soil._dispatch import MODELS_MIXED
 
 __all__ = [
+    "CRITERIA_OVER_D",
     "PipelineResult",
     "PipelineSettings",
     "run_identity",
