@@ -25,7 +25,6 @@ import logging
 import math
 import os
 import shutil
-import tempfile
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -58,6 +57,7 @@ from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
     annotate,
+    atomic_write,
     check_result_file,
     provenance,
 )
@@ -336,16 +336,13 @@ def _chunk_file(folder: Path, index: int) -> Path:
 
 
 def _write_npz_atomic(path: Path, **arrays: np.ndarray) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    """``arrays`` to ``path`` (npz) under a temporary name, then renamed (as every result)."""
+
+    def write(tmp: str) -> None:
         with open(tmp, "wb") as fh:
             np.savez(fh, **arrays)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+
+    atomic_write(path, write)
 
 
 class _Writer:
@@ -411,8 +408,6 @@ class _Writer:
     def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
         """Write the result file (temporary name, then rename)."""
         import h5netcdf
-
-        from onbottom.results import atomic_write
 
         self.commit()
         x = self.x
