@@ -364,6 +364,12 @@ def simulate_storm_section(
             bar=bar,
         )
 
+    ymax = float(dyn[K.D_YMAX])
+    # a runaway stop, even one flagged outside the model's validity below, meets no criterion
+    # at or above its stop limit
+    criteria = dynamic_criteria(
+        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
+    )
     t_out = float(dyn[K.D_T_ZLIMIT])
     success, status, message = run_outcome(
         logger,
@@ -387,10 +393,6 @@ def simulate_storm_section(
             d,
             f"the {soil.name} model",
         ),
-    )
-    ymax = float(dyn[K.D_YMAX])
-    criteria = dynamic_criteria(
-        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
     )
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),
