@@ -303,7 +303,7 @@ def simulate_section(
         outside = penetration_reason(
             z_lim,
             float(rec[i, K.REC_T]),
-            f"u = {float(u[i]):.4g} m",
+            f"y = {float(u[i]):.4g} m",
             float(np.max(w)),
             2.0 * z_lim,
             f"the {soil.name} model",
@@ -316,7 +316,7 @@ def simulate_section(
         run="load programme",
         t=float(dyn[K.D_T]),
         dt_min=dt_min,
-        detail=f"|u| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
+        detail=f"|y| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
         outside=outside,
     )
     summary = {
