@@ -13,8 +13,8 @@ task sent to a worker and the result it returns (bytes per task and per storm: a
 curve point, a bisection of many storms); the scheduling and transfer time, measured twice —
 wall minus worker CPU per storm on 1 worker, and directly by a no-op task of the same sizes
 through the same map (:class:`onbottom.study.engine.ParallelMap` on a 1-worker cluster); and
-the Python time inside a worker around the storm kernel (one point run in this process: time in
-the point function minus the kernel calls and the storm synthesis, each timed).
+the Python time inside a worker around the storm kernel (one point run in this process: CPU
+time in the point function minus the kernel calls and the storm synthesis, each timed).
 
 Run: ``PYTHONPATH=src python benchmarks/stability_curves.py [--seeds 3] [--peak-hours 3]``.
 """
@@ -55,32 +55,33 @@ def _task_bytes(job: Any, item: tuple) -> int:
 
 
 def _in_worker_split(item: tuple, s: CurveSettings) -> dict[str, Any]:
-    """One point in this process: total, storm-kernel and storm-synthesis time [s], storms."""
+    """One point in this process: total, storm-kernel and storm-synthesis CPU time [s] (this
+    process's CPU time, not wall: other processes' load does not count), storms."""
     kernel = [0.0]
     synth = [0.0]
     call0 = storm_section.call_literal
     kin0 = sc.point_kinematics
 
     def timed_call(*a: Any, **kw: Any) -> Any:
-        t = time.perf_counter()
+        t = time.process_time()
         try:
             return call0(*a, **kw)
         finally:
-            kernel[0] += time.perf_counter() - t
+            kernel[0] += time.process_time() - t
 
     def timed_kin(*a: Any, **kw: Any) -> Any:
-        t = time.perf_counter()
+        t = time.process_time()
         try:
             return kin0(*a, **kw)
         finally:
-            synth[0] += time.perf_counter() - t
+            synth[0] += time.process_time() - t
 
     storm_section.call_literal = timed_call
     sc.point_kinematics = timed_kin
     try:
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         row = sc._PointJob(s)(item)
-        total = time.perf_counter() - t0
+        total = time.process_time() - t0
     finally:
         storm_section.call_literal = call0
         sc.point_kinematics = kin0
@@ -103,16 +104,18 @@ def overhead(args: argparse.Namespace, s: CurveSettings, one: dict[str, float]) 
     job = sc._PointJob(s)
     task_b = _task_bytes(job, item)
     result_b = len(pickle.dumps([row]))
-    physics = split["kernel"] / storms  # s per storm in the kernel
+    kernel = split["kernel"] / storms  # CPU s per storm in the kernel (the physics)
+    cpu1 = one["cpu"] / one["storms"]  # worker CPU s per storm in the 1-worker sweep
     per_point = one["storms"] / one["points"]  # storms per task in the measured sweep
     print(f"per-storm overhead (1 point in this process: {soil}, K={k:g}, M={m:g}, L_10):")
     print(
-        f"  physics: storm kernel {physics * 1e3:.1f} ms/storm ({storms} storms),"
-        f" storm synthesis {split['synth'] / storms * 1e3:.1f} ms/storm"
+        f"  physics: storm kernel {kernel * 1e3:.1f} ms CPU/storm ({storms} storms), storm"
+        f" synthesis {split['synth'] / storms * 1e3:.1f} ms CPU/storm; the sweep's workers"
+        f" {cpu1 * 1e3:.1f} ms CPU/storm"
     )
     py = split["total"] - split["kernel"] - split["synth"]
     print(
-        f"  in-worker Python around the kernel: {py / storms * 1e3:.2f} ms/storm"
+        f"  in-worker Python around the kernel: {py / storms * 1e3:.2f} ms CPU/storm"
         f" = {py / split['kernel']:.1%} of the kernel time"
     )
     print(
@@ -120,11 +123,11 @@ def overhead(args: argparse.Namespace, s: CurveSettings, one: dict[str, float]) 
         f" result returned: {result_b:,} B/point = {result_b / per_point:,.0f} B/storm"
         f" ({per_point:.1f} storms per point in the sweep)"
     )
-    gap = one["wall"] / one["storms"] - one["cpu"] / one["storms"]
+    gap = one["wall"] / one["storms"] - cpu1
     print(
-        f"  scheduling + transfer, wall - worker CPU on 1 worker: {gap * 1e3:.2f} ms/storm"
-        f" = {gap / physics:.1%} of the kernel time (cluster start included; waiting on"
-        " other processes' load counts here too)"
+        f"  wall - worker CPU on 1 worker: {gap * 1e3:.2f} ms/storm = {gap / cpu1:.1%} of the"
+        " worker CPU per storm (an upper bound of scheduling + transfer: the cluster start and"
+        " any wait for a core under other processes' load count here too)"
     )
     n_tasks = int(one["points"])
     t0 = time.perf_counter()
@@ -139,8 +142,8 @@ def overhead(args: argparse.Namespace, s: CurveSettings, one: dict[str, float]) 
     per_task = noop / n_tasks
     print(
         f"  scheduling + transfer, no-op tasks of the same sizes through ParallelMap:"
-        f" {per_task * 1e3:.2f} ms/task = {per_task / per_point * 1e3:.3f} ms/storm"
-        f" = {per_task / per_point / physics:.2%} of the kernel time ({n_tasks} tasks)"
+        f" {per_task * 1e3:.2f} ms/task wall = {per_task / per_point * 1e3:.3f} ms/storm"
+        f" = {per_task / per_point / cpu1:.2%} of the worker CPU per storm ({n_tasks} tasks)"
     )
     print(
         f"  cluster start and first task (once per sweep): {start:.2f} s ="
