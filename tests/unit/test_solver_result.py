@@ -28,7 +28,7 @@ LOG = logging.getLogger("onbottom.test")
 def test_a_normal_end_keeps_its_status_and_detail(caplog):
     with caplog.at_level(logging.WARNING):
         ok, st, msg = run_outcome(
-            LOG, "solver", Status.LIMIT, run="storm", t=5.0, dt_min=1e-4, detail="10D at t = 5 s"
+            LOG, Status.LIMIT, run="storm", t=5.0, dt_min=1e-4, detail="10D at t = 5 s"
         )
     assert (ok, st) == (
         True,
@@ -40,18 +40,16 @@ def test_a_normal_end_keeps_its_status_and_detail(caplog):
 def test_a_failed_run_says_when_and_is_logged(caplog):
     with caplog.at_level(logging.WARNING):
         ok, st, msg = run_outcome(
-            LOG, "solver", Status.STEP_FAILED, run="storm", t=12.5, dt_min=1e-5, outside="x"
+            LOG, Status.STEP_FAILED, run="storm", t=12.5, dt_min=1e-5, outside="x"
         )
     # a failure is not flagged as outside the validity: its own status is kept
     assert (ok, st) == (False, -1) and "t = 12.5 s, dt_min = 1e-05 s" in msg
-    assert caplog.records[0].getMessage() == f"solver: {msg}"
+    assert caplog.records[0].getMessage() == msg and caplog.records[0].name == "onbottom.test"
 
 
 def test_a_run_outside_its_model_is_flagged_with_its_end():
     reason = penetration_reason(0.2, 31.0, "y = 0.1 m", 0.25, 0.4, "the vs model")
-    ok, st, msg = run_outcome(
-        LOG, "solver", Status.END, run="storm", t=60.0, dt_min=1e-4, outside=reason
-    )
+    ok, st, msg = run_outcome(LOG, Status.END, run="storm", t=60.0, dt_min=1e-4, outside=reason)
     assert (ok, st) == (False, int(Status.OUTSIDE_VALIDITY))
     assert msg == (
         "outside the model's validity: penetration exceeded D/2 = 0.2 m at t = 31.0 s"

@@ -90,7 +90,6 @@ class SolverResult:
 
 def run_outcome(
     logger: logging.Logger,
-    solver: str,
     status: int,
     *,
     run: str,
@@ -105,10 +104,8 @@ def run_outcome(
     Parameters
     ----------
     logger : logging.Logger
-        The solver's logger: a failed or flagged run is logged as a warning ("``solver``:
-        message"); solvers never print.
-    solver : str
-        The solver's function name.
+        The solver module's logger: a failed or flagged run is logged there as a warning (its
+        message); solvers never print.
     status : int
         The kernel's final :class:`~.status.Status`.
     run : str
@@ -125,14 +122,14 @@ def run_outcome(
     success = Status(int(status)).success
     if not success:
         message = status_message(status, f"t = {t:.6g} s, dt_min = {dt_min:.3g} s", run=run)
-        logger.warning("%s: %s", solver, message)
+        logger.warning("%s", message)
         return False, int(status), message
     message = status_message(status, detail, run=run)
     if outside is None:
         return True, int(status), message
     status = Status.OUTSIDE_VALIDITY
     message = status_message(status, f"{outside} (the run went on: {message})")
-    logger.warning("%s: %s", solver, message)
+    logger.warning("%s", message)
     return False, int(status), message
 
 

@@ -309,16 +309,11 @@ def simulate_section(
             f"the {soil.name} model",
         )
     limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
+    detail = f"|y| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else ""
     success, status, message = run_outcome(
-        logger,
-        "simulate_section",
-        status,
-        run="load programme",
-        t=float(dyn[K.D_T]),
-        dt_min=dt_min,
-        detail=f"|y| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else "",
+        logger, status, run="load programme", t=dyn[K.D_T], dt_min=dt_min, detail=detail,
         outside=outside,
-    )
+    )  # fmt: skip
     summary = {
         "initial_penetration": float(w[0]),
         "max_penetration": float(np.max(w)),

@@ -371,28 +371,20 @@ def simulate_storm_section(
         ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
     )
     t_out = float(dyn[K.D_T_ZLIMIT])
+    limit = f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
+    outside = None
+    if t_out >= 0.0:
+        y_out = f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m"
+        model = f"the {soil.name} model"
+        outside = penetration_reason(z_lim, t_out, y_out, float(dyn[K.D_ZMAX]), d, model)
     success, status, message = run_outcome(
         logger,
-        "simulate_storm_section",
         status,
         run="storm",
         t=float(dyn[K.D_T]),
         dt_min=dt_min,
-        detail=(
-            f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
-            if status == K.STATUS_LIMIT
-            else ""
-        ),
-        outside=None
-        if t_out < 0.0
-        else penetration_reason(
-            z_lim,
-            t_out,
-            f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m",
-            float(dyn[K.D_ZMAX]),
-            d,
-            f"the {soil.name} model",
-        ),
+        detail=limit if status == K.STATUS_LIMIT else "",
+        outside=outside,
     )
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),

@@ -868,31 +868,19 @@ def simulate_pipeline(
     summary["out_of_range_node"] = float(z_node)
     summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
     summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
+    outside = None
+    if z_node >= 0:
+        k_z = int(np.argmax(env[K.E_MAX_Z]))
+        outside = penetration_reason(
+            float(st[K.ST_Z_LIMIT]), float(scal[K.SC_T_ZLIMIT]),
+            f"node {z_node}, x = {x[z_node]:.4g} m", float(env[K.E_MAX_Z, k_z]), d,
+            "the soil models", f"x = {x[k_z]:.4g} m",
+        )  # fmt: skip
     success, status, message = run_outcome(
-        logger,
-        "simulate_pipeline",
-        status,
-        run="storm",
-        t=float(scal[K.SC_T]),
-        dt_min=float(st[K.ST_DT_MIN]),
-        detail=(
-            f"{s.stop_displacement_over_d:g}D at t = {scal[K.SC_T_LIMIT]:.1f} s; largest |y| at"
-            f" x = {x[k_worst]:.4g} m"
-            if stopped
-            else ""
-        ),
-        outside=None
-        if z_node < 0
-        else penetration_reason(
-            float(st[K.ST_Z_LIMIT]),
-            float(scal[K.SC_T_ZLIMIT]),
-            f"node {z_node}, x = {x[z_node]:.4g} m",
-            float(np.max(env[K.E_MAX_Z])),
-            d,
-            "the soil models",
-            f"x = {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m",
-        ),
-    )
+        logger, status, run="storm", t=scal[K.SC_T], dt_min=st[K.ST_DT_MIN],
+        detail=_limit_detail(s, scal[K.SC_T_LIMIT], x[k_worst]) if stopped else "",
+        outside=outside,
+    )  # fmt: skip
     final_attrs = {
         "status": int(status),
         "message": message,
@@ -939,6 +927,11 @@ def simulate_pipeline(
         netcdf=out_path,
         run_id=run_id,
     )
+
+
+def _limit_detail(s: PipelineSettings, t: float, x_worst: float) -> str:
+    """Which limit a stopped run reached, when, and where the largest |y| is."""
+    return f"{s.stop_displacement_over_d:g}D at t = {t:.1f} s; largest |y| at x = {x_worst:.4g} m"
 
 
 def _envelopes(x: np.ndarray, env: np.ndarray) -> xr.Dataset:
