@@ -8,6 +8,14 @@ T₁/(2·T₂), and extrapolates the time of 10⁴ storms from the measured rate
 runaways or cut short by the early decision of a bisection step are counted as storms, so the
 rate is per storm as the sweep runs them. Load average printed next to the figures.
 
+Per-storm overhead (issue 33 §6), each against the ≈ 0.1 s of physics of a storm: the pickled
+task sent to a worker and the result it returns (bytes per task and per storm: a task is a
+curve point, a bisection of many storms); the scheduling and transfer time, measured twice —
+wall minus worker CPU per storm on 1 worker, and directly by a no-op task of the same sizes
+through the same map (:class:`onbottom.study.engine.ParallelMap` on a 1-worker cluster); and
+the Python time inside a worker around the storm kernel (one point run in this process: CPU
+time in the point function minus the kernel calls and the storm synthesis, each timed).
+
 Run: ``PYTHONPATH=src python benchmarks/stability_curves.py [--seeds 3] [--peak-hours 3]``.
 """
 
@@ -15,12 +23,132 @@ from __future__ import annotations
 
 import argparse
 import os
+import pickle
 import time
+from typing import Any
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
+import onbottom.dynamics.storm_section as storm_section
+import onbottom.study.stability_curves as sc
+from onbottom.study.engine import ParallelMap, _apply_batch, dask_client
 from onbottom.study.stability_curves import CurveSettings, curves_table, stability_curves
+
+
+class _Echo:
+    """A no-op point job: carries the settings as the real one and returns a stored row."""
+
+    def __init__(self, settings: CurveSettings, row: dict[str, Any]) -> None:
+        self.settings = settings
+        self.row = row
+
+    def __call__(self, item: tuple) -> dict[str, Any]:
+        return dict(self.row)
+
+
+def _task_bytes(job: Any, item: tuple) -> int:
+    """Bytes of one task as Dask ships it: (function, job, batch) by cloudpickle."""
+    import cloudpickle
+
+    return len(cloudpickle.dumps((_apply_batch, job, [item])))
+
+
+def _in_worker_split(item: tuple, s: CurveSettings) -> dict[str, Any]:
+    """One point in this process: total, storm-kernel and storm-synthesis CPU time [s] (this
+    process's CPU time, not wall: other processes' load does not count), storms."""
+    kernel = [0.0]
+    synth = [0.0]
+    call0 = storm_section.call_literal
+    kin0 = sc.point_kinematics
+
+    def timed_call(*a: Any, **kw: Any) -> Any:
+        t = time.process_time()
+        try:
+            return call0(*a, **kw)
+        finally:
+            kernel[0] += time.process_time() - t
+
+    def timed_kin(*a: Any, **kw: Any) -> Any:
+        t = time.process_time()
+        try:
+            return kin0(*a, **kw)
+        finally:
+            synth[0] += time.process_time() - t
+
+    storm_section.call_literal = timed_call
+    sc.point_kinematics = timed_kin
+    try:
+        t0 = time.process_time()
+        row = sc._PointJob(s)(item)
+        total = time.process_time() - t0
+    finally:
+        storm_section.call_literal = call0
+        sc.point_kinematics = kin0
+    return {
+        "total": total,
+        "kernel": kernel[0],
+        "synth": synth[0],
+        "storms": row["storms"],
+        "row": row,
+    }
+
+
+def overhead(args: argparse.Namespace, s: CurveSettings, one: dict[str, float]) -> None:
+    """Print the per-storm overhead figures against the physics (module docstring)."""
+    soil, k, m = args.soils[0], args.K[0], args.M[0]
+    item = (soil, k, m, 0.003, "L_10")
+    split = _in_worker_split(item, s)
+    storms = max(int(split["storms"]), 1)
+    row = split.pop("row")
+    job = sc._PointJob(s)
+    task_b = _task_bytes(job, item)
+    result_b = len(pickle.dumps([row]))
+    kernel = split["kernel"] / storms  # CPU s per storm in the kernel (the physics)
+    cpu1 = one["cpu"] / one["storms"]  # worker CPU s per storm in the 1-worker sweep
+    per_point = one["storms"] / one["points"]  # storms per task in the measured sweep
+    print(f"per-storm overhead (1 point in this process: {soil}, K={k:g}, M={m:g}, L_10):")
+    print(
+        f"  physics: storm kernel {kernel * 1e3:.1f} ms CPU/storm ({storms} storms), storm"
+        f" synthesis {split['synth'] / storms * 1e3:.1f} ms CPU/storm; the sweep's workers"
+        f" {cpu1 * 1e3:.1f} ms CPU/storm"
+    )
+    py = split["total"] - split["kernel"] - split["synth"]
+    print(
+        f"  in-worker Python around the kernel: {py / storms * 1e3:.2f} ms CPU/storm"
+        f" = {py / split['kernel']:.1%} of the kernel time"
+    )
+    print(
+        f"  task sent to a worker: {task_b:,} B/point = {task_b / per_point:,.0f} B/storm;"
+        f" result returned: {result_b:,} B/point = {result_b / per_point:,.0f} B/storm"
+        f" ({per_point:.1f} storms per point in the sweep)"
+    )
+    gap = one["wall"] / one["storms"] - cpu1
+    print(
+        f"  wall - worker CPU on 1 worker: {gap * 1e3:.2f} ms/storm = {gap / cpu1:.1%} of the"
+        " worker CPU per storm (an upper bound of scheduling + transfer: the cluster start and"
+        " any wait for a core under other processes' load count here too)"
+    )
+    n_tasks = int(one["points"])
+    t0 = time.perf_counter()
+    with dask_client(n_workers=1) as c:
+        pm = ParallelMap(c, batch_size=1)
+        echo = _Echo(s, row)
+        pm(echo, [item])  # warm: the worker imports onbottom once
+        start = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        pm(echo, [item] * n_tasks)
+        noop = time.perf_counter() - t0
+    per_task = noop / n_tasks
+    print(
+        f"  scheduling + transfer, no-op tasks of the same sizes through ParallelMap:"
+        f" {per_task * 1e3:.2f} ms/task wall = {per_task / per_point * 1e3:.3f} ms/storm"
+        f" = {per_task / per_point / cpu1:.2%} of the worker CPU per storm ({n_tasks} tasks)"
+    )
+    print(
+        f"  cluster start and first task (once per sweep): {start:.2f} s ="
+        f" {start / one['storms'] * 1e3:.2f} ms/storm over the {one['storms']:.0f} storms above"
+    )
 
 
 def main() -> None:
@@ -51,6 +179,7 @@ def main() -> None:
     )
     times = {}
     cpus = {}
+    one: dict[str, float] = {}
     for w in args.workers:
         load0 = os.getloadavg()[0]
         t0 = time.perf_counter()
@@ -61,6 +190,11 @@ def main() -> None:
         times[w] = wall
         cpu = float(ds.attrs["cpu_time_s"])
         cpus[w] = cpu / storms
+        if w == 1:
+            points = (
+                ds.sizes["soil"] * ds.sizes["N"] * ds.sizes["M"] * ds.sizes["K"] * len(sc.CRITERIA)
+            )
+            one = {"wall": wall, "cpu": cpu, "storms": storms, "points": points}
         print(
             f"{w} worker(s): {storms} storms in {wall:.1f} s ({compute:.1f} s in the map),"
             f" {storms / wall * 3600:,.0f} storms/h, {wall / storms:.3f} s/storm;"
@@ -85,6 +219,8 @@ def main() -> None:
             f"CPU-time efficiency (CPU s/storm on 1 worker / on 2 workers): {ceff:.0%}"
             " (the overhead of distribution alone, independent of other processes' load)"
         )
+    if one:
+        overhead(args, s, one)
     la = os.getloadavg()
     cores = os.cpu_count()
     print(f"load average (1, 5, 15 min): {la[0]:.2f} {la[1]:.2f} {la[2]:.2f} on {cores} cores")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onbottom.dynamics.driver import Recorder, drive, progress_bar
+from onbottom.dynamics.driver import Recorder, SpillRecorder, drive, progress_bar
 from onbottom.dynamics.status import Status
 
 
@@ -56,3 +56,29 @@ def test_a_final_status_runs_nothing_and_bar_fills():
     assert bar.n == bar.total
     with progress_bar(False, 10, "x", "chunk") as none:
         assert none is None
+
+
+def test_spill_recorder_hands_on_every_row_once_and_asks_each_chunk_end_once():
+    advance, clock = _fake_kernel(t_end=1.0, dt=0.01)
+    spilled = []
+    seen = []
+    rec = SpillRecorder(lambda rows: spilled.append(rows.copy()), np.zeros((8, 1)))
+
+    def after(status):
+        seen.append((status, sum(len(x) for x in spilled)))
+
+    ends = []
+
+    def chunk_end(k):
+        ends.append(k)
+        return 0.25 * k
+
+    status = drive(advance, chunk_end, recorder=rec, after_chunk=after)
+    assert status == Status.END and ends == [1, 2, 3, 4]
+    # a full buffer calls the kernel again towards the same chunk end
+    assert len(clock["calls"]) > 4 and {c[0] for c in clock["calls"]} == {0.25, 0.5, 0.75, 1.0}
+    rows = np.concatenate(spilled)[:, 0]
+    np.testing.assert_allclose(rows, 0.01 * np.arange(1, 101), rtol=1e-12)
+    assert rec.rows.shape[0] == 8 and max(len(x) for x in spilled) == 8  # reused, not grown
+    # every row of a chunk is handed on before after_chunk sees the chunk's end
+    assert [n for _, n in seen] == [25, 50, 75, 100]

@@ -41,3 +41,31 @@ def test_files_of_0_1_read():
     assert read_status({"status": 3, "after_limit": "runaway_end"}) is Status.RUNAWAY_END
     assert read_status({"status": 3}) is Status.LIFTOFF  # a storm-section file
     assert read_status({"status": -3, "after_limit": "stop"}) is Status.OUTSIDE_VALIDITY
+
+
+def test_one_message_per_status():
+    assert set(S.MESSAGES) == set(Status)
+    assert len(set(S.MESSAGES.values())) == len(Status)  # no two statuses read alike
+    assert S.status_message(Status.END, run="storm") == "reached the end of the storm"
+    assert S.status_message(2, "10D at t = 812.4 s") == (
+        "runaway: stopped at the displacement limit (10D at t = 812.4 s)"
+    )
+    # the reason of an outside-validity flag follows a colon; an unknown number still reads
+    assert S.status_message(-3, "lift-off").startswith("outside the model's validity: lift-off")
+    assert S.status_message(42) == "status 42"
+
+
+def test_docs_table_is_the_message_table():
+    from pathlib import Path
+
+    text = (Path(__file__).parents[2] / "docs" / "conventions.md").read_text(encoding="utf-8")
+    rows = [r for r in text.splitlines() if r.startswith("| ") and "| `" in r]
+    seen = {}
+    for r in rows:
+        cells = [c.strip() for c in r.strip("|").split("|")]
+        if len(cells) == 5 and cells[1].strip("`") in Status.__members__:
+            seen[Status[cells[1].strip("`")]] = (cells[3], int(cells[4]))
+    internal = {Status.CHUNK, Status.BUFFER_FULL}
+    assert set(seen) == set(Status) - internal
+    for st, (message, exit_status) in seen.items():
+        assert message == S.MESSAGES[st] and exit_status == st.exit_code, st

@@ -23,15 +23,22 @@ import numpy as np
 import xarray as xr
 
 from onbottom._jit import call_literal
-from onbottom._validate import in_range, one_of, positive
+from onbottom._validate import one_of, positive
 from onbottom.dynamics import _section_kernel as K
+from onbottom.dynamics._settings import check_chunks, check_newton, check_steps
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
 from onbottom.dynamics.programmes import LoadProgramme
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    SolverResult,
+    penetration_limit,
+    penetration_reason,
+    records_dataset,
+    run_outcome,
+)
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
-from onbottom.results import annotate, provenance
+from onbottom.results import provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = ["SectionResult", "SolverSettings", "section_mass", "simulate_section"]
@@ -43,13 +50,6 @@ _AFTER = {
     "stop": K.AFTER_STOP,
     "runaway_end": K.AFTER_RUNAWAY_END,
     "continue": K.AFTER_CONTINUE,
-}
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the load programme",
-    K.STATUS_LIMIT: "reached the displacement limit (terminal event)",
-    K.STATUS_RUNAWAY_END: "reached the displacement limit; ran on until the pipe stopped",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
 }
 
 
@@ -102,24 +102,12 @@ class SolverSettings:
     chunks: int = 20
 
     def __post_init__(self) -> None:
-        one_of("SolverSettings.integrator", self.integrator, _SCHEMES)
-        if self.dt_max is not None:
-            positive("SolverSettings.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            positive("SolverSettings.dt_min", self.dt_min)
-        positive("SolverSettings.max_displacement_increment", self.max_displacement_increment)
-        in_range(
-            "SolverSettings.force_tolerance",
-            self.force_tolerance,
-            0.0,
-            1e-3,
-            low_inclusive=False,
-        )
-        if int(self.max_iterations) < 5 or int(self.chunks) < 1:
-            raise InputError(
-                f"SolverSettings.max_iterations = {self.max_iterations!r} / chunks ="
-                f" {self.chunks!r} are invalid: need max_iterations >= 5 and chunks >= 1"
-            )
+        c = "SolverSettings"
+        one_of(f"{c}.integrator", self.integrator, _SCHEMES)
+        check_steps(c, self.dt_max, self.dt_min)
+        positive(f"{c}.max_displacement_increment", self.max_displacement_increment)
+        check_newton(c, self.force_tolerance, 1e-3, self.max_iterations, 5)
+        check_chunks(c, self.chunks)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -172,27 +160,21 @@ STATUS_OUTSIDE_VALIDITY = int(Status.OUTSIDE_VALIDITY)
 """Status of a run that left its soil model's validity (e.g. penetration > D/2)."""
 
 
-def _records_to_dataset(rec: np.ndarray, attrs: Mapping[str, Any]) -> xr.Dataset:
-    names = {
-        "H": K.REC_H,
-        "V": K.REC_V,
-        "y": K.REC_U,  # lateral displacement (0.1: "u"; docs/conventions.md)
-        "y_dot": K.REC_UDOT,
-        "z": K.REC_W,  # penetration (0.1: "w")
-        "F_friction": K.REC_FF,
-        "F_passive": K.REC_FP,
-        "F_soil": K.REC_FS,
-        "work": K.REC_WORK,
-        "region": K.REC_REGION,
-        "soil_energy_stored": K.REC_E_STORED,
-        "soil_energy_dissipated": K.REC_E_DISSIPATED,
-    }
-    ds = xr.Dataset(
-        {k: ("time", np.ascontiguousarray(rec[:, i])) for k, i in names.items()},
-        coords={"time": np.ascontiguousarray(rec[:, K.REC_T])},
-        attrs=dict(attrs),
-    )
-    return annotate(ds)
+_REC_NAMES = {
+    "H": K.REC_H,
+    "V": K.REC_V,
+    "y": K.REC_U,  # lateral displacement (0.1: "u"; docs/conventions.md)
+    "y_dot": K.REC_UDOT,
+    "z": K.REC_W,  # penetration (0.1: "w")
+    "F_friction": K.REC_FF,
+    "F_passive": K.REC_FP,
+    "F_soil": K.REC_FS,
+    "work": K.REC_WORK,
+    "region": K.REC_REGION,
+    "soil_energy_stored": K.REC_E_STORED,
+    "soil_energy_dissipated": K.REC_E_DISSIPATED,
+}
+"""Recorded variables: kernel column of each."""
 
 
 def simulate_section(
@@ -294,11 +276,6 @@ def simulate_section(
         )
     n = recorder.n
     rec = recorder.records()
-    success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if status == K.STATUS_STEP_FAILED:
-        message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
-        logger.warning("simulate_section: %s", message)
     t_cross = float(dyn[K.D_T_CROSS]) if dyn[K.D_CROSSED] == 1.0 else None
     cycles = None
     if t_cross is not None and programme.cycle_period is not None:
@@ -312,26 +289,31 @@ def simulate_section(
     tp = tp[tp <= t_end + 1e-12]
     v_all = np.concatenate([vp, rec[:, K.REC_V]])
     t_all = np.concatenate([tp, rec[:, K.REC_T]])
-    if success and v_all.size and float(np.min(v_all)) <= 0.0:
+    z_lim = penetration_limit(soil)
+    outside = None
+    if v_all.size and float(np.min(v_all)) <= 0.0:
         i = int(np.argmin(v_all))
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: lift-off, the vertical load falls to"
-            f" {float(v_all[i]):.4g} N/m at t = {float(t_all[i]):.4g} s (the soil models hold"
-            f" for a pipe resting on the seabed, V > 0; {message})"
+        outside = (
+            f"lift-off, the vertical load falls to {float(v_all[i]):.4g} N/m at t ="
+            f" {float(t_all[i]):.4g} s; the soil models hold for a pipe resting on the seabed,"
+            " V > 0"
         )
-        logger.warning("simulate_section: %s", message)
-    d_soil = getattr(soil, "outer_diameter", None)
-    if success and d_soil is not None and float(np.max(w)) > 0.5 * float(d_soil):
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: penetration {float(np.max(w)):.4g} m exceeds D/2 ="
-            f" {0.5 * float(d_soil):.4g} m (the Verley & Sotberg sand models hold for z <= D/2;"
-            f" {message})"
+    elif float(np.max(w)) > z_lim:
+        i = int(np.argmax(w > z_lim))  # the first row beyond D/2
+        outside = penetration_reason(
+            z_lim,
+            float(rec[i, K.REC_T]),
+            f"y = {float(u[i]):.4g} m",
+            float(np.max(w)),
+            2.0 * z_lim,
+            f"the {soil.name} model",
         )
-        logger.warning("simulate_section: %s", message)
+    limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
+    detail = f"|y| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else ""
+    success, status, message = run_outcome(
+        logger, status, run="load programme", t=dyn[K.D_T], dt_min=dt_min, detail=detail,
+        outside=outside,
+    )  # fmt: skip
     summary = {
         "initial_penetration": float(w[0]),
         "max_penetration": float(np.max(w)),
@@ -359,7 +341,7 @@ def simulate_section(
     )
     if cycles is not None:
         prov["cycles_to_limit"] = cycles
-    data = _records_to_dataset(rec, prov)
+    data = records_dataset(rec, _REC_NAMES, K.REC_T, prov)
     return SectionResult(
         success=bool(success),
         status=int(status),

@@ -9,6 +9,10 @@ The centrifuge section (:func:`onbottom.dynamics.section.simulate_section`), the
 returned); negative: the run failed or left its model's validity (its numbers are kept but
 not valid). Table: docs/conventions.md, "Solver status".
 
+Every solver and the CLI word a run's end through one table, :data:`MESSAGES`, and
+:func:`status_message`: the line of the status, then the solver's detail (which limit, where
+and when) in parentheses — after a colon for :attr:`Status.OUTSIDE_VALIDITY`.
+
 Numbers kept from 0.1 where the solvers agreed (1, 2, −1, −2, −3, −4); 0.1's centrifuge
 section wrote 3 for "ran on until the pipe stopped" where the storm section wrote 3 for
 "lift-off": the section's code is 5 now; :func:`read_status` reads files of 0.1.
@@ -18,9 +22,18 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from enum import IntEnum
+from types import MappingProxyType
 from typing import Any
 
-__all__ = ["EXIT_INVALID_RESULT", "EXIT_OK", "Status", "exit_code", "read_status"]
+__all__ = [
+    "EXIT_INVALID_RESULT",
+    "EXIT_OK",
+    "MESSAGES",
+    "Status",
+    "exit_code",
+    "read_status",
+    "status_message",
+]
 
 EXIT_OK = 0
 """CLI exit status of a valid result."""
@@ -76,6 +89,50 @@ class Status(IntEnum):
 
 
 _SUCCESS = frozenset({Status.END, Status.LIMIT, Status.LIFTOFF, Status.RUNAWAY_END})
+
+MESSAGES: Mapping[Status, str] = MappingProxyType(
+    {
+        Status.CHUNK: "internal: the chunk ended",
+        Status.END: "reached the end of the {run}",
+        Status.LIMIT: "runaway: stopped at the displacement limit",
+        Status.LIFTOFF: "lift-off: the lift exceeded the submerged weight, the run stopped",
+        Status.BUFFER_FULL: "internal: the record buffer is full",
+        Status.RUNAWAY_END: "runaway: reached the displacement limit, ran on until the pipe"
+        " stopped",
+        Status.STEP_FAILED: "a time step did not converge at the smallest step",
+        Status.SOIL_NAN: "a soil kernel returned NaN (unknown model id or invalid state)",
+        Status.OUTSIDE_VALIDITY: "outside the model's validity",
+        Status.SINGULAR: "the Jacobian became singular (a mechanism: check the end conditions)",
+        Status.RAISED: "the run raised an exception",
+    }
+)
+"""The one line of each :class:`Status` (docs/conventions.md, "Solver status"); ``{run}`` is
+what the run went through: "load programme" (centrifuge section) or "storm"."""
+
+
+def status_message(status: int, detail: str = "", *, run: str = "run") -> str:
+    """The one-line message of a run that ended with ``status`` (:data:`MESSAGES`).
+
+    Parameters
+    ----------
+    status : int
+        A :class:`Status` code (an unknown number reads "status N").
+    detail : str
+        What only the solver knows: which limit, when, where (``"10D at t = 812.4 s"``);
+        appended in parentheses, or after a colon for :attr:`Status.OUTSIDE_VALIDITY` (the
+        detail is then the reason).
+    run : str
+        What the run went through, for :attr:`Status.END`: "load programme" or "storm".
+    """
+    try:
+        st = Status(int(status))
+    except ValueError:
+        base = f"status {int(status)}"
+    else:
+        base = MESSAGES[st].format(run=run)
+        if detail and st == Status.OUTSIDE_VALIDITY:
+            return f"{base}: {detail}"
+    return f"{base} ({detail})" if detail else base
 
 
 def exit_code(status: int) -> int:

@@ -28,10 +28,18 @@ import xarray as xr
 from onbottom._jit import call_literal
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.dynamics import _storm_kernel as K
+from onbottom.dynamics._settings import check_chunks, check_newton, check_steps
 from onbottom.dynamics.driver import Recorder, drive, progress_bar
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    CRITERIA_OVER_D,
+    SolverResult,
+    dynamic_criteria,
+    penetration_limit,
+    penetration_reason,
+    records_dataset,
+    run_outcome,
+)
 from onbottom.dynamics.section import STATUS_OUTSIDE_VALIDITY
-from onbottom.dynamics.status import Status
 from onbottom.errors import InputError
 from onbottom.hydro.force_model import N_FORCE_STATE, ForceModel, MorisonLift, parameter_rows
 from onbottom.hydro.reductions import LoadReductions
@@ -39,7 +47,7 @@ from onbottom.hydro.storm_kinematics import StormKinematics, storm_kinematics
 from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.storm import Current, Storm
-from onbottom.results import annotate, provenance
+from onbottom.results import provenance
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = [
@@ -54,29 +62,7 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
-"""F109 dynamic lateral-stability criteria: displacement limits over D."""
-
 _LIFTOFF = {"free": K.LIFTOFF_FREE, "stop": K.LIFTOFF_STOP}
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the storm",
-    K.STATUS_LIMIT: "runaway: the displacement reached the stop limit",
-    K.STATUS_LIFTOFF: "lift-off: the lift exceeded the submerged weight (run stopped)",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "the soil kernel returned NaN (unknown model id or invalid state)",
-}
-
-
-def penetration_limit(soil: LateralResistanceModel) -> float:
-    """Penetration [m] beyond which a soil model is used outside its range (∞: no limit).
-
-    D/2 for the models that carry the pipe diameter (Verley & Sotberg: the power laws in z/D
-    are used for a pipe at most half buried, :data:`onbottom.soil.verley_sotberg`
-    ``Z_OVER_D_RANGE``; Verley & Lund likewise) — the rule of
-    :func:`onbottom.dynamics.section.simulate_section`; none for Coulomb friction.
-    """
-    d = getattr(soil, "outer_diameter", None)
-    return 0.5 * float(d) if d is not None else math.inf
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -122,25 +108,10 @@ class StormSolverSettings:
     chunks: int = 20
 
     def __post_init__(self) -> None:
-        positive("StormSolverSettings.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            positive("StormSolverSettings.dt_min", self.dt_min)
-            if self.dt_min > self.dt_max:
-                raise InputError(
-                    f"StormSolverSettings.dt_min = {self.dt_min!r} is invalid: must be <="
-                    f" dt_max = {self.dt_max!r}"
-                )
-        positive(
-            "StormSolverSettings.max_displacement_increment_over_d",
-            self.max_displacement_increment_over_d,
-        )
-        in_range(
-            "StormSolverSettings.force_tolerance",
-            self.force_tolerance,
-            0.0,
-            1e-3,
-            low_inclusive=False,
-        )
+        c = "StormSolverSettings"
+        check_steps(c, self.dt_max, self.dt_min)
+        positive(f"{c}.max_displacement_increment_over_d", self.max_displacement_increment_over_d)
+        check_newton(c, self.force_tolerance, 1e-3, self.max_iterations, 5)
         in_range("StormSolverSettings.newmark_gamma", self.newmark_gamma, 0.5, 1.0)
         in_range(
             "StormSolverSettings.newmark_beta",
@@ -152,11 +123,7 @@ class StormSolverSettings:
         one_of("StormSolverSettings.liftoff", self.liftoff, _LIFTOFF)
         if self.record_interval is not None:
             non_negative("StormSolverSettings.record_interval", self.record_interval)
-        if int(self.max_iterations) < 5 or int(self.chunks) < 1:
-            raise InputError(
-                f"StormSolverSettings.max_iterations = {self.max_iterations!r} / chunks ="
-                f" {self.chunks!r} are invalid: need max_iterations >= 5 and chunks >= 1"
-            )
+        check_chunks(c, self.chunks)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -397,30 +364,28 @@ def simulate_storm_section(
             bar=bar,
         )
 
-    success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if status in (K.STATUS_STEP_FAILED, K.STATUS_SOIL_NAN):
-        message += f" (t = {dyn[K.D_T]:.6g} s, dt_min = {dt_min:.3g} s)"
-        logger.warning("simulate_storm_section: %s", message)
     ymax = float(dyn[K.D_YMAX])
-    runaway = status == K.STATUS_LIMIT
-    criteria = {
-        name: bool(ymax <= lim * d and not (runaway and s.stop_displacement_over_d <= lim))
-        for name, lim in CRITERIA_OVER_D.items()
-    }
-    if status == K.STATUS_LIMIT:
-        message += f" ({s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s)"
+    # a runaway stop, even one flagged outside the model's validity below, meets no criterion
+    # at or above its stop limit
+    criteria = dynamic_criteria(
+        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
+    )
     t_out = float(dyn[K.D_T_ZLIMIT])
-    if success and t_out >= 0.0:
-        success = False
-        status = STATUS_OUTSIDE_VALIDITY
-        message = (
-            f"outside the model's validity: penetration exceeded D/2 = {z_lim:.4g} m at"
-            f" t = {t_out:.1f} s (y = {dyn[K.D_Y_ZLIMIT]:.4g} m), largest"
-            f" {dyn[K.D_ZMAX]:.4g} m = {dyn[K.D_ZMAX] / d:.3g}D (the {soil.name} model holds"
-            f" for z <= D/2; the run went on: {message})"
-        )
-        logger.warning("simulate_storm_section: %s", message)
+    limit = f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
+    outside = None
+    if t_out >= 0.0:
+        y_out = f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m"
+        model = f"the {soil.name} model"
+        outside = penetration_reason(z_lim, t_out, y_out, float(dyn[K.D_ZMAX]), d, model)
+    success, status, message = run_outcome(
+        logger,
+        status,
+        run="storm",
+        t=float(dyn[K.D_T]),
+        dt_min=dt_min,
+        detail=limit if status == K.STATUS_LIMIT else "",
+        outside=outside,
+    )
     summary = {
         "n_steps": int(dyn[K.D_N_STEPS]),
         "n_rejected": int(dyn[K.D_N_REJECT]),
@@ -474,12 +439,7 @@ def simulate_storm_section(
             **fm.describe(),
             **(dict(attrs) if attrs else {}),
         )
-        data = xr.Dataset(
-            {k2: ("time", np.ascontiguousarray(rec[:, i])) for k2, i in _REC_NAMES.items()},
-            coords={"time": np.ascontiguousarray(rec[:, K.REC_T])},
-            attrs=prov,
-        )
-        data = annotate(data)
+        data = records_dataset(rec, _REC_NAMES, K.REC_T, prov)
     return StormSectionResult(
         success=bool(success),
         status=int(status),

@@ -23,6 +23,7 @@ import numpy as np
 from onbottom.dynamics.pipeline.solver import PipelineResult
 from onbottom.dynamics.pipeline.storm_run import PipelineStormRun, simulate_pipeline_storm
 from onbottom.errors import InputError
+from onbottom.dynamics.status import Status, status_message
 from onbottom.study.storm_seeds import STATUS_ERROR
 
 __all__ = [
@@ -93,7 +94,7 @@ class _SeedJob:
                 "seed": int(seed),
                 "status": STATUS_ERROR,
                 "success": False,
-                "message": f"{type(exc).__name__}: {exc}",
+                "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
                 "traceback": traceback.format_exc(limit=3),
             }
         return {"seed": int(seed), **r.to_dict()}

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from onbottom.dynamics.status import Status
+from onbottom.dynamics.status import Status, status_message
 from onbottom.dynamics.storm_section import (
     CRITERIA_OVER_D,
     STATUS_OUTSIDE_VALIDITY,
@@ -72,7 +72,7 @@ class _SeedJob:
                 "seed": int(seed),
                 "status": STATUS_ERROR,
                 "success": False,
-                "message": f"{type(exc).__name__}: {exc}",
+                "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
                 "traceback": traceback.format_exc(limit=3),
             }
         return {

@@ -25,7 +25,6 @@ import logging
 import math
 import os
 import shutil
-import tempfile
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -36,12 +35,20 @@ import xarray as xr
 
 from onbottom._jit import call_literal
 from onbottom._validate import in_range, integer, one_of, positive
-from onbottom.dynamics.driver import drive, progress_bar
+from onbottom.dynamics._settings import check_newton, check_steps
+from onbottom.dynamics.driver import SpillRecorder, drive, progress_bar
 from onbottom.dynamics.pipeline import _beam_kernel as B
 from onbottom.dynamics.pipeline import _pipeline_kernel as K
 from onbottom.dynamics.pipeline.model import PipelineModel
 from onbottom.dynamics.pipeline.user_load import kernel_settings as user_load_settings
-from onbottom.dynamics.result import SolverResult
+from onbottom.dynamics.result import (
+    CRITERIA_OVER_D,
+    SolverResult,
+    dynamic_criteria,
+    penetration_limit,
+    penetration_reason,
+    run_outcome,
+)
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro.force_model import N_FORCE_STATE, parameter_rows
@@ -50,6 +57,7 @@ from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
     annotate,
+    atomic_write,
     check_result_file,
     provenance,
 )
@@ -66,21 +74,9 @@ __all__ = [
 
 logger = logging.getLogger(__name__)
 
-CRITERIA_OVER_D: dict[str, float] = {"0.5D": 0.5, "10D": 10.0}
-"""F109 dynamic lateral-stability criteria: displacement limits over D (spec, "Dynamic
-criteria")."""
-
 _PREDICTOR = 0.0
 """Weight of Δt²·a_n in the Newton starting point (0: d_n + Δt v_n; 0.5, constant
 acceleration, needed more iterations in the benchmark storm)."""
-
-_STATUS_MESSAGES = {
-    K.STATUS_END: "reached the end of the storm",
-    K.STATUS_LIMIT: "runaway: a node reached the stop displacement",
-    K.STATUS_STEP_FAILED: "time step did not converge at the smallest step",
-    K.STATUS_SOIL_NAN: "a soil kernel returned NaN (unknown model id or invalid state)",
-    K.STATUS_SINGULAR: "the Jacobian became singular (mechanism: check the end conditions)",
-}
 
 FIELDS: dict[str, tuple[int, str, str]] = {
     "u_axial": (K.F_U, "axial displacement of the pipe", "m"),
@@ -163,12 +159,8 @@ class PipelineSettings:
     def __post_init__(self) -> None:
         c = "PipelineSettings"
         in_range(f"{c}.alpha", self.alpha, -1.0 / 3.0, 0.0)
-        positive(f"{c}.dt_max", self.dt_max)
-        if self.dt_min is not None:
-            in_range(f"{c}.dt_min", self.dt_min, 0.0, self.dt_max, low_inclusive=False)
-        if int(self.max_iterations) < 3:
-            raise InputError(f"{c}.max_iterations = {self.max_iterations!r} is invalid: >= 3")
-        in_range(f"{c}.force_tolerance", self.force_tolerance, 0.0, 1e-2, low_inclusive=False)
+        check_steps(c, self.dt_max, self.dt_min)
+        check_newton(c, self.force_tolerance, 1e-2, self.max_iterations, 3)
         positive(f"{c}.max_displacement_increment_over_d", self.max_displacement_increment_over_d)
         in_range(f"{c}.growth", self.growth, 1.0, 4.0)
         if self.stop_displacement_over_d is not None:
@@ -329,9 +321,8 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
 def _penetration_limit(model: PipelineModel) -> float:
     """D/2 when a section's soil model carries D (Verley & Sotberg, Verley & Lund; the rule of
     the section solvers), else ∞ (Coulomb)."""
-    if any(getattr(sec.model, "outer_diameter", None) is not None for sec in model.sections):
-        return 0.5 * model.pipe.outer_diameter
-    return math.inf
+    d = model.pipe.outer_diameter
+    return min(penetration_limit(sec.model, d) for sec in model.sections)
 
 
 def partial_path(output: str | os.PathLike) -> Path:
@@ -345,16 +336,13 @@ def _chunk_file(folder: Path, index: int) -> Path:
 
 
 def _write_npz_atomic(path: Path, **arrays: np.ndarray) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    """``arrays`` to ``path`` (npz) under a temporary name, then renamed (as every result)."""
+
+    def write(tmp: str) -> None:
         with open(tmp, "wb") as fh:
             np.savez(fh, **arrays)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+
+    atomic_write(path, write)
 
 
 class _Writer:
@@ -420,8 +408,6 @@ class _Writer:
     def finish(self, envelopes: xr.Dataset, attrs: Mapping[str, Any]) -> None:
         """Write the result file (temporary name, then rename)."""
         import h5netcdf
-
-        from onbottom.results import atomic_write
 
         self.commit()
         x = self.x
@@ -787,22 +773,27 @@ def simulate_pipeline(
     rec = np.zeros((per_chunk, K.N_FIELDS, n))
     rec_t = np.zeros(per_chunk)
 
+    def keep(t: np.ndarray, r: np.ndarray) -> None:
+        if writer is not None:
+            writer.append(t.copy(), r)
+        else:
+            mem_t.append(t.copy())
+            mem_r.append(r.copy())
+
+    # the kernel fills rec/rec_t from row 0 at each call: the driver spills them to ``keep``
+    recorder = SpillRecorder(keep, rec_t, rec)
+
     def advance(t_stop: float, _rows: np.ndarray, _n: int) -> tuple[int, int]:
-        while True:
-            m, status = call_literal(
-                K.integrate, 2, soil_id, force_id,
-                st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-                arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
-                arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
-            )  # fmt: skip
-            if writer is not None:
-                writer.append(rec_t[:m].copy(), rec[:m])
-            elif m:
-                mem_t.append(rec_t[:m].copy())
-                mem_r.append(rec[:m].copy())
-            # a full buffer returns STATUS_CHUNK before t_stop: continue the chunk
-            if status != K.STATUS_CHUNK or scal[K.SC_T] >= t_stop - 1e-9 * (1 + t_stop):
-                return 0, status
+        m, status = call_literal(
+            K.integrate, 2, soil_id, force_id,
+            st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
+            arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
+            arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+        )  # fmt: skip
+        # a full buffer returns STATUS_CHUNK before t_stop
+        if status == K.STATUS_CHUNK and scal[K.SC_T] < t_stop - 1e-9 * (1 + t_stop):
+            return m, Status.BUFFER_FULL
+        return m, status
 
     def after_chunk(status: int) -> None:
         if writer is not None:
@@ -823,6 +814,7 @@ def simulate_pipeline(
             status = drive(
                 advance,
                 lambda _k: min(float(scal[K.SC_T]) + s.chunk_duration, t_end),
+                recorder=recorder,
                 status=done,
                 bar=bar,
                 position=lambda: round(scal[K.SC_T]),
@@ -871,28 +863,24 @@ def simulate_pipeline(
         "n_factorisations": float(scal[K.SC_N_FACTOR]),
         "n_nodes": float(n),
     }
-    success = Status(status).success
-    message = _STATUS_MESSAGES.get(status, f"status {status}")
-    if not success:
-        message += f" (t = {scal[K.SC_T]:.6g} s, dt_min = {st[K.ST_DT_MIN]:.3g} s)"
-        logger.warning("simulate_pipeline: %s", message)
     z_node = int(scal[K.SC_ZLIMIT_NODE])
     summary["out_of_range_time"] = float(scal[K.SC_T_ZLIMIT])
     summary["out_of_range_node"] = float(z_node)
     summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
     summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
-    if success and z_node >= 0:
-        success = False
-        status = Status.OUTSIDE_VALIDITY
-        zmax = float(np.max(env[K.E_MAX_Z]))
-        message = (
-            f"outside the model's validity: penetration exceeded D/2 ="
-            f" {st[K.ST_Z_LIMIT]:.4g} m at t = {scal[K.SC_T_ZLIMIT]:.1f} s, node {z_node}"
-            f" (x = {x[z_node]:.4g} m); largest {zmax:.4g} m = {zmax / d:.3g}D at x ="
-            f" {x[int(np.argmax(env[K.E_MAX_Z]))]:.4g} m (the soil models hold for z <= D/2;"
-            f" the run went on: {message})"
-        )
-        logger.warning("simulate_pipeline: %s", message)
+    outside = None
+    if z_node >= 0:
+        k_z = int(np.argmax(env[K.E_MAX_Z]))
+        outside = penetration_reason(
+            float(st[K.ST_Z_LIMIT]), float(scal[K.SC_T_ZLIMIT]),
+            f"node {z_node}, x = {x[z_node]:.4g} m", float(env[K.E_MAX_Z, k_z]), d,
+            "the soil models", f"x = {x[k_z]:.4g} m",
+        )  # fmt: skip
+    success, status, message = run_outcome(
+        logger, status, run="storm", t=scal[K.SC_T], dt_min=st[K.ST_DT_MIN],
+        detail=_limit_detail(s, scal[K.SC_T_LIMIT], x[k_worst]) if stopped else "",
+        outside=outside,
+    )  # fmt: skip
     final_attrs = {
         "status": int(status),
         "message": message,
@@ -941,6 +929,11 @@ def simulate_pipeline(
     )
 
 
+def _limit_detail(s: PipelineSettings, t: float, x_worst: float) -> str:
+    """Which limit a stopped run reached, when, and where the largest |y| is."""
+    return f"{s.stop_displacement_over_d:g}D at t = {t:.1f} s; largest |y| at x = {x_worst:.4g} m"
+
+
 def _envelopes(x: np.ndarray, env: np.ndarray) -> xr.Dataset:
     return xr.Dataset(
         {
@@ -955,10 +948,8 @@ def _criteria(
     vmax: float, emax: float, d: float, stopped: bool, s: PipelineSettings
 ) -> dict[str, bool | None]:
     criteria: dict[str, bool | None] = {
-        k: bool(vmax <= f * d and not (stopped and s.stop_displacement_over_d is not None
-                                         and s.stop_displacement_over_d <= f))
-        for k, f in CRITERIA_OVER_D.items()
-    }  # fmt: skip
+        **dynamic_criteria(vmax, d, s.stop_displacement_over_d, stopped)
+    }
     criteria["strain"] = None if s.strain_limit is None else bool(emax <= s.strain_limit)
     return criteria
 
