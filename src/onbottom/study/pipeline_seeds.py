@@ -22,8 +22,8 @@ import numpy as np
 
 from onbottom.dynamics.pipeline.solver import PipelineResult
 from onbottom.dynamics.pipeline.storm_run import PipelineStormRun, simulate_pipeline_storm
-from onbottom.errors import InputError
 from onbottom.dynamics.status import Status, status_message
+from onbottom.errors import InputError
 from onbottom.study.storm_seeds import STATUS_ERROR
 
 __all__ = [
