@@ -97,3 +97,28 @@ def test_writes_table_fragments_and_netcdf(run, tmp_path):
     value = ds["hs_return_value"].sel(sector="omni").values
     np.testing.assert_allclose(value, run.rows[0].hs)
     assert all(math.isfinite(v) for v in value)
+
+
+def test_sector_without_storms_gets_notes_not_a_fragment():
+    d = synthetic_hindcast(years=10.0, seed=5)
+    hc = Hindcast(
+        time=d["time"],
+        hs=d["hs"],
+        tp=d["tp"],
+        wave_direction_deg=np.full(d["hs"].size, 10.0),  # every sea from N
+        current_speed=d["current_speed"],
+        current_direction_deg=d["current_direction_deg"],
+    )
+    r = run_metocean_analysis(hc, MetoceanOptions(sectors=4))
+    assert list(r.fragments) == ["omni", "N"] and r.success
+    # per sector, in the table's order: why it has no values, then why no fragment
+    assert r.notes[1:3] == [
+        "H_s E: 0 storms above u = inf (< 10)",
+        "no case_E.toml: sector E: too few storms for 10- and 100-year values (NaN in the table)",
+    ]
+    assert [n.split(":")[0] for n in r.notes[3:]] == [
+        "H_s S",
+        "no case_S.toml",
+        "H_s W",
+        "no case_W.toml",
+    ]
