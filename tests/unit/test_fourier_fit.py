@@ -66,6 +66,10 @@ def test_fit_recovers_known_coefficients_without_current():
     # stated tolerance: 1e-8 (crossing times by a cubic, peaks by a parabola: O(Δt⁴))
     np.testing.assert_allclose(fit.rows[0.0], _known(8.0, 0.0, n), atol=1e-8)
     assert fit.rms < 1e-8
+    summary = fit.summary()  # the --json row of onbottom fourier-fit
+    assert summary["half_cycles"] == 7 and summary["K"] == fit.keulegan_carpenter
+    assert (summary["M"], summary["U_m"], summary["T"]) == (0.0, fit.amplitude, fit.period)
+    assert summary["rms"] == fit.rms
 
 
 def test_fit_recovers_known_coefficients_with_current():

@@ -15,7 +15,7 @@ from onbottom._lazy import attach
 if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
     from onbottom.calibration.fit import CalibrationResult, calibrate, grid_search, misfit_slices
     from onbottom.calibration.objective import HISTORY_ONLY, Misfit, MisfitWeights, evaluate_misfit
-    from onbottom.calibration.parameters import Parameter
+    from onbottom.calibration.parameters import Parameter, calcareous_parameters
     from onbottom.calibration.records import (
         TestRecord,
         load_record,
@@ -23,7 +23,7 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         save_record,
     )
     from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
-    from onbottom.calibration.summary import fit_each, parameter_table, recommend
+    from onbottom.calibration.summary import fit_each, parameter_table, recommend, write_fits
 
 __all__ = [
     "HISTORY_ONLY",
@@ -34,6 +34,7 @@ __all__ = [
     "Parameter",
     "RecordedLoadSimulator",
     "TestRecord",
+    "calcareous_parameters",
     "calibrate",
     "evaluate_misfit",
     "fit_each",
@@ -44,6 +45,7 @@ __all__ = [
     "recommend",
     "record_from_result",
     "save_record",
+    "write_fits",
 ]
 
 __getattr__, __dir__ = attach(
@@ -61,7 +63,7 @@ __getattr__, __dir__ = attach(
             "MisfitWeights",
             "evaluate_misfit",
         ),
-        "onbottom.calibration.parameters": ("Parameter",),
+        "onbottom.calibration.parameters": ("Parameter", "calcareous_parameters"),
         "onbottom.calibration.records": (
             "TestRecord",
             "load_record",
@@ -76,6 +78,7 @@ __getattr__, __dir__ = attach(
             "fit_each",
             "parameter_table",
             "recommend",
+            "write_fits",
         ),
     },
 )

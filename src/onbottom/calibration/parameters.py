@@ -8,7 +8,27 @@ from dataclasses import dataclass
 from onbottom._validate import finite
 from onbottom.errors import InputError
 
-__all__ = ["Parameter", "parameters_from_mapping"]
+__all__ = [
+    "CALCAREOUS_BOUNDS",
+    "CALCAREOUS_START",
+    "Parameter",
+    "calcareous_parameters",
+    "parameters_from_mapping",
+]
+
+CALCAREOUS_START: Mapping[str, float] = {"A": 0.25, "B": 0.35, "C": 0.98, "mu": 0.6}
+"""Start values of the calcareous Verley & Sotberg fit: Youssef & Cassidy (2014) Table 3
+(μ: middle of the tests' 0.48–0.85)."""
+
+CALCAREOUS_BOUNDS: Mapping[str, tuple[float, float]] = {
+    "A": (0.05, 1.0),
+    "B": (0.05, 1.0),
+    "C": (0.5, 1.5),
+    "mu": (0.4, 1.2),
+    "gamma": (4.0e3, 10.0e3),
+}
+"""Search bounds: μ as searched by Youssef & Cassidy (2014) (0.4–1.2); A, B, C around their
+Table 2's spread; γ' [N/m³] 4–10 kN/m³."""
 
 
 @dataclass(frozen=True, kw_only=True, slots=True)
@@ -96,3 +116,74 @@ def parameters_from_mapping(
             )
         )
     return tuple(out)
+
+
+def calcareous_parameters(
+    vary: Sequence[str],
+    *,
+    bounds: Mapping[str, Sequence[float]] | None = None,
+    start: Mapping[str, float] | None = None,
+    gamma: float | None = None,
+) -> tuple[Parameter, ...]:
+    """The parameters of a calcareous Verley & Sotberg fit (``onbottom calibrate``).
+
+    Parameters
+    ----------
+    vary : sequence of str
+        Names to fit, among ``A``, ``B``, ``C``, ``mu`` [-] and ``gamma`` (γ' [N/m³]); the
+        others are fixed at their start values.
+    bounds : mapping or None
+        ``{name: (lower, upper)}`` over :data:`CALCAREOUS_BOUNDS`.
+    start : mapping or None
+        Start (or fixed) values over :data:`CALCAREOUS_START`; a start value of a varied
+        parameter outside its bounds is moved onto the nearer bound, and a fixed one widens
+        its bounds to include it.
+    gamma : float or None
+        γ' [N/m³]: the start (or fixed) value of ``gamma`` unless ``start`` names it; without
+        either, ``gamma`` is a parameter only when varied (start: middle of its bounds).
+
+    Returns
+    -------
+    tuple of Parameter
+        ``A``, ``B``, ``C``, ``mu`` (and ``gamma``), units ``"1"`` (``gamma``: ``"N/m3"``).
+    """
+    known = set(CALCAREOUS_BOUNDS)
+    names = list(vary)
+    bad = [n for n in names if n not in known]
+    if bad:
+        raise InputError(f"vary names {bad} are invalid: must be among {sorted(known)}")
+    if not names:
+        raise InputError(f"vary = {names!r} is invalid: name at least one of {sorted(known)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"vary = {names!r} is invalid: a name is repeated")
+    for what, given in (("bounds", bounds or {}), ("start", start or {})):
+        for k in given:
+            if k not in known:
+                raise InputError(f"{what} {k!r} is invalid: must be among {sorted(known)}")
+    b = {k: (float(v[0]), float(v[1])) for k, v in CALCAREOUS_BOUNDS.items()}
+    for k, (lo, hi) in (bounds or {}).items():
+        if not lo < hi:
+            raise InputError(f"bounds {k} = ({lo:g}, {hi:g}) is invalid: lower must be below upper")
+        b[k] = (lo, hi)
+    s = dict(CALCAREOUS_START)
+    if gamma is not None:
+        s["gamma"] = gamma
+    s.update(start or {})
+    if "gamma" in names and "gamma" not in s:
+        s["gamma"] = 0.5 * (b["gamma"][0] + b["gamma"][1])
+    params = []
+    for name, value in s.items():
+        lo, hi = b.get(name, (value - abs(value), value + abs(value)))
+        if name in names:
+            value = min(max(value, lo), hi)
+        params.append(
+            Parameter(
+                name=name,
+                value=value,
+                lower=min(lo, value),
+                upper=max(hi, value),
+                vary=name in names,
+                units="N/m3" if name == "gamma" else "1",
+            )
+        )
+    return tuple(params)

@@ -38,6 +38,7 @@ __all__ = [
     "recommend",
     "to_csv",
     "to_markdown",
+    "write_fits",
 ]
 
 RULES = ("min", "max", "mean", "median", "range")
@@ -177,3 +178,29 @@ def to_csv(
     if path is not None:
         Path(path).write_text(text, encoding="utf-8")
     return text
+
+
+def write_fits(results: Sequence[CalibrationResult], path: str | os.PathLike) -> list[Path]:
+    """Write each fit as TOML (:meth:`CalibrationResult.to_toml`), atomically.
+
+    One result goes to ``path`` itself; several (``onbottom calibrate --each``) to
+    ``<stem>_<record><suffix>`` beside it, the record name with every character other than a
+    letter or digit made ``_``, and ``_<n>`` (its 1-based position) added when two records give
+    one name, so that no fit overwrites another. Returns the paths written, in order.
+    """
+    from onbottom.results import write_text_atomic
+
+    out = Path(path)
+    if len(results) == 1:
+        return [write_text_atomic(out, results[0].to_toml())]
+    written = []
+    used: set[str] = set()
+    for i, res in enumerate(results):
+        tag = "".join(ch if ch.isalnum() else "_" for ch in res.record_names[0])
+        if tag in used:  # two records of one name: never overwrite a fit
+            tag = f"{tag}_{i + 1}"
+        used.add(tag)
+        written.append(
+            write_text_atomic(out.with_name(f"{out.stem}_{tag}{out.suffix}"), res.to_toml())
+        )
+    return written

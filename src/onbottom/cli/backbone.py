@@ -10,7 +10,6 @@ import warnings
 from pathlib import Path
 
 import click
-import numpy as np
 
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
@@ -154,7 +153,7 @@ def command(
         check_output_path(plot_path, field="--plot")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        payload = _run(
+        payload, validity = _run(
             variant,
             diameter,
             weight_kn,
@@ -169,7 +168,6 @@ def command(
         )
     messages = list(dict.fromkeys(str(w.message) for w in caught))
     payload["warnings"] = messages
-    validity = _validity(payload, diameter)
     payload["success"] = not validity
     payload["message"] = (
         "outside the model's validity: " + "; ".join(validity) if validity else "ok"
@@ -186,21 +184,6 @@ def command(
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
 
 
-def _validity(payload: dict, d: float) -> list[str]:
-    """Where the result leaves the Verley & Sotberg model's validity (penetration > D/2)."""
-    out = []
-    pts = payload["backbone"]
-    for key in ("z_i", "z2", "z3"):
-        z = float(pts[key])
-        if z > 0.5 * d:
-            out.append(f"{key} = {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
-    path = payload.get("path")
-    if path is not None and float(path["final_penetration"]) > 0.5 * d:
-        z = float(path["final_penetration"])
-        out.append(f"the path's penetration {z:.4g} m exceeds D/2 = {0.5 * d:.4g} m")
-    return out
-
-
 def _run(
     variant: str,
     diameter: float,
@@ -213,51 +196,34 @@ def _run(
     cycles: float | None,
     amplitude: float | None,
     plot_path: Path | None,
-) -> dict:
-    from onbottom.soil.response import cyclic_path, path_response
-    from onbottom.soil.verley_sotberg import VerleySotberg
+) -> tuple[dict, list[str]]:
+    """Options in kN → SI, :func:`onbottom.soil.backbone.backbone_run`, the plots; returns the
+    payload and the validity notes."""
+    from onbottom.soil.backbone import backbone_run
 
     v = weight_kn * _KN
-    pipe = Pipe(outer_diameter=diameter, submerged_weight=v)
-    sand = Sand(submerged_unit_weight=gamma_kn * _KN, friction_coefficient=mu)
-    factors = {name: val for name, val in abc.items() if val is not None}
-    w = None if load_kn is None else load_kn * _KN
-    build = {"silica": VerleySotberg.silica, "f109": VerleySotberg.f109}.get(variant)
-    if build is None:
-        model = VerleySotberg.calcareous(pipe, sand, installation_load=w, **factors)
-    else:
-        model = build(pipe, sand, installation_load=w, **factors)
-    z2 = None if z2_over_d is None else z2_over_d * diameter
-    pts = model.backbone_points(v, z2)
-
-    payload: dict = {
-        "model": variant,
-        "parameters": dict(model.parameters()),
-        "vertical_load": v,
-        "backbone": pts,
-    }
-    ds = None
-    if cycles is not None:
-        amp = 0.1 * diameter if amplitude is None else amplitude
-        ds = path_response(model, cyclic_path(amp, cycles), v)
-        payload["path"] = {
-            "amplitude": amp,
-            "cycles": cycles,
-            "final_penetration": float(ds["z"].values[-1]),
-            "max_resistance": float(np.max(np.abs(ds["F_soil"].values))),
-            "final_work": float(ds["work"].values[-1]),
-        }
+    run = backbone_run(
+        variant,
+        Pipe(outer_diameter=diameter, submerged_weight=v),
+        Sand(submerged_unit_weight=gamma_kn * _KN, friction_coefficient=mu),
+        installation_load=None if load_kn is None else load_kn * _KN,
+        factors=abc,
+        penetration=None if z2_over_d is None else z2_over_d * diameter,
+        cycles=cycles,
+        amplitude=amplitude,
+    )
+    payload = run.as_dict()
     if plot_path is not None:
         from onbottom.plotting.backbone import plot_backbone, plot_path_response
 
         title = f"Verley & Sotberg ({variant}), V = {weight_kn:g} kN/m"
-        plot_backbone(pts, diameter=diameter, title=title).savefig(plot_path, dpi=150)
+        plot_backbone(run.points, diameter=diameter, title=title).savefig(plot_path, dpi=150)
         payload["plots"] = [str(plot_path)]
-        if ds is not None:
+        if run.path is not None:
             p2 = plot_path.with_name(plot_path.stem + "_path" + plot_path.suffix)
-            plot_path_response(ds, diameter=diameter).savefig(p2, dpi=150)
+            plot_path_response(run.path, diameter=diameter).savefig(p2, dpi=150)
             payload["plots"].append(str(p2))
-    return payload
+    return payload, run.validity()
 
 
 def _print_table(payload: dict, d: float) -> None:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from onbottom.calibration.parameters import CALCAREOUS_BOUNDS, CALCAREOUS_START
 from onbottom.cli._common import (
     EXIT_INVALID_RESULT,
     Number,
@@ -17,16 +18,10 @@ from onbottom.cli._common import (
 )
 from onbottom.errors import InputError
 
-DEFAULT_START = {"A": 0.25, "B": 0.35, "C": 0.98, "mu": 0.6}
-"""Start values: Youssef & Cassidy (2014) Table 3 (μ: middle of the tests' 0.48–0.85)."""
-DEFAULT_BOUNDS = {
-    "A": (0.05, 1.0),
-    "B": (0.05, 1.0),
-    "C": (0.5, 1.5),
-    "mu": (0.4, 1.2),
-    "gamma": (4.0e3, 10.0e3),
-}
-"""Search bounds: μ as searched by the paper (0.4–1.2); A, B, C around Table 2's spread."""
+DEFAULT_START = CALCAREOUS_START
+"""Start values (:data:`onbottom.calibration.parameters.CALCAREOUS_START`)."""
+DEFAULT_BOUNDS = CALCAREOUS_BOUNDS
+"""Search bounds (:data:`onbottom.calibration.parameters.CALCAREOUS_BOUNDS`)."""
 
 
 def _pairs(text: str | None, option: str) -> dict[str, str]:
@@ -52,7 +47,9 @@ def _float(option: str, name: str, text: str) -> float:
 
 
 def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float | None):
-    from onbottom.calibration.parameters import Parameter
+    """Options → :func:`onbottom.calibration.parameters.calcareous_parameters` (the option
+    strings are parsed and checked here, so that errors name the option)."""
+    from onbottom.calibration.parameters import calcareous_parameters
 
     names = [n.strip() for n in vary.split(",") if n.strip()]
     known = set(DEFAULT_BOUNDS)
@@ -63,7 +60,7 @@ def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float |
         raise InputError(f"--vary = {vary!r} is invalid: name at least one of {sorted(known)}")
     if len(set(names)) != len(names):
         raise InputError(f"--vary = {vary!r} is invalid: a name is repeated")
-    b = {k: v for k, v in DEFAULT_BOUNDS.items()}
+    b: dict[str, tuple[float, float]] = {}
     for k, v in _pairs(bounds, "--bounds").items():
         if ":" not in v:
             raise InputError(f"--bounds {k}={v!r} is invalid: expected LOWER:UPPER")
@@ -73,31 +70,12 @@ def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float |
         b[k] = (_float("--bounds", k, lo), _float("--bounds", k, hi))
         if not b[k][0] < b[k][1]:
             raise InputError(f"--bounds {k}={v} is invalid: LOWER must be below UPPER")
-    s = dict(DEFAULT_START)
-    if gamma is not None:
-        s["gamma"] = gamma
+    s: dict[str, float] = {}
     for k, v in _pairs(start, "--start").items():
         if k not in known:
             raise InputError(f"--start {k}= is invalid: must be among {sorted(known)}")
         s[k] = _float("--start", k, v)
-    if "gamma" in names and "gamma" not in s:
-        s["gamma"] = 0.5 * (b["gamma"][0] + b["gamma"][1])
-    params = []
-    for name, value in s.items():
-        lo, hi = b.get(name, (value - abs(value), value + abs(value)))
-        if name in names:
-            value = min(max(value, lo), hi)
-        params.append(
-            Parameter(
-                name=name,
-                value=value,
-                lower=min(lo, value),
-                upper=max(hi, value),
-                vary=name in names,
-                units="N/m3" if name == "gamma" else "1",
-            )
-        )
-    return tuple(params)
+    return calcareous_parameters(names, bounds=b, start=s, gamma=gamma)
 
 
 def _weights(text: str | None):
@@ -199,7 +177,13 @@ def command(
     from onbottom.calibration.objective import HISTORY_ONLY
     from onbottom.calibration.records import load_record
     from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
-    from onbottom.calibration.summary import fit_each, parameter_table, recommend, to_markdown
+    from onbottom.calibration.summary import (
+        fit_each,
+        parameter_table,
+        recommend,
+        to_markdown,
+        write_fits,
+    )
 
     params = _parameters(vary, bounds, start, gamma)
     misfit_weights = HISTORY_ONLY if history_only else _weights(weights)
@@ -239,19 +223,7 @@ def command(
     else:
         results = run()
     if output:
-        from onbottom.results import write_text_atomic
-
-        out = Path(output)
-        if len(results) == 1:
-            write_text_atomic(out, results[0].to_toml())
-        else:
-            used: set[str] = set()
-            for i, res in enumerate(results):
-                tag = "".join(ch if ch.isalnum() else "_" for ch in res.record_names[0])
-                if tag in used:  # two records of one name: never overwrite a fit
-                    tag = f"{tag}_{i + 1}"
-                used.add(tag)
-                write_text_atomic(out.with_name(f"{out.stem}_{tag}{out.suffix}"), res.to_toml())
+        write_fits(results, output)
     if plot_dir:
         from onbottom.plotting.calibration import plot_fit
 

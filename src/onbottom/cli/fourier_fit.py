@@ -88,18 +88,7 @@ def command(runs, diameter, rho, harmonics, discard, source, out, as_json):
         "harmonics": table.harmonics,
         "K": table.k_grid.tolist(),
         "M": table.m_grid.tolist(),
-        "runs": [
-            {
-                "run": str(r),
-                "K": f.keulegan_carpenter,
-                "M": f.current_ratio,
-                "U_m": f.amplitude,
-                "T": f.period,
-                "half_cycles": sum(f.counts.values()),
-                "rms": f.rms,
-            }
-            for r, f in zip(runs, fits, strict=True)
-        ],
+        "runs": [{"run": str(r), **f.summary()} for r, f in zip(runs, fits, strict=True)],
     }
     if as_json:
         emit_json(payload)

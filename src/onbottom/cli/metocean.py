@@ -77,14 +77,13 @@ def run_metocean(
     figures: bool = True,
     report: bool = True,
 ) -> dict:
-    """Run the analysis and write the outputs; returns the JSON payload."""
+    """Run the analysis (:func:`onbottom.metocean.run.run_metocean_analysis`), write its files
+    (:func:`onbottom.metocean.run.write_metocean_outputs`), the figures and the report page;
+    returns the JSON payload."""
     import importlib.util
-    import math
     import time
 
     t0 = time.perf_counter()
-
-    import numpy as np
 
     from onbottom.errors import InputError
 
@@ -94,10 +93,9 @@ def run_metocean(
             f"onbottom metocean needs the optional package(s) {', '.join(missing)}:"
             " pip install 'onbottom[metocean]'"
         )
-    from onbottom.metocean.analysis import MetoceanOptions, analyse_hindcast
+    from onbottom.metocean.analysis import MetoceanOptions
     from onbottom.metocean.hindcast import read_hindcast
-    from onbottom.metocean.table import design_rows, design_table_csv, sector_toml
-    from onbottom.results import save_dataset, write_text_atomic
+    from onbottom.metocean.run import run_metocean_analysis, write_metocean_outputs
 
     if out.exists() and not out.is_dir():
         err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
@@ -113,44 +111,14 @@ def run_metocean(
         n_bootstrap=n_bootstrap,
         seed=seed,
     )
-    hc = read_hindcast(hindcast_path)
-    result = analyse_hindcast(hc, options)
-    rows = design_rows(result)
-    out.mkdir(parents=True, exist_ok=True)
-    files = [str(write_text_atomic(out / "design_table.csv", design_table_csv(rows)))]
-    notes: list[str] = []
-    if max(options.return_periods) > 4.0 * hc.years:
-        notes.append(
-            f"return periods up to {max(options.return_periods):g} years from a"
-            f" {hc.years:.1f}-year record: beyond about 4 times the record the values are"
-            " extrapolations (Coles 2001 §4.4); read the intervals"
-        )
-    f109 = 10.0 in return_periods and 100.0 in return_periods and hc.has_current
-    if not f109:
-        notes.append(
-            "no case_*.toml: the F109 combinations need the 10- and 100-year values and a"
-            " current in the hindcast"
-        )
-    for row in rows:
-        lv = result.hs[row.sector]
-        if lv.note:
-            notes.append(f"H_s {row.sector}: {lv.note}")
-        if result.current is not None and result.current[row.sector].note:
-            notes.append(f"current {row.sector}: {result.current[row.sector].note}")
-        if not f109:
-            continue
-        try:
-            text = sector_toml(
-                row,
-                source=str(hindcast_path),
-                pipe_heading_deg=pipe_heading_deg,
-                current_height=current_height,
-            )
-        except InputError as exc:
-            notes.append(f"no case_{row.sector}.toml: {exc}")
-            continue
-        files.append(str(write_text_atomic(out / f"case_{row.sector}.toml", text)))
-    files.append(str(save_dataset(result.to_dataset(), out / "metocean.nc")))
+    run = run_metocean_analysis(
+        read_hindcast(hindcast_path),
+        options,
+        source=str(hindcast_path),
+        pipe_heading_deg=pipe_heading_deg,
+        current_height=current_height,
+    )
+    files = [str(f) for f in write_metocean_outputs(run, out)]
     figs: dict[str, str] = {}
     if figures:
         import matplotlib.pyplot as plt
@@ -158,8 +126,8 @@ def run_metocean(
         from onbottom.plotting.metocean import plot_contours, plot_return_levels
 
         for name, fig in (
-            ("return_levels.png", plot_return_levels(result, title=hindcast_path.name)),
-            ("contours.png", plot_contours(result)),
+            ("return_levels.png", plot_return_levels(run.result, title=hindcast_path.name)),
+            ("contours.png", plot_contours(run.result)),
         ):
             fig.savefig(out / name, dpi=110)
             plt.close(fig)
@@ -169,7 +137,7 @@ def run_metocean(
         from onbottom.report.pages import metocean_sections, write_page
 
         sections, prov = metocean_sections(
-            result, rows, source=hindcast_path, figures=figs, notes=notes
+            run.result, run.rows, source=hindcast_path, figures=figs, notes=run.notes
         )
         page = write_page(
             out,
@@ -181,48 +149,7 @@ def run_metocean(
             run_time=time.perf_counter() - t0,
         )
         files.append(str(page))
-
-    def lst(x):
-        return None if x is None else [v if math.isfinite(v) else None for v in x]
-
-    return {
-        "success": bool(np.all(np.isfinite(result.hs["omni"].value))),
-        "hindcast": str(hindcast_path),
-        "years": hc.years,
-        "step_hours": hc.step_hours,
-        "sectors": result.sectors,
-        "return_periods": list(options.return_periods),
-        "ci_method": ci_method,
-        "confidence": confidence,
-        "table": [
-            {
-                "sector": r.sector,
-                "centre_deg": r.centre_deg if math.isfinite(r.centre_deg) else None,
-                **{
-                    k: lst(getattr(r, k))
-                    for k in (
-                        "hs",
-                        "hs_lower",
-                        "hs_upper",
-                        "tp",
-                        "tp_low",
-                        "tp_high",
-                        "current",
-                        "current_lower",
-                        "current_upper",
-                        "current_with_hs",
-                        "current_with_hs_p90",
-                    )
-                },
-            }
-            for r in rows
-        ],
-        "joint_model": result.joint.as_dict(),
-        "current_model": None if result.current_model is None else result.current_model.as_dict(),
-        "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
-        "files": files,
-        "notes": notes,
-    }
+    return run.as_dict(files)
 
 
 @click.command("metocean")

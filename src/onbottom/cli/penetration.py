@@ -17,18 +17,10 @@ from onbottom.cli._common import (
     json_option,
 )
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
-from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS, UndrainedModel1, UndrainedModel2
-from onbottom.soil.penetration_f114 import (
-    LayConditions,
-    penetration_curve,
-    solve_embedment,
-)
-from onbottom.soil.penetration_sand import (
-    DEPTH_FACTOR_COEFFICIENT,
-    N_GAMMA_METHODS,
-    DrainedBounds,
-    DrainedPenetration,
-)
+from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS
+from onbottom.soil.penetration_f114 import LayConditions
+from onbottom.soil.penetration_run import drained_estimates, penetration_run, undrained_model
+from onbottom.soil.penetration_sand import DEPTH_FACTOR_COEFFICIENT, N_GAMMA_METHODS, DrainedBounds
 
 __all__ = ["command"]
 
@@ -49,6 +41,8 @@ def _parse_levels(text: str) -> np.ndarray:
 
 
 def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
+    """Options (kN, kPa) → SI → :func:`onbottom.soil.penetration_run.drained_estimates` or
+    :func:`~onbottom.soil.penetration_run.undrained_model`."""
     d = opts["diameter"]
     gamma = opts["gamma_kn"] * _KN
     if opts["soil"] == "sand":
@@ -57,36 +51,28 @@ def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
                 "--phi-deg is required with --soil sand: best-estimate friction angle φ' [deg],"
                 " allowed 15–50"
             )
-        model = DrainedPenetration(
+        return drained_estimates(
             diameter=d,
             unit_weight=gamma,
             friction_angle_deg=opts["phi_deg"],
+            lower_friction_angle_deg=opts["phi_lower_deg"],
+            upper_friction_angle_deg=opts["phi_upper_deg"],
             n_gamma=opts["n_gamma"],
-            depth_factor_coefficient=opts["depth_coefficient"],
-        )
-        lower = opts["phi_lower_deg"] if opts["phi_lower_deg"] is not None else opts["phi_deg"]
-        upper = opts["phi_upper_deg"] if opts["phi_upper_deg"] is not None else opts["phi_deg"]
-        bounds = DrainedBounds.from_friction_angles(
-            diameter=d,
-            unit_weight=gamma,
-            lower_friction_angle_deg=lower,
-            upper_friction_angle_deg=upper,
             lower_n_gamma=opts["lower_n_gamma"],
             upper_n_gamma=opts["upper_n_gamma"],
             depth_factor_coefficient=opts["depth_coefficient"],
         )
-        return model, bounds
     if opts["su_kpa"] is None:
         raise InputError("--su-kpa = None is invalid: required for --soil clay [kPa]")
-    common = {
-        "diameter": d,
-        "su_mudline": opts["su_kpa"] * _KN,
-        "su_gradient": opts["su_gradient_kpa"] * _KN,
-        "unit_weight": gamma,
-    }
-    if opts["model"] == "1":
-        return UndrainedModel1(roughness=opts["roughness"], **common), None
-    return UndrainedModel2(**common), None
+    model = undrained_model(
+        opts["model"],
+        diameter=d,
+        su_mudline=opts["su_kpa"] * _KN,
+        su_gradient=opts["su_gradient_kpa"] * _KN,
+        unit_weight=gamma,
+        roughness=opts["roughness"],
+    )
+    return model, None
 
 
 @click.command("penetration")
@@ -217,38 +203,21 @@ def command(**opts: Any) -> None:
         warnings.simplefilter("always", OutOfRangeWarning)
         model, bounds = _build_models(opts)
         d = model.diameter
-        table = penetration_curve(model, levels * d, bounds=bounds)
-        embedment = None
-        validity: list[str] = []
-        if opts["load_kn"] is not None:
-            with warnings.catch_warnings(record=True) as at_solution:
-                warnings.simplefilter("always", OutOfRangeWarning)
-                try:
-                    embedment = solve_embedment(model, opts["load_kn"] * _KN, lay=lay)
-                except SolutionError as exc:
-                    exc.field = "--load-kn"  # type: ignore[attr-defined]
-                    raise
-            validity = list(dict.fromkeys(str(w.message) for w in at_solution))
-            for w in at_solution:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-            if not embedment.success:
-                validity.append(embedment.message)
-        curve = None
-        if opts["plot_path"] or opts["save_path"]:
-            zmax = max(0.5, float(levels.max()))
-            if embedment is not None:
-                zmax = max(zmax, min(1.0, 1.1 * embedment.z_over_d))
-            curve = penetration_curve(
-                model, bounds=bounds, embedment=embedment, n=201, z_over_d_max=zmax
+        try:
+            run = penetration_run(
+                model,
+                levels,
+                bounds=bounds,
+                load=None if opts["load_kn"] is None else opts["load_kn"] * _KN,
+                lay=lay,
+                curve=bool(opts["plot_path"] or opts["save_path"]),
             )
+        except SolutionError as exc:
+            exc.field = "--load-kn"  # type: ignore[attr-defined]
+            raise
     messages = list(dict.fromkeys(str(w.message) for w in caught))
-    emb: dict[str, Any] | None = None
-    if embedment is not None:
-        emb = embedment.as_dict()
-        if validity:
-            emb["success"] = False
-            emb["status"] = "outside_validity"
-            emb["message"] = "outside the model's validity at the solution: " + "; ".join(validity)
+    embedment, validity, curve = run.embedment, run.validity, run.curve
+    emb = run.embedment_dict()
 
     if curve is not None and opts["save_path"]:
         from onbottom.results import save_dataset
@@ -260,15 +229,7 @@ def command(**opts: Any) -> None:
         fig, _ = plot_penetration_curve(curve)
         fig.savefig(opts["plot_path"], dpi=150)
 
-    rows = {
-        "z_over_D": table["z_over_D"].values,
-        "z": table["z"].values,
-        "B": table["B"].values,
-        "Q_v": table["Q_v"].values,
-    }
-    if "Q_v_lower" in table:
-        rows["Q_v_lower"] = table["Q_v_lower"].values
-        rows["Q_v_upper"] = table["Q_v_upper"].values
+    rows = run.rows()
 
     if opts["as_json"]:
         payload: dict[str, Any] = {

@@ -49,19 +49,10 @@ def command(
     index.html that onbottom did not write (unless --force); an earlier report is replaced.
     """
     from onbottom.report.build import build_report
-    from onbottom.report.registry import Section, load_sections, missing_requirements
+    from onbottom.report.registry import section_catalogue
 
     if list_:
-        secs = load_sections()
-        rows = [
-            {
-                "name": s.name,
-                "title": s.title,
-                "slow": s.slow,
-                "available": isinstance(s, Section) and not missing_requirements(s),
-            }
-            for s in secs
-        ]
+        rows = section_catalogue()
         if as_json:
             emit_json({"sections": rows})
         else:

@@ -160,6 +160,18 @@ class RunFit:
     rms: float
     half_cycles: list[HalfCycle] = field(default_factory=list)
 
+    def summary(self) -> dict[str, float | int]:
+        """``K`` [-], ``M`` [-], ``U_m`` [m/s], ``T`` [s], ``half_cycles`` (the number
+        averaged over every M_h) and ``rms`` [-] of the run (``onbottom fourier-fit --json``)."""
+        return {
+            "K": self.keulegan_carpenter,
+            "M": self.current_ratio,
+            "U_m": self.amplitude,
+            "T": self.period,
+            "half_cycles": sum(self.counts.values()),
+            "rms": self.rms,
+        }
+
 
 def _crossing_time(t: np.ndarray, w: np.ndarray, i: int) -> float:
     """Zero of W between samples i and i+1: cubic through i−1..i+2 (linear at the ends)."""

@@ -30,6 +30,7 @@ __all__ = [
     "load_sections",
     "missing_requirements",
     "section",
+    "section_catalogue",
 ]
 
 SECTION_MODULES: tuple[str, ...] = (
@@ -176,3 +177,21 @@ def load_sections(
     for sec in REGISTRY.values():
         found[sec.name] = sec
     return sorted(found.values(), key=lambda s: (s.order, s.name))
+
+
+def section_catalogue(
+    sections: Iterable[Section | UnavailableSection] | None = None,
+) -> list[dict[str, str | bool]]:
+    """The report's sections as ``onbottom report --list`` shows them: ``name``, ``title``,
+    ``slow`` and ``available`` (its module imported and every module it ``requires``
+    importable). ``sections``: default :func:`load_sections`."""
+    secs = load_sections() if sections is None else sections
+    return [
+        {
+            "name": s.name,
+            "title": s.title,
+            "slow": s.slow,
+            "available": isinstance(s, Section) and not missing_requirements(s),
+        }
+        for s in secs
+    ]
