@@ -458,8 +458,12 @@ def _row(k: float, *, converged: bool) -> dict:
 
 
 def test_curve_points_report_bracket_spread_and_convergence():
-    from onbottom.cli.curves import _point
-    from onbottom.study.stability_curves import CurveSettings, _to_dataset, curves_table
+    from onbottom.study.stability_curves import (
+        CurveSettings,
+        _to_dataset,
+        curves_table,
+        point_summary,
+    )
 
     s = CurveSettings(tolerance=0.2)
     rows = [_row(10.0, converged=True), _row(25.0, converged=False)]
@@ -471,9 +475,9 @@ def test_curve_points_report_bracket_spread_and_convergence():
     assert table[0]["L_stable_L_low"] == 4.16 and table[0]["L_stable_L_high"] == 4.97
     assert table[0]["L_stable_converged"] is True and table[1]["L_stable_converged"] is False
     assert table[0]["L_stable_seed_min_high"] == pytest.approx(0.2)
-    line = _point(table[0])
+    line = point_summary(table[0])
     assert "[4.16, 4.97]" in line and "0.4-0.7 at L_low" in line
-    assert "NOT CONVERGED (bracket [1, 300])" in _point(table[1])
+    assert "NOT CONVERGED (bracket [1, 300])" in point_summary(table[1])
 
 
 def test_consistency_findings_report_in_the_api():

@@ -34,12 +34,13 @@ def one_section():
 
 
 def test_one_section_equals_stability_command(one_section, tmp_path):
-    from onbottom.cli.stability import evaluate_case
+    from onbottom.cases.stability import build_stability_inputs, load_stability_case
+    from onbottom.checks.evaluation import evaluate_stability
 
     case, a = one_section
     path = tmp_path / "section.json"
     path.write_text(json.dumps(case.stability_document(0)), encoding="utf-8")
-    ref = evaluate_case(path)
+    ref = evaluate_stability(build_stability_inputs(load_stability_case(path), path)).as_dict()
     s = a.sections[0]
     static = [c for c in s["checks"] if c["level"] in ("vertical", "absolute")]
     assert [(c["name"], c["combination"], c["utilisation"]) for c in static] == [

@@ -11,6 +11,8 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.storm` — ``onbottom storm`` (storm section), shared by the pipeline,
   curves, reliability and route cases;
 * :mod:`~onbottom.cases.section` — ``onbottom simulate`` (centrifuge section programmes).
+* :mod:`~onbottom.cases.curves` — ``onbottom curves`` (generalized-stability curves grid);
+* :mod:`~onbottom.cases.sweep` — ``onbottom sweep`` (grid files of registered functions);
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """

@@ -211,11 +211,6 @@ _FIELD_KEYS = {
     "MorisonLift.added_mass": "hydro.added_mass_coefficient",
 }
 
-#: Time-step rule of the storm solver (docs/theory/storm_section.md): a largest step above
-#: T_p/20 warns (the wave is resolved by fewer than 20 steps), above T_p/4 is refused.
-TIME_STEP_WARN_FRACTION = 1.0 / 20.0
-TIME_STEP_MAX_FRACTION = 1.0 / 4.0
-
 
 class _Keys:
     """Re-raise errors of the input objects under the case-file keys they came from."""
@@ -243,7 +238,8 @@ class _Keys:
 
 
 def _check_time_step(case: StormCase, chk: Checker) -> None:
-    """The largest step against the shortest peak period of the storm (see the constants)."""
+    """The largest step against the shortest peak period of the storm
+    (:func:`onbottom.inputs.consistency.time_step`)."""
     periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
     if case.storm.kind == "regular":
         periods = [(case.storm.period, "storm.period")]
@@ -254,21 +250,9 @@ def _check_time_step(case: StormCase, chk: Checker) -> None:
     if not periods:
         return
     tp, where = min(periods)
-    dt = case.storm.time_step
-    if dt > TIME_STEP_MAX_FRACTION * tp:
-        chk.fail(
-            "storm.time_step",
-            f"storm.time_step = {dt!r} s is invalid with T_p = {tp:g} s ({where}): it must be"
-            f" <= T_p/4 = {TIME_STEP_MAX_FRACTION * tp:.3g} s (T_p/20 ="
-            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s or less resolves the wave)",
-        )
-    if dt > TIME_STEP_WARN_FRACTION * tp:
-        chk.warn(
-            "storm.time_step",
-            f"storm.time_step = {dt:g} s is coarse for T_p = {tp:g} s ({where}): above T_p/20 ="
-            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s the result depends on the step; use"
-            " <= T_p/20",
-        )
+    chk.apply(
+        consistency.time_step(case.storm.time_step, tp, field="storm.time_step", source=where)
+    )
 
 
 def _check_durations_and_stop(case: StormCase, chk: Checker) -> None:
