@@ -413,7 +413,7 @@ def peak_duration(
     return [
         _err(
             field,
-            f"{field} = {p:g} is invalid: shorter than {MIN_PEAK_PERIODS:g} peak periods"
+            f"{field} = {shown} is invalid: shorter than {MIN_PEAK_PERIODS:g} peak periods"
             f" (T_p = {p:g} s): must be >= {need_shown} (F109 §3.5 asks for a 3-h storm;"
             " check the unit: hours)",
         )
