@@ -39,6 +39,7 @@ from onbottom.cases.stability import (
     SeabedTable,
     WavesTable,
     check_common_tables,
+    check_reference_height,
 )
 from onbottom.checks.absolute import seabed_roughness
 from onbottom.dynamics.storm_section import StormSolverSettings
@@ -282,7 +283,8 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     """Objects of a validated :class:`StormCase`.
 
     Engineering plausibility first (:func:`onbottom.cases.stability.check_common_tables`
-    on the shared tables and every sea state, the time-step rule, a trench no deeper than D);
+    on the shared tables and every sea state, the time-step rule, the current's reference
+    height above the seabed roughness, a trench no deeper than D);
     every error is a :class:`CaseFileError` naming the case-file key, its value and range.
     """
     where = "<case>" if path is None else path
@@ -311,6 +313,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
         section = case.pipe.section(rho)
         pipe = section if isinstance(section, Pipe) else section.pipe(case.pipe.condition)
         seabed = case.seabed.seabed()
+    check_reference_height(case, where, seabed)  # z_0 of F109 Table 3-1 when not given
     if case.seabed.trench_depth and case.seabed.trench_depth > pipe.outer_diameter:
         chk.fail(
             "seabed.trench_depth",
