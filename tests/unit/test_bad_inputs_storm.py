@@ -137,6 +137,14 @@ SECTION_ERRORS = [
     ),
     # H18: the time-step rule (docs/theory/storm_section.md): refused above T_p/4
     ("time-step-above-tp-over-4", "time_step = 0.1", "time_step = 5.0", "storm.time_step"),
+    # z_0 from d50 (F109 Table 3-1: 1e-5 m for fine sand) when [current] z0 is absent, as in
+    # `stability`: z_r below it was a runaway at t = 0 reported as a result
+    (
+        "current-reference-below-table-z0",
+        "reference_height = 1.0\ndirection_deg = 90.0\nz0 = 5.2e-6",
+        "reference_height = 1e-6\ndirection_deg = 90.0",
+        "current.reference_height",
+    ),
 ]
 _BUILDUP = "steel_outer_diameter = 0.2191\nwall_thickness = 0.0127\ncontents_density = 0.0\n"
 _SIMPLE_PIPE = (

@@ -211,7 +211,7 @@ GRID = {
 @FUZZ
 @given(data=st.data())
 def test_fuzz_sweep_grid_file(data):
-    from onbottom.cli.sweep import read_grid
+    from onbottom.cases.sweep import read_grid
 
     doc = _mutate(GRID, data)
     with tempfile.TemporaryDirectory() as tmp:
@@ -538,8 +538,7 @@ CURVES_CAMPAIGN = [
 )
 def test_fuzz_curves_case_files(data, change):
     """Curves case files, checked only (settings, peak duration, budget)."""
-    from onbottom._casefile import load_case_file
-    from onbottom.cli.curves import CurvesCase, _check_budget, _settings
+    from onbottom.cases.curves import build_curve_settings, check_budget, load_curves_case
 
     doc = copy.deepcopy(CURVES_CASE)
     doc["curves"][change[0]] = change[1]
@@ -549,9 +548,9 @@ def test_fuzz_curves_case_files(data, change):
         case = Path(tmp) / "c.toml"
         case.write_text(_toml(doc), encoding="utf-8")
         try:
-            cfg = load_case_file(case, CurvesCase)
-            settings = _settings(case, cfg)
-            _check_budget(cfg.curves, workers=2, force=False)
+            cfg = load_curves_case(case)
+            settings = build_curve_settings(cfg, case)
+            check_budget(cfg.curves, workers=2, force=False)
         except OnbottomError as exc:
             assert str(exc) and "np.float" not in str(exc)
             return

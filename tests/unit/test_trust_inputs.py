@@ -223,6 +223,30 @@ def test_storm_peak_shorter_than_a_few_periods_is_refused(tmp_path, capsys):
     assert "3 peak periods" in msg
 
 
+def test_peak_duration_message_names_hours():
+    (f,) = consistency.peak_duration(3.6, 20.0, field="storm.peak_hours")
+    assert f.error and f.message.startswith("storm.peak_hours = 0.001 h is invalid")
+    assert "T_p = 20 s" in f.message and ">= 0.0167 h" in f.message
+
+
+def test_time_step_rule_by_hand():
+    """One rule for the storm and curves cases: T_p = 10 s refuses a step above 2.5 s and
+    warns above 0.5 s (docs/theory/storm_section.md)."""
+    rule = consistency.time_step
+    assert rule(0.5, 10.0, field="dt", source="waves.tp") == []
+    (w,) = rule(2.5, 10.0, field="dt", source="waves.tp")
+    assert not w.error and w.category is OutOfRangeWarning and w.field == "dt"
+    assert w.message == (
+        "dt = 2.5 s is coarse for T_p = 10 s (waves.tp): above T_p/20 = 0.5 s the result"
+        " depends on the step; use <= T_p/20"
+    )
+    (e,) = rule(2.51, 10.0, field="dt", source="waves.tp")
+    assert e.error and "dt = 2.51 s is invalid with T_p = 10 s (waves.tp)" in e.message
+    assert "<= T_p/4 = 2.5 s" in e.message
+    assert consistency.TIME_STEP_MAX_FRACTION == 0.25
+    assert consistency.TIME_STEP_WARN_FRACTION == 0.05
+
+
 def test_fast_current_warns(tmp_path, capsys):
     text = (EXAMPLES / "stability_case.toml").read_text(encoding="utf-8")
     case = _write(tmp_path, _edit(text, "velocity = 0.35 ", "velocity = 9.5 "))
@@ -458,8 +482,12 @@ def _row(k: float, *, converged: bool) -> dict:
 
 
 def test_curve_points_report_bracket_spread_and_convergence():
-    from onbottom.cli.curves import _point
-    from onbottom.study.stability_curves import CurveSettings, _to_dataset, curves_table
+    from onbottom.study.stability_curves import (
+        CurveSettings,
+        _to_dataset,
+        curves_table,
+        point_summary,
+    )
 
     s = CurveSettings(tolerance=0.2)
     rows = [_row(10.0, converged=True), _row(25.0, converged=False)]
@@ -471,9 +499,9 @@ def test_curve_points_report_bracket_spread_and_convergence():
     assert table[0]["L_stable_L_low"] == 4.16 and table[0]["L_stable_L_high"] == 4.97
     assert table[0]["L_stable_converged"] is True and table[1]["L_stable_converged"] is False
     assert table[0]["L_stable_seed_min_high"] == pytest.approx(0.2)
-    line = _point(table[0])
+    line = point_summary(table[0])
     assert "[4.16, 4.97]" in line and "0.4-0.7 at L_low" in line
-    assert "NOT CONVERGED (bracket [1, 300])" in _point(table[1])
+    assert "NOT CONVERGED (bracket [1, 300])" in point_summary(table[1])
 
 
 def test_consistency_findings_report_in_the_api():

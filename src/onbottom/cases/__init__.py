@@ -17,6 +17,8 @@ built objects; only this package and ``cli`` read case files.
 * :mod:`~onbottom.cases.force` — a case's ``[hydro]`` table → a force model (storm-type cases).
 * :mod:`~onbottom.cases.dem` — DEM config files (JSON) of ``onbottom dem`` and ``dem-lammps``.
 * :mod:`~onbottom.cases.pipeline` — ``onbottom storm`` with a ``[pipeline]`` table (pipeline FE).
+* :mod:`~onbottom.cases.curves` — ``onbottom curves`` (generalized-stability curves grid);
+* :mod:`~onbottom.cases.sweep` — ``onbottom sweep`` (grid files of registered functions);
 
 Submodules are imported when used (``import onbottom.cases`` stays light).
 """

@@ -13,6 +13,10 @@ build-up form), ``[seabed]``, ``[environment]``, ``[waves]``, ``[current]``, ``[
 
 Tables used by other commands (``[storm]``, ``[solver]``, ``[run]``, ``[pipeline]``) are
 accepted here and validated by the commands that read them.
+
+Builders: :func:`build_stability_inputs` (the inputs of
+:func:`onbottom.checks.evaluation.evaluate_stability`) and :func:`build_loads_inputs` (those of
+:func:`onbottom.checks.loads.combination_loads`).
 """
 
 from __future__ import annotations
@@ -21,12 +25,17 @@ import math
 import os
 import warnings
 from pathlib import Path
-from typing import Any, Literal, NoReturn
+from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, find_line, load_case_file
-from onbottom.checks.design import penetration_outside_validity
+from onbottom.checks.design import CheckOptions
+from onbottom.checks.evaluation import (
+    DesignRequest,
+    StabilityInputs,
+    penetration_outside_validity,
+)
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.inputs import consistency
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -38,10 +47,17 @@ from onbottom.inputs.storm import Current, SeaState
 __all__ = [
     "Checker",
     "StabilityCase",
+    "build_loads_inputs",
+    "build_stability_inputs",
     "check_common_tables",
+    "check_reference_height",
     "load_stability_case",
     "penetration_outside_validity",
+    "unused_table_notes",
 ]
+
+if TYPE_CHECKING:
+    from onbottom.checks.loads import LoadsInputs
 
 Condition = Literal["installation", "flooded", "hydrotest", "operation"]
 
@@ -691,3 +707,125 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     chk = Checker(p, text)
     _check_section(case, chk)
     return case
+
+
+def check_reference_height(
+    case: StabilityCase, case_path: str | os.PathLike, seabed: Sand | Clay | Rock
+) -> None:
+    """[current] reference_height must lie above the seabed roughness z_0 (given, or F109
+    Table 3-1 from the seabed) — a case-file error naming the key (F109 Eq 3.3 log profile)."""
+    from onbottom.checks.absolute import seabed_roughness
+
+    c = case.current
+    z0 = c.z0 if c.z0 is not None else seabed_roughness(seabed)
+    if c.reference_height <= z0:
+        raise CaseFileError(
+            f"{case_path}: current.reference_height = {c.reference_height!r} m is invalid: not"
+            f" above the seabed roughness z_0 = {z0:g} m (F109 Table 3-1), where the"
+            " logarithmic current profile (F109 Eq 3.3) is undefined",
+            field="current.reference_height",
+            file=str(case_path),
+        )
+
+
+def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> StabilityInputs:
+    """The inputs of :func:`onbottom.checks.evaluation.evaluate_stability` from a case read by
+    :func:`load_stability_case` from ``path``: the section, seabed, water and combinations,
+    the ``[design]`` check options and solve; errors name the case-file key
+    (``current.reference_height``, ``design.checks``)."""
+    from onbottom.checks.registry import get_check
+
+    section, seabed = case.section(), case.seabed.seabed()
+    env, combos = case.environment_object(), case.load_combinations()
+    check_reference_height(case, path, seabed)
+    d = case.design
+    for name in d.checks:  # an unknown name: an error naming the key and the choices
+        get_check(name, where="design.checks")
+    options = CheckOptions(
+        safety_class=d.safety_class,
+        region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        penetration=case.seabed.initial_penetration,
+        trench_depth=case.seabed.trench_depth,
+        trench_angle_deg=case.seabed.trench_angle_deg,
+        permeable=d.permeable,
+        checks=tuple(d.checks),
+    )
+    design = DesignRequest(
+        solve_for=d.solve_for,
+        layer=d.layer,
+        thickness_min=d.thickness_min,
+        thickness_max=d.thickness_max,
+        weight_min=d.weight_min,
+        weight_max=d.weight_max,
+    )
+    return StabilityInputs(
+        section=section,
+        seabed=seabed,
+        environment=env,
+        combinations=combos,
+        options=options,
+        condition=case.pipe.condition,
+        design=design,
+    )
+
+
+def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInputs:
+    """The inputs of :func:`onbottom.checks.loads.combination_loads` from a case read by
+    :func:`load_stability_case` from ``path``: the absolute check's options (no flotation
+    rows; the embedment and trench of ``[seabed]``), the ``[hydro]`` Morison coefficients and
+    reductions switch, and the default seed: ``[storm] seed`` of a shared file (its
+    ``[storm]`` table is checked as ``onbottom storm`` does), else 0."""
+    from onbottom.checks.loads import LoadsInputs
+    from onbottom.hydro.forces import MorisonCoefficients
+
+    section, seabed = case.section(), case.seabed.seabed()
+    env, combos = case.environment_object(), case.load_combinations()
+    check_reference_height(case, path, seabed)
+    seed = 0
+    if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
+        from onbottom._casefile import parse_case
+        from onbottom.cases.storm import StormTable
+
+        seed = parse_case(
+            StormTable,
+            case.storm,
+            file=path,
+            text=Path(path).read_text(encoding="utf-8"),
+            root="storm",
+        ).seed
+    h = case.hydro
+    options = CheckOptions(
+        vertical_conditions=(),
+        penetration=case.seabed.initial_penetration,
+        trench_depth=case.seabed.trench_depth,
+        trench_angle_deg=case.seabed.trench_angle_deg,
+        permeable=case.design.permeable,
+    )
+    checks = StabilityInputs(
+        section=section,
+        seabed=seabed,
+        environment=env,
+        combinations=combos,
+        options=options,
+        condition=case.pipe.condition,
+    )
+    return LoadsInputs(
+        checks=checks,
+        coefficients=MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl),
+        reductions=h.reductions,
+        seed=seed,
+    )
+
+
+def unused_table_notes(case: StabilityCase) -> list[str]:
+    """Notes on tables of a case that ``onbottom stability`` reads but does not use: a
+    ``[hydro]`` table other than the defaults (the F109 checks have their own coefficients)."""
+    if case.hydro == HydroTable():
+        return []
+    return [
+        "[hydro] is not used by the F109 checks (their load coefficients are Tables"
+        " 3-9/3-10 and their reductions Eqs 3.17-3.22); it applies to `onbottom loads`"
+        " and `onbottom storm`"
+    ]

@@ -40,6 +40,7 @@ from onbottom.cases.stability import (
     SeabedTable,
     WavesTable,
     check_common_tables,
+    check_reference_height,
 )
 from onbottom.checks.absolute import seabed_roughness
 from onbottom.dynamics.storm_section import StormSolverSettings
@@ -211,11 +212,6 @@ _FIELD_KEYS = {
     "MorisonLift.added_mass": "hydro.added_mass_coefficient",
 }
 
-#: Time-step rule of the storm solver (docs/theory/storm_section.md): a largest step above
-#: T_p/20 warns (the wave is resolved by fewer than 20 steps), above T_p/4 is refused.
-TIME_STEP_WARN_FRACTION = 1.0 / 20.0
-TIME_STEP_MAX_FRACTION = 1.0 / 4.0
-
 
 class _Keys:
     """Re-raise errors of the input objects under the case-file keys they came from."""
@@ -243,7 +239,8 @@ class _Keys:
 
 
 def _check_time_step(case: StormCase, chk: Checker) -> None:
-    """The largest step against the shortest peak period of the storm (see the constants)."""
+    """The largest step against the shortest peak period of the storm
+    (:func:`onbottom.inputs.consistency.time_step`)."""
     periods = [(s.tp, f"storm.stages[{i}].tp") for i, s in enumerate(case.storm.stages)]
     if case.storm.kind == "regular":
         periods = [(case.storm.period, "storm.period")]
@@ -254,21 +251,9 @@ def _check_time_step(case: StormCase, chk: Checker) -> None:
     if not periods:
         return
     tp, where = min(periods)
-    dt = case.storm.time_step
-    if dt > TIME_STEP_MAX_FRACTION * tp:
-        chk.fail(
-            "storm.time_step",
-            f"storm.time_step = {dt!r} s is invalid with T_p = {tp:g} s ({where}): it must be"
-            f" <= T_p/4 = {TIME_STEP_MAX_FRACTION * tp:.3g} s (T_p/20 ="
-            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s or less resolves the wave)",
-        )
-    if dt > TIME_STEP_WARN_FRACTION * tp:
-        chk.warn(
-            "storm.time_step",
-            f"storm.time_step = {dt:g} s is coarse for T_p = {tp:g} s ({where}): above T_p/20 ="
-            f" {TIME_STEP_WARN_FRACTION * tp:.3g} s the result depends on the step; use"
-            " <= T_p/20",
-        )
+    chk.apply(
+        consistency.time_step(case.storm.time_step, tp, field="storm.time_step", source=where)
+    )
 
 
 def _check_durations_and_stop(case: StormCase, chk: Checker) -> None:
@@ -298,7 +283,8 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     """Objects of a validated :class:`StormCase`.
 
     Engineering plausibility first (:func:`onbottom.cases.stability.check_common_tables`
-    on the shared tables and every sea state, the time-step rule, a trench no deeper than D);
+    on the shared tables and every sea state, the time-step rule, the current's reference
+    height above the seabed roughness, a trench no deeper than D);
     every error is a :class:`CaseFileError` naming the case-file key, its value and range.
     """
     where = "<case>" if path is None else path
@@ -327,6 +313,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
         section = case.pipe.section(rho)
         pipe = section if isinstance(section, Pipe) else section.pipe(case.pipe.condition)
         seabed = case.seabed.seabed()
+    check_reference_height(case, where, seabed)  # z_0 of F109 Table 3-1 when not given
     if case.seabed.trench_depth and case.seabed.trench_depth > pipe.outer_diameter:
         chk.fail(
             "seabed.trench_depth",

@@ -1,10 +1,12 @@
-"""``onbottom loads``: V–H envelope of the peak hydrodynamic loads per wave cycle."""
+"""``onbottom loads``: V–H envelope of the peak hydrodynamic loads per wave cycle.
+
+Case file: :mod:`onbottom.cases.stability`; computation:
+:func:`onbottom.checks.loads.combination_loads`; this module prints, plots or writes."""
 
 from __future__ import annotations
 
 import warnings
 from pathlib import Path
-from typing import Any
 
 import click
 
@@ -16,127 +18,38 @@ from onbottom.cli._common import (
     json_option,
 )
 
-__all__ = ["command", "evaluate_loads"]
+__all__ = ["command"]
 
 
-def evaluate_loads(
-    case_path: Path, *, seed: int | None, duration_hours: float
-) -> tuple[dict, list]:
-    """Envelopes of every load combination of a case file: (JSON payload, envelopes)."""
-    from onbottom.cases.stability import load_stability_case, penetration_outside_validity
-    from onbottom.checks.design import CheckOptions, run_checks
-    from onbottom.cli.stability import check_reference_height
-    from onbottom.errors import InputError, OutOfRangeWarning
-    from onbottom.hydro.forces import MorisonCoefficients
-    from onbottom.hydro.load_envelope import load_envelope
-
-    caught: list[warnings.WarningMessage] = []
-    with warnings.catch_warnings(record=True) as loading:
-        warnings.simplefilter("always", OutOfRangeWarning)
-        case = load_stability_case(case_path)
-        section = case.section()
-        seabed = case.seabed.seabed()
-        env = case.environment_object()
-        combos = case.load_combinations()
-    check_reference_height(case, case_path, seabed)
-    caught.extend(loading)
-    storm_seed = 0
-    if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
-        from onbottom._casefile import parse_case
-        from onbottom.cases.storm import StormTable
-
-        storm_seed = parse_case(
-            StormTable,
-            case.storm,
-            file=case_path,
-            text=Path(case_path).read_text(encoding="utf-8"),
-            root="storm",
-        ).seed
-    if seed is None:
-        seed = storm_seed
-    h = case.hydro
-    coef = MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl)
-    options = CheckOptions(
-        vertical_conditions=(),
-        penetration=case.seabed.initial_penetration,
-        trench_depth=case.seabed.trench_depth,
-        trench_angle_deg=case.seabed.trench_angle_deg,
-        permeable=case.design.permeable,
-    )
-    out: list[dict[str, Any]] = []
-    envs = []
+def _evaluate(case_path: Path, *, seed: int | None, duration_hours: float) -> tuple[dict, list]:
+    """The JSON payload of a case file and the envelopes: the cycle peak loads of every load
+    combination (:func:`onbottom.checks.loads.combination_loads` on the inputs built by
+    :mod:`onbottom.cases.stability`) and every :class:`OutOfRangeWarning` raised on the way."""
+    from onbottom.cases.stability import build_loads_inputs, load_stability_case
+    from onbottom.checks.loads import combination_loads
+    from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.consistency import warnings_reported_by_case
 
-    with warnings.catch_warnings(record=True) as checking, warnings_reported_by_case():
+    with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", OutOfRangeWarning)
-        rows = run_checks(section, seabed, env, combos, options)
-    caught.extend(checking)
-    invalid = penetration_outside_validity(rows)
-    by_combo = {r.combination: r.details for r in rows if r.name == "absolute_lateral"}
-    for combo in combos:
-        det = by_combo[combo.name]
-        if "diameter" not in det:
-            err = InputError(
-                f"pipe = (condition {combo.condition!r}) is invalid for combination"
-                f" {combo.name!r}: the pipe floats (submerged weight"
-                f" {det.get('submerged_weight', float('nan')):.4g} N/m <= 0); check the densities"
-                " and the contents of that condition"
-            )
-            err.field = "pipe"  # type: ignore[attr-defined]
-            raise err
-        r_y, r_z = (det["r_y"], det["r_z"]) if h.reductions else (1.0, 1.0)
-        ss = combo.sea_state
-        with warnings.catch_warnings(record=True) as enveloping:
-            warnings.simplefilter("always", OutOfRangeWarning)
-            e = load_envelope(
-                hs=ss.hs,
-                tp=ss.tp,
-                depth=env.water_depth,
-                diameter=det["diameter"],
-                submerged_weight=det["submerged_weight"],
-                current=det["v_star"],
-                gamma=ss.gamma,
-                spectrum=ss.spectrum,
-                wave_direction_deg=ss.direction_deg,
-                spreading_s=ss.spreading_s or None,
-                coefficients=coef,
-                r_y=r_y,
-                r_z=r_z,
-                density=env.water_density,
-                duration=duration_hours * 3600.0,
-                seed=seed,
-            )
-        caught.extend(enveloping)
-        envs.append(e)
-        out.append(
-            {
-                "combination": combo.name,
-                "condition": combo.condition,
-                "hs": ss.hs,
-                "tp": ss.tp,
-                "n_cycles": e.n_cycles,
-                "fraction_20_45": e.fraction_between(20.0, 45.0),
-                "max_horizontal": float(e.horizontal.max()) if e.n_cycles else None,
-                "min_vertical": float(e.vertical.min()) if e.n_cycles else None,
-                "max_angle_deg": float(e.angle_deg.max()) if e.n_cycles else None,
-                "submerged_weight": e.submerged_weight,
-                "r_y": r_y,
-                "r_z": r_z,
-            }
-        )
+        inputs = build_loads_inputs(load_stability_case(case_path), case_path)
+        # the absolute check's consistency warnings were issued by the case, with the line
+        with warnings_reported_by_case():
+            result = combination_loads(inputs, duration=duration_hours * 3600.0, seed=seed)
+    h = inputs.coefficients
     payload = {
         "case": str(case_path),
-        "seed": seed,
+        "seed": result.seed,
         "duration": duration_hours * 3600.0,
-        "coefficients": {"cd": h.cd, "cm": h.cm, "cl": h.cl},
-        "combinations": out,
-        "success": not invalid,
-        "message": "; ".join(invalid),
+        "coefficients": {"cd": h.drag, "cm": h.inertia, "cl": h.lift},
+        "combinations": [c.as_dict() for c in result.combinations],
+        "success": result.success,
+        "message": result.message,
         "warnings": sorted(
             {str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)}
         ),
     }
-    return payload, envs
+    return payload, result.envelopes
 
 
 def _check_outputs(case: Path, plot: Path | None, output: Path | None) -> None:
@@ -213,7 +126,7 @@ def command(
     the F109 load reductions of the absolute check when [hydro] reductions = true.
     """
     _check_outputs(case, plot, output)
-    payload, envs = evaluate_loads(case, seed=seed, duration_hours=duration_hours)
+    payload, envs = _evaluate(case, seed=seed, duration_hours=duration_hours)
     if plot is not None:
         from onbottom.cli._common import check_output_path
         from onbottom.plotting.load_envelope import plot_load_envelope

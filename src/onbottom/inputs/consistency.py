@@ -30,6 +30,9 @@ Rules and their sources:
 * the runaway stop ``max_displacement_over_d`` at least the largest F109 criterion asked for
   (10 D: a run stopped below it gives a verdict on a criterion it never reached; error);
 * a pipeline FE with at least :data:`MIN_FREE_NODES` free nodes (error);
+* the storm solver's largest time step against the shortest peak period T_p
+  (:func:`time_step`: above :data:`TIME_STEP_MAX_FRACTION` T_p an error, above
+  :data:`TIME_STEP_WARN_FRACTION` T_p a warning; docs/theory/storm_section.md);
 * scalars where scalars are expected (:func:`scalar`: an array is a named error, not numpy's
   ``TypeError``).
 """
@@ -62,6 +65,8 @@ __all__ = [
     "MIN_FREE_NODES",
     "MIN_PEAK_PERIODS",
     "SHALLOW_DEPTH_OVER_D",
+    "TIME_STEP_MAX_FRACTION",
+    "TIME_STEP_WARN_FRACTION",
     "USUAL_HS_OVER_DEPTH",
     "YOUNGS_MODULUS_PA",
     "Finding",
@@ -78,6 +83,7 @@ __all__ = [
     "section_in_sea",
     "steepness_limit",
     "stop_limit",
+    "time_step",
     "warnings_reported_by_case",
     "youngs_modulus",
 ]
@@ -113,6 +119,15 @@ can rest on it (F109 §3.5 asks for a 3-h storm) — an error."""
 
 MIN_FREE_NODES = 3
 """A pipeline FE with fewer free nodes bends in no mode the storm can load — an error."""
+
+TIME_STEP_WARN_FRACTION = 1.0 / 20.0
+"""Largest storm-solver step above T_p/20: the wave is resolved by fewer than 20 steps and the
+result depends on the step — a warning (docs/theory/storm_section.md, time-step rule)."""
+
+TIME_STEP_MAX_FRACTION = 1.0 / 4.0
+"""Largest storm-solver step above T_p/4 — an error: the step halves only where Newton fails or
+the increment exceeds 0.05 D, so a coarse step on a pipe that barely moves is never refined
+(``time_step = 5`` on T_p = 10.8 s changed the maximum displacement by 74 %)."""
 
 _ANGLE_STEP = math.pi / 12.0  # 15° in radians
 _ANGLE_TOLERANCE = 2.0e-3  # rad: 1.5708 (π/2 to 4 digits) is within 4e-6
@@ -425,6 +440,37 @@ def stop_limit(
             f" {', '.join(f'{c:g}D' for c in sorted(crit))})",
         )
     ]
+
+
+def time_step(dt_max: float, tp: float, *, field: str, source: str) -> list[Finding]:
+    """The storm solver's time-step rule: error where the largest step ``dt_max`` [s] exceeds
+    :data:`TIME_STEP_MAX_FRACTION` × ``tp`` [s] (the shortest peak period of the storm), a
+    :class:`~onbottom.errors.OutOfRangeWarning` where it exceeds
+    :data:`TIME_STEP_WARN_FRACTION` × ``tp``. ``source`` says where T_p comes from (a key such
+    as ``waves.tp``, or ``the storm of K = 10, N = 0.003``), shown after the period."""
+    dt, p = _num(dt_max), _num(tp)
+    if dt is None or p is None or p <= 0.0:
+        return []
+    if dt > TIME_STEP_MAX_FRACTION * p:
+        return [
+            _err(
+                field,
+                f"{field} = {dt!r} s is invalid with T_p = {p:g} s ({source}): it must be"
+                f" <= T_p/4 = {TIME_STEP_MAX_FRACTION * p:.3g} s (T_p/20 ="
+                f" {TIME_STEP_WARN_FRACTION * p:.3g} s or less resolves the wave)",
+            )
+        ]
+    if dt > TIME_STEP_WARN_FRACTION * p:
+        return [
+            _warn(
+                field,
+                f"{field} = {dt:g} s is coarse for T_p = {p:g} s ({source}): above T_p/20 ="
+                f" {TIME_STEP_WARN_FRACTION * p:.3g} s the result depends on the step; use"
+                " <= T_p/20",
+                OutOfRangeWarning,
+            )
+        ]
+    return []
 
 
 def free_nodes(n_free: int, *, field: str, detail: str = "") -> list[Finding]:

@@ -78,6 +78,7 @@ __all__ = [
     "curves_table",
     "find_weight_parameter",
     "point_kinematics",
+    "point_summary",
     "stability_curves",
 ]
 
@@ -699,6 +700,32 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                                 row[f"{c}_{name}"] = bool(x) if name == "converged" else float(x)
                     rows.append(row)
     return rows
+
+
+def point_summary(row: dict[str, Any]) -> str:
+    """One line of a row of :func:`curves_table` (``onbottom curves`` prints one per point):
+    per criterion L, its bracket, the seeds' spread of max |y|/D at both ends, and NOT
+    CONVERGED where the bracket is wider than the tolerance."""
+    parts = []
+    for c in ("L_stable", "L_10"):
+        if c not in row:
+            continue
+        lo, hi = row.get(f"{c}_L_low"), row.get(f"{c}_L_high")
+        spread = (
+            f"; seeds max|y|/D {row[f'{c}_seed_min_low']:.3g}-{row[f'{c}_seed_max_low']:.3g}"
+            f" at L_low, {row[f'{c}_seed_min_high']:.3g}-{row[f'{c}_seed_max_high']:.3g} at"
+            " L_high"
+            if f"{c}_seed_min_low" in row
+            else ""
+        )
+        if row.get(f"{c}_converged", True):
+            parts.append(
+                f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}], {c}/(2+M)^2 ="
+                f" {row[f'{c}/(2+M)^2']:.3g}{spread}"
+            )
+        else:
+            parts.append(f"{c} NOT CONVERGED (bracket [{lo:.3g}, {hi:.3g}]){spread}")
+    return "; ".join(parts)
 
 
 def _interrupted(kept: int, total: int, store: Any) -> str:
