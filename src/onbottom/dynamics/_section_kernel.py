@@ -31,7 +31,6 @@ from numba import literally, njit
 
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
-from onbottom.soil._dispatch import lateral_step_of as lateral_step
 from onbottom.soil.base import (
     OUT_DISSIPATED,
     OUT_FRICTION,
@@ -44,6 +43,7 @@ from onbottom.soil.base import (
     OUT_WORK,
     OUT_Z,
 )
+from onbottom.soil.kernel_contract import lateral_step_of as lateral_step
 
 SCHEME_BACKWARD_EULER = 0
 SCHEME_NEWMARK = 1
