@@ -1,7 +1,7 @@
 """Numba time loop of the load-controlled rigid pipe section (private).
 
 Equation of lateral motion (docs/conventions.md): m·ü = H(t) − R(u, history), with R from
-``onbottom.soil._dispatch.lateral_step(model_id, ...)`` (kernel contract: onbottom.soil.base).
+``lateral_step(model_id, ...)`` of :mod:`onbottom.soil.kernel_contract` (rules: onbottom.soil.base).
 
 Each step t → t + Δt solves the implicit equation of an integrator for u_{n+1}:
 
