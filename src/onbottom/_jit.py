@@ -10,15 +10,21 @@ cost 30–45 % of a soil kernel call (issue 33: Coulomb kernel 70 → 38 ns, V&S
 
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
+
+:func:`pure_python` builds a kernel's plain-Python twin from the kernel's own source; it lives
+here, in a base module, so that the kernels of every package (soil, hydro, dynamics) share it.
 """
 
 from __future__ import annotations
 
 import operator
+import types
+from collections.abc import Callable
 
 import numba
+from numba.core.dispatcher import Dispatcher
 
-__all__ = ["call_literal", "njit"]
+__all__ = ["call_literal", "njit", "pure_python"]
 
 
 def njit(*args, **kwargs):
@@ -50,3 +56,30 @@ def call_literal(kernel, n_literal, *args):
         kernel.compile(sig)
         cres = overloads[sig]
     return cres.entry_point(*args)
+
+
+def pure_python(fn: Callable, _memo: dict | None = None) -> Callable:
+    """Return ``fn`` with every jitted function it reaches rebound to plain Python.
+
+    A kernel's twin must give the same results with the Python interpreter. Keeping a second,
+    hand-written copy of a long algorithm in sync is error-prone, so this builds the twin from
+    the jitted function's own source (``py_func``) and rebinds every jitted helper it calls,
+    recursively, to its ``py_func``. The twin tests then compare numba's compiled semantics
+    (typing, integer/float conversions, branch order) with Python's on the same algorithm.
+
+    ``fn`` is a numba dispatcher (or a Python function). Helpers reached through module
+    globals are rebound recursively; the original functions are left untouched.
+    """
+    memo = {} if _memo is None else _memo
+    py = fn.py_func if isinstance(fn, Dispatcher) else fn
+    if py in memo:
+        return memo[py]
+    glb = dict(py.__globals__)
+    twin = types.FunctionType(py.__code__, glb, py.__name__ + "_py", py.__defaults__)
+    twin.__doc__ = f"Plain-Python twin of :func:`{py.__name__}`."
+    memo[py] = twin
+    for name in py.__code__.co_names:
+        obj = glb.get(name)
+        if isinstance(obj, Dispatcher):
+            glb[name] = pure_python(obj, memo)
+    return twin

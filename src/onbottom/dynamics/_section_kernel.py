@@ -1,7 +1,7 @@
 """Numba time loop of the load-controlled rigid pipe section (private).
 
 Equation of lateral motion (docs/conventions.md): m·ü = H(t) − R(u, history), with R from
-``onbottom.soil._dispatch.lateral_step(model_id, ...)`` (kernel contract: onbottom.soil.base).
+``lateral_step(model_id, ...)`` of :mod:`onbottom.soil.kernel_contract` (rules: onbottom.soil.base).
 
 Each step t → t + Δt solves the implicit equation of an integrator for u_{n+1}:
 
@@ -31,7 +31,6 @@ from numba import literally, njit
 
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
-from onbottom.soil._dispatch import lateral_step_of as lateral_step
 from onbottom.soil.base import (
     OUT_DISSIPATED,
     OUT_FRICTION,
@@ -44,6 +43,7 @@ from onbottom.soil.base import (
     OUT_WORK,
     OUT_Z,
 )
+from onbottom.soil.kernel_contract import lateral_step_of as lateral_step
 
 SCHEME_BACKWARD_EULER = 0
 SCHEME_NEWMARK = 1

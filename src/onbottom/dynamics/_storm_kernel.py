@@ -53,10 +53,15 @@ from numba import literally
 from onbottom._jit import njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
-from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import force_step_of as force_step
-from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
-from onbottom.soil._dispatch import lateral_step_of as lateral_step
+from onbottom.hydro.kernel_contract import (
+    FO_DFY_DYD,
+    FO_FY,
+    FO_FZ,
+    FO_SIZE,
+    penetration_reduction_y,
+    penetration_reduction_z,
+)
+from onbottom.hydro.kernel_contract import force_step_of as force_step
 from onbottom.soil.base import (
     OUT_FRICTION,
     OUT_PASSIVE,
@@ -68,6 +73,7 @@ from onbottom.soil.base import (
     OUT_Z,
     S_Z,
 )
+from onbottom.soil.kernel_contract import lateral_step_of as lateral_step
 
 LIFTOFF_FREE = 0
 LIFTOFF_STOP = 1

@@ -4,6 +4,9 @@ numba cannot cache functions that receive other jitted functions as arguments, s
 section (:mod:`onbottom.dynamics._storm_kernel`) and the pipeline FE
 (:mod:`onbottom.dynamics.pipeline._pipeline_kernel`) call :func:`force_step` with the integer
 ``model_id`` of the force-model class, as they call ``soil._dispatch.lateral_step`` for soil.
+They import it, the ``FO_*`` slots and the F109 penetration reductions from the public
+:mod:`onbottom.hydro.kernel_contract` (and ``lateral_step`` from
+:mod:`onbottom.soil.kernel_contract`).
 
 Kernel contract
 ---------------

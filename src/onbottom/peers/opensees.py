@@ -42,7 +42,7 @@ import numpy as np
 
 from onbottom._validate import in_range, positive
 from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, simulate_pipeline
-from onbottom.dynamics.pipeline import _pipeline_kernel as K
+from onbottom.dynamics.pipeline.node_layout import ND_J, ND_MASS_U, ND_MASS_V, ND_TRIB
 from onbottom.dynamics.pipeline.user_load import TravellingSineLoad, still_water
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
@@ -283,11 +283,11 @@ def _build(ops: Any, model: PipelineModel, load: TravellingSineLoad, n_steps: in
     sec_of = model.node_section()
     secs = model.sections
     for i in range(n):
-        ell = float(nodes[i, K.ND_TRIB])
+        ell = float(nodes[i, ND_TRIB])
         ops.node(i + 1, float(x[i]), 0.0)
         ops.mass(
-            i + 1, float(nodes[i, K.ND_MASS_U]), float(nodes[i, K.ND_MASS_V]),
-            float(nodes[i, K.ND_J]),
+            i + 1, float(nodes[i, ND_MASS_U]), float(nodes[i, ND_MASS_V]),
+            float(nodes[i, ND_J]),
         )  # fmt: skip
         sec = secs[int(sec_of[i])]
         soil = sec.model
@@ -322,7 +322,7 @@ def _build(ops: Any, model: PipelineModel, load: TravellingSineLoad, n_steps: in
     for pat, shape in ((1, np.sin(k * x)), (2, -np.cos(k * x))):
         ops.pattern("Plain", pat, pat)
         for i in range(n):
-            ell = float(nodes[i, K.ND_TRIB])
+            ell = float(nodes[i, ND_TRIB])
             ops.load(
                 i + 1,
                 ell * load.axial_amplitude * float(shape[i]),

@@ -9,8 +9,9 @@ Kernel contract
 ---------------
 Every model provides ``model_id`` (its branch in :mod:`onbottom.soil._dispatch`; solvers call
 ``lateral_step(model_id, ...)`` because numba cannot cache jitted functions passed as
-arguments), ``kernel`` (an ``@njit(cache=True)`` function) and ``python_kernel`` (its
-plain-Python twin, used by the tests), both with the signature::
+arguments, and import it from the public :mod:`onbottom.soil.kernel_contract`), ``kernel``
+(an ``@njit(cache=True)`` function) and ``python_kernel`` (its plain-Python twin, used by the
+tests), both with the signature::
 
     kernel(params, state_old, u_new, v_load, state_new, out) -> None
 

@@ -16,8 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onbottom._jit import njit
-from onbottom.soil._twin import pure_python
+from onbottom._jit import njit, pure_python
 
 
 @njit(cache=True)

@@ -24,8 +24,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit
-from onbottom.soil._twin import pure_python
+from onbottom._jit import njit, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]

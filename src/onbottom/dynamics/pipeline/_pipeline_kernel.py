@@ -49,12 +49,18 @@ from onbottom.dynamics.pipeline._beam_kernel import (
     node_section_forces,
 )
 from onbottom.dynamics.status import Status
-from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import force_step_of as force_step  # issue 33
-from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
-from onbottom.soil._coulomb_kernel import friction_return_map
-from onbottom.soil._dispatch import lateral_step_node as lateral_step  # issue 33
+from onbottom.hydro.kernel_contract import (
+    FO_DFY_DYD,
+    FO_FY,
+    FO_FZ,
+    FO_SIZE,
+    penetration_reduction_y,
+    penetration_reduction_z,
+)
+from onbottom.hydro.kernel_contract import force_step_of as force_step  # issue 33
 from onbottom.soil.base import OUT_R, OUT_SIZE, OUT_TANGENT, S_Z
+from onbottom.soil.kernel_contract import friction_return_map
+from onbottom.soil.kernel_contract import lateral_step_node as lateral_step  # issue 33
 
 # ---- settings ------------------------------------------------------------------------------
 ST_DT_MAX = 0

@@ -62,7 +62,7 @@ from onbottom.results import (
     provenance,
 )
 from onbottom.results import run_identity as results_run_identity
-from onbottom.soil._dispatch import MODELS_MIXED
+from onbottom.soil.kernel_contract import MODELS_MIXED
 
 __all__ = [
     "CRITERIA_OVER_D",

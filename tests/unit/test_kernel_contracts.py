@@ -1,0 +1,58 @@
+"""Unit tests: the public kernel contracts re-export the private kernels' own objects.
+
+The dynamics kernels and peers/ import the soil and force-model kernel contracts and the
+pipeline's node layout from public modules (docs/architecture.md, "Kernels"). numba resolves a
+called kernel, and its ``@overload`` specialisations, by the function object, and caches it by
+its defining file: the public names must be the very objects of the private modules, and every
+model id and node column must be there.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import pytest
+
+from onbottom import _jit
+from onbottom.dynamics.pipeline import _pipeline_kernel, node_layout
+from onbottom.hydro import _force_contract, _force_dispatch, _load_kernels, kernel_contract
+from onbottom.soil import _coulomb_kernel, _dispatch, _twin
+from onbottom.soil import kernel_contract as soil_contract
+
+CONTRACTS = [
+    (soil_contract, [_dispatch, _coulomb_kernel]),
+    (kernel_contract, [_force_dispatch, _force_contract, _load_kernels]),
+    (node_layout, [_pipeline_kernel]),
+]
+
+
+@pytest.mark.parametrize(("public", "sources"), CONTRACTS, ids=lambda m: getattr(m, "__name__", ""))
+def test_public_names_are_the_private_objects(public, sources):
+    assert public.__all__, public.__name__
+    for name in public.__all__:
+        assert not name.startswith("_")
+        owners = [m for m in sources if hasattr(m, name)]
+        assert owners, f"{public.__name__}.{name} is in none of its private modules"
+        assert all(getattr(public, name) is getattr(m, name) for m in owners), name
+
+
+@pytest.mark.parametrize(
+    ("public", "source", "prefix"),
+    [
+        ("onbottom.soil.kernel_contract", _dispatch, "MODEL_"),
+        ("onbottom.hydro.kernel_contract", _force_dispatch, "FORCE_"),
+        ("onbottom.hydro.kernel_contract", _force_contract, "FO_"),
+        ("onbottom.dynamics.pipeline.node_layout", _pipeline_kernel, "ND_"),
+    ],
+)
+def test_every_id_and_slot_is_public(public, source, prefix):
+    exported = set(importlib.import_module(public).__all__)
+    defined = {n for n in vars(source) if n.startswith(prefix)}
+    assert defined, prefix
+    assert defined <= exported, f"add {sorted(defined - exported)} to {public}"
+
+
+def test_twin_decorator_is_the_base_one():
+    assert _twin.pure_python is _jit.pure_python
+    assert soil_contract.lateral_step_of.__name__ == "lateral_step_of"
+    assert node_layout.N_NODE_COLS == len([n for n in node_layout.__all__ if n.startswith("ND_")])
