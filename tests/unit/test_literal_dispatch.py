@@ -20,7 +20,7 @@ from onbottom.soil.verley_sotberg import VerleySotberg
 PIPE = Pipe(outer_diameter=0.4, submerged_weight=600.0)
 
 
-@njit(cache=True)
+@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
 def _soil_path(model_id, params, state, u, v, out_all):
     """Soil steps along ``u`` through :func:`lateral_step_of` with a literal ``model_id``."""
     literally(model_id)
@@ -32,7 +32,7 @@ def _soil_path(model_id, params, state, u, v, out_all):
         out_all[k] = out
 
 
-@njit(cache=True)
+@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
 def _soil_path_node(soil_id, model_id, params, state, u, v, out_all):
     """As :func:`_soil_path` through :func:`lateral_step_node` (pipeline form)."""
     literally(soil_id)
@@ -44,7 +44,7 @@ def _soil_path_node(soil_id, model_id, params, state, u, v, out_all):
         out_all[k] = out
 
 
-@njit(cache=True)
+@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
 def _force(model_id, params, state, u, out):
     literally(model_id)
     s_new = np.empty_like(state)

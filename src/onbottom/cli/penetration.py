@@ -19,7 +19,7 @@ from onbottom.cli._common import (
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS
 from onbottom.soil.penetration_f114 import LayConditions
-from onbottom.soil.penetration_run import drained_estimates, penetration_run, undrained_model
+from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
 from onbottom.soil.penetration_sand import DEPTH_FACTOR_COEFFICIENT, N_GAMMA_METHODS, DrainedBounds
 
 __all__ = ["command"]
@@ -41,8 +41,8 @@ def _parse_levels(text: str) -> np.ndarray:
 
 
 def _build_models(opts: dict[str, Any]) -> tuple[Any, DrainedBounds | None]:
-    """Options (kN, kPa) → SI → :func:`onbottom.soil.penetration_run.drained_estimates` or
-    :func:`~onbottom.soil.penetration_run.undrained_model`."""
+    """Options (kN, kPa) → SI → :func:`onbottom.soil.penetration_table.drained_estimates` or
+    :func:`~onbottom.soil.penetration_table.undrained_model`."""
     d = opts["diameter"]
     gamma = opts["gamma_kn"] * _KN
     if opts["soil"] == "sand":

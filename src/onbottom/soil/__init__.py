@@ -5,7 +5,7 @@ Verley & Sotberg sand (silica, calcareous, DNV-RP-F109 variant), Verley & Lund c
 two-DOF V–H force-resultant test model (second form of the contract).
 Vertical: DNVGL-RP-F114 penetration resistance and the embedment solver. The backbone of
 ``onbottom backbone`` (:mod:`.backbone`) and the table and embedment of ``onbottom penetration``
-(:mod:`.penetration_run`).
+(:mod:`.penetration_table`).
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         resistance_model,
         solve_embedment,
     )
-    from onbottom.soil.penetration_run import penetration_run
+    from onbottom.soil.penetration_table import penetration_run
     from onbottom.soil.response import path_response
     from onbottom.soil.verley_lund import VerleyLund
     from onbottom.soil.verley_sotberg import VerleySotberg
@@ -69,7 +69,7 @@ __getattr__, __dir__ = attach(
             "resistance_model",
             "solve_embedment",
         ),
-        "onbottom.soil.penetration_run": ("penetration_run",),
+        "onbottom.soil.penetration_table": ("penetration_run",),
         "onbottom.soil.response": ("path_response",),
         "onbottom.soil.verley_lund": ("VerleyLund",),
         "onbottom.soil.verley_sotberg": ("VerleySotberg",),

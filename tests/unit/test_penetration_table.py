@@ -1,4 +1,4 @@
-"""Unit test: :mod:`onbottom.soil.penetration_run` — the F114 models from soil values and the
+"""Unit test: :mod:`onbottom.soil.penetration_table` — the F114 models from soil values and the
 table, embedment and validity of ``onbottom penetration``, called directly."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pytest
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.soil.penetration_clay import UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import LayConditions
-from onbottom.soil.penetration_run import drained_estimates, penetration_run, undrained_model
+from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
 from onbottom.soil.penetration_sand import DrainedPenetration
 
 SAND = {"diameter": 0.5, "unit_weight": 16.7e3}
