@@ -19,8 +19,8 @@ from onbottom.cli._common import (
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS
 from onbottom.soil.penetration_f114 import LayConditions
-from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
 from onbottom.soil.penetration_sand import DEPTH_FACTOR_COEFFICIENT, N_GAMMA_METHODS, DrainedBounds
+from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
 
 __all__ = ["command"]
 
