@@ -8,6 +8,11 @@ that exception (each solver checks its results for finiteness), and the tests an
 cost 30–45 % of a soil kernel call (issue 33: Coulomb kernel 70 → 38 ns, V&S 0.17 →
 0.12 µs per node call). Results are bit-identical wherever no division by zero occurs.
 
+It also sets ``no_cfunc_wrapper=True``: numba otherwise builds, optimises and machine-compiles
+a C-callable wrapper for every jitted function, used only when a function is passed as a
+first-class function value (ctypes/cffi), which the project never does; about a tenth of a
+first run's compiling (issue 33 item 2: storm kernel 5.2 → 4.6 CPU-s under load).
+
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
 """
@@ -18,13 +23,71 @@ import operator
 
 import numba
 
-__all__ = ["call_literal", "njit"]
+__all__ = ["call_literal", "literal_dispatch", "njit"]
 
 
 def njit(*args, **kwargs):
     """:func:`numba.njit` with ``error_model="numpy"`` by default (same call forms)."""
     kwargs.setdefault("error_model", "numpy")
+    kwargs.setdefault("no_cfunc_wrapper", True)
     return numba.njit(*args, **kwargs)
+
+
+def literal_dispatch(pyfunc, kernels, general):
+    """Compile ``pyfunc(model_id, *args)`` in jitted code to a direct call of one kernel.
+
+    With ``model_id`` a numba literal (the caller's entry point calls ``numba.literally``) the
+    call is ``kernels[model_id](*args)``, so the caller compiles that model's kernel only;
+    otherwise (a non-literal id, or one missing from ``kernels``) it is
+    ``general(model_id, *args)``. ``pyfunc`` stays a plain Python function (the twins and
+    tests call it), to which numba's typing and lowering registries are attached here.
+
+    Why not ``numba.extending.overload``: an overload compiles its implementation as a
+    function of its own, whose machine code holds (links, re-optimises and re-compiles) the
+    whole kernel once more; here the call site calls the kernel's compiled function directly,
+    as a call of the kernel in the source would (issue 33 item 2: about 0.3 CPU-s of a storm
+    run's first compile for the soil and force models).
+    """
+    from numba.core import types
+    from numba.core.imputils import lower_builtin
+    from numba.core.typing.templates import AbstractTemplate, infer_global, signature
+
+    def target(argtys):
+        kernel = kernels.get(getattr(argtys[0], "literal_value", None))
+        if kernel is None:
+            return general, tuple(argtys)
+        return kernel, tuple(argtys[1:])
+
+    def resolve(typingctx, argtys):
+        fn, fargs = target(argtys)
+        fnty = typingctx.resolve_value_type(fn)
+        return fn, fnty, fnty.get_call_type(typingctx, fargs, {})
+
+    class Template(AbstractTemplate):
+        key = pyfunc
+        prefer_literal = True  # try the literal id first (else the non-literal one is taken)
+
+        def generic(self, args, kws):
+            if kws:
+                return None
+            call_sig = resolve(self.context, args)[2]  # compiles (or loads) the kernel
+            if call_sig is None:
+                return None
+            return signature(call_sig.return_type, *args)
+
+    infer_global(pyfunc)(Template)
+
+    @lower_builtin(pyfunc, types.VarArg(types.Any))
+    def lower(context, builder, sig, args):
+        fn, fnty, call_sig = resolve(context.typing_context, sig.args)
+        skip = 0 if fn is general else 1
+        vals = [
+            context.cast(builder, v, t, want)
+            for v, t, want in zip(args[skip:], sig.args[skip:], call_sig.args, strict=True)
+        ]
+        return context.get_function(fnty, call_sig)(builder, vals)
+
+    return pyfunc
 
 
 def call_literal(kernel, n_literal, *args):
