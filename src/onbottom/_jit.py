@@ -11,7 +11,7 @@ cost 30–45 % of a soil kernel call (issue 33: Coulomb kernel 70 → 38 ns, V&S
 It also sets ``no_cfunc_wrapper=True``: numba otherwise builds, optimises and machine-compiles
 a C-callable wrapper for every jitted function, used only when a function is passed as a
 first-class function value (ctypes/cffi), which the project never does; about a tenth of a
-first run's compiling (issue 33 item 2: storm kernel 5.2 → 4.6 CPU-s under load).
+first run's compiling (issue 33 item 2: the storm kernel's 5.2 → 4.7 CPU-s, paired, loaded).
 
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
@@ -19,7 +19,12 @@ imported when this module is, i.e. only with a kernel module.
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import operator
+import os
+import tempfile
+from collections.abc import Iterator
 
 import numba
 
@@ -100,6 +105,10 @@ def call_literal(kernel, n_literal, *args):
     the literal signature is built directly: the specialisation is compiled (or loaded from
     numba's on-disk cache) once per process and called through its entry point. ``kernel`` a
     plain Python function (a test's ``py_func``) is just called.
+
+    Processes started together (Dask workers of a first run) compile a specialisation one
+    at a time (:func:`_compile_lock`): the first compiles and writes numba's cache, the
+    others wait and load it, instead of each paying the whole compile (issue 33 item 2).
     """
     overloads = getattr(kernel, "overloads", None)
     if overloads is None:
@@ -110,6 +119,41 @@ def call_literal(kernel, n_literal, *args):
     )
     cres = overloads.get(sig)
     if cres is None:
-        kernel.compile(sig)
+        with _compile_lock(kernel, sig):
+            kernel.compile(sig)  # numba loads it from its cache when another process wrote it
         cres = overloads[sig]
     return cres.entry_point(*args)
+
+
+@contextlib.contextmanager
+def _compile_lock(kernel, sig) -> Iterator[None]:
+    """Hold an exclusive lock, across processes, for compiling ``kernel`` at ``sig``.
+
+    A lock file in the temporary folder named by a hash of the kernel, the signature, its
+    source file and numba's cache folder; ``fcntl.flock``, released by the system if the
+    process dies. Where ``fcntl`` or the file is unavailable (Windows, a read-only
+    temporary folder) nothing is locked and each process compiles, as numba does.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows
+        yield
+        return
+    py = kernel.py_func
+    text = "|".join(
+        (py.__module__, py.__qualname__, py.__code__.co_filename, repr(sig),
+         os.environ.get("NUMBA_CACHE_DIR", ""))
+    )  # fmt: skip
+    key = hashlib.sha256(text.encode()).hexdigest()[:20]
+    path = os.path.join(tempfile.gettempdir(), f"onbottom-compile-{key}.lock")
+    try:
+        f = open(path, "a")
+    except OSError:
+        yield
+        return
+    with f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(f, fcntl.LOCK_UN)
