@@ -125,6 +125,17 @@ def call_literal(kernel, n_literal, *args):
     return cres.entry_point(*args)
 
 
+def compile_lock_path(kernel, sig) -> str:
+    """The lock file of :func:`_compile_lock` for ``kernel`` (a dispatcher) at ``sig``."""
+    py = kernel.py_func
+    text = "|".join(
+        (py.__module__, py.__qualname__, py.__code__.co_filename, repr(sig),
+         os.environ.get("NUMBA_CACHE_DIR", ""))
+    )  # fmt: skip
+    key = hashlib.sha256(text.encode()).hexdigest()[:20]
+    return os.path.join(tempfile.gettempdir(), f"onbottom-compile-{key}.lock")
+
+
 @contextlib.contextmanager
 def _compile_lock(kernel, sig) -> Iterator[None]:
     """Hold an exclusive lock, across processes, for compiling ``kernel`` at ``sig``.
@@ -139,15 +150,8 @@ def _compile_lock(kernel, sig) -> Iterator[None]:
     except ImportError:  # pragma: no cover - Windows
         yield
         return
-    py = kernel.py_func
-    text = "|".join(
-        (py.__module__, py.__qualname__, py.__code__.co_filename, repr(sig),
-         os.environ.get("NUMBA_CACHE_DIR", ""))
-    )  # fmt: skip
-    key = hashlib.sha256(text.encode()).hexdigest()[:20]
-    path = os.path.join(tempfile.gettempdir(), f"onbottom-compile-{key}.lock")
     try:
-        f = open(path, "a")
+        f = open(compile_lock_path(kernel, sig), "a")
     except OSError:
         yield
         return
