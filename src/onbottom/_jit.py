@@ -143,11 +143,17 @@ def _compile_lock(kernel, sig) -> Iterator[None]:
     A lock file in the temporary folder named by a hash of the kernel, the signature, its
     source file and numba's cache folder; ``fcntl.flock``, released by the system if the
     process dies. Where ``fcntl`` or the file is unavailable (Windows, a read-only
-    temporary folder) nothing is locked and each process compiles, as numba does.
+    temporary folder), or the kernel is not cached (the others could not load it, only
+    wait), nothing is locked and each process compiles, as numba does.
     """
+    from numba.core.caching import NullCache
+
     try:
         import fcntl
     except ImportError:  # pragma: no cover - Windows
+        yield
+        return
+    if isinstance(getattr(kernel, "_cache", None), NullCache):
         yield
         return
     try:

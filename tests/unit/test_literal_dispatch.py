@@ -170,8 +170,8 @@ def _try_lock(path, conn):
 
 @pytest.mark.skipif(sys.platform == "win32", reason="fcntl locks: POSIX only")
 def test_compile_lock_excludes_other_processes_while_held():
-    sig = next(iter(_force.overloads), None) or ("test",)
-    path = compile_lock_path(_force, sig)
+    sig = ("a signature",)
+    path = compile_lock_path(_soil_path_node, sig)  # a cached kernel (an uncached one: no lock)
     ctx = multiprocessing.get_context("fork")  # the child only locks a file
 
     def other():
@@ -182,6 +182,18 @@ def test_compile_lock_excludes_other_processes_while_held():
         p.join()
         return answer
 
-    with _compile_lock(_force, sig):
+    with _compile_lock(_soil_path_node, sig):
         assert other() == "blocked"
     assert other() == "acquired"
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="fcntl locks: POSIX only")
+def test_an_uncached_kernel_is_compiled_without_the_lock():
+    sig = ("a signature",)
+    path = compile_lock_path(_force, sig)
+    with _compile_lock(_force, sig):  # _force: cache=False, nothing for others to load
+        import fcntl
+
+        with open(path, "a") as f:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)  # free: not held
+            fcntl.flock(f, fcntl.LOCK_UN)
