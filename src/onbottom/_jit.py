@@ -8,6 +8,11 @@ that exception (each solver checks its results for finiteness), and the tests an
 cost 30–45 % of a soil kernel call (issue 33: Coulomb kernel 70 → 38 ns, V&S 0.17 →
 0.12 µs per node call). Results are bit-identical wherever no division by zero occurs.
 
+It also sets ``no_cfunc_wrapper=True``: numba otherwise builds, optimises and machine-compiles
+a C-callable wrapper for every jitted function, used only when a function is passed as a
+first-class function value (ctypes/cffi), which the project never does; about a tenth of a
+first run's compiling (issue 33 item 2: the storm kernel's 5.2 → 4.7 CPU-s, paired, loaded).
+
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
 
@@ -17,20 +22,82 @@ here, in a base module, so that the kernels of every package (soil, hydro, dynam
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import operator
+import os
+import tempfile
 import types
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 import numba
 from numba.core.dispatcher import Dispatcher
 
-__all__ = ["call_literal", "njit", "pure_python"]
+__all__ = ["call_literal", "literal_dispatch", "njit", "pure_python"]
 
 
 def njit(*args, **kwargs):
     """:func:`numba.njit` with ``error_model="numpy"`` by default (same call forms)."""
     kwargs.setdefault("error_model", "numpy")
+    kwargs.setdefault("no_cfunc_wrapper", True)
     return numba.njit(*args, **kwargs)
+
+
+def literal_dispatch(pyfunc, kernels, general):
+    """Compile ``pyfunc(model_id, *args)`` in jitted code to a direct call of one kernel.
+
+    With ``model_id`` a numba literal (the caller's entry point calls ``numba.literally``) the
+    call is ``kernels[model_id](*args)``, so the caller compiles that model's kernel only;
+    otherwise (a non-literal id, or one missing from ``kernels``) it is
+    ``general(model_id, *args)``. ``pyfunc`` stays a plain Python function (the twins and
+    tests call it), to which numba's typing and lowering registries are attached here.
+
+    Why not ``numba.extending.overload``: an overload compiles its implementation as a
+    function of its own, whose machine code holds (links, re-optimises and re-compiles) the
+    whole kernel once more; here the call site calls the kernel's compiled function directly,
+    as a call of the kernel in the source would (issue 33 item 2: about 0.3 CPU-s of a storm
+    run's first compile for the soil and force models).
+    """
+    from numba.core import types
+    from numba.core.imputils import lower_builtin
+    from numba.core.typing.templates import AbstractTemplate, infer_global, signature
+
+    def target(argtys):
+        kernel = kernels.get(getattr(argtys[0], "literal_value", None))
+        if kernel is None:
+            return general, tuple(argtys)
+        return kernel, tuple(argtys[1:])
+
+    def resolve(typingctx, argtys):
+        fn, fargs = target(argtys)
+        fnty = typingctx.resolve_value_type(fn)
+        return fn, fnty, fnty.get_call_type(typingctx, fargs, {})
+
+    class Template(AbstractTemplate):
+        key = pyfunc
+        prefer_literal = True  # try the literal id first (else the non-literal one is taken)
+
+        def generic(self, args, kws):
+            if kws:
+                return None
+            call_sig = resolve(self.context, args)[2]  # compiles (or loads) the kernel
+            if call_sig is None:
+                return None
+            return signature(call_sig.return_type, *args)
+
+    infer_global(pyfunc)(Template)
+
+    @lower_builtin(pyfunc, types.VarArg(types.Any))
+    def lower(context, builder, sig, args):
+        fn, fnty, call_sig = resolve(context.typing_context, sig.args)
+        skip = 0 if fn is general else 1
+        vals = [
+            context.cast(builder, v, t, want)
+            for v, t, want in zip(args[skip:], sig.args[skip:], call_sig.args, strict=True)
+        ]
+        return context.get_function(fnty, call_sig)(builder, vals)
+
+    return pyfunc
 
 
 def call_literal(kernel, n_literal, *args):
@@ -43,6 +110,10 @@ def call_literal(kernel, n_literal, *args):
     the literal signature is built directly: the specialisation is compiled (or loaded from
     numba's on-disk cache) once per process and called through its entry point. ``kernel`` a
     plain Python function (a test's ``py_func``) is just called.
+
+    Processes started together (Dask workers of a first run) compile a specialisation one
+    at a time (:func:`_compile_lock`): the first compiles and writes numba's cache, the
+    others wait and load it, instead of each paying the whole compile (issue 33 item 2).
     """
     overloads = getattr(kernel, "overloads", None)
     if overloads is None:
@@ -53,7 +124,8 @@ def call_literal(kernel, n_literal, *args):
     )
     cres = overloads.get(sig)
     if cres is None:
-        kernel.compile(sig)
+        with _compile_lock(kernel, sig):
+            kernel.compile(sig)  # numba loads it from its cache when another process wrote it
         cres = overloads[sig]
     return cres.entry_point(*args)
 
@@ -83,3 +155,47 @@ def pure_python(fn: Callable, _memo: dict | None = None) -> Callable:
         if isinstance(obj, Dispatcher):
             glb[name] = pure_python(obj, memo)
     return twin
+
+
+def compile_lock_path(kernel, sig) -> str:
+    """The lock file of :func:`_compile_lock` for ``kernel`` (a dispatcher) at ``sig``."""
+    py = kernel.py_func
+    text = "|".join(
+        (py.__module__, py.__qualname__, py.__code__.co_filename, repr(sig),
+         os.environ.get("NUMBA_CACHE_DIR", ""))
+    )  # fmt: skip
+    key = hashlib.sha256(text.encode()).hexdigest()[:20]
+    return os.path.join(tempfile.gettempdir(), f"onbottom-compile-{key}.lock")
+
+
+@contextlib.contextmanager
+def _compile_lock(kernel, sig) -> Iterator[None]:
+    """Hold an exclusive lock, across processes, for compiling ``kernel`` at ``sig``.
+
+    A lock file in the temporary folder named by a hash of the kernel, the signature, its
+    source file and numba's cache folder; ``fcntl.flock``, released by the system if the
+    process dies. Where ``fcntl`` or the file is unavailable (Windows, a read-only
+    temporary folder), or the kernel is not cached (the others could not load it, only
+    wait), nothing is locked and each process compiles, as numba does.
+    """
+    from numba.core.caching import NullCache
+
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows
+        yield
+        return
+    if isinstance(getattr(kernel, "_cache", None), NullCache):
+        yield
+        return
+    try:
+        f = open(compile_lock_path(kernel, sig), "a")
+    except OSError:
+        yield
+        return
+    with f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(f, fcntl.LOCK_UN)

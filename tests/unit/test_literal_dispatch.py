@@ -3,10 +3,14 @@ force models a run uses, with results identical to the general dispatch."""
 
 from __future__ import annotations
 
+import multiprocessing
+import sys
+
 import numpy as np
+import pytest
 from numba import literally
 
-from onbottom._jit import call_literal, njit
+from onbottom._jit import _compile_lock, call_literal, compile_lock_path, njit
 from onbottom.hydro._force_contract import FO_SIZE
 from onbottom.hydro._force_dispatch import FORCE_MORISON, force_step, force_step_of
 from onbottom.hydro.force_model import N_FORCE_STATE, MorisonLift
@@ -20,7 +24,7 @@ from onbottom.soil.verley_sotberg import VerleySotberg
 PIPE = Pipe(outer_diameter=0.4, submerged_weight=600.0)
 
 
-@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
+@njit(cache=False)  # inspect_llvm: empty for a function loaded from the cache
 def _soil_path(model_id, params, state, u, v, out_all):
     """Soil steps along ``u`` through :func:`lateral_step_of` with a literal ``model_id``."""
     literally(model_id)
@@ -32,7 +36,7 @@ def _soil_path(model_id, params, state, u, v, out_all):
         out_all[k] = out
 
 
-@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
+@njit(cache=True)
 def _soil_path_node(soil_id, model_id, params, state, u, v, out_all):
     """As :func:`_soil_path` through :func:`lateral_step_node` (pipeline form)."""
     literally(soil_id)
@@ -44,9 +48,16 @@ def _soil_path_node(soil_id, model_id, params, state, u, v, out_all):
         out_all[k] = out
 
 
-@njit(cache=False)  # inspect_llvm needs code compiled in this process, not loaded
+@njit(cache=False)  # inspect_llvm: empty for a function loaded from the cache
 def _force(model_id, params, state, u, out):
     literally(model_id)
+    s_new = np.empty_like(state)
+    force_step_of(model_id, params, state, 12.5, u, 0.3, 0.2, 0.1, 0.4, 1025.0, s_new, out)
+
+
+@njit(cache=False)  # inspect_llvm: empty for a function loaded from the cache
+def _force_any(model_id, params, state, u, out):
+    """:func:`force_step_of` with a non-literal ``model_id`` (the general dispatch)."""
     s_new = np.empty_like(state)
     force_step_of(model_id, params, state, 12.5, u, 0.3, 0.2, 0.1, 0.4, 1025.0, s_new, out)
 
@@ -126,3 +137,63 @@ def test_call_literal_calls_a_plain_function():
         return a + b * c
 
     assert call_literal(f, 2, 1, 2, 3) == 7
+
+
+def test_non_literal_id_takes_the_general_dispatch():
+    fm = MorisonLift()
+    params = fm.parameter_table(1.0, 0.0)[0]
+    state = np.zeros(N_FORCE_STATE)
+    got = np.empty(FO_SIZE)
+    _force_any(FORCE_MORISON, params, state, 0.7, got)
+    ref = np.empty(FO_SIZE)
+    force_step(
+        FORCE_MORISON, params, state, 12.5, 0.7, 0.3, 0.2, 0.1, 0.4, 1025.0, state.copy(), ref
+    )
+    assert np.array_equal(got, ref)
+    sig = next(iter(_force_any.overloads))
+    assert getattr(sig[0], "literal_value", None) is None  # typed as a plain int
+    # the general dispatch holds every force model's kernel
+    assert "wake_kernel" in _force_any.inspect_llvm(sig)
+
+
+def _try_lock(path, conn):
+    import fcntl
+
+    with open(path, "a") as f:
+        try:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            conn.send("blocked")
+        else:
+            conn.send("acquired")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="fcntl locks: POSIX only")
+def test_compile_lock_excludes_other_processes_while_held():
+    sig = ("a signature",)
+    path = compile_lock_path(_soil_path_node, sig)  # a cached kernel (an uncached one: no lock)
+    ctx = multiprocessing.get_context("fork")  # the child only locks a file
+
+    def other():
+        a, b = ctx.Pipe()
+        p = ctx.Process(target=_try_lock, args=(path, b))
+        p.start()
+        answer = a.recv()
+        p.join()
+        return answer
+
+    with _compile_lock(_soil_path_node, sig):
+        assert other() == "blocked"
+    assert other() == "acquired"
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="fcntl locks: POSIX only")
+def test_an_uncached_kernel_is_compiled_without_the_lock():
+    sig = ("a signature",)
+    path = compile_lock_path(_force, sig)
+    with _compile_lock(_force, sig):  # _force: cache=False, nothing for others to load
+        import fcntl
+
+        with open(path, "a") as f:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)  # free: not held
+            fcntl.flock(f, fcntl.LOCK_UN)

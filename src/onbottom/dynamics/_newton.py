@@ -17,7 +17,7 @@ tests/unit/test_newton_helper.py.
 
 from __future__ import annotations
 
-from numba import njit
+from onbottom._jit import njit
 
 __all__ = ["safeguarded_update"]
 

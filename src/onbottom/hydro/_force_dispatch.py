@@ -61,9 +61,8 @@ kernels call :func:`force_step_of` with a literal id: they compile the model use
 from __future__ import annotations
 
 import numpy as np
-from numba.extending import overload
 
-from onbottom._jit import njit
+from onbottom._jit import literal_dispatch, njit
 from onbottom.hydro._force_contract import FO_SIZE
 from onbottom.hydro._fourier_kernel import fourier_kernel
 from onbottom.hydro._morison_kernel import morison_kernel
@@ -102,23 +101,11 @@ def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, sta
     """:func:`force_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
 
     In a kernel whose ``model_id`` is a numba literal (``numba.literally`` at the caller's entry
-    point) this is a direct call of that model's kernel, so the caller compiles one force
-    model, not all of them. With a non-literal id it is :func:`force_step`; in plain Python too.
+    point) this is a direct call of that model's kernel (:func:`onbottom._jit.literal_dispatch`),
+    so the caller compiles one force model, not all of them. With a non-literal id it is
+    :func:`force_step`; in plain Python too.
     """
     force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
 
 
-@overload(force_step_of, prefer_literal=True, jit_options={"error_model": "numpy"})
-def _force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-    kernel = _KERNELS.get(getattr(model_id, "literal_value", None))
-    if kernel is None:
-
-        def general(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-            force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
-
-        return general
-
-    def one(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-        kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
-
-    return one
+literal_dispatch(force_step_of, _KERNELS, force_step)

@@ -38,8 +38,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from onbottom._jit import njit
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ, N_FORCE_STATE
 
 P_NHARM = 0

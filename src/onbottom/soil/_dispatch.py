@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 from numba.extending import overload
 
-from onbottom._jit import njit
+from onbottom._jit import literal_dispatch, njit
 from onbottom.soil._coulomb_kernel import coulomb_kernel
 from onbottom.soil._verley_lund_kernel import verley_lund_kernel
 from onbottom.soil._verley_sotberg_kernel import verley_sotberg_kernel
@@ -70,28 +70,16 @@ def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
     """:func:`lateral_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
 
     In a kernel whose ``model_id`` is a numba literal (the caller's entry point calls
-    ``numba.literally(model_id)``) this is a direct call of that model's kernel, so the caller
-    compiles one soil model, not all of them (numba's dead-branch pruning does not resolve
-    ``model_id == MODEL_*`` on literal integers). With a non-literal id it is
-    :func:`lateral_step`; in plain Python too (this body).
+    ``numba.literally(model_id)``) this is a direct call of that model's kernel
+    (:func:`onbottom._jit.literal_dispatch`), so the caller compiles one soil model, not all
+    of them (numba's dead-branch pruning does not resolve ``model_id == MODEL_*`` on literal
+    integers). With a non-literal id it is :func:`lateral_step`; in plain Python too (this
+    body).
     """
     lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
 
 
-@overload(lateral_step_of, prefer_literal=True, jit_options={"error_model": "numpy"})
-def _lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
-    kernel = _KERNELS.get(getattr(model_id, "literal_value", None))
-    if kernel is None:
-
-        def general(model_id, params, state_old, u_new, v_load, state_new, out):
-            lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
-
-        return general
-
-    def one(model_id, params, state_old, u_new, v_load, state_new, out):
-        kernel(params, state_old, u_new, v_load, state_new, out)
-
-    return one
+literal_dispatch(lateral_step_of, _KERNELS, lateral_step)
 
 
 MODELS_MIXED = -1
