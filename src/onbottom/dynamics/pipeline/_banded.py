@@ -19,6 +19,12 @@ import numpy as np
 from onbottom._jit import njit
 from onbottom.soil._twin import pure_python
 
+W_FIXED = 5
+"""Half-bandwidth of the pipeline Jacobian (3 DOFs per node, 2-node elements): rows with a full
+band take a path with constant trip counts (unrolled by LLVM; the same operations in the same
+order, so the same result bit for bit; issue 33: factor 29 → 14 µs, solve 16 → 11 µs for 1503
+rows)."""
+
 
 @njit(cache=True)
 def ldl_factor(ab):
@@ -31,21 +37,35 @@ def ldl_factor(ab):
     """
     n = ab.shape[0]
     w = ab.shape[1] - 1
+    fixed = w == W_FIXED
     t = np.empty(w + 1)
     n_neg = 0
     for i in range(n):
-        j0 = i - w
-        if j0 < 0:
-            j0 = 0
-        for j in range(j0, i):
-            s = ab[i, i - j]
-            for k in range(j0, j):
-                s -= t[k - j0] * ab[j, j - k]
-            t[j - j0] = s
-            ab[i, i - j] = s * ab[j, 0]
-        s = ab[i, 0]
-        for k in range(j0, i):
-            s -= t[k - j0] * ab[i, i - k]
+        if fixed and i >= W_FIXED:
+            # full band: j = i − W_FIXED + jj, k = i − W_FIXED + kk (same sums as below)
+            for jj in range(W_FIXED):
+                j = i - W_FIXED + jj
+                s = ab[i, W_FIXED - jj]
+                for kk in range(jj):
+                    s -= t[kk] * ab[j, jj - kk]
+                t[jj] = s
+                ab[i, W_FIXED - jj] = s * ab[j, 0]
+            s = ab[i, 0]
+            for kk in range(W_FIXED):
+                s -= t[kk] * ab[i, W_FIXED - kk]
+        else:
+            j0 = i - w
+            if j0 < 0:
+                j0 = 0
+            for j in range(j0, i):
+                s = ab[i, i - j]
+                for k in range(j0, j):
+                    s -= t[k - j0] * ab[j, j - k]
+                t[j - j0] = s
+                ab[i, i - j] = s * ab[j, 0]
+            s = ab[i, 0]
+            for k in range(j0, i):
+                s -= t[k - j0] * ab[i, i - k]
         if s == 0.0 or not (abs(s) < 1e300):
             return -1
         if s < 0.0:
@@ -59,23 +79,32 @@ def ldl_solve(ab, b):
     """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`."""
     n = ab.shape[0]
     w = ab.shape[1] - 1
+    fixed = w == W_FIXED
     for i in range(n):
-        j0 = i - w
-        if j0 < 0:
-            j0 = 0
         s = b[i]
-        for k in range(j0, i):
-            s -= ab[i, i - k] * b[k]
+        if fixed and i >= W_FIXED:
+            for kk in range(W_FIXED):
+                s -= ab[i, W_FIXED - kk] * b[i - W_FIXED + kk]
+        else:
+            j0 = i - w
+            if j0 < 0:
+                j0 = 0
+            for k in range(j0, i):
+                s -= ab[i, i - k] * b[k]
         b[i] = s
     for i in range(n):
         b[i] *= ab[i, 0]
     for i in range(n - 1, -1, -1):
-        j1 = i + w
-        if j1 > n - 1:
-            j1 = n - 1
         s = b[i]
-        for k in range(i + 1, j1 + 1):
-            s -= ab[k, k - i] * b[k]
+        if fixed and i + W_FIXED <= n - 1:
+            for kk in range(1, W_FIXED + 1):
+                s -= ab[i + kk, kk] * b[i + kk]
+        else:
+            j1 = i + w
+            if j1 > n - 1:
+                j1 = n - 1
+            for k in range(i + 1, j1 + 1):
+                s -= ab[k, k - i] * b[k]
         b[i] = s
 
 
