@@ -92,10 +92,9 @@ def ldl_solve(ab, b):
             for k in range(j0, i):
                 s -= ab[i, i - k] * b[k]
         b[i] = s
-    for i in range(n):
-        b[i] *= ab[i, 0]
+    # D⁻¹ and the backward pass in one sweep (b[i] is scaled before its own update, as in two)
     for i in range(n - 1, -1, -1):
-        s = b[i]
+        s = b[i] * ab[i, 0]
         if fixed and i + W_FIXED <= n - 1:
             for kk in range(1, W_FIXED + 1):
                 s -= ab[i + kk, kk] * b[i + kk]
