@@ -50,7 +50,6 @@ from onbottom.dynamics.pipeline._beam_kernel import (
 )
 from onbottom.dynamics.status import Status
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_FY, FO_FZ, FO_SIZE
-from onbottom.hydro._force_dispatch import FORCE_MORISON
 from onbottom.hydro._force_dispatch import force_step_of as force_step  # issue 33
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 from onbottom.soil._coulomb_kernel import friction_return_map
@@ -738,9 +737,8 @@ def integrate(
         for i in range(n_nodes):
             for c in range(sstate.shape[1]):
                 sstate[i, c] = trial[i, c]
-            if force_id != FORCE_MORISON:  # Morison is stateless: nothing to commit
-                for c in range(fstate.shape[1]):
-                    fstate[i, c] = ftrial[i, c]
+            for c in range(fstate.shape[1]):
+                fstate[i, c] = ftrial[i, c]
             axst[i, 0] = d1[NDOF_NODE * i]
             axst[i, 1] = node_fa[i]
             if sstate[i, S_Z] > settings[ST_Z_LIMIT] and scal[SC_ZLIMIT_NODE] < 0.0:
