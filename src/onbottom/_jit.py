@@ -65,7 +65,7 @@ def row_view(a, i):
     operations cost about half of a Verley & Sotberg kernel call in the pipeline FE's node loop
     (issue 33: 105 → 52 ns per node call). The view must not outlive ``a`` (a kernel uses it
     within the call that owns ``a`` and never returns or stores it). In plain Python (the
-    twins): ``a[i]``.
+    twins): ``a[i]``. ``i`` in [0, n): not bounds-checked, as numba's own indexing.
     """
     return a[i]
 
@@ -74,7 +74,7 @@ def row_view(a, i):
 def _row_view(typingctx, a, i):
     if not (isinstance(a, types.Array) and a.ndim == 2 and a.layout == "C"):
         return None
-    row = types.Array(a.dtype, 1, "C")
+    row = types.Array(a.dtype, 1, "C", readonly=not a.mutable)
 
     def codegen(context, builder, sig, args):
         ary = make_array(sig.args[0])(context, builder, args[0])
