@@ -52,12 +52,12 @@ def test_banded_ldl_solves_like_dense(spd):
         np.testing.assert_allclose(x, x_ref, rtol=1e-9, atol=1e-12)
 
 
-def test_banded_fixed_width_path_equals_the_general_one():
+@pytest.mark.parametrize("n", [6, 11, 30])
+def test_banded_fixed_width_path_equals_the_general_one(n):
     """The unrolled path of half-bandwidth 5 does the general loop's operations in its order:
     the same band padded with a zero diagonal (w = 6, general path) gives the same factor and
     solution bit for bit."""
     rng = np.random.default_rng(7)
-    n = 30
     ab = _random_band(n, BD.W_FIXED, rng, spd=False)
     wide = np.hstack([ab, np.zeros((n, 1))])
     f5, f6 = ab.copy(), wide.copy()
