@@ -76,13 +76,16 @@ def ldl_factor(ab):
 
 @njit(cache=True)
 def ldl_solve(ab, b):
-    """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`."""
+    """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`.
+
+    Half-bandwidth 5 and n > 10: the general loops' operations in their order, with the last
+    five unknowns of each sweep kept in registers (the store-to-load latency of b[i − 1] was
+    on the sweep's critical path: 11.9 → 8.5 µs for 1503 rows, issue 33)."""
     n = ab.shape[0]
     w = ab.shape[1] - 1
-    if w == W_FIXED and n > 2 * W_FIXED:
-        _solve_fixed(ab, b)
-        return
-    for i in range(n):
+    fixed = w == W_FIXED and n > 2 * W_FIXED
+    i_end = W_FIXED if fixed else n
+    for i in range(i_end):
         s = b[i]
         j0 = i - w
         if j0 < 0:
@@ -90,8 +93,24 @@ def ldl_solve(ab, b):
         for k in range(j0, i):
             s -= ab[i, i - k] * b[k]
         b[i] = s
+    if fixed:
+        x0 = b[0]
+        x1 = b[1]
+        x2 = b[2]
+        x3 = b[3]
+        x4 = b[4]
+        for i in range(W_FIXED, n):
+            s = b[i]
+            s -= ab[i, 5] * x0
+            s -= ab[i, 4] * x1
+            s -= ab[i, 3] * x2
+            s -= ab[i, 2] * x3
+            s -= ab[i, 1] * x4
+            b[i] = s
+            x0, x1, x2, x3, x4 = x1, x2, x3, x4, s
     # D⁻¹ and the backward pass in one sweep (b[i] is scaled before its own update, as in two)
-    for i in range(n - 1, -1, -1):
+    i_stop = n - 1 - W_FIXED if fixed else -1
+    for i in range(n - 1, i_stop, -1):
         s = b[i] * ab[i, 0]
         j1 = i + w
         if j1 > n - 1:
@@ -99,52 +118,21 @@ def ldl_solve(ab, b):
         for k in range(i + 1, j1 + 1):
             s -= ab[k, k - i] * b[k]
         b[i] = s
-
-
-@njit(cache=True)
-def _solve_fixed(ab, b):
-    """:func:`ldl_solve` for half-bandwidth 5 and n > 10: the general loops' operations in their
-    order, with the last five unknowns of each sweep kept in registers (the store-to-load
-    latency of b[i − 1] was on the sweep's critical path: 11.9 → 8.5 µs for 1503 rows)."""
-    n = ab.shape[0]
-    for i in range(W_FIXED):
-        s = b[i]
-        for k in range(i):
-            s -= ab[i, i - k] * b[k]
-        b[i] = s
-    x0 = b[0]
-    x1 = b[1]
-    x2 = b[2]
-    x3 = b[3]
-    x4 = b[4]
-    for i in range(W_FIXED, n):
-        s = b[i]
-        s -= ab[i, 5] * x0
-        s -= ab[i, 4] * x1
-        s -= ab[i, 3] * x2
-        s -= ab[i, 2] * x3
-        s -= ab[i, 1] * x4
-        b[i] = s
-        x0, x1, x2, x3, x4 = x1, x2, x3, x4, s
-    for i in range(n - 1, n - 1 - W_FIXED, -1):
-        s = b[i] * ab[i, 0]
-        for k in range(i + 1, n):
-            s -= ab[k, k - i] * b[k]
-        b[i] = s
-    y1 = b[n - 5]
-    y2 = b[n - 4]
-    y3 = b[n - 3]
-    y4 = b[n - 2]
-    y5 = b[n - 1]
-    for i in range(n - 1 - W_FIXED, -1, -1):
-        s = b[i] * ab[i, 0]
-        s -= ab[i + 1, 1] * y1
-        s -= ab[i + 2, 2] * y2
-        s -= ab[i + 3, 3] * y3
-        s -= ab[i + 4, 4] * y4
-        s -= ab[i + 5, 5] * y5
-        b[i] = s
-        y1, y2, y3, y4, y5 = s, y1, y2, y3, y4
+    if fixed:
+        y1 = b[n - 5]
+        y2 = b[n - 4]
+        y3 = b[n - 3]
+        y4 = b[n - 2]
+        y5 = b[n - 1]
+        for i in range(n - 1 - W_FIXED, -1, -1):
+            s = b[i] * ab[i, 0]
+            s -= ab[i + 1, 1] * y1
+            s -= ab[i + 2, 2] * y2
+            s -= ab[i + 3, 3] * y3
+            s -= ab[i + 4, 4] * y4
+            s -= ab[i + 5, 5] * y5
+            b[i] = s
+            y1, y2, y3, y4, y5 = s, y1, y2, y3, y4
 
 
 ldl_factor_py = pure_python(ldl_factor)
