@@ -63,8 +63,8 @@ def row_view(a, i):
     borrows ``a``'s memory: its meminfo is null, so the increments and decrements of the count
     that numba emits when it creates the view and passes it on are no-ops). Those atomic
     operations cost about half of a Verley & Sotberg kernel call in the pipeline FE's node loop
-    (issue 33: 105 → 52 ns per node call). The view must not outlive ``a`` (a kernel uses it
-    within the call that owns ``a`` and never returns or stores it). In plain Python (the
+    (issue 33: 105 → 52 ns per node call). The view must not outlive ``a``: a kernel uses it
+    within a call during which ``a`` is held and never returns or stores it. In plain Python (the
     twins): ``a[i]``. ``i`` in [0, n): not bounds-checked, as numba's own indexing.
     """
     return a[i]

@@ -206,13 +206,13 @@ def parameter_row(settings, fparams, t):
     """The force model's parameters at time t: the only row, or that of the left sample."""
     n = fparams.shape[0]
     if n == 1:
-        return row_view(fparams, 0)
+        return fparams[0]
     k = int((t - settings[ST_T_KIN0]) / settings[ST_DT_KIN])
     if k < 0:
         k = 0
     elif k > n - 1:
         k = n - 1
-    return row_view(fparams, k)
+    return fparams[k]
 
 
 @njit(cache=True)
@@ -238,8 +238,8 @@ def node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0
             r_y *= penetration_reduction_y(zd)
         ydot = v0[NDOF_NODE * i + 1] if relvel else 0.0
         force_step(
-            force_id, prow, row_view(fstate, i), t, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, d,
-            rho, borrow(fscr), borrow(fout),
+            force_id, borrow(prow), row_view(fstate, i), t, uk[i], ak[i], nodes[i, ND_CURRENT],
+            ydot, d, rho, borrow(fscr), borrow(fout),
         )  # fmt: skip
         vcont[i] = nodes[i, ND_WS] - rz * fout[FO_FZ]
         ry[i] = r_y
@@ -289,8 +289,8 @@ def evaluate(
         ell = nodes[i, ND_TRIB]
         ydot = v1[iv] if relvel else 0.0
         force_step(
-            force_id, prow, row_view(fstate, i), t1, uk[i], ak[i], nodes[i, ND_CURRENT], ydot,
-            dd, rho, row_view(ftrial, i), borrow(fout),
+            force_id, borrow(prow), row_view(fstate, i), t1, uk[i], ak[i], nodes[i, ND_CURRENT],
+            ydot, dd, rho, row_view(ftrial, i), borrow(fout),
         )  # fmt: skip
         f_y = ry[i] * fout[FO_FY]
         dfdv = ry[i] * fout[FO_DFY_DYD] if relvel else 0.0
