@@ -1,4 +1,5 @@
-"""Paths added for kernel speed (issue 33): the project's njit error model and the V&S memo."""
+"""Paths added for kernel speed (issue 33): the project's njit error model, the V&S memo, and
+the views without a reference count (``row_view``, ``borrow``)."""
 
 from __future__ import annotations
 
@@ -7,9 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from onbottom._jit import njit
+from onbottom._jit import borrow, njit, row_view
 from onbottom.soil import _verley_sotberg_kernel as VK
 from onbottom.soil._path import drive_path
+from onbottom.soil._twin import pure_python
 from onbottom.soil.base import OUT_SIZE
 from onbottom.soil.verley_sotberg import VerleySotberg
 
@@ -61,3 +63,37 @@ def test_vs_memo_holds_the_power_of_the_penetration_it_was_used_at(calc_model):
         m.kernel(p, wiped, u[-1] + du, 10.5e3, b, ob)
         np.testing.assert_array_equal(oa, ob)
         np.testing.assert_array_equal(a[: VK.S_MEMO_Z], b[: VK.S_MEMO_Z])
+
+
+@njit
+def _scale(row, w, i):
+    for k in range(row.shape[0]):
+        row[k] *= w[i]
+
+
+@njit
+def _scale_rows(a, w):
+    """Row i of ``a`` times w[i], through row_view rows and a borrowed callee argument."""
+    for i in range(a.shape[0]):
+        _scale(row_view(a, i), borrow(w), i)
+    return row_view(a, a.shape[0] - 1).sum()
+
+
+_scale_rows_py = pure_python(_scale_rows)
+
+
+def test_row_view_and_borrow_alias_the_array_in_a_kernel_and_in_python():
+    """row_view(a, i) is a[i] and borrow(a) is a (same memory: writes reach the parent), in a
+    kernel (views without a reference count) and in plain Python (the twins)."""
+    a0 = np.arange(12.0).reshape(4, 3)
+    w = np.array([1.0, 2.0, 3.0, 4.0])
+    expected = a0 * w[:, None]
+    # C-contiguous (the views without a count) and Fortran order (the ordinary view)
+    for a in (a0.copy(), np.asfortranarray(a0)):
+        assert _scale_rows(a, w) == expected[-1].sum()
+        np.testing.assert_array_equal(a, expected)
+    a = a0.copy()
+    assert _scale_rows_py(a, w) == expected[-1].sum()
+    np.testing.assert_array_equal(a, expected)
+    assert np.shares_memory(row_view(a0, 2), a0)
+    assert borrow(w) is w

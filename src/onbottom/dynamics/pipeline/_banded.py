@@ -18,6 +18,12 @@ import numpy as np
 
 from onbottom._jit import njit, pure_python
 
+W_FIXED = 5
+"""Half-bandwidth of the pipeline Jacobian (3 DOFs per node, 2-node elements): rows with a full
+band take a path with constant trip counts (unrolled by LLVM; the same operations in the same
+order, so the same result bit for bit; issue 33: factor 29 → 14 µs, solve 16 → 8.5 µs for
+1503 rows)."""
+
 
 @njit(cache=True)
 def ldl_factor(ab):
@@ -30,21 +36,35 @@ def ldl_factor(ab):
     """
     n = ab.shape[0]
     w = ab.shape[1] - 1
+    fixed = w == W_FIXED
     t = np.empty(w + 1)
     n_neg = 0
     for i in range(n):
-        j0 = i - w
-        if j0 < 0:
-            j0 = 0
-        for j in range(j0, i):
-            s = ab[i, i - j]
-            for k in range(j0, j):
-                s -= t[k - j0] * ab[j, j - k]
-            t[j - j0] = s
-            ab[i, i - j] = s * ab[j, 0]
-        s = ab[i, 0]
-        for k in range(j0, i):
-            s -= t[k - j0] * ab[i, i - k]
+        if fixed and i >= W_FIXED:
+            # full band: j = i − W_FIXED + jj, k = i − W_FIXED + kk (same sums as below)
+            for jj in range(W_FIXED):
+                j = i - W_FIXED + jj
+                s = ab[i, W_FIXED - jj]
+                for kk in range(jj):
+                    s -= t[kk] * ab[j, jj - kk]
+                t[jj] = s
+                ab[i, W_FIXED - jj] = s * ab[j, 0]
+            s = ab[i, 0]
+            for kk in range(W_FIXED):
+                s -= t[kk] * ab[i, W_FIXED - kk]
+        else:
+            j0 = i - w
+            if j0 < 0:
+                j0 = 0
+            for j in range(j0, i):
+                s = ab[i, i - j]
+                for k in range(j0, j):
+                    s -= t[k - j0] * ab[j, j - k]
+                t[j - j0] = s
+                ab[i, i - j] = s * ab[j, 0]
+            s = ab[i, 0]
+            for k in range(j0, i):
+                s -= t[k - j0] * ab[i, i - k]
         if s == 0.0 or not (abs(s) < 1e300):
             return -1
         if s < 0.0:
@@ -55,27 +75,63 @@ def ldl_factor(ab):
 
 @njit(cache=True)
 def ldl_solve(ab, b):
-    """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`."""
+    """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`.
+
+    Half-bandwidth 5 and n > 10: the general loops' operations in their order, with the last
+    five unknowns of each sweep kept in registers (the store-to-load latency of b[i − 1] was
+    on the sweep's critical path: 11.9 → 8.5 µs for 1503 rows, issue 33)."""
     n = ab.shape[0]
     w = ab.shape[1] - 1
-    for i in range(n):
+    fixed = w == W_FIXED and n > 2 * W_FIXED
+    i_end = W_FIXED if fixed else n
+    for i in range(i_end):
+        s = b[i]
         j0 = i - w
         if j0 < 0:
             j0 = 0
-        s = b[i]
         for k in range(j0, i):
             s -= ab[i, i - k] * b[k]
         b[i] = s
-    for i in range(n):
-        b[i] *= ab[i, 0]
-    for i in range(n - 1, -1, -1):
+    if fixed:
+        x0 = b[0]
+        x1 = b[1]
+        x2 = b[2]
+        x3 = b[3]
+        x4 = b[4]
+        for i in range(W_FIXED, n):
+            s = b[i]
+            s -= ab[i, 5] * x0
+            s -= ab[i, 4] * x1
+            s -= ab[i, 3] * x2
+            s -= ab[i, 2] * x3
+            s -= ab[i, 1] * x4
+            b[i] = s
+            x0, x1, x2, x3, x4 = x1, x2, x3, x4, s
+    # D⁻¹ and the backward pass in one sweep (b[i] is scaled before its own update, as in two)
+    i_stop = n - 1 - W_FIXED if fixed else -1
+    for i in range(n - 1, i_stop, -1):
+        s = b[i] * ab[i, 0]
         j1 = i + w
         if j1 > n - 1:
             j1 = n - 1
-        s = b[i]
         for k in range(i + 1, j1 + 1):
             s -= ab[k, k - i] * b[k]
         b[i] = s
+    if fixed:
+        y1 = b[n - 5]
+        y2 = b[n - 4]
+        y3 = b[n - 3]
+        y4 = b[n - 2]
+        y5 = b[n - 1]
+        for i in range(n - 1 - W_FIXED, -1, -1):
+            s = b[i] * ab[i, 0]
+            s -= ab[i + 1, 1] * y1
+            s -= ab[i + 2, 2] * y2
+            s -= ab[i + 3, 3] * y3
+            s -= ab[i + 4, 4] * y4
+            s -= ab[i + 5, 5] * y5
+            b[i] = s
+            y1, y2, y3, y4, y5 = s, y1, y2, y3, y4
 
 
 ldl_factor_py = pure_python(ldl_factor)

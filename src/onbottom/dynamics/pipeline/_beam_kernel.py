@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit, pure_python
+from onbottom._jit import borrow, njit, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]
@@ -172,7 +172,10 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
         moment[i] = 0.0
         axial[i] = 0.0
     for e in range(n_el):
-        n, m1, m2 = element_force_tangent(d, e, props, fe, ke, want_k)
+        # borrowed: no reference counting of the four arrays per element call (issue 33)
+        n, m1, m2 = element_force_tangent(
+            borrow(d), e, borrow(props), borrow(fe), borrow(ke), want_k
+        )
         moment[e] -= m1
         moment[e + 1] += m2
         axial[e] += n

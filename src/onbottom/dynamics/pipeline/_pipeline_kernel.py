@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import literally
 
-from onbottom._jit import njit
+from onbottom._jit import borrow, njit, row_view
 from onbottom.dynamics.pipeline._banded import ldl_factor, ldl_solve
 from onbottom.dynamics.pipeline._beam_kernel import (
     HALF_BAND,
@@ -244,8 +244,8 @@ def node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0
             r_y *= penetration_reduction_y(zd)
         ydot = v0[NDOF_NODE * i + 1] if relvel else 0.0
         force_step(
-            force_id, prow, fstate[i], t, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, d, rho, fscr,
-            fout,
+            force_id, borrow(prow), row_view(fstate, i), t, uk[i], ak[i], nodes[i, ND_CURRENT],
+            ydot, d, rho, borrow(fscr), borrow(fout),
         )  # fmt: skip
         vcont[i] = nodes[i, ND_WS] - rz * fout[FO_FZ]
         ry[i] = r_y
@@ -295,12 +295,15 @@ def evaluate(
         ell = nodes[i, ND_TRIB]
         ydot = v1[iv] if relvel else 0.0
         force_step(
-            force_id, prow, fstate[i], t1, uk[i], ak[i], nodes[i, ND_CURRENT], ydot, dd, rho,
-            ftrial[i], fout,
+            force_id, borrow(prow), row_view(fstate, i), t1, uk[i], ak[i], nodes[i, ND_CURRENT],
+            ydot, dd, rho, row_view(ftrial, i), borrow(fout),
         )  # fmt: skip
         f_y = ry[i] * fout[FO_FY]
         dfdv = ry[i] * fout[FO_DFY_DYD] if relvel else 0.0
-        lateral_step(soil_id, model_ids[i], sparams[i], sstate[i], d1[iv], vcont[i], trial[i], out)
+        lateral_step(
+            soil_id, model_ids[i], row_view(sparams, i), row_view(sstate, i), d1[iv], vcont[i],
+            row_view(trial, i), borrow(out),
+        )  # fmt: skip
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return False
