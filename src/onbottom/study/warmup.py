@@ -244,9 +244,7 @@ def warm_kernels(
     names = [t.name for t in TARGETS] if targets is None else list(dict.fromkeys(targets))
     for name in names:
         if name not in _BY_NAME:
-            raise InputError(
-                f"targets = {name!r} is invalid: choose from {', '.join(_BY_NAME)}"
-            )
+            raise InputError(f"targets = {name!r} is invalid: choose from {', '.join(_BY_NAME)}")
     if processes is not None and processes < 1:
         raise InputError(f"processes = {processes!r} is invalid: must be >= 1")
     n = len(names)
