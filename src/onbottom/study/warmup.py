@@ -40,8 +40,17 @@ import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
+from functools import partial
 
-__all__ = ["TARGETS", "TargetTime", "WarmupReport", "WarmupTarget", "warm_kernels"]
+__all__ = [
+    "STORM_FORCE_MODELS",
+    "STORM_SEABEDS",
+    "TARGETS",
+    "TargetTime",
+    "WarmupReport",
+    "WarmupTarget",
+    "warm_kernels",
+]
 
 _DEPTH = 15.0  # m, water depth of the tiny storms
 _STORM_S = 6.0  # s of storm: a few dozen steps reach every branch that compiles
@@ -66,6 +75,18 @@ TARGETS: tuple[WarmupTarget, ...] = (
 this order). Each storm-section group compiles the Morison and the wake force model."""
 
 _BY_NAME = {t.name: t for t in TARGETS}
+
+STORM_FORCE_MODELS: tuple[str, ...] = ("morison", "wake")
+"""Force models (:mod:`onbottom.hydro.registry` names) each storm-section group compiles:
+``storm``'s default and ``assess``'s default."""
+
+STORM_SEABEDS: dict[str, str] = {
+    "storm-sand": "sand",
+    "storm-clay": "clay",
+    "storm-rock": "rock",
+}
+"""Storm-section target → the seabed kind (``[seabed] model``) whose default soil model it
+compiles (``"calcareous"`` is Verley & Sotberg too, ``"coulomb"`` Coulomb as ``"rock"``)."""
 
 
 @dataclass(frozen=True)
@@ -125,10 +146,9 @@ def _seabed(kind: str):
 
 
 def _force_models():
-    from onbottom.hydro.force_model import MorisonLift
     from onbottom.hydro.registry import build_force_model
 
-    return (MorisonLift(), build_force_model("wake", {}))
+    return tuple(build_force_model(name, {}) for name in STORM_FORCE_MODELS)
 
 
 def _storm_section(kind: str) -> None:
@@ -178,9 +198,7 @@ def _section() -> None:
 
 _RUNS: dict[str, Callable[[], None]] = {
     "pipeline": _pipeline,
-    "storm-sand": lambda: _storm_section("sand"),
-    "storm-clay": lambda: _storm_section("clay"),
-    "storm-rock": lambda: _storm_section("rock"),
+    **{name: partial(_storm_section, kind) for name, kind in STORM_SEABEDS.items()},
     "section": _section,
 }
 
