@@ -38,7 +38,6 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from functools import partial
 
@@ -282,19 +281,35 @@ def warm_kernels(
         return WarmupReport(tuple(done), time.perf_counter() - t0, 1)
 
     import multiprocessing
+    import queue
 
-    # spawn: a clean interpreter per worker (the parent may have imported numba or threads)
+    # spawn: a clean interpreter per worker (the parent may have imported numba or threads);
+    # the workers ignore Ctrl-C, and leaving the pool terminates them (an interrupted
+    # compile leaves no partial cache file: numba writes a temporary file and renames it)
     ctx = multiprocessing.get_context("spawn")
     pending = list(enumerate(names, 1))
-    running: set[Future] = set()
-    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+    finished: queue.SimpleQueue = queue.SimpleQueue()
+    running = 0
+    with ctx.Pool(workers, initializer=_ignore_interrupts) as pool:
         while pending or running:
-            while pending and len(running) < workers:
+            while pending and running < workers:
                 k, name = pending.pop(0)
                 if progress is not None:
                     progress(k, n, _BY_NAME[name])
-                running.add(pool.submit(_run_target, name))
-            finished, running = wait(running, return_when=FIRST_COMPLETED)
-            for fut in finished:
-                record(fut.result())
+                pool.apply_async(
+                    _run_target, (name,), callback=finished.put, error_callback=finished.put
+                )
+                running += 1
+            row = finished.get()
+            running -= 1
+            if isinstance(row, BaseException):
+                raise row
+            record(row)
     return WarmupReport(tuple(done), time.perf_counter() - t0, workers)
+
+
+def _ignore_interrupts() -> None:
+    """Worker initializer: Ctrl-C is the parent's to handle (it terminates the workers)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
