@@ -19,6 +19,7 @@ from onbottom.cli.json_contract import SCHEMA_VERSION, documented_keys
 from onbottom.cli.main import cli, main
 from onbottom.errors import InputError
 from onbottom.study.warmup import (
+    PIPELINE_SEABEDS,
     STORM_FORCE_MODELS,
     STORM_SEABEDS,
     TARGETS,
@@ -69,7 +70,7 @@ def test_targets_cover_the_default_models():
     from onbottom.soil.registry import SEABED_MODELS, soil_model_entry
 
     names = {t.name for t in TARGETS}
-    assert set(STORM_SEABEDS) <= names and {"pipeline", "section"} <= names
+    assert set(STORM_SEABEDS) | set(PIPELINE_SEABEDS) | {"section"} == names
 
     def model_class(kind: str) -> type:
         return soil_model_entry(SEABED_MODELS[kind]).cls
@@ -77,6 +78,8 @@ def test_targets_cover_the_default_models():
     covered = {model_class(kind).model_id for kind in STORM_SEABEDS.values()}
     for kind in SEABED_MODELS:
         assert model_class(kind).model_id in covered, kind
+    # the embedded assess route's seabeds (its pipeline FE run takes the governing one's)
+    assert {"sand", "clay"} <= set(PIPELINE_SEABEDS.values())
     storm_default = force_model_from_case.__kwdefaults__["default"]
     assert {storm_default, DEFAULT_FORCE_MODEL} <= set(STORM_FORCE_MODELS)
 

@@ -37,11 +37,11 @@ def command(only: tuple[str, ...], processes: int | None, quiet: bool, as_json: 
     each kernel on its first call, which costs a first ``onbottom storm`` 5 s, a first
     ``assess`` 6 s and a first pipeline run 10 s of CPU; after the warm-up they load the
     kernels from numba's cache. Compiles the storm-section kernel for sand/calcareous, clay
-    and rock seabeds with the Morison and the wake force models, the pipeline FE kernel
-    (sand, Morison) and the centrifuge-section kernel, each by running a tiny problem, in
-    parallel processes. A second run finds everything cached and takes a few seconds. Other
-    models (Fourier forces, the V–H soil model, mixed soils along a line) still compile on
-    their first use.
+    and rock seabeds and the pipeline FE kernel for sand and clay, each with the Morison and
+    the wake force models, and the centrifuge-section kernel, each group by running a tiny
+    problem, in parallel processes. A second run finds everything cached and takes a few
+    seconds. Other models (Fourier forces, the V–H soil model, rock under a pipeline, mixed
+    soils along a line) still compile on their first use.
     """
     from onbottom.study.warmup import warm_kernels
 

@@ -20,9 +20,10 @@ Targets (:data:`TARGETS`, one kernel group each):
     the same with Verley & Lund (``"clay"``);
 ``storm-rock``
     the same with Coulomb friction (``"rock"``);
-``pipeline``
-    the pipeline FE (``storm`` on a case with ``[pipeline]``) with Verley & Sotberg × Morison,
-    as in ``examples/pipeline_case.toml``;
+``pipeline``, ``pipeline-clay``
+    the pipeline FE (``storm`` on a case with ``[pipeline]``, ``assess``'s pipeline FE
+    level) with Verley & Sotberg (``examples/pipeline_case.toml``), and with Verley & Lund
+    (the clay section of the embedded ``assess`` route), × Morison and wake;
 ``section``
     the centrifuge-section kernel (``reproduce``, ``simulate``, ``calibrate``) with Verley &
     Sotberg.
@@ -42,6 +43,7 @@ from dataclasses import dataclass
 from functools import partial
 
 __all__ = [
+    "PIPELINE_SEABEDS",
     "STORM_FORCE_MODELS",
     "STORM_SEABEDS",
     "TARGETS",
@@ -64,7 +66,8 @@ class WarmupTarget:
 
 
 TARGETS: tuple[WarmupTarget, ...] = (
-    WarmupTarget("pipeline", "pipeline FE kernel: Verley & Sotberg × Morison"),
+    WarmupTarget("pipeline", "pipeline FE kernel: sand/calcareous (Verley & Sotberg)"),
+    WarmupTarget("pipeline-clay", "pipeline FE kernel: clay (Verley & Lund)"),
     WarmupTarget("storm-sand", "storm-section kernel: sand/calcareous (Verley & Sotberg)"),
     WarmupTarget("storm-clay", "storm-section kernel: clay (Verley & Lund)"),
     WarmupTarget("storm-rock", "storm-section kernel: rock (Coulomb)"),
@@ -86,6 +89,11 @@ STORM_SEABEDS: dict[str, str] = {
 }
 """Storm-section target → the seabed kind (``[seabed] model``) whose default soil model it
 compiles (``"calcareous"`` is Verley & Sotberg too, ``"coulomb"`` Coulomb as ``"rock"``)."""
+
+PIPELINE_SEABEDS: dict[str, str] = {"pipeline": "sand", "pipeline-clay": "clay"}
+"""Pipeline target → the seabed kind whose soil model it compiles (with each of
+:data:`STORM_FORCE_MODELS`): the example's sand and the embedded ``assess`` route's sand and
+clay sections (its pipeline FE run takes the governing section's soil)."""
 
 
 @dataclass(frozen=True)
@@ -171,21 +179,22 @@ def _storm_section(kind: str) -> None:
         )
 
 
-def _pipeline() -> None:
-    """The pipeline FE kernel, Verley & Sotberg × Morison (``examples/pipeline_case.toml``)."""
+def _pipeline(kind: str) -> None:
+    """The pipeline FE kernel for seabed ``kind`` × Morison, wake (a ``storm`` case with
+    ``[pipeline]``; the pipeline FE level of ``assess``, whose default force model is wake)."""
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, simulate_pipeline
-    from onbottom.hydro.force_model import MorisonLift
     from onbottom.hydro.short_crested import pipeline_kinematics
     from onbottom.soil.registry import soil_model_for_seabed
 
     pipe = _pipe()
-    soil = soil_model_for_seabed("sand", pipe, _seabed("sand"))
-    model = PipelineModel(
-        pipe=pipe, length=24.0, element_length=4.0, soil=soil, force_model=MorisonLift(),
-        effective_axial_force=-1.0e5, current=0.3,
-    )  # fmt: skip
-    kin = pipeline_kinematics(_storm(), _DEPTH, model.x)
-    simulate_pipeline(model, kin, settings=PipelineSettings(record_interval=1.0))
+    soil = soil_model_for_seabed(kind, pipe, _seabed(kind))
+    for fm in _force_models():
+        model = PipelineModel(
+            pipe=pipe, length=24.0, element_length=4.0, soil=soil, force_model=fm,
+            effective_axial_force=-1.0e5, current=0.3,
+        )  # fmt: skip
+        kin = pipeline_kinematics(_storm(), _DEPTH, model.x)
+        simulate_pipeline(model, kin, settings=PipelineSettings(record_interval=1.0))
 
 
 def _section() -> None:
@@ -196,7 +205,7 @@ def _section() -> None:
 
 
 _RUNS: dict[str, Callable[[], None]] = {
-    "pipeline": _pipeline,
+    **{name: partial(_pipeline, kind) for name, kind in PIPELINE_SEABEDS.items()},
     **{name: partial(_storm_section, kind) for name, kind in STORM_SEABEDS.items()},
     "section": _section,
 }
