@@ -130,6 +130,7 @@ class WarmupReport:
 def _pipe():
     from onbottom.inputs.pipe import Pipe
 
+    # D [m], w_s [N/m], EI [N m²], EA [N]: any valid pipe compiles the same specialisations
     return Pipe(
         outer_diameter=0.3, submerged_weight=800.0, bending_stiffness=2e7, axial_stiffness=2e9
     )
@@ -138,6 +139,7 @@ def _pipe():
 def _storm():
     from onbottom.inputs.storm import SeaState, Storm
 
+    # H_s [m], T_p [s], duration [s]
     sea = SeaState(hs=3.0, tp=9.0, duration_s=_STORM_S, direction_deg=90.0, spreading_s=8.0)
     return Storm(stages=(sea,), build_up_s=0.0, transition_s=0.0, seed=0)
 
@@ -145,6 +147,7 @@ def _storm():
 def _seabed(kind: str):
     from onbottom.inputs.soil import Clay, Rock, Sand
 
+    # unit weights [N/m³], s_u [Pa]
     if kind == "sand":
         return Sand(submerged_unit_weight=10.0e3)
     if kind == "clay":
