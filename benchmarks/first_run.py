@@ -38,7 +38,8 @@ and LLVM work per operation dominate what remains (see ``--profile``).
 With ``--warmup`` (same machine, load 1.4–3.2, one run): cold first runs stability 0.75,
 storm (section) 6.97, storm (pipeline) 12.90, assess (tiny) 8.33 CPU-s (compiling 0.1, 5.1,
 11.2, 6.2); ``onbottom warmup`` from an empty cache 50.3 CPU-s, 55.8 s wall on 2 processes
-(a loaded machine: ≈ 25 s wall on two free cores), 161 compiles; then first runs 0.74, 2.11,
+(a loaded machine; estimated 25–30 s wall on two free cores: half the CPU plus the
+workers' start), 161 compiles; then first runs 0.74, 2.11,
 2.10, 2.51 CPU-s, each with 0 compiles: the ≤ 5 s target is met by every command once the
 warm-up has run.
 """
@@ -167,7 +168,7 @@ def measure_warmup(src: Path, only: str | None) -> None:
         )
         for t in data["targets"]:
             print(
-                f"    {t['name']:<11} wall {t['wall_s']:5.1f} s  CPU {t['cpu_s']:5.1f} s"
+                f"    {t['name']:<13} wall {t['wall_s']:5.1f} s  CPU {t['cpu_s']:5.1f} s"
                 f"  {t['compiled']:3d} compiles  ({t['title']})"
             )
         print("first run of each command after the warm-up:")

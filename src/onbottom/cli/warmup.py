@@ -71,9 +71,10 @@ def command(only: tuple[str, ...], processes: int | None, quiet: bool, as_json: 
         )
         return
     n = len(report.targets)
+    w = max((len(t.target.name) for t in report.targets), default=0)
     for t in report.targets:
         state = f"{t.compiled} compiled" if t.compiled else "already cached"
-        click.echo(f"{t.target.name:<11} {t.wall_s:6.1f} s  ({t.cpu_s:.1f} CPU-s, {state})")
+        click.echo(f"{t.target.name:<{w}} {t.wall_s:6.1f} s  ({t.cpu_s:.1f} CPU-s, {state})")
     click.echo(
         f"warm-up done: {n} kernel group{'s' if n != 1 else ''} in {report.wall_s:.1f} s"
         f" ({report.cpu_s:.1f} CPU-s on {report.processes} process"
