@@ -219,6 +219,7 @@ def _run_target(name: str) -> tuple[str, float, float, int]:
     import warnings
 
     from numba.core import event
+    from numba.core.errors import NumbaWarning
 
     count = [0]
 
@@ -232,6 +233,7 @@ def _run_target(name: str) -> tuple[str, float, float, int]:
     t0, c0 = time.perf_counter(), time.process_time()
     with event.install_listener("numba:compile", Counter()), warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the tiny problems' out-of-range notes mean nothing
+        warnings.simplefilter("default", NumbaWarning)  # e.g. a cache that cannot be written
         _RUNS[name]()
     return name, time.perf_counter() - t0, time.process_time() - c0, count[0]
 
