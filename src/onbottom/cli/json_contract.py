@@ -460,6 +460,26 @@ CONTRACT: dict[str, Output] = {
             },
         },
     ),
+    "warmup": Output(
+        "onbottom warmup --json",
+        "One-time compile of the numba kernels into numba's cache",
+        {
+            "targets": "one item per kernel group, in the order finished",
+            "wall_s": "wall time of the whole warm-up [s]",
+            "cpu_s": "CPU time of all kernel groups together [s]",
+            "compiled": "numba compiles in all (0: everything was already cached)",
+            "processes": "worker processes used (1: in this process)",
+        },
+        {
+            "targets[]": {
+                "name": "kernel group (the names --only takes)",
+                "title": "what it compiles",
+                "wall_s": "wall time of the group [s]",
+                "cpu_s": "CPU time of the group [s]",
+                "compiled": "numba compiles of the group (0: loaded from the cache)",
+            },
+        },
+    ),
 }
 """Every ``--json`` output (the DEM commands print the run summaries of
 ``onbottom.dem.summary``; see docs/theory/dem.md)."""
