@@ -24,12 +24,13 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, find_line, load_case_file
+from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
 from onbottom.checks.design import CheckOptions
 from onbottom.checks.evaluation import (
     DesignRequest,
@@ -50,6 +51,7 @@ __all__ = [
     "build_loads_inputs",
     "build_stability_inputs",
     "check_common_tables",
+    "check_options",
     "check_reference_height",
     "load_stability_case",
     "penetration_outside_validity",
@@ -401,15 +403,7 @@ class Checker:
         self.file, self.text = str(file), text
 
     def _line(self, field: str) -> int | None:
-        if self.text is None:
-            return None
-        loc: list[Any] = []
-        for part in field.split("."):
-            name, _, idx = part.partition("[")
-            loc.append(name)
-            if idx:
-                loc.append(int(idx.rstrip("]")))
-        return find_line(self.text, loc)
+        return find_key_line(self.text, field)
 
     def fail(self, field: str, message: str) -> NoReturn:
         line = self._line(field)
@@ -728,6 +722,46 @@ def check_reference_height(
         )
 
 
+def check_options(case: StabilityCase, *, checks: bool = True) -> CheckOptions:
+    """The F109 check settings of a case: ``[design]`` (safety class, region, flotation
+    conditions, permeability) and the embedment and trench of ``[seabed]``; ``checks=False``
+    runs the default design checks (``onbottom assess``) instead of ``[design] checks``."""
+    d = case.design
+    return CheckOptions(
+        safety_class=d.safety_class,
+        region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        **_seabed_options(case),
+        **({"checks": tuple(d.checks)} if checks else {}),
+    )
+
+
+def _seabed_options(case: StabilityCase) -> dict[str, Any]:
+    """The :class:`CheckOptions` of the seabed: embedment, trench and permeability."""
+    return {
+        "penetration": case.seabed.initial_penetration,
+        "trench_depth": case.seabed.trench_depth,
+        "trench_angle_deg": case.seabed.trench_angle_deg,
+        "permeable": case.design.permeable,
+    }
+
+
+def _section_inputs(case: StabilityCase, path: str | os.PathLike) -> StabilityInputs:
+    """The section, seabed, water and combinations of a case (default options, no design
+    solve), its current reference height checked (:func:`check_reference_height`)."""
+    section, seabed = case.section(), case.seabed.seabed()
+    env, combos = case.environment_object(), case.load_combinations()
+    check_reference_height(case, path, seabed)
+    return StabilityInputs(
+        section=section,
+        seabed=seabed,
+        environment=env,
+        combinations=combos,
+        condition=case.pipe.condition,
+    )
+
+
 def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> StabilityInputs:
     """The inputs of :func:`onbottom.checks.evaluation.evaluate_stability` from a case read by
     :func:`load_stability_case` from ``path``: the section, seabed, water and combinations,
@@ -735,23 +769,11 @@ def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> Stab
     (``current.reference_height``, ``design.checks``)."""
     from onbottom.checks.registry import get_check
 
-    section, seabed = case.section(), case.seabed.seabed()
-    env, combos = case.environment_object(), case.load_combinations()
-    check_reference_height(case, path, seabed)
+    inputs = _section_inputs(case, path)
     d = case.design
     for name in d.checks:  # an unknown name: an error naming the key and the choices
         get_check(name, where="design.checks")
-    options = CheckOptions(
-        safety_class=d.safety_class,
-        region=d.region,
-        vertical_conditions=tuple(d.vertical_conditions),
-        vertical_safety_factor=d.vertical_safety_factor,
-        penetration=case.seabed.initial_penetration,
-        trench_depth=case.seabed.trench_depth,
-        trench_angle_deg=case.seabed.trench_angle_deg,
-        permeable=d.permeable,
-        checks=tuple(d.checks),
-    )
+    options = check_options(case)
     design = DesignRequest(
         solve_for=d.solve_for,
         layer=d.layer,
@@ -760,15 +782,7 @@ def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> Stab
         weight_min=d.weight_min,
         weight_max=d.weight_max,
     )
-    return StabilityInputs(
-        section=section,
-        seabed=seabed,
-        environment=env,
-        combinations=combos,
-        options=options,
-        condition=case.pipe.condition,
-        design=design,
-    )
+    return replace(inputs, options=options, design=design)
 
 
 def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInputs:
@@ -780,9 +794,7 @@ def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInp
     from onbottom.checks.loads import LoadsInputs
     from onbottom.hydro.forces import MorisonCoefficients
 
-    section, seabed = case.section(), case.seabed.seabed()
-    env, combos = case.environment_object(), case.load_combinations()
-    check_reference_height(case, path, seabed)
+    inputs = _section_inputs(case, path)
     seed = 0
     if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
         from onbottom._casefile import parse_case
@@ -796,23 +808,9 @@ def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInp
             root="storm",
         ).seed
     h = case.hydro
-    options = CheckOptions(
-        vertical_conditions=(),
-        penetration=case.seabed.initial_penetration,
-        trench_depth=case.seabed.trench_depth,
-        trench_angle_deg=case.seabed.trench_angle_deg,
-        permeable=case.design.permeable,
-    )
-    checks = StabilityInputs(
-        section=section,
-        seabed=seabed,
-        environment=env,
-        combinations=combos,
-        options=options,
-        condition=case.pipe.condition,
-    )
+    options = CheckOptions(vertical_conditions=(), **_seabed_options(case))
     return LoadsInputs(
-        checks=checks,
+        checks=replace(inputs, options=options),
         coefficients=MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl),
         reductions=h.reductions,
         seed=seed,
