@@ -214,12 +214,35 @@ class WavesTable(StrictModel):
             raise ValueError("gamma applies to the JONSWAP spectrum only; remove it")
         return self
 
+    def sea_state(
+        self, *, hs: float | None = None, tp: float | None = None, gamma: float | None = None
+    ) -> SeaState:
+        """The sea state of the table; ``hs`` [m], ``tp`` [s], ``gamma`` [-] replace the
+        table's where given (a load combination's)."""
+        return SeaState(
+            hs=self.hs if hs is None else hs,
+            tp=self.tp if tp is None else tp,
+            gamma=self.gamma if gamma is None else gamma,
+            spectrum=self.spectrum,
+            direction_deg=self.direction_deg,
+            spreading_s=self.spreading_s,
+        )
+
 
 class CurrentTable(StrictModel):
     velocity: float = Field(0.0, ge=0.0, le=10.0, description="V(z_r) [m/s]")
     reference_height: float = Field(1.0, gt=0.0, description="z_r [m]")
     direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
     z0: float | None = Field(None, gt=0.0, le=1.0, description="roughness z_0 [m]")
+
+    def current(self, velocity: float | None = None) -> Current:
+        """The current of the table; ``velocity`` [m/s] replaces the table's where given."""
+        return Current(
+            velocity=self.velocity if velocity is None else velocity,
+            reference_height=self.reference_height,
+            direction_deg=self.direction_deg,
+            z0=self.z0,
+        )
 
 
 class CombinationTable(StrictModel):
@@ -318,29 +341,12 @@ class StabilityCase(StrictModel):
         return self.pipe.section(self.environment.water_density)
 
     def sea_state(self, combo: CombinationTable | None = None) -> SeaState:
-        w = self.waves
-        hs = w.hs if combo is None or combo.hs is None else combo.hs
-        tp = w.tp if combo is None or combo.tp is None else combo.tp
-        gamma = w.gamma if combo is None or combo.gamma is None else combo.gamma
-        return SeaState(
-            hs=hs,
-            tp=tp,
-            gamma=gamma,
-            spectrum=w.spectrum,
-            direction_deg=w.direction_deg,
-            spreading_s=w.spreading_s,
-        )
+        if combo is None:
+            return self.waves.sea_state()
+        return self.waves.sea_state(hs=combo.hs, tp=combo.tp, gamma=combo.gamma)
 
     def current_object(self, combo: CombinationTable | None = None) -> Current:
-        c = self.current
-        v = (
-            c.velocity
-            if combo is None or combo.current_velocity is None
-            else combo.current_velocity
-        )
-        return Current(
-            velocity=v, reference_height=c.reference_height, direction_deg=c.direction_deg, z0=c.z0
-        )
+        return self.current.current(None if combo is None else combo.current_velocity)
 
     def load_combinations(self) -> tuple[LoadCombination, ...]:
         if not self.combinations:

@@ -337,12 +337,7 @@ def _build_objects(
     soil = soil_model_for_seabed(case.seabed.model, pipe, seabed)
     st = case.storm
     c = case.current
-    current = Current(
-        velocity=c.velocity,
-        reference_height=c.reference_height,
-        direction_deg=c.direction_deg,
-        z0=c.z0,
-    )
+    current = c.current()
     z0 = c.z0 if c.z0 is not None else seabed_roughness(seabed)
     storm: Storm | StormKinematics
     if st.kind != "spectral":
@@ -373,17 +368,8 @@ def _build_objects(
             transition_s=st.transition_s,
         )
     else:
-        w = case.waves
-        peak = SeaState(
-            hs=w.hs,
-            tp=w.tp,
-            gamma=w.gamma,
-            spectrum=w.spectrum,
-            direction_deg=w.direction_deg,
-            spreading_s=w.spreading_s,
-        )
         storm = Storm.standard(
-            peak,
+            case.waves.sea_state(),
             build_up_hours=0.5 if st.build_up_hours is None else st.build_up_hours,
             peak_hours=3.0 if st.peak_hours is None else st.peak_hours,
             decay_hours=st.decay_hours,
