@@ -454,25 +454,21 @@ def _flow_input(
                 sample_interval=st.sample_interval,
             )
         except InputError as exc:
-            raise CaseFileError(
-                f"{file or '<case>'}: storm.height/storm.period: {exc}",
-                field="storm.height",
-                file=file,
-            ) from None
+            raise _flow_error(file, "storm.height", f"storm.height/storm.period: {exc}") from None
     series = case_relative(path, st.series)
     if not series.is_file():
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.series = {st.series!r} is invalid: no file {series}"
+        raise _flow_error(
+            file,
+            "storm.series",
+            f"storm.series = {st.series!r} is invalid: no file {series}"
             " (a path relative to the case file's folder, or absolute)",
-            field="storm.series",
-            file=file,
         )
     if st.sample_interval is not None:
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.sample_interval is not used with kind = 'measured':"
+        raise _flow_error(
+            file,
+            "storm.sample_interval",
+            "storm.sample_interval is not used with kind = 'measured':"
             " the record's own sampling is used (remove the key)",
-            field="storm.sample_interval",
-            file=file,
         )
     try:
         return StormKinematics.from_series(
@@ -483,9 +479,12 @@ def _flow_input(
             sampling_tolerance=st.sampling_tolerance,
         )
     except InputError as exc:
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.series: {exc}", field="storm.series", file=file
-        ) from None
+        raise _flow_error(file, "storm.series", f"storm.series: {exc}") from None
+
+
+def _flow_error(file: str | None, field: str, message: str) -> CaseFileError:
+    """An error of the flow keys of ``[storm]``, naming the file (or ``<case>``) and ``field``."""
+    return CaseFileError(f"{file or '<case>'}: {message}", field=field, file=file)
 
 
 def load_storm_case(path: str | os.PathLike) -> StormSetup:
