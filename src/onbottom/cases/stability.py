@@ -408,6 +408,16 @@ class Checker:
     def __init__(self, file: str | os.PathLike, text: str | None) -> None:
         self.file, self.text = str(file), text
 
+    @classmethod
+    def of_file(cls, path: str | os.PathLike) -> Checker:
+        """A checker of the case file ``path``, its text read for the line numbers (none
+        where it cannot be read)."""
+        try:
+            text: str | None = Path(path).read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = None
+        return cls(path, text)
+
     def _line(self, field: str) -> int | None:
         return find_key_line(self.text, field)
 
@@ -647,12 +657,7 @@ def check_common_tables(
     reference height outside (z_0, depth], densities and strengths in the wrong unit; warns
     (:class:`OutOfRangeWarning`) for unusual values. See :func:`load_stability_case`.
     """
-    p = Path(path)
-    try:
-        text: str | None = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        text = None
-    _check_common(case, Checker(p, text), list(sea_states or []))
+    _check_common(case, Checker.of_file(Path(path)), list(sea_states or []))
 
 
 def _check_section(case: StabilityCase, chk: Checker) -> None:
@@ -700,12 +705,7 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     """
     p = Path(path)
     case = load_case_file(p, StabilityCase)
-    try:
-        text: str | None = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
-        text = None
-    chk = Checker(p, text)
-    _check_section(case, chk)
+    _check_section(case, Checker.of_file(p))
     return case
 
 

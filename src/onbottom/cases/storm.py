@@ -288,13 +288,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     every error is a :class:`CaseFileError` naming the case-file key, its value and range.
     """
     where = "<case>" if path is None else path
-    text = None
-    if path is not None:
-        try:
-            text = Path(path).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError):
-            text = None
-    chk = Checker(where, text)
+    chk = Checker(where, None) if path is None else Checker.of_file(path)
     stages = [
         (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
         for i, s in enumerate(case.storm.stages)
