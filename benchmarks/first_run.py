@@ -41,13 +41,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from bench_startup import (  # the same commands, environment and timing as --first-run
-    FIRST_RUN,
-    FIRST_RUN_TARGET_S,
-    child_env,
-    first_run_args,
-    run_child,
-)
+# the same commands, environment and timing as bench_startup.py --first-run
+from bench_startup import FIRST_RUN, FIRST_RUN_TARGET_S, child_env, first_run_args, run_child
 
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
