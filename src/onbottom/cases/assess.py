@@ -625,14 +625,7 @@ def build_route(case: RouteCase) -> Route:
     return Route(
         name=case.route.name,
         sections=tuple(_build_section(case, i) for i in range(len(case.route.sections))),
-        design=DesignRange(
-            variable=case.solve_for,
-            layer=d.layer,
-            thickness_min=d.thickness_min,
-            thickness_max=d.thickness_max,
-            weight_min=d.weight_min,
-            weight_max=d.weight_max,
-        ),
+        design=DesignRange(variable=case.solve_for, **d.bounds()),
         levels=Levels(
             absolute=case.levels.absolute,
             generalized=case.levels.generalized,

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from dataclasses import replace
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
@@ -33,6 +33,7 @@ from pydantic import Field, model_validator
 from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
 from onbottom.checks.design import CheckOptions
 from onbottom.checks.evaluation import (
+    DesignBounds,
     DesignRequest,
     StabilityInputs,
     penetration_outside_validity,
@@ -309,6 +310,12 @@ class DesignTable(StrictModel):
         if self.weight_max <= self.weight_min:
             raise ValueError("weight_max must be > weight_min")
         return self
+
+    def bounds(self) -> dict[str, Any]:
+        """The design search range: the fields of
+        :class:`~onbottom.checks.evaluation.DesignBounds` (layer, thickness and weight
+        ranges) as keyword arguments."""
+        return {f.name: getattr(self, f.name) for f in fields(DesignBounds)}
 
 
 class StabilityCase(StrictModel):
@@ -780,14 +787,7 @@ def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> Stab
     for name in d.checks:  # an unknown name: an error naming the key and the choices
         get_check(name, where="design.checks")
     options = check_options(case)
-    design = DesignRequest(
-        solve_for=d.solve_for,
-        layer=d.layer,
-        thickness_min=d.thickness_min,
-        thickness_max=d.thickness_max,
-        weight_min=d.weight_min,
-        weight_max=d.weight_max,
-    )
+    design = DesignRequest(solve_for=d.solve_for, **d.bounds())
     return replace(inputs, options=options, design=design)
 
 
