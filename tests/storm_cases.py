@@ -3,6 +3,8 @@ a short pipeline) for the ``[storm] kind = "regular"`` / ``"measured"`` tests.""
 
 from __future__ import annotations
 
+from case_helpers import write_file
+
 COMMON = """
 [pipe]
 outer_diameter = 0.4
@@ -56,6 +58,4 @@ record_interval = 5.0
 def write_case(folder, storm, extra=""):
     """``folder/case.toml``: :data:`COMMON` + ``storm`` (a ``[storm]`` table) + ``extra``."""
     folder.mkdir(parents=True, exist_ok=True)
-    p = folder / "case.toml"
-    p.write_text(COMMON + storm + extra, encoding="utf-8")
-    return p
+    return write_file(folder, COMMON + storm + extra)
