@@ -223,14 +223,9 @@ class DynamicTable(StrictModel):
             )
         return self
 
-    def allowable_for(self, diameter: float) -> float:
-        """Allowable max lateral displacement [m] of a pipe of outer diameter D [m]."""
-        if self.allowable == "user":
-            return float(self.allowable_displacement_m)
-        return ALLOWABLE_OVER_D[self.allowable] * diameter
-
     def settings(self) -> DynamicSettings:
-        """The built settings of the dynamic level."""
+        """The built settings of the dynamic level (its allowable displacement:
+        :meth:`~onbottom.assess.route.DynamicSettings.allowable_for`)."""
         return DynamicSettings(
             seeds=self.seeds,
             first_seed=self.first_seed,
