@@ -66,7 +66,11 @@ FIRST_RUN: tuple[tuple[str, list[str]], ...] = (
 FIRST_RUN_TARGET_S = 5.0
 
 
-def _env(src: Path, pycache: Path | None, numba_cache: Path | None = None) -> dict[str, str]:
+def child_env(
+    src: Path, pycache: Path | None = None, numba_cache: Path | None = None
+) -> dict[str, str]:
+    """The environment of a measured ``python`` child: ``src`` on its path, one numba thread,
+    a bytecode cache folder ``pycache`` and a numba cache folder ``numba_cache`` if given."""
     env = dict(os.environ)
     env["PYTHONPATH"] = str(src)
     env.setdefault("NUMBA_NUM_THREADS", "1")
@@ -82,7 +86,10 @@ CPU: dict[str, list[float]] = {}
 """CPU seconds (user + system) of each measured run, by label: less sensitive to the load."""
 
 
-def _run(args: list[str], env: dict[str, str], cwd: Path, label: str = "") -> float:
+def run_child(args: list[str], env: dict[str, str], cwd: Path = ROOT) -> tuple[float, float]:
+    """(wall, CPU) seconds of one whole ``python ARGS`` process (CPU: user + system of the
+    child, ``resource.getrusage(RUSAGE_CHILDREN)``); an exit status other than 0 or 3 (ran,
+    the result is not valid: a check fails) raises."""
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.run(
@@ -92,10 +99,25 @@ def _run(args: list[str], env: dict[str, str], cwd: Path, label: str = "") -> fl
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     if proc.returncode not in (0, 3):  # 3: ran, result not valid (a check fails)
         raise RuntimeError(f"{' '.join(args)} exited {proc.returncode}:\n{proc.stderr[-2000:]}")
+    return elapsed, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+
+
+def _run(args: list[str], env: dict[str, str], cwd: Path, label: str = "") -> float:
+    elapsed, cpu = run_child(args, env, cwd)
     if label:
-        cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
         CPU.setdefault(label, []).append(cpu)
     return elapsed
+
+
+def first_run_args(cmd: list[str], out: Path) -> list[str]:
+    """The CLI arguments of a :data:`FIRST_RUN` command writing its files under ``out``
+    (storm and assess: one process, no Dask workers)."""
+    args = list(cmd)
+    if cmd[0] == "storm":
+        args += ["--output", str(out / f"{Path(cmd[1]).stem}.nc"), "--workers", "0"]
+    elif cmd[0] == "assess":
+        args += ["--out", str(out / "assess"), "--workers", "0"]
+    return args
 
 
 def _fmt(times: list[float], target: float | None) -> str:
@@ -111,7 +133,7 @@ def _fmt(times: list[float], target: float | None) -> str:
 def startup(trees: dict[str, Path], runs: int, bytecode: bool) -> None:
     with tempfile.TemporaryDirectory(prefix="onbottom-pyc-") as tmp:
         envs = {
-            label: _env(src, Path(tmp) / label if bytecode else None)
+            label: child_env(src, Path(tmp) / label if bytecode else None)
             for label, src in trees.items()
         }
         for name, args, target in STARTUP:
@@ -149,12 +171,8 @@ def first_run(label: str, src: Path, only: str | None = None) -> None:
             cache.mkdir()
             # no bytecode prefix here: a fresh one would add the compiling of every .py file
             # (numpy, scipy, numba ...) to the first run
-            env = _env(src, None, cache)
-            args = ["-m", "onbottom", *cmd]
-            if cmd[0] == "storm":
-                args += ["--output", str(out / f"{Path(cmd[1]).stem}.nc"), "--workers", "0"]
-            elif cmd[0] == "assess":
-                args += ["--out", str(out / "assess"), "--workers", "0"]
+            env = child_env(src, None, cache)
+            args = ["-m", "onbottom", *first_run_args(cmd, out)]
             load0 = os.getloadavg()[0]
             CPU.clear()
             cold = _run(args, env, ROOT, "cold")

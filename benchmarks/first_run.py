@@ -49,54 +49,18 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
+# the same commands, environment and timing as bench_startup.py --first-run
+from bench_startup import FIRST_RUN, FIRST_RUN_TARGET_S, child_env, first_run_args, run_child
+
 ROOT = Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
-TARGET_S = 5.0
-
-COMMANDS: tuple[tuple[str, list[str]], ...] = (
-    ("stability", ["stability", "examples/stability_case.toml", "--json"]),
-    ("storm (section)", ["storm", "examples/storm_case.toml", "--quiet", "--json"]),
-    ("storm (pipeline)", ["storm", "examples/pipeline_case.toml", "--quiet", "--json"]),
-    ("assess (tiny)", ["assess", "benchmarks/assess_tiny.toml", "--no-pdf", "--quiet", "--json"]),
-)
-
-
-def _args(cmd: list[str], out: Path) -> list[str]:
-    args = list(cmd)
-    if cmd[0] == "storm":
-        args += ["--output", str(out / f"{Path(cmd[1]).stem}.nc"), "--workers", "0"]
-    elif cmd[0] == "assess":
-        args += ["--out", str(out / "assess"), "--workers", "0"]
-    return args
-
-
-def _env(src: Path, numba_cache: Path) -> dict[str, str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = str(src)
-    env["NUMBA_CACHE_DIR"] = str(numba_cache)
-    env.setdefault("NUMBA_NUM_THREADS", "1")
-    return env
-
-
-def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float]:
-    """(wall, CPU) seconds of one whole-process run."""
-    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    proc = subprocess.run(
-        [sys.executable, *argv], env=env, cwd=ROOT, capture_output=True, text=True, check=False
-    )
-    wall = time.perf_counter() - t0
-    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if proc.returncode not in (0, 3):  # 3: ran, the result is not valid (a check fails)
-        raise RuntimeError(f"{' '.join(argv)} exited {proc.returncode}:\n{proc.stderr[-2000:]}")
-    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+TARGET_S = FIRST_RUN_TARGET_S
+COMMANDS = FIRST_RUN
 
 
 def _verdict(seconds: float) -> str:
@@ -109,16 +73,16 @@ def measure(name: str, cmd: list[str], src: Path, profile: bool, top: int) -> No
         out = Path(tmp) / "out"
         cache.mkdir()
         out.mkdir()
-        env = _env(src, cache)
-        args = _args(cmd, out)
+        env = child_env(src, numba_cache=cache)
+        args = first_run_args(cmd, out)
         events = Path(tmp) / "events.json"
         cold_argv = ["-m", "onbottom", *args]
         if profile:
             cold_argv = [str(Path(__file__).resolve()), "--child", str(events), "--", *args]
         load0 = os.getloadavg()[0]
-        cold_wall, cold_cpu = _run(cold_argv, env)
+        cold_wall, cold_cpu = run_child(cold_argv, env)
         n_cached = sum(1 for _ in cache.rglob("*.nbc"))
-        warm = [_run(["-m", "onbottom", *args], env) for _ in range(2)]
+        warm = [run_child(["-m", "onbottom", *args], env) for _ in range(2)]
         warm_wall = min(w for w, _ in warm)
         warm_cpu = min(c for _, c in warm)
         load1 = os.getloadavg()[0]

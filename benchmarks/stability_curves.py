@@ -54,6 +54,19 @@ def _task_bytes(job: Any, item: tuple) -> int:
     return len(cloudpickle.dumps((_apply_batch, job, [item])))
 
 
+def _timed(fn: Any, total: list[float]) -> Any:
+    """``fn`` adding the CPU time of each call to ``total[0]`` [s]."""
+
+    def timed(*a: Any, **kw: Any) -> Any:
+        t = time.process_time()
+        try:
+            return fn(*a, **kw)
+        finally:
+            total[0] += time.process_time() - t
+
+    return timed
+
+
 def _in_worker_split(item: tuple, s: CurveSettings) -> dict[str, Any]:
     """One point in this process: total, storm-kernel and storm-synthesis CPU time [s] (this
     process's CPU time, not wall: other processes' load does not count), storms."""
@@ -61,23 +74,8 @@ def _in_worker_split(item: tuple, s: CurveSettings) -> dict[str, Any]:
     synth = [0.0]
     call0 = storm_section.call_literal
     kin0 = sc.point_kinematics
-
-    def timed_call(*a: Any, **kw: Any) -> Any:
-        t = time.process_time()
-        try:
-            return call0(*a, **kw)
-        finally:
-            kernel[0] += time.process_time() - t
-
-    def timed_kin(*a: Any, **kw: Any) -> Any:
-        t = time.process_time()
-        try:
-            return kin0(*a, **kw)
-        finally:
-            synth[0] += time.process_time() - t
-
-    storm_section.call_literal = timed_call
-    sc.point_kinematics = timed_kin
+    storm_section.call_literal = _timed(call0, kernel)
+    sc.point_kinematics = _timed(kin0, synth)
     try:
         t0 = time.process_time()
         row = sc._PointJob(s)(item)

@@ -43,6 +43,7 @@ __all__ = [
     "CaseFileError",
     "StrictModel",
     "contained",
+    "find_key_line",
     "find_line",
     "load_case_file",
     "parse_case",
@@ -411,6 +412,20 @@ def _where(file: str | os.PathLike | None, field: str | None, line: int | None) 
     if file is None:
         return ""
     return f"{file}{f', line {line}' if line else ''}: "
+
+
+def find_key_line(text: str | None, field: str) -> int | None:
+    """Best-effort 1-based line of the dotted key ``field`` (``"route.sections[1].name"``) in
+    TOML ``text`` (None if not found or no text): :func:`find_line` of its path."""
+    if not text:
+        return None
+    loc: list[Any] = []
+    for part in field.split("."):
+        name, _, idx = part.partition("[")
+        loc.append(name)
+        if idx:
+            loc.append(int(idx.rstrip("]")))
+    return find_line(text, loc)
 
 
 def find_line(text: str, loc: Sequence[Any]) -> int | None:

@@ -13,16 +13,19 @@ and 4 fuzz tests (40 + 40 + 10 + 20 examples by default).
 from __future__ import annotations
 
 import json
-import math
 import os
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from case_helpers import edit as _edit
+from case_helpers import no_nan as _no_nan
+from case_helpers import run_json as _run
+from case_helpers import toml_value as _toml_value
+from case_helpers import write_file as _write
 from onbottom._casefile import CaseFileError
 from onbottom.cases.stability import load_stability_case
 from onbottom.checks.f109_tables import peak_load_coefficients
@@ -81,31 +84,6 @@ CLAY = SIMPLE.replace(
     'model = "clay"\nsubmerged_unit_weight = 8.0e3\nunit_weight = 18.0e3\n'
     "undrained_shear_strength = 5.0e3",
 )
-
-
-def _edit(base: str, old: str, new: str) -> str:
-    assert old in base, old
-    return base.replace(old, new, 1)
-
-
-def _no_nan(text: str) -> None:
-    def refuse(const: str) -> None:
-        raise AssertionError(f"{const} in the JSON output")
-
-    json.loads(text, parse_constant=refuse)
-
-
-def _run(args: list[str], capsys) -> tuple[int, dict]:
-    rc = main([*args, "--json"])
-    out = capsys.readouterr().out
-    _no_nan(out)
-    return rc, json.loads(out)
-
-
-def _write(tmp_path: Path, text: str, name: str = "case.toml") -> str:
-    p = tmp_path / name
-    p.write_text(text, encoding="utf-8")
-    return str(p)
 
 
 # (id, base, old, new, expected field) — each a case-file error with exit status 1
@@ -526,7 +504,7 @@ def test_infeasible_design_exits_3_with_the_report(tmp_path, capsys):
     assert d["success"] is False and d["value"] is None and d["best_utilisation"] > 1.0
     assert data["success"] is False
     # the table form says so too, and exits 3
-    assert main(["stability", _write(tmp_path, text)]) == 3
+    assert main(["stability", str(_write(tmp_path, text))]) == 3
     out = capsys.readouterr().out
     assert "no solution" in out and "NOT VALID" in out
 
@@ -538,7 +516,7 @@ def test_floating_pipe_is_a_failing_check_not_a_crash(tmp_path, capsys):
     assert rc == 0 and data["all_pass"] is False
     floats = [r for r in data["checks"] if r["name"] == "absolute_lateral"]
     assert floats and all(r["utilisation"] is None and not r["pass"] for r in floats)
-    assert main(["stability", _write(tmp_path, text)]) == 0  # table: no crash on None
+    assert main(["stability", str(_write(tmp_path, text))]) == 0  # table: no crash on None
     assert "At least one check FAILS" in capsys.readouterr().out
     rc, data = _run(["loads", _write(tmp_path, text)], capsys)
     assert rc == 1 and data["error"]["field"] == "pipe" and "floats" in data["error"]["message"]
@@ -736,22 +714,6 @@ SCALARS = st.one_of(
 VALUES = st.one_of(SCALARS, st.lists(SCALARS, max_size=2))
 
 
-def _toml_value(v) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, int):
-        return str(v)
-    if isinstance(v, float):
-        if math.isnan(v):
-            return "nan"
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return repr(v)
-    if isinstance(v, str):
-        return json.dumps(v)
-    return "[" + ", ".join(_toml_value(x) for x in v) + "]"
-
-
 def _doc(buildup: bool = False) -> dict:
     pipe = (
         {
@@ -855,7 +817,7 @@ def test_fuzz_loads_numeric_options(tmp_path, capsys, option, value):
     """Any text for a numeric option: a result, or a usage/input error naming the option."""
     case = _write(tmp_path, SIMPLE)
     extra = [] if option == "--duration-hours" else ["--duration-hours", "0.1"]
-    rc = main(["loads", case, option, value, *extra, "--json"])
+    rc = main(["loads", str(case), option, value, *extra, "--json"])
     out = capsys.readouterr().out
     _no_nan(out)
     data = json.loads(out)

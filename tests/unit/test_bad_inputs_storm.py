@@ -13,13 +13,14 @@ Cases tried: 93, all expected to pass.
 
 from __future__ import annotations
 
-import json
 import warnings
 from pathlib import Path
 
 import pytest
 
-from onbottom.cli.main import main
+from case_helpers import edit as _edit
+from case_helpers import run_json as _run
+from case_helpers import write_file as _write
 from onbottom.errors import OutOfRangeWarning
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -55,31 +56,6 @@ CHECK_TABLES = (
     " [[storm.stages]]>) so the storm refuses impossible sea states and currents as"
     " `stability` does; today it runs them and reports success"
 )
-
-
-def _edit(base: str, old: str, new: str) -> str:
-    assert old in base, old
-    return base.replace(old, new, 1)
-
-
-def _no_nan(text: str) -> None:
-    def refuse(const: str) -> None:
-        raise AssertionError(f"{const} in the JSON output")
-
-    json.loads(text, parse_constant=refuse)
-
-
-def _run(args: list[str], capsys) -> tuple[int, dict]:
-    rc = main([*args, "--json"])
-    out = capsys.readouterr().out
-    _no_nan(out)
-    return rc, json.loads(out)
-
-
-def _write(tmp_path: Path, text: str, name: str = "case.toml") -> Path:
-    p = tmp_path / name
-    p.write_text(text, encoding="utf-8")
-    return p
 
 
 def _expect_error(tmp_path, capsys, text, field, extra=()) -> dict:

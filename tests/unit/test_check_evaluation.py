@@ -20,7 +20,12 @@ from onbottom.cases.stability import (
     build_stability_inputs,
     load_stability_case,
 )
-from onbottom.checks.evaluation import DesignRequest, evaluate_stability, section_summary
+from onbottom.checks.evaluation import (
+    DesignRequest,
+    evaluate_stability,
+    section_summary,
+    solve_design,
+)
 from onbottom.checks.loads import combination_loads
 from onbottom.cli.main import main
 from onbottom.errors import InputError
@@ -61,6 +66,30 @@ def test_checks_only_request_has_no_design():
 def test_unknown_design_variable_is_a_named_error():
     with pytest.raises(InputError, match="solve_for = 'diameter' is invalid"):
         DesignRequest(solve_for="diameter")
+
+
+def test_design_range_is_checked_once_for_both_requests():
+    """DesignRequest (``onbottom stability``) and DesignRange (``onbottom assess``) share one
+    range check (:class:`DesignBounds`), each error naming its own class."""
+    from onbottom.assess.route import DesignRange
+
+    for cls in (DesignRequest, DesignRange):
+        with pytest.raises(InputError, match=f"{cls.__name__}.thickness_max = 0.1 is invalid"):
+            cls(thickness_min=0.2, thickness_max=0.1)
+        with pytest.raises(InputError, match=f"{cls.__name__}.weight_max = 5.0 is invalid"):
+            cls(weight_min=10.0, weight_max=5.0)
+
+
+def test_solve_design_is_the_design_of_evaluate_stability():
+    inputs = _inputs(build_stability_inputs)
+    i, d = inputs, inputs.design
+    args = (i.section, i.seabed, i.environment, i.combinations, i.options)
+    res = solve_design(d.solve_for, *args, d)
+    design = evaluate_stability(inputs).design
+    assert (res.value, res.utilisation) == (design["value"], design["utilisation"])
+    pipe = i.section.pipe(i.condition)  # a simple pipe: its submerged weight is sized
+    weight = solve_design("submerged_weight", pipe, *args[1:], d)
+    assert d.weight_min < weight.value < d.weight_max and weight.utilisation <= 1.0 + 1e-3
 
 
 def test_combination_loads_is_the_loads_command(capsys):

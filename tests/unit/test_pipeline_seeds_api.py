@@ -19,36 +19,9 @@ from onbottom.study.pipeline_seeds import (
     pipeline_seed_count,
     seed_output,
 )
+from storm_cases import PIPELINE, REGULAR, write_case
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "pipeline_case.toml"
-
-REGULAR = """
-[pipe]
-outer_diameter = 0.4
-submerged_weight = 1500.0
-
-[seabed]
-model = "sand"
-submerged_unit_weight = 10.0e3
-friction_coefficient = 0.6
-
-[environment]
-water_depth = 13.0
-
-[storm]
-kind = "regular"
-height = 3.0
-period = 10.0
-build_up_hours = 0.0028
-peak_hours = 0.0139
-
-[pipeline]
-length = 40.0
-element_length = 10.0
-bending_stiffness = 1.0e8
-axial_stiffness = 1.0e10
-end_conditions = "free"
-"""
 
 
 class _Storm:
@@ -89,9 +62,7 @@ def test_built_run_of_the_example_and_its_estimate():
 
 
 def test_a_deterministic_flow_runs_one_seed(tmp_path):
-    case = tmp_path / "regular.toml"
-    case.write_text(REGULAR, encoding="utf-8")
-    run = load_pipeline_run(case)
+    run = load_pipeline_run(write_case(tmp_path, REGULAR, PIPELINE))
     assert pipeline_seed_count(run, None) == 1
     with pytest.raises(InputError, match="deterministic, run one seed"):
         pipeline_seed_count(run, 2)

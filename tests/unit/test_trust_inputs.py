@@ -15,7 +15,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from onbottom.cli.main import main
+from case_helpers import edit as _edit
+from case_helpers import run_json as _run
+from case_helpers import write_file as _write
 from onbottom.errors import (
     BudgetError,
     InputError,
@@ -53,12 +55,6 @@ peak_hours = 0.02
 """
 
 
-def _run(args: list[str], capsys) -> tuple[int, dict]:
-    code = main([*args, "--json"])
-    out = capsys.readouterr().out
-    return code, json.loads(out)
-
-
 def _error(args: list[str], capsys, field: str, code: int = 1) -> str:
     got, out = _run(args, capsys)
     assert got == code, out
@@ -66,17 +62,6 @@ def _error(args: list[str], capsys, field: str, code: int = 1) -> str:
     assert out["error"]["field"] == field, out
     assert out["schema_version"] >= 1
     return out["error"]["message"]
-
-
-def _write(tmp_path: Path, text: str, name: str = "case.toml") -> Path:
-    p = tmp_path / name
-    p.write_text(text, encoding="utf-8")
-    return p
-
-
-def _edit(text: str, old: str, new: str) -> str:
-    assert old in text, old
-    return text.replace(old, new, 1)
 
 
 # ---- 1. water depth against D -----------------------------------------------------------

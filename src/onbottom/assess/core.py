@@ -110,20 +110,12 @@ def _clean(x: Any) -> Any:
 def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -> dict:
     """Minimum of ``variable`` passing the rows of ``evaluate`` (default every static check)."""
     from onbottom.checks import design as dz
+    from onbottom.checks.evaluation import solve_design
     from onbottom.inputs.pipe_buildup import PipeBuildUp
 
     try:
         if evaluate is None:
-            if variable == "concrete_thickness":
-                res = dz.design_concrete_thickness(
-                    section, seabed, env, combos, options, layer=d.layer,
-                    thickness_min=d.thickness_min, thickness_max=d.thickness_max,
-                )  # fmt: skip
-            else:
-                res = dz.design_submerged_weight(
-                    section, seabed, env, combos, options,
-                    weight_min=d.weight_min, weight_max=d.weight_max,
-                )  # fmt: skip
+            res = solve_design(variable, section, seabed, env, combos, options, d)
         else:
             from dataclasses import replace
 

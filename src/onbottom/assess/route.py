@@ -18,6 +18,7 @@ from typing import Any
 
 from onbottom._validate import in_range, integer, non_negative, one_of, positive
 from onbottom.checks.design import CheckOptions
+from onbottom.checks.evaluation import DesignBounds
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -69,44 +70,25 @@ class Levels:
             )
 
 
-@dataclass(frozen=True)
-class DesignRange:
+@dataclass(frozen=True, kw_only=True)
+class DesignRange(DesignBounds):
     """The design variable and its search range.
 
     Parameters
     ----------
     variable : str
         One of :data:`VARIABLES`.
-    layer : str
-        Layer of the build-up whose thickness is sized (``concrete_thickness``).
-    thickness_min, thickness_max : float
-        Thickness range [m].
-    weight_min, weight_max : float
-        Submerged-weight range [N/m].
+    layer, thickness_min, thickness_max, weight_min, weight_max
+        The search range (:class:`~onbottom.checks.evaluation.DesignBounds`): the layer of the
+        build-up whose thickness is sized (``concrete_thickness``), the thickness range [m],
+        the submerged-weight range [N/m].
     """
 
     variable: str = "concrete_thickness"
-    layer: str = "concrete"
-    thickness_min: float = 0.0
-    thickness_max: float = 0.25
-    weight_min: float = 1.0
-    weight_max: float = 2.0e4
 
     def __post_init__(self) -> None:
         one_of("DesignRange.variable", self.variable, VARIABLES)
-        non_negative("DesignRange.thickness_min", self.thickness_min)
-        if positive("DesignRange.thickness_max", self.thickness_max) <= self.thickness_min:
-            raise InputError(
-                f"DesignRange.thickness_max = {self.thickness_max!r} is invalid: must be >"
-                f" thickness_min = {self.thickness_min!r} m"
-            )
-        if positive("DesignRange.weight_max", self.weight_max) <= positive(
-            "DesignRange.weight_min", self.weight_min
-        ):
-            raise InputError(
-                f"DesignRange.weight_max = {self.weight_max!r} is invalid: must be >"
-                f" weight_min = {self.weight_min!r} N/m"
-            )
+        super().__post_init__()
 
 
 @dataclass(frozen=True)

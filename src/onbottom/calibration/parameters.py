@@ -13,6 +13,7 @@ __all__ = [
     "CALCAREOUS_START",
     "Parameter",
     "calcareous_parameters",
+    "check_vary",
     "parameters_from_mapping",
 ]
 
@@ -118,6 +119,21 @@ def parameters_from_mapping(
     return tuple(out)
 
 
+def check_vary(names: Sequence[str], *, option: str = "vary", given: object = None) -> None:
+    """Raise :class:`~onbottom.errors.InputError` unless ``names`` are distinct names of
+    :data:`CALCAREOUS_BOUNDS`, at least one; messages name ``option`` and show ``given`` (the
+    text the names came from; default ``names``)."""
+    known = sorted(CALCAREOUS_BOUNDS)
+    shown = list(names) if given is None else given
+    bad = [n for n in names if n not in CALCAREOUS_BOUNDS]
+    if bad:
+        raise InputError(f"{option} names {bad} are invalid: must be among {known}")
+    if not names:
+        raise InputError(f"{option} = {shown!r} is invalid: name at least one of {known}")
+    if len(set(names)) != len(names):
+        raise InputError(f"{option} = {shown!r} is invalid: a name is repeated")
+
+
 def calcareous_parameters(
     vary: Sequence[str],
     *,
@@ -149,13 +165,7 @@ def calcareous_parameters(
     """
     known = set(CALCAREOUS_BOUNDS)
     names = list(vary)
-    bad = [n for n in names if n not in known]
-    if bad:
-        raise InputError(f"vary names {bad} are invalid: must be among {sorted(known)}")
-    if not names:
-        raise InputError(f"vary = {names!r} is invalid: name at least one of {sorted(known)}")
-    if len(set(names)) != len(names):
-        raise InputError(f"vary = {names!r} is invalid: a name is repeated")
+    check_vary(names)
     for what, given in (("bounds", bounds or {}), ("start", start or {})):
         for k in given:
             if k not in known:

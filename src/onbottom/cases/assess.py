@@ -51,11 +51,11 @@ import re
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, find_line, parse_case, read_toml
+from onbottom._casefile import CaseFileError, StrictModel, find_key_line, parse_case, read_toml
 from onbottom._version import __version__
 from onbottom.assess.route import (
     ALLOWABLE_OVER_D,
@@ -78,8 +78,8 @@ from onbottom.cases.stability import (
     StabilityCase,
     WavesTable,
     _check_section,
+    check_options,
 )
-from onbottom.checks.design import CheckOptions
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
@@ -91,7 +91,6 @@ __all__ = [
     "StormTrials",
     "build_route",
     "case_identity",
-    "check_options",
     "example_path",
     "load_route",
     "load_route_case",
@@ -224,14 +223,9 @@ class DynamicTable(StrictModel):
             )
         return self
 
-    def allowable_for(self, diameter: float) -> float:
-        """Allowable max lateral displacement [m] of a pipe of outer diameter D [m]."""
-        if self.allowable == "user":
-            return float(self.allowable_displacement_m)
-        return ALLOWABLE_OVER_D[self.allowable] * diameter
-
     def settings(self) -> DynamicSettings:
-        """The built settings of the dynamic level."""
+        """The built settings of the dynamic level (its allowable displacement:
+        :meth:`~onbottom.assess.route.DynamicSettings.allowable_for`)."""
         return DynamicSettings(
             seeds=self.seeds,
             first_seed=self.first_seed,
@@ -384,16 +378,8 @@ def _dump(model: StrictModel) -> dict[str, Any]:
 
 
 # ---- loading and checks ----------------------------------------------------------------------
-def _fail(file: str, text: str | None, field: str, message: str) -> None:
-    loc: list[Any] = []
-    for part in field.split("."):
-        name, _, idx = part.partition("[")
-        loc.append(name)
-        if idx:
-            loc.append(int(idx.rstrip("]")))
-    line = find_line(text, loc) if text else None
-    where = f"{file}{f', line {line}' if line else ''}: "
-    raise CaseFileError(where + message, field=field, file=file, line=line)
+def _fail(file: str, text: str | None, field: str, message: str) -> NoReturn:
+    Checker(file, text).fail(field, message)
 
 
 def _check_route(case: RouteCase, file: str, text: str | None) -> None:
@@ -458,7 +444,7 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             route_key = _route_key(case, i, getattr(exc, "field", None) or "")
             inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
                            str(exc))  # fmt: skip
-            line = _line_of(text, route_key)
+            line = find_key_line(text, route_key)
             where = f"{file}{f', line {line}' if line else ''}"
             raise CaseFileError(
                 f"{where}: {key} ({s.name!r}) -> {route_key}: {inner}",
@@ -486,18 +472,6 @@ def _route_key(case: RouteCase, i: int, field: str) -> str:
     if top in ("waves", "current", "combinations") and name is not None:
         return f"metocean.{name}.{field}"
     return f"{key}.{field}"
-
-
-def _line_of(text: str | None, field: str) -> int | None:
-    if not text:
-        return None
-    loc: list[Any] = []
-    for part in field.split("."):
-        name, _, idx = part.partition("[")
-        loc.append(name)
-        if idx:
-            loc.append(int(idx.rstrip("]")))
-    return find_line(text, loc)
 
 
 def parse_route_case(
@@ -593,22 +567,6 @@ class StormTrials:
         return _storm_setup(doc)
 
 
-def check_options(sc: StabilityCase) -> CheckOptions:
-    """The F109 check settings of a section's stability case (as ``onbottom assess`` runs
-    them: the default design checks)."""
-    d = sc.design
-    return CheckOptions(
-        safety_class=d.safety_class,
-        region=d.region,
-        vertical_conditions=tuple(d.vertical_conditions),
-        vertical_safety_factor=d.vertical_safety_factor,
-        penetration=sc.seabed.initial_penetration,
-        trench_depth=sc.seabed.trench_depth,
-        trench_angle_deg=sc.seabed.trench_angle_deg,
-        permeable=d.permeable,
-    )
-
-
 def _given_value(case: RouteCase) -> float | None:
     """The design variable of the case's ``[pipe]`` (the given design), if it has one."""
     if case.solve_for == "concrete_thickness":
@@ -646,7 +604,7 @@ def _build_section(case: RouteCase, i: int) -> Section:
         seabed=sc.seabed.seabed(),
         environment=sc.environment_object(),
         combinations=sc.load_combinations(),
-        options=check_options(sc),
+        options=check_options(sc, checks=False),
         given_value=_given_value(case),
         storms=storms,
         trial_storm=trials,
@@ -662,14 +620,7 @@ def build_route(case: RouteCase) -> Route:
     return Route(
         name=case.route.name,
         sections=tuple(_build_section(case, i) for i in range(len(case.route.sections))),
-        design=DesignRange(
-            variable=case.solve_for,
-            layer=d.layer,
-            thickness_min=d.thickness_min,
-            thickness_max=d.thickness_max,
-            weight_min=d.weight_min,
-            weight_max=d.weight_max,
-        ),
+        design=DesignRange(variable=case.solve_for, **d.bounds()),
         levels=Levels(
             absolute=case.levels.absolute,
             generalized=case.levels.generalized,

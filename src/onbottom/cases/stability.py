@@ -24,14 +24,16 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, find_line, load_case_file
+from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
 from onbottom.checks.design import CheckOptions
 from onbottom.checks.evaluation import (
+    DesignBounds,
     DesignRequest,
     StabilityInputs,
     penetration_outside_validity,
@@ -50,6 +52,7 @@ __all__ = [
     "build_loads_inputs",
     "build_stability_inputs",
     "check_common_tables",
+    "check_options",
     "check_reference_height",
     "load_stability_case",
     "penetration_outside_validity",
@@ -212,12 +215,35 @@ class WavesTable(StrictModel):
             raise ValueError("gamma applies to the JONSWAP spectrum only; remove it")
         return self
 
+    def sea_state(
+        self, *, hs: float | None = None, tp: float | None = None, gamma: float | None = None
+    ) -> SeaState:
+        """The sea state of the table; ``hs`` [m], ``tp`` [s], ``gamma`` [-] replace the
+        table's where given (a load combination's)."""
+        return SeaState(
+            hs=self.hs if hs is None else hs,
+            tp=self.tp if tp is None else tp,
+            gamma=self.gamma if gamma is None else gamma,
+            spectrum=self.spectrum,
+            direction_deg=self.direction_deg,
+            spreading_s=self.spreading_s,
+        )
+
 
 class CurrentTable(StrictModel):
     velocity: float = Field(0.0, ge=0.0, le=10.0, description="V(z_r) [m/s]")
     reference_height: float = Field(1.0, gt=0.0, description="z_r [m]")
     direction_deg: float = Field(90.0, ge=0.0, le=360.0, description="to the pipe axis [deg]")
     z0: float | None = Field(None, gt=0.0, le=1.0, description="roughness z_0 [m]")
+
+    def current(self, velocity: float | None = None) -> Current:
+        """The current of the table; ``velocity`` [m/s] replaces the table's where given."""
+        return Current(
+            velocity=self.velocity if velocity is None else velocity,
+            reference_height=self.reference_height,
+            direction_deg=self.direction_deg,
+            z0=self.z0,
+        )
 
 
 class CombinationTable(StrictModel):
@@ -285,6 +311,12 @@ class DesignTable(StrictModel):
             raise ValueError("weight_max must be > weight_min")
         return self
 
+    def bounds(self) -> dict[str, Any]:
+        """The design search range: the fields of
+        :class:`~onbottom.checks.evaluation.DesignBounds` (layer, thickness and weight
+        ranges) as keyword arguments."""
+        return {f.name: getattr(self, f.name) for f in fields(DesignBounds)}
+
 
 class StabilityCase(StrictModel):
     """Top level of a case file read by the F109 design commands."""
@@ -316,29 +348,12 @@ class StabilityCase(StrictModel):
         return self.pipe.section(self.environment.water_density)
 
     def sea_state(self, combo: CombinationTable | None = None) -> SeaState:
-        w = self.waves
-        hs = w.hs if combo is None or combo.hs is None else combo.hs
-        tp = w.tp if combo is None or combo.tp is None else combo.tp
-        gamma = w.gamma if combo is None or combo.gamma is None else combo.gamma
-        return SeaState(
-            hs=hs,
-            tp=tp,
-            gamma=gamma,
-            spectrum=w.spectrum,
-            direction_deg=w.direction_deg,
-            spreading_s=w.spreading_s,
-        )
+        if combo is None:
+            return self.waves.sea_state()
+        return self.waves.sea_state(hs=combo.hs, tp=combo.tp, gamma=combo.gamma)
 
     def current_object(self, combo: CombinationTable | None = None) -> Current:
-        c = self.current
-        v = (
-            c.velocity
-            if combo is None or combo.current_velocity is None
-            else combo.current_velocity
-        )
-        return Current(
-            velocity=v, reference_height=c.reference_height, direction_deg=c.direction_deg, z0=c.z0
-        )
+        return self.current.current(None if combo is None else combo.current_velocity)
 
     def load_combinations(self) -> tuple[LoadCombination, ...]:
         if not self.combinations:
@@ -400,16 +415,18 @@ class Checker:
     def __init__(self, file: str | os.PathLike, text: str | None) -> None:
         self.file, self.text = str(file), text
 
+    @classmethod
+    def of_file(cls, path: str | os.PathLike) -> Checker:
+        """A checker of the case file ``path``, its text read for the line numbers (none
+        where it cannot be read)."""
+        try:
+            text: str | None = Path(path).read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = None
+        return cls(path, text)
+
     def _line(self, field: str) -> int | None:
-        if self.text is None:
-            return None
-        loc: list[Any] = []
-        for part in field.split("."):
-            name, _, idx = part.partition("[")
-            loc.append(name)
-            if idx:
-                loc.append(int(idx.rstrip("]")))
-        return find_line(self.text, loc)
+        return find_key_line(self.text, field)
 
     def fail(self, field: str, message: str) -> NoReturn:
         line = self._line(field)
@@ -647,12 +664,7 @@ def check_common_tables(
     reference height outside (z_0, depth], densities and strengths in the wrong unit; warns
     (:class:`OutOfRangeWarning`) for unusual values. See :func:`load_stability_case`.
     """
-    p = Path(path)
-    try:
-        text: str | None = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        text = None
-    _check_common(case, Checker(p, text), list(sea_states or []))
+    _check_common(case, Checker.of_file(Path(path)), list(sea_states or []))
 
 
 def _check_section(case: StabilityCase, chk: Checker) -> None:
@@ -700,12 +712,7 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     """
     p = Path(path)
     case = load_case_file(p, StabilityCase)
-    try:
-        text: str | None = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):  # pragma: no cover - read once already
-        text = None
-    chk = Checker(p, text)
-    _check_section(case, chk)
+    _check_section(case, Checker.of_file(p))
     return case
 
 
@@ -728,6 +735,46 @@ def check_reference_height(
         )
 
 
+def check_options(case: StabilityCase, *, checks: bool = True) -> CheckOptions:
+    """The F109 check settings of a case: ``[design]`` (safety class, region, flotation
+    conditions, permeability) and the embedment and trench of ``[seabed]``; ``checks=False``
+    runs the default design checks (``onbottom assess``) instead of ``[design] checks``."""
+    d = case.design
+    return CheckOptions(
+        safety_class=d.safety_class,
+        region=d.region,
+        vertical_conditions=tuple(d.vertical_conditions),
+        vertical_safety_factor=d.vertical_safety_factor,
+        **_seabed_options(case),
+        **({"checks": tuple(d.checks)} if checks else {}),
+    )
+
+
+def _seabed_options(case: StabilityCase) -> dict[str, Any]:
+    """The :class:`CheckOptions` of the seabed: embedment, trench and permeability."""
+    return {
+        "penetration": case.seabed.initial_penetration,
+        "trench_depth": case.seabed.trench_depth,
+        "trench_angle_deg": case.seabed.trench_angle_deg,
+        "permeable": case.design.permeable,
+    }
+
+
+def _section_inputs(case: StabilityCase, path: str | os.PathLike) -> StabilityInputs:
+    """The section, seabed, water and combinations of a case (default options, no design
+    solve), its current reference height checked (:func:`check_reference_height`)."""
+    section, seabed = case.section(), case.seabed.seabed()
+    env, combos = case.environment_object(), case.load_combinations()
+    check_reference_height(case, path, seabed)
+    return StabilityInputs(
+        section=section,
+        seabed=seabed,
+        environment=env,
+        combinations=combos,
+        condition=case.pipe.condition,
+    )
+
+
 def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> StabilityInputs:
     """The inputs of :func:`onbottom.checks.evaluation.evaluate_stability` from a case read by
     :func:`load_stability_case` from ``path``: the section, seabed, water and combinations,
@@ -735,40 +782,13 @@ def build_stability_inputs(case: StabilityCase, path: str | os.PathLike) -> Stab
     (``current.reference_height``, ``design.checks``)."""
     from onbottom.checks.registry import get_check
 
-    section, seabed = case.section(), case.seabed.seabed()
-    env, combos = case.environment_object(), case.load_combinations()
-    check_reference_height(case, path, seabed)
+    inputs = _section_inputs(case, path)
     d = case.design
     for name in d.checks:  # an unknown name: an error naming the key and the choices
         get_check(name, where="design.checks")
-    options = CheckOptions(
-        safety_class=d.safety_class,
-        region=d.region,
-        vertical_conditions=tuple(d.vertical_conditions),
-        vertical_safety_factor=d.vertical_safety_factor,
-        penetration=case.seabed.initial_penetration,
-        trench_depth=case.seabed.trench_depth,
-        trench_angle_deg=case.seabed.trench_angle_deg,
-        permeable=d.permeable,
-        checks=tuple(d.checks),
-    )
-    design = DesignRequest(
-        solve_for=d.solve_for,
-        layer=d.layer,
-        thickness_min=d.thickness_min,
-        thickness_max=d.thickness_max,
-        weight_min=d.weight_min,
-        weight_max=d.weight_max,
-    )
-    return StabilityInputs(
-        section=section,
-        seabed=seabed,
-        environment=env,
-        combinations=combos,
-        options=options,
-        condition=case.pipe.condition,
-        design=design,
-    )
+    options = check_options(case)
+    design = DesignRequest(solve_for=d.solve_for, **d.bounds())
+    return replace(inputs, options=options, design=design)
 
 
 def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInputs:
@@ -780,9 +800,7 @@ def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInp
     from onbottom.checks.loads import LoadsInputs
     from onbottom.hydro.forces import MorisonCoefficients
 
-    section, seabed = case.section(), case.seabed.seabed()
-    env, combos = case.environment_object(), case.load_combinations()
-    check_reference_height(case, path, seabed)
+    inputs = _section_inputs(case, path)
     seed = 0
     if case.storm is not None:  # the [storm] table of a shared file: strict, as for `storm`
         from onbottom._casefile import parse_case
@@ -796,23 +814,9 @@ def build_loads_inputs(case: StabilityCase, path: str | os.PathLike) -> LoadsInp
             root="storm",
         ).seed
     h = case.hydro
-    options = CheckOptions(
-        vertical_conditions=(),
-        penetration=case.seabed.initial_penetration,
-        trench_depth=case.seabed.trench_depth,
-        trench_angle_deg=case.seabed.trench_angle_deg,
-        permeable=case.design.permeable,
-    )
-    checks = StabilityInputs(
-        section=section,
-        seabed=seabed,
-        environment=env,
-        combinations=combos,
-        options=options,
-        condition=case.pipe.condition,
-    )
+    options = CheckOptions(vertical_conditions=(), **_seabed_options(case))
     return LoadsInputs(
-        checks=checks,
+        checks=replace(inputs, options=options),
         coefficients=MorisonCoefficients(drag=h.cd, inertia=h.cm, lift=h.cl),
         reductions=h.reductions,
         seed=seed,

@@ -288,13 +288,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
     every error is a :class:`CaseFileError` naming the case-file key, its value and range.
     """
     where = "<case>" if path is None else path
-    text = None
-    if path is not None:
-        try:
-            text = Path(path).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError):
-            text = None
-    chk = Checker(where, text)
+    chk = Checker(where, None) if path is None else Checker.of_file(path)
     stages = [
         (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
         for i, s in enumerate(case.storm.stages)
@@ -337,12 +331,7 @@ def _build_objects(
     soil = soil_model_for_seabed(case.seabed.model, pipe, seabed)
     st = case.storm
     c = case.current
-    current = Current(
-        velocity=c.velocity,
-        reference_height=c.reference_height,
-        direction_deg=c.direction_deg,
-        z0=c.z0,
-    )
+    current = c.current()
     z0 = c.z0 if c.z0 is not None else seabed_roughness(seabed)
     storm: Storm | StormKinematics
     if st.kind != "spectral":
@@ -373,17 +362,8 @@ def _build_objects(
             transition_s=st.transition_s,
         )
     else:
-        w = case.waves
-        peak = SeaState(
-            hs=w.hs,
-            tp=w.tp,
-            gamma=w.gamma,
-            spectrum=w.spectrum,
-            direction_deg=w.direction_deg,
-            spreading_s=w.spreading_s,
-        )
         storm = Storm.standard(
-            peak,
+            case.waves.sea_state(),
             build_up_hours=0.5 if st.build_up_hours is None else st.build_up_hours,
             peak_hours=3.0 if st.peak_hours is None else st.peak_hours,
             decay_hours=st.decay_hours,
@@ -468,25 +448,21 @@ def _flow_input(
                 sample_interval=st.sample_interval,
             )
         except InputError as exc:
-            raise CaseFileError(
-                f"{file or '<case>'}: storm.height/storm.period: {exc}",
-                field="storm.height",
-                file=file,
-            ) from None
+            raise _flow_error(file, "storm.height", f"storm.height/storm.period: {exc}") from None
     series = case_relative(path, st.series)
     if not series.is_file():
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.series = {st.series!r} is invalid: no file {series}"
+        raise _flow_error(
+            file,
+            "storm.series",
+            f"storm.series = {st.series!r} is invalid: no file {series}"
             " (a path relative to the case file's folder, or absolute)",
-            field="storm.series",
-            file=file,
         )
     if st.sample_interval is not None:
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.sample_interval is not used with kind = 'measured':"
+        raise _flow_error(
+            file,
+            "storm.sample_interval",
+            "storm.sample_interval is not used with kind = 'measured':"
             " the record's own sampling is used (remove the key)",
-            field="storm.sample_interval",
-            file=file,
         )
     try:
         return StormKinematics.from_series(
@@ -497,9 +473,12 @@ def _flow_input(
             sampling_tolerance=st.sampling_tolerance,
         )
     except InputError as exc:
-        raise CaseFileError(
-            f"{file or '<case>'}: storm.series: {exc}", field="storm.series", file=file
-        ) from None
+        raise _flow_error(file, "storm.series", f"storm.series: {exc}") from None
+
+
+def _flow_error(file: str | None, field: str, message: str) -> CaseFileError:
+    """An error of the flow keys of ``[storm]``, naming the file (or ``<case>``) and ``field``."""
+    return CaseFileError(f"{file or '<case>'}: {message}", field=field, file=file)
 
 
 def load_storm_case(path: str | os.PathLike) -> StormSetup:

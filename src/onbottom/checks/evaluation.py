@@ -12,19 +12,22 @@ valid). The same inputs serve ``onbottom loads`` (:mod:`onbottom.checks.loads`).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from onbottom._validate import one_of
+from onbottom._validate import non_negative, one_of, positive
 from onbottom.checks.design import (
     CheckOptions,
     CheckRow,
+    DesignResult,
     NoFeasibleDesignError,
     design_concrete_thickness,
     design_submerged_weight,
     penetration_outside_validity,
     run_checks,
 )
+from onbottom.errors import InputError
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.pipe_buildup import PipeBuildUp
@@ -32,12 +35,14 @@ from onbottom.inputs.soil import Clay, Rock, Sand
 
 __all__ = [
     "SOLVE_FOR",
+    "DesignBounds",
     "DesignRequest",
     "StabilityEvaluation",
     "StabilityInputs",
     "evaluate_stability",
     "penetration_outside_validity",
     "section_summary",
+    "solve_design",
 ]
 
 SOLVE_FOR = ("none", "concrete_thickness", "submerged_weight")
@@ -45,13 +50,11 @@ SOLVE_FOR = ("none", "concrete_thickness", "submerged_weight")
 
 
 @dataclass(frozen=True, kw_only=True)
-class DesignRequest:
-    """The design solve of :func:`evaluate_stability`.
+class DesignBounds:
+    """The search range of a design solve (:func:`solve_design`).
 
     Parameters
     ----------
-    solve_for : str
-        One of :data:`SOLVE_FOR` (default ``"none"``: checks only).
     layer : str
         The coating layer sized by ``"concrete_thickness"`` (default ``"concrete"``).
     thickness_min, thickness_max : float
@@ -62,7 +65,6 @@ class DesignRequest:
         :func:`~onbottom.checks.design.design_submerged_weight`).
     """
 
-    solve_for: str = "none"
     layer: str = "concrete"
     thickness_min: float = 0.0
     thickness_max: float = 0.25
@@ -70,7 +72,61 @@ class DesignRequest:
     weight_max: float = 2.0e4
 
     def __post_init__(self) -> None:
+        name = type(self).__name__
+        non_negative(f"{name}.thickness_min", self.thickness_min)
+        if positive(f"{name}.thickness_max", self.thickness_max) <= self.thickness_min:
+            raise InputError(
+                f"{name}.thickness_max = {self.thickness_max!r} is invalid: must be >"
+                f" thickness_min = {self.thickness_min!r} m"
+            )
+        if positive(f"{name}.weight_max", self.weight_max) <= positive(
+            f"{name}.weight_min", self.weight_min
+        ):
+            raise InputError(
+                f"{name}.weight_max = {self.weight_max!r} is invalid: must be >"
+                f" weight_min = {self.weight_min!r} N/m"
+            )
+
+
+@dataclass(frozen=True, kw_only=True)
+class DesignRequest(DesignBounds):
+    """The design solve of :func:`evaluate_stability`: ``solve_for``, one of
+    :data:`SOLVE_FOR` (default ``"none"``: checks only), and the search range of
+    :class:`DesignBounds` (``layer``, ``thickness_min``/``thickness_max`` [m],
+    ``weight_min``/``weight_max`` [N/m])."""
+
+    solve_for: str = "none"
+
+    def __post_init__(self) -> None:
         one_of("solve_for", self.solve_for, SOLVE_FOR)
+        super().__post_init__()
+
+
+def solve_design(
+    variable: str,
+    section: PipeBuildUp | Pipe,
+    seabed: Sand | Clay | Rock,
+    environment: Environment,
+    combinations: Sequence[LoadCombination],
+    options: CheckOptions,
+    bounds: DesignBounds,
+) -> DesignResult:
+    """The minimum ``variable`` (``"concrete_thickness"`` of ``bounds.layer`` [m], else the
+    submerged weight [N/m]) in the range of ``bounds`` passing every check of ``options``
+    (:func:`~onbottom.checks.design.design_concrete_thickness` or
+    :func:`~onbottom.checks.design.design_submerged_weight`; no passing value:
+    :class:`~onbottom.checks.design.NoFeasibleDesignError`)."""
+    args = (section, seabed, environment, combinations, options)
+    if variable == "concrete_thickness":
+        return design_concrete_thickness(
+            *args,
+            layer=bounds.layer,
+            thickness_min=bounds.thickness_min,
+            thickness_max=bounds.thickness_max,
+        )
+    return design_submerged_weight(
+        *args, weight_min=bounds.weight_min, weight_max=bounds.weight_max
+    )
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -161,27 +217,9 @@ def evaluate_stability(inputs: StabilityInputs) -> StabilityEvaluation:
     design: dict[str, Any] = {"solve_for": d.solve_for}
     if d.solve_for != "none":
         try:
-            if d.solve_for == "concrete_thickness":
-                res = design_concrete_thickness(
-                    i.section,
-                    i.seabed,
-                    i.environment,
-                    i.combinations,
-                    i.options,
-                    layer=d.layer,
-                    thickness_min=d.thickness_min,
-                    thickness_max=d.thickness_max,
-                )
-            else:
-                res = design_submerged_weight(
-                    i.section,
-                    i.seabed,
-                    i.environment,
-                    i.combinations,
-                    i.options,
-                    weight_min=d.weight_min,
-                    weight_max=d.weight_max,
-                )
+            res = solve_design(
+                d.solve_for, i.section, i.seabed, i.environment, i.combinations, i.options, d
+            )
             design.update(res.as_dict())
             design["section"] = section_summary(res.section, i.condition)
         except NoFeasibleDesignError as exc:

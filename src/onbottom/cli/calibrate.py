@@ -49,17 +49,11 @@ def _float(option: str, name: str, text: str) -> float:
 def _parameters(vary: str, bounds: str | None, start: str | None, gamma: float | None):
     """Options → :func:`onbottom.calibration.parameters.calcareous_parameters` (the option
     strings are parsed and checked here, so that errors name the option)."""
-    from onbottom.calibration.parameters import calcareous_parameters
+    from onbottom.calibration.parameters import calcareous_parameters, check_vary
 
     names = [n.strip() for n in vary.split(",") if n.strip()]
+    check_vary(names, option="--vary", given=vary)
     known = set(DEFAULT_BOUNDS)
-    bad = [n for n in names if n not in known]
-    if bad:
-        raise InputError(f"--vary names {bad} are invalid: must be among {sorted(known)}")
-    if not names:
-        raise InputError(f"--vary = {vary!r} is invalid: name at least one of {sorted(known)}")
-    if len(set(names)) != len(names):
-        raise InputError(f"--vary = {vary!r} is invalid: a name is repeated")
     b: dict[str, tuple[float, float]] = {}
     for k, v in _pairs(bounds, "--bounds").items():
         if ":" not in v:

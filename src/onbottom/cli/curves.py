@@ -1,18 +1,10 @@
 """``onbottom curves``: F109-style generalized-stability curves from dynamic storm analyses.
 
 Reads the ``[curves]`` table (grid and settings) and the optional ``[hydro]`` and
-``[environment]`` tables of a case file (:mod:`onbottom.cases.curves`), bisects L_stable and
-L_10 on the grid (:func:`onbottom.study.stability_curves.stability_curves`) on Dask, and writes
-a NetCDF file, a CSV table and a figure of L/(2 + M)² against K.
-
-Case file::
-
-    [curves]
-    K = [5.0, 10.0, 20.0, 40.0]
-    M = [0.0, 0.2, 0.4, 0.8]
-    N = [0.003]
-    soils = ["sand", "clay"]
-    seeds = 5
+``[environment]`` tables of a case file (the format, an example and every key:
+:mod:`onbottom.cases.curves`), bisects L_stable and L_10 on the grid
+(:func:`onbottom.study.stability_curves.stability_curves`) on Dask, and writes a NetCDF file,
+a CSV table and a figure of L/(2 + M)² against K.
 """
 
 from __future__ import annotations

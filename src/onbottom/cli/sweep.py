@@ -1,30 +1,9 @@
 """``onbottom sweep``: run a parametric sweep described by a grid TOML file.
 
-Grid file (see ``examples/sweep_grid.toml``; schema and checks: :mod:`onbottom.cases.sweep`)::
-
-    [sweep]
-    function = "centrifuge_response"   # a registered function name
-    seed = 1                           # optional: per-point random streams
-    batch_size = 2                     # optional: runs per Dask task
-
-    [grid]                             # one dimension per entry, in this order
-    A = [0.15, 0.25, 0.35]
-    B = { start = 0.2, stop = 0.5, num = 4 }     # numpy.linspace
-    mu = { values = [0.48, 0.85] }
-
-    [fixed]                            # keyword arguments passed to every run
-    test = "Inclined 1"
-
-Functions: only those registered by name in :mod:`onbottom.study.functions` —
-``centrifuge_response`` (:func:`onbottom.study.functions.centrifuge_response`), ``misfit``
-(:func:`onbottom.calibration.fit.record_misfit`; ``[fixed] record = "path"`` is loaded as a
-:class:`~onbottom.calibration.records.TestRecord`, relative to the grid file) and any a user
-registers from Python (``onbottom.study.functions.register``). A grid file never imports code.
-
-The file is checked against a strict schema (unknown tables or keys are errors with the line
-and a did-you-mean), and the grid and fixed names against the function's arguments. The
-command exits with status 3 when some runs failed (the results, with ``failed`` and
-``error``, are still written), unless ``--allow-failures``; always when every run failed.
+Grid file format, the registered functions and the checks: :mod:`onbottom.cases.sweep`
+(example: ``examples/sweep_grid.toml``). The command exits with status 3 when some runs
+failed (the results, with ``failed`` and ``error``, are still written), unless
+``--allow-failures``; always when every run failed.
 """
 
 from __future__ import annotations

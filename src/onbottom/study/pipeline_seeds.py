@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 import os
-import traceback
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,9 +21,8 @@ import numpy as np
 
 from onbottom.dynamics.pipeline.solver import PipelineResult
 from onbottom.dynamics.pipeline.storm_run import PipelineStormRun, simulate_pipeline_storm
-from onbottom.dynamics.status import Status, status_message
 from onbottom.errors import InputError
-from onbottom.study.storm_seeds import STATUS_ERROR
+from onbottom.study.storm_seeds import seed_failure
 
 __all__ = [
     "PipelineSeeds",
@@ -90,13 +88,7 @@ class _SeedJob:
         try:
             r = self.simulate(seed)
         except Exception as exc:  # recorded, not raised: one bad seed must not sink N
-            return {
-                "seed": int(seed),
-                "status": STATUS_ERROR,
-                "success": False,
-                "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
-                "traceback": traceback.format_exc(limit=3),
-            }
+            return seed_failure(seed, exc)
         return {"seed": int(seed), **r.to_dict()}
 
 

@@ -40,12 +40,24 @@ from onbottom.inputs.storm import Storm
 from onbottom.results import TaskStore, annotate, provenance
 from onbottom.soil.base import LateralResistanceModel
 
-__all__ = ["STATUS_ERROR", "SeedStudy", "run_storm_seeds", "seed_list"]
+__all__ = ["STATUS_ERROR", "SeedStudy", "run_storm_seeds", "seed_failure", "seed_list"]
 
 logger = logging.getLogger(__name__)
 
 STATUS_ERROR = int(Status.RAISED)
 """Status recorded for a seed whose run raised an exception."""
+
+
+def seed_failure(seed: int, exc: BaseException) -> dict[str, Any]:
+    """The result row of a seed whose run raised ``exc`` (call it in the ``except`` block: the
+    row keeps the last frames of the traceback): status :data:`STATUS_ERROR`, not a success."""
+    return {
+        "seed": int(seed),
+        "status": STATUS_ERROR,
+        "success": False,
+        "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
+        "traceback": traceback.format_exc(limit=3),
+    }
 
 
 def seed_list(first: int, n: int) -> list[int]:
@@ -68,13 +80,7 @@ class _SeedJob:
                 self.pipe, self.soil, self.storm.with_seed(int(seed)), **self.kwargs
             )
         except Exception as exc:  # recorded, not raised: one bad seed must not sink N
-            return {
-                "seed": int(seed),
-                "status": STATUS_ERROR,
-                "success": False,
-                "message": status_message(Status.RAISED, f"{type(exc).__name__}: {exc}"),
-                "traceback": traceback.format_exc(limit=3),
-            }
+            return seed_failure(seed, exc)
         return {
             "seed": int(seed),
             "status": r.status,
