@@ -49,6 +49,8 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
+import subprocess
 import sys
 import tempfile
 import time
@@ -107,7 +109,7 @@ def measure_warmup(src: Path, only: str | None) -> None:
         out = Path(tmp) / "out"
         cache.mkdir()
         out.mkdir()
-        env = _env(src, cache)
+        env = child_env(src, numba_cache=cache)
         env.pop("NUMBA_NUM_THREADS", None)  # the warm-up's own processes, as a user runs it
         report = Path(tmp) / "warmup.json"
         load0 = os.getloadavg()[0]
@@ -139,11 +141,11 @@ def measure_warmup(src: Path, only: str | None) -> None:
         for name, cmd in COMMANDS:
             if only is not None and only not in name:
                 continue
-            args = _args(cmd, out)
+            args = first_run_args(cmd, out)
             events = Path(tmp) / "events.json"
             load0 = os.getloadavg()[0]
             argv = [str(Path(__file__).resolve()), "--child", str(events), "--", *args]
-            first_wall, first_cpu = _run(argv, env)
+            first_wall, first_cpu = run_child(argv, env)
             rows = json.loads(events.read_text())
             compiled = sorted({r["name"].rsplit(".", 1)[-1] for r in rows})
             print(
