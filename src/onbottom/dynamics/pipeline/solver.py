@@ -836,7 +836,11 @@ def simulate_pipeline(
         nodes[:, K.ND_J],
     )
     ke = 0.5 * float(np.sum(mass * vec[K.V_V] ** 2))
-    se = float(B.strain_energy(d_fin, arr["props"])) + 0.5 * float(np.sum(arr["spring"] * d_fin**2))
+    # the plain-Python twin: ~2 ms per 1000 elements once per run, where the jitted kernel
+    # cost a first run ~0.15 s of compiling (issue 33)
+    se = float(B.strain_energy_py(d_fin, arr["props"])) + 0.5 * float(
+        np.sum(arr["spring"] * d_fin**2)
+    )
     w_h = float(scal[K.SC_W_HYD])
     w_s = float(scal[K.SC_W_SOIL])
     env_ds = _envelopes(x, env)
