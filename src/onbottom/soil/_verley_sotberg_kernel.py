@@ -13,6 +13,8 @@ slots below.
 
 from __future__ import annotations
 
+import math
+
 from onbottom._jit import njit
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
@@ -188,16 +190,18 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     g = params[P_GAMMA]
     b = params[P_B]
     if params[P_B_PLACEMENT] == B_INSIDE:
-        b = b**0.5
+        b = math.sqrt(b)
     ks = g * d * d / v_load
     z_work = zi
     if work > 0.0:
-        z_work = zi + b * 0.23 * d * (work / (g * d**3)) ** 0.5 * (ks * smax / d) ** (-0.31)
+        # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
+        # (issue 33; sqrt is correctly rounded, pow within 1 ulp of it)
+        z_work = zi + b * 0.23 * d * math.sqrt(work / (g * d**3)) * (ks * smax / d) ** (-0.31)
     half = 0.5
     if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
         half = 1.0
     base = zi if params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH else params[P_ZI]
-    z_cap = base + b * half * d * (smax / (ks * d)) ** 0.5
+    z_cap = base + b * half * d * math.sqrt(smax / (ks * d))
     z_new = min(z_work, z_cap)
     if z_new > z_old:
         return z_new

@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import literally
 
-from onbottom._jit import borrow, njit, row_view
+from onbottom._jit import borrow, call_literal, njit, row_view
 from onbottom.dynamics.pipeline._banded import ldl_factor, ldl_solve
 from onbottom.dynamics.pipeline._beam_kernel import (
     HALF_BAND,
@@ -403,62 +403,6 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
 
 
 @njit(cache=True)
-def initial_acceleration(
-    soil_id, force_id,
-    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-    kin_u, kin_a, uload, vec, scal, nodal,
-):  # fmt: skip
-    """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_ext (hydrodynamic + user load),
-    f_soil at the start."""
-    literally(soil_id)  # compile only the models used (soil._dispatch.lateral_step_node)
-    literally(force_id)
-    n_nodes = nodes.shape[0]
-    ndof = NDOF_NODE * n_nodes
-    uk = np.empty(n_nodes)
-    ak = np.empty(n_nodes)
-    vcont = np.empty(n_nodes)
-    ry = np.empty(n_nodes)
-    ftrial = np.zeros_like(fstate)
-    fout = np.empty(FO_SIZE)
-    t = scal[SC_T]
-    kinematics_at(t, kin_u, kin_a, settings[ST_T_KIN0], settings[ST_DT_KIN], uk, ak)
-    node_loads(
-        force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, vec[V_V], vcont, ry,
-        ftrial[0], fout,
-    )  # fmt: skip
-    ab = np.zeros((ndof, HALF_BAND + 1))
-    trial = np.empty_like(sstate)
-    node_r = nodal[0]
-    node_f = nodal[1]
-    node_fa = nodal[2]
-    fe = np.empty(6)
-    ke = np.empty((6, 6))
-    out = np.empty(OUT_SIZE)
-    ok = evaluate(
-        soil_id, force_id,
-        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-        t, vec[V_D], vec[V_V], uk, ak, vcont, ry, 0.0, np.bool_(False),
-        vec[V_P], vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
-        fout, np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes), np.empty(n_nodes),
-    )  # fmt: skip
-    add_user_load(settings, uload, nodes, t, vec[V_P], vec[V_FH])
-    for i in range(n_nodes):
-        for c in range(3):
-            j = NDOF_NODE * i + c
-            if c == 0:
-                m = nodes[i, ND_MASS_U]
-            elif c == 1:
-                m = nodes[i, ND_MASS_V]
-            else:
-                m = nodes[i, ND_J]
-            if fixed[j] != 0.0 or m <= 0.0:
-                vec[V_A, j] = 0.0
-            else:
-                vec[V_A, j] = vec[V_P, j] / m
-    return ok
-
-
-@njit(cache=True)
 def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, mom, nax):
     node_section_forces(vec[V_D], props, mom, nax)
     c = settings[ST_FIBRE]
@@ -515,7 +459,7 @@ def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
 def integrate(
     soil_id, force_id,
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
-    kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+    kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env, init,
 ):  # fmt: skip
     """Advance from scal[SC_T] to t_stop (a chunk end), t_end, an event or a full buffer.
 
@@ -523,6 +467,12 @@ def integrate(
     [N/m] at the committed state) is state too. Records the state at the times ``t_out``
     (steps land on them) into ``rec``/``rec_t`` from row 0; ``vec``, ``scal``, ``sstate``,
     ``axst``, ``fstate`` and ``env`` are updated in place. Returns (rows written, status).
+
+    With ``init`` true it only sets the start (:func:`initial_acceleration`): a₀ = M⁻¹P(t₀,
+    d₀, v₀) and the committed P, f_ext (hydrodynamic + user load), f_soil; returns (0,
+    ``STATUS_END``), or ``STATUS_SOIL_NAN`` when a soil kernel gave NaN. One entry point for
+    both: numba optimises and machine-compiles an entry point together with its whole tree of
+    callees, so a second entry point cost that once more (issue 33: first run).
     """
     literally(soil_id)  # compile only the models used (soil._dispatch.lateral_step_node)
     literally(force_id)
@@ -580,6 +530,25 @@ def integrate(
     a0 = vec[V_A]
     pn = vec[V_P]
     n_rec = np.int64(0)  # not the literal 0: one specialisation of _record, not two
+    if init:
+        t = scal[SC_T]
+        kinematics_at(t, kin_u, kin_a, t0k, dtk, uk, ak)
+        node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry,
+                   fscr, fout)  # fmt: skip
+        ok = evaluate(
+            soil_id, force_id,
+            settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams,
+            fstate, t, d0, v0, uk, ak, vcont, ry, 0.0, np.bool_(False),
+            pn, vec[V_FH], vec[V_FS], ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out,
+            fout, mom, nax, kt_u, kt_v,
+        )  # fmt: skip
+        add_user_load(settings, uload, nodes, t, pn, vec[V_FH])
+        for j in range(ndof):
+            if fixed[j] != 0.0 or mass[j] <= 0.0:
+                a0[j] = 0.0
+            else:
+                a0[j] = pn[j] / mass[j]
+        return n_rec, STATUS_END if ok else STATUS_SOIL_NAN
     cap = rec.shape[0]
     n_out = t_out.shape[0]
     # initial record when the first output time is the current time
@@ -645,12 +614,13 @@ def integrate(
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
             add_user_load(settings, uload, nodes, t1, p1, fh1)
+            # res holds −r (the Newton right-hand side; −0.0 on fixed DOFs, as −(0.0))
             rmax = 0.0
             for j in range(ndof):
                 if fixed[j] != 0.0:
-                    res[j] = 0.0
+                    res[j] = -0.0
                 else:
-                    res[j] = mass[j] * a1[j] - (1.0 + alpha) * p1[j] + alpha * pn[j]
+                    res[j] = -(mass[j] * a1[j] - (1.0 + alpha) * p1[j] + alpha * pn[j])
                     if abs(res[j]) > rmax:
                         rmax = abs(res[j])
             if rmax <= tol and it > 0:
@@ -694,13 +664,15 @@ def integrate(
                 if neg < 0:
                     return n_rec, STATUS_SINGULAR
             r_prev = rmax
-            for j in range(ndof):
-                res[j] = -res[j]
             ldl_solve(ab, res)
-            cmax = 0.0
-            for j in range(ndof):
-                if abs(res[j]) > cmax and j % NDOF_NODE != 2:
-                    cmax = abs(res[j])
+            cmax = 0.0  # largest translational correction (u, v; not θ)
+            for i in range(n_nodes):
+                cu = abs(res[NDOF_NODE * i])
+                cv = abs(res[NDOF_NODE * i + 1])
+                if cu > cmax:
+                    cmax = cu
+                if cv > cmax:
+                    cmax = cv
             if it > 0 and cmax <= ctol:
                 # the correction is below the displacement resolution: the residual sits on a
                 # jump of a discontinuous soil law (or at round-off); accept the evaluated state
@@ -774,6 +746,25 @@ def integrate(
                     rec_t[n_rec] = t1
                     n_rec += 1
                 return n_rec, STATUS_LIMIT
+
+
+_INTEGRATE = integrate  # the compiled entry point (tests may replace ``integrate`` itself)
+
+
+def initial_acceleration(
+    soil_id, force_id,
+    settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
+    kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, rec, rec_t, env,
+):  # fmt: skip
+    """Set a₀ = M⁻¹P(t₀, d₀, v₀) and the committed P, f_ext (hydrodynamic + user load),
+    f_soil at the start: :func:`integrate` with ``init`` (the same compiled entry point and
+    arguments). Returns False if a soil kernel gave NaN."""
+    _n, status = call_literal(
+        _INTEGRATE, 2, soil_id, force_id,
+        settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
+        kin_u, kin_a, uload, vec, scal, nodal, t_out, t_end, t_end, rec, rec_t, env, True,
+    )  # fmt: skip
+    return status != STATUS_SOIL_NAN
 
 
 @njit(cache=True)

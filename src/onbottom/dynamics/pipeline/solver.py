@@ -674,6 +674,12 @@ def simulate_pipeline(
         source="docs/theory/pipeline_fe.md",
         **dict(attrs or {}),
     )
+    # the kernel's record buffer (rows of per_chunk output times)
+    per_chunk = 1
+    if t_out.size:
+        per_chunk = max(math.ceil(s.chunk_duration / s.record_interval) + 2, 2)
+    rec = np.zeros((per_chunk, K.N_FIELDS, n))
+    rec_t = np.zeros(per_chunk)
     # ---- finished already, resumed, or fresh
     state = None
     rows = chunks = 0
@@ -739,10 +745,11 @@ def simulate_pipeline(
         env[K.E_MIN_N] = math.inf
         env[K.E_MAX_N] = -math.inf
         env[K.E_MIN_VCONT] = math.inf
-        ok = call_literal(
-            K.initial_acceleration, 2, soil_id, force_id,
+        ok = K.initial_acceleration(
+            soil_id, force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
             arr["sparams"], sstate, axst, fparams, fstate, ku, ka, arr["uload"], vec, scal, nodal,
+            t_out, t_end, rec, rec_t, env,
         )  # fmt: skip
         if not ok:
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
@@ -767,11 +774,6 @@ def simulate_pipeline(
         writer = _Writer(out_path, x, base_attrs, run_id, resumed, s.compression_level)
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
-    per_chunk = 1
-    if t_out.size:
-        per_chunk = max(math.ceil(s.chunk_duration / s.record_interval) + 2, 2)
-    rec = np.zeros((per_chunk, K.N_FIELDS, n))
-    rec_t = np.zeros(per_chunk)
 
     def keep(t: np.ndarray, r: np.ndarray) -> None:
         if writer is not None:
@@ -788,7 +790,7 @@ def simulate_pipeline(
             K.integrate, 2, soil_id, force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
             arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
-            arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env,
+            arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env, False,
         )  # fmt: skip
         # a full buffer returns STATUS_CHUNK before t_stop
         if status == K.STATUS_CHUNK and scal[K.SC_T] < t_stop - 1e-9 * (1 + t_stop):
@@ -834,7 +836,11 @@ def simulate_pipeline(
         nodes[:, K.ND_J],
     )
     ke = 0.5 * float(np.sum(mass * vec[K.V_V] ** 2))
-    se = float(B.strain_energy(d_fin, arr["props"])) + 0.5 * float(np.sum(arr["spring"] * d_fin**2))
+    # the plain-Python twin: ~2 ms per 1000 elements once per run, where the jitted kernel
+    # cost a first run ~0.15 s of compiling (issue 33)
+    se = float(B.strain_energy_py(d_fin, arr["props"])) + 0.5 * float(
+        np.sum(arr["spring"] * d_fin**2)
+    )
     w_h = float(scal[K.SC_W_HYD])
     w_s = float(scal[K.SC_W_SOIL])
     env_ds = _envelopes(x, env)
