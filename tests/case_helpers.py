@@ -60,3 +60,18 @@ def toml_value(v) -> str:
     if isinstance(v, dict):
         return "{" + ", ".join(f"{json.dumps(k)} = {toml_value(x)}" for k, x in v.items()) + "}"
     raise TypeError(v)
+
+
+def curves_case(*, build_up_hours: float, peak_hours: float, tolerance: float) -> str:
+    """A two-point ``[curves]`` case (sand, K 5 and 10, M 0.2, criterion L_10, one seed) with
+    short storms: the interrupt and kill tests run it."""
+    return f"""[curves]
+K = [5.0, 10.0]
+M = [0.2]
+soils = ["sand"]
+criteria = ["L_10"]
+seeds = 1
+build_up_hours = {build_up_hours!r}
+peak_hours = {peak_hours!r}
+tolerance = {tolerance!r}
+"""

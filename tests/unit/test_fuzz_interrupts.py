@@ -33,6 +33,7 @@ import xarray as xr
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from case_helpers import curves_case
 from onbottom.cli.main import main
 
 pytestmark = pytest.mark.filterwarnings("default::onbottom.errors.OutOfRangeWarning")
@@ -189,16 +190,7 @@ STORM = (
     .replace("build_up_hours = 0.5", "build_up_hours = 0.0")
     .replace("peak_hours = 3.0", "peak_hours = 0.02")
 )
-CURVES = """[curves]
-K = [5.0, 10.0]
-M = [0.2]
-soils = ["sand"]
-criteria = ["L_10"]
-seeds = 1
-build_up_hours = 0.0
-peak_hours = 0.02
-tolerance = 0.3
-"""
+CURVES = curves_case(build_up_hours=0.0, peak_hours=0.02, tolerance=0.3)
 
 
 @pytest.fixture(scope="module")

@@ -34,6 +34,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from case_helpers import curves_case
+
 psutil = pytest.importorskip("psutil")
 
 pytestmark = [pytest.mark.verification, pytest.mark.slow, pytest.mark.long]
@@ -54,18 +56,25 @@ def _run(args: list[str], cwd: Path) -> tuple[subprocess.CompletedProcess, float
     return p, time.perf_counter() - t0
 
 
+def _start(args: list[str], cwd: Path, capture: bool = False) -> subprocess.Popen:
+    """The command started in its own session (output captured as text, or discarded)."""
+    out = subprocess.PIPE if capture else subprocess.DEVNULL
+    return subprocess.Popen(
+        _command(args),
+        cwd=cwd,
+        env=ENV,
+        stdout=out,
+        stderr=out,
+        text=capture,
+        start_new_session=True,
+    )
+
+
 def _kill_after(args: list[str], cwd: Path, delay: float, after=None) -> None:
     """Start the command, SIGKILL it (the parent only) ``delay`` s after its start — or after
     ``after()`` first holds (e.g. a first chunk kept: a kill mid-run) —; check that its child
     processes (Dask workers) die with it."""
-    proc = subprocess.Popen(
-        _command(args),
-        cwd=cwd,
-        env=ENV,
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
+    proc = _start(args, cwd)
     if after is not None:
         for _ in range(3000):  # until the event (a hang guard of 300 s, no timing check)
             if after() or proc.poll() is not None:
@@ -200,15 +209,7 @@ def test_storm_seeds_ctrl_c_is_one_line_status_130_and_resumes(tmp_path):
     case = _storm_case(tmp_path, 0.5)
     args = ["storm", case.name, "--seeds", "40", "--workers", "2", "--quiet"]
     store = tmp_path / "s.nc.tasks"
-    proc = subprocess.Popen(
-        _command(args),
-        cwd=tmp_path,
-        env=ENV,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        start_new_session=True,  # its own process group, as a terminal's foreground job
-    )
+    proc = _start(args, tmp_path, capture=True)  # its own process group, as a terminal's job
     for _ in range(3000):  # until a seed is kept (hang guard: 300 s)
         if (store.is_dir() and any(store.glob("*.json"))) or proc.poll() is not None:
             break
@@ -237,16 +238,7 @@ def test_storm_seeds_ctrl_c_is_one_line_status_130_and_resumes(tmp_path):
 
 
 # ---------------------------------------------------------------------------------------------
-CURVES = """[curves]
-K = [5.0, 10.0]
-M = [0.2]
-soils = ["sand"]
-criteria = ["L_10"]
-seeds = 1
-build_up_hours = 0.02
-peak_hours = 0.05
-tolerance = 0.2
-"""
+CURVES = curves_case(build_up_hours=0.02, peak_hours=0.05, tolerance=0.2)
 
 
 @pytest.mark.dask
@@ -318,15 +310,7 @@ def test_ctrl_c_at_random_moments_of_the_stability_commands(tmp_path):
             ref = _load(tmp_path / "p.nc")
             (tmp_path / "p.nc").unlink()
         for delay, _ in _kills(t_ref, 3, 0):
-            proc = subprocess.Popen(
-                _command(args),
-                cwd=tmp_path,
-                env=ENV,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.PIPE,
-                text=True,
-                start_new_session=True,
-            )
+            proc = _start(args, tmp_path, capture=True)
             try:
                 _, err = proc.communicate(timeout=delay)
             except subprocess.TimeoutExpired:
