@@ -1,4 +1,4 @@
-"""The committed curve sweeps (docs/validation/stability_curves/) and the numbers the storm
+"""The committed curve sweeps (package data, src/onbottom/data/stability_curves/) and the numbers the storm
 section theory page quotes from them.
 
 Nothing here is a hard-coded result: every number the page states is parsed from the page and
@@ -17,7 +17,7 @@ import pytest
 from onbottom.results import load_dataset
 
 ROOT = Path(__file__).resolve().parents[2]
-FOLDER = ROOT / "docs" / "validation" / "stability_curves"
+FOLDER = ROOT / "src" / "onbottom" / "data" / "stability_curves"
 PAGE = ROOT / "docs" / "theory" / "storm_section.md"
 MODELS = {"wake": "wake", "Morison": "morison"}
 LOW_M, HIGH_M = [0.0, 0.2, 0.4], [2.0, 5.0, 10.0]

@@ -10,16 +10,24 @@ For each section (one task on Dask, :mod:`onbottom.study.engine`), in every load
 * **absolute** — F109 §3.6 Eqs 3.38 (lateral) and 3.39 (vertical), with the minimum concrete
   thickness (or submerged weight) that passes every static check
   (:func:`onbottom.checks.design.design_concrete_thickness`), as ``onbottom stability`` does;
-* **generalized** — from the tool's own committed dynamic curves where they cover the point
-  (:mod:`onbottom.assess.generalized`), else "not covered" with the reason;
+* **generalized** — F109 §3.5 from F109's own tables (:mod:`onbottom.checks.f109_generalized`
+  through :mod:`onbottom.assess.generalized`), else "not covered" with the reason;
+* **dynamic curves** (``[levels] dynamic_curves``) — the tool's own curve sweeps, read in the
+  same groups: shown beside the others, never presented as F109's and never governing;
 * **dynamic** — storms on the section over seeds at the given weight (as ``onbottom storm
   --seeds N``) and the minimum weight for which every seed stays within the allowable
   displacement (:mod:`onbottom.assess.dynamic`), never below the flotation minimum (Eq 3.1).
 
 The governing (design) value per section is the smallest weight among the levels run that
-passes — each level is a complete F109 design method on its own (§3.4 dynamic, §3.6 absolute);
-the dynamic and generalized values are raised to the flotation minimum. The report states the
-weight the dynamic level saves against the absolute one (negative: it needs more).
+passes (absolute, generalized, dynamic) — each a complete F109 design method on its own — with
+a **design floor**: it is never below F109's generalized requirement for the same allowable
+displacement (0.5D ↔ L_stable, 10D ↔ L_10) unless ``[levels] allow_below_generalized`` gives
+the reason; where F109's tables leave a current-dominated combination (M >= 0.8) uncovered,
+the dynamic design is bounded below by the same storms on Coulomb friction (no penetration
+benefit) unless ``[levels] allow_below_coulomb`` gives the reason. Each section's
+``design_floor`` states the rule in words (:data:`FLOOR_RULES`) and the dynamic/generalized
+submerged-weight ratio. The dynamic and generalized values are raised to the flotation minimum.
+The report states the weight the dynamic level saves against the absolute one.
 
 Resumable: each finished section writes ``sections/NN-<slug>.json`` in the output folder
 (atomic rename) holding the run identity (SHA-256 of the section's inputs, the levels and
@@ -136,19 +144,24 @@ def _design(variable, section, seabed, env, combos, options, d, evaluate=None) -
 def _generalized_design(variable, sec: Section, files, route: Route, levels) -> dict:
     """Minimum of the design variable with every combination's generalized utilisation <= 1
     (the same scan + brentq as the static design), raised to the flotation minimum; a trial
-    whose point leaves the curves' grid counts as failing (nothing is extrapolated)."""
+    whose point leaves the tables counts as failing (nothing is extrapolated). ``files``:
+    curve sweeps — empty for F109's tables (level ``generalized``), the sweeps for the level
+    ``dynamic_curves``."""
     import math as _m
 
-    from onbottom.assess.generalized import generalized_rows
+    from onbottom.assess.generalized import dynamic_curve_rows, generalized_rows
     from onbottom.checks.design import CheckRow, run_checks
 
     seabed, env, combos, options = sec.seabed, sec.environment, sec.combinations, sec.options
 
     def evaluate(s: Any) -> list:
         rows = run_checks(s, seabed, env, combos, options)
-        gen = generalized_rows(rows, list(files), route.dynamic.allowable,
-                               seabed_model=sec.seabed_model,
-                               water_density=env.water_density)  # fmt: skip
+        kw = {"seabed_model": sec.seabed_model, "water_density": env.water_density}
+        gen = (
+            dynamic_curve_rows(rows, list(files), route.dynamic.allowable, **kw)
+            if files
+            else generalized_rows(rows, route.dynamic.allowable, **kw)
+        )
         return [
             CheckRow(g["name"], g["combination"], g["condition"],
                      g["utilisation"] if g["covered"] else _m.inf,
@@ -163,11 +176,42 @@ def _generalized_design(variable, sec: Section, files, route: Route, levels) -> 
     return res
 
 
+def _table_level(gen: list[dict[str, Any]], what: str) -> dict[str, Any]:
+    covered = [g for g in gen if g["covered"]]
+    return {
+        "success": False,
+        "value": None,
+        "covered": len(covered),
+        "points": len(gen),
+        "message": f"not covered by {what}: " + gen[0]["message"]
+        if not covered and gen
+        else f"{len(covered)} of {len(gen)} combinations covered by {what}; a minimum needs"
+        " every combination covered",
+    }
+
+
+CURRENT_DOMINATED_M = 0.8
+"""M = V/U_s from which a point not covered by F109's tables is treated as current-dominated:
+the dynamic level is then bounded below by the same storms on Coulomb friction."""
+
+
+def _coulomb_trial(trial: Any) -> Any:
+    """``trial(k, x)`` with the soil replaced by Coulomb friction at the seabed's μ (no
+    penetration, no passive resistance: no benefit from embedment gained in the storm)."""
+    from onbottom.soil.coulomb import CoulombFriction
+
+    def coulomb(k: int, x: float) -> Any:
+        setup = trial(k, x)
+        return replace(setup, soil=CoulombFriction.from_seabed(setup.seabed))
+
+    return coulomb
+
+
 def _run_section(
     route: Route, sec: Section, i: int, curve_files: tuple[str, ...]
 ) -> dict[str, Any]:
     from onbottom.assess import dynamic as dyn
-    from onbottom.assess.generalized import generalized_rows
+    from onbottom.assess.generalized import dynamic_curve_rows, generalized_rows
     from onbottom.checks.design import penetration_outside_validity, run_checks
     from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.consistency import warnings_reported_by_case
@@ -200,25 +244,27 @@ def _run_section(
         for r in rows
     ]  # fmt: skip
 
-    # -- generalized ---------------------------------------------------------------------
+    # -- generalized (F109 §3.5 tables) and dynamic curves (the tool's own sweeps) ------------
+    gen: list[dict[str, Any]] = []
     if route.levels.generalized:
-        gen = generalized_rows(rows, list(curve_files), route.dynamic.allowable,
-                               seabed_model=sec.seabed_model,
+        gen = generalized_rows(rows, route.dynamic.allowable, seabed_model=sec.seabed_model,
                                water_density=env.water_density)  # fmt: skip
         checks += [_clean(g) for g in gen]
-        covered = [g for g in gen if g["covered"]]
-        levels["generalized"] = {
-            "success": False,
-            "value": None,
-            "covered": len(covered),
-            "points": len(gen),
-            "message": "not covered: " + gen[0]["message"]
-            if not covered and gen
-            else f"{len(covered)} of {len(gen)} combinations covered; a minimum needs every"
-            " combination covered",
+        levels["generalized"] = _table_level(gen, "F109's generalized tables")
+        if gen and all(g["covered"] for g in gen) and variable != "none":
+            levels["generalized"] |= _generalized_design(variable, sec, (), route, levels)
+    if curve_files:
+        dcr = dynamic_curve_rows(rows, list(curve_files), route.dynamic.allowable,
+                                 seabed_model=sec.seabed_model,
+                                 water_density=env.water_density)  # fmt: skip
+        checks += [_clean(g) for g in dcr]
+        levels["dynamic_curves"] = _table_level(dcr, "the dynamic curves") | {
+            "files": [Path(f).name for f in curve_files]
         }
-        if gen and len(covered) == len(gen) and variable != "none":
-            levels["generalized"] |= _generalized_design(variable, sec, curve_files, route, levels)
+        if dcr and all(g["covered"] for g in dcr) and variable != "none":
+            levels["dynamic_curves"] |= _generalized_design(
+                variable, sec, curve_files, route, levels
+            )
 
     # -- dynamic ---------------------------------------------------------------------------
     dynamic: dict[str, Any] = {}
@@ -301,6 +347,31 @@ def _run_section(
                 "message": b["message"],
                 "storms": b["storms"],
             }
+            # Coulomb-friction lower bound where F109's tables leave a current-dominated point
+            uncovered = [
+                g["combination"] for g in gen
+                if not g["covered"] and g["details"].get("M", 0.0) >= CURRENT_DOMINATED_M
+            ]  # fmt: skip
+            if value is not None and uncovered:
+                cb_eval = dyn.DynamicTrials(
+                    _coulomb_trial(sec.trial_storm), len(names), seeds, d.allowable_for
+                )
+                cb = dyn.search_dynamic(cb_eval, lo, hi, tol, known=[], guesses=guesses)
+                cbv = cb["value"]
+                if cbv is not None and vert is not None and vert > cbv:
+                    cbv = vert
+                dynamic["coulomb_bound"] = {
+                    "combinations": uncovered, "value": cbv, "message": cb["message"],
+                    "storms": cb["storms"],
+                }  # fmt: skip
+                levels["dynamic"]["coulomb_bound"] = cbv
+                below = cbv is None or value < cbv
+                if below and route.levels.allow_below_coulomb is None:
+                    levels["dynamic"] |= {
+                        "value": cbv, "success": cbv is not None, "unbounded_value": value,
+                        "governing_check": "Coulomb-friction lower bound (same storms, no"
+                        " penetration benefit)" if cbv is not None else None,
+                    }  # fmt: skip
 
     # -- governing -------------------------------------------------------------------------
     candidates = {
@@ -311,6 +382,10 @@ def _run_section(
         and v.get("value") is not None
     }
     gov_level = min(candidates, key=candidates.get) if candidates else None
+    design_value = candidates.get(gov_level) if gov_level else None
+    floor = _design_floor(route, sec, levels, gen, gov_level, design_value)
+    if floor["rule"] == "generalized_floor":
+        gov_level, design_value = "generalized", candidates["generalized"]
     worst = max(
         (c for c in checks if c.get("utilisation") is not None), key=lambda c: c["utilisation"]
     )
@@ -322,7 +397,8 @@ def _run_section(
         "water_depth": sec.water_depth, "seabed_model": sec.seabed_model,
         "variable": variable, "checks": checks, "levels": levels, "dynamic": dynamic,
         "governing_level": gov_level,
-        "design_value": candidates.get(gov_level) if gov_level else None,
+        "design_value": design_value,
+        "design_floor": floor,
         "governing_check": f"{worst['name']} / {worst['combination']}",
         "max_utilisation": worst["utilisation"],
         "weight_saved": saved, "notes": notes,
@@ -338,26 +414,105 @@ def _run_section(
     })  # fmt: skip
 
 
-def _weight_saved(route: Route, sec: Section, x_abs: float, x_dyn: float) -> dict[str, Any]:
-    """Submerged weight [N/m] (operation condition of the pipe) at both designs, and the
-    difference absolute − dynamic (positive: the dynamic level saves weight)."""
+def _submerged_weight(route: Route, sec: Section, x: float) -> float:
+    """Submerged weight [N/m] (operation condition of the pipe) at design value ``x``."""
     from dataclasses import replace
 
     from onbottom.inputs.pipe_buildup import PipeBuildUp
 
     section = sec.pipe
-    cond = sec.condition
+    if isinstance(section, PipeBuildUp):
+        designed = section.with_layer_thickness(route.design.layer, x)
+        return designed.properties(sec.condition).submerged_weight
+    return replace(section, submerged_weight=x, mass=None).submerged_weight
 
-    def ws(x: float) -> float:
-        if isinstance(section, PipeBuildUp):
-            designed = section.with_layer_thickness(route.design.layer, x)
-            return designed.properties(cond).submerged_weight
-        return replace(section, submerged_weight=x, mass=None).submerged_weight
 
-    wa, wd = ws(x_abs), ws(x_dyn)
-    return {"condition": cond, "absolute_submerged_weight": wa, "dynamic_submerged_weight": wd,
-            "saved_submerged_weight": wa - wd, "saved_fraction": (wa - wd) / wa,
-            "absolute_value": x_abs, "dynamic_value": x_dyn}  # fmt: skip
+def _weight_saved(route: Route, sec: Section, x_abs: float, x_dyn: float) -> dict[str, Any]:
+    """Submerged weight [N/m] (operation condition of the pipe) at both designs, and the
+    difference absolute − dynamic (positive: the dynamic level saves weight)."""
+    wa, wd = _submerged_weight(route, sec, x_abs), _submerged_weight(route, sec, x_dyn)
+    return {"condition": sec.condition, "absolute_submerged_weight": wa,
+            "dynamic_submerged_weight": wd, "saved_submerged_weight": wa - wd,
+            "saved_fraction": (wa - wd) / wa, "absolute_value": x_abs,
+            "dynamic_value": x_dyn}  # fmt: skip
+
+
+FLOOR_RULES: dict[str, str] = {
+    "at_or_above_generalized": "the design is at or above F109's generalized requirement",
+    "generalized_floor": "raised to F109's generalized requirement: the lighter design of the"
+    " governing level is not accepted below the standard",
+    "allowed_below_generalized": "below F109's generalized requirement, accepted by [levels]"
+    " allow_below_generalized",
+    "coulomb_floor": "F109's tables do not cover a current-dominated point (M >= 0.8): the"
+    " dynamic design is raised to the same storms on Coulomb friction (no penetration benefit)",
+    "at_or_above_coulomb": "F109's tables do not cover a current-dominated point (M >= 0.8):"
+    " the dynamic design is at or above the same storms on Coulomb friction",
+    "allowed_below_coulomb": "F109's tables do not cover a current-dominated point (M >= 0.8);"
+    " the dynamic design is below the Coulomb-friction bound, accepted by [levels]"
+    " allow_below_coulomb",
+    "not_covered": "F109's tables do not cover every combination and no point is"
+    " current-dominated (M < 0.8): no floor applies",
+    "not_checked": "the generalized level is not run ([levels] generalized = false) or there is"
+    " no design variable: no floor checked",
+}
+"""Design-floor rules of a section, in words (``design_floor.rule`` of each section)."""
+
+
+def _design_floor(
+    route: Route,
+    sec: Section,
+    levels: dict[str, Any],
+    gen: list[dict[str, Any]],
+    gov_level: str | None,
+    design_value: float | None,
+) -> dict[str, Any]:
+    """Which rule set the design against F109's generalized requirement, and the
+    dynamic/generalized submerged-weight ratio (see :data:`FLOOR_RULES`)."""
+    g = levels.get("generalized") or {}
+    dyn = levels.get("dynamic") or {}
+    out: dict[str, Any] = {"generalized_value": g.get("value"), "dynamic_value": dyn.get("value")}
+    gv = g.get("value") if g.get("success") else None
+    if gv is not None and dyn.get("success") and dyn.get("value") is not None:
+        wg = _submerged_weight(route, sec, gv)
+        wd = _submerged_weight(route, sec, dyn["value"])
+        out |= {"generalized_submerged_weight": wg, "dynamic_submerged_weight": wd,
+                "dynamic_over_generalized_weight": wd / wg if wg > 0 else None}  # fmt: skip
+        if dyn.get("unbounded_value") is not None:
+            wu = _submerged_weight(route, sec, dyn["unbounded_value"])
+            out["unbounded_dynamic_over_generalized_weight"] = wu / wg if wg > 0 else None
+    if "coulomb_bound" in dyn:
+        out["coulomb_value"] = dyn["coulomb_bound"]
+    if route.levels.allow_below_generalized is not None:
+        out["allow_below_generalized"] = route.levels.allow_below_generalized
+    if route.levels.allow_below_coulomb is not None:
+        out["allow_below_coulomb"] = route.levels.allow_below_coulomb
+    if not gen or design_value is None:
+        rule = "not_checked"
+    elif gv is not None:
+        if design_value >= gv - 1e-12:
+            rule = "at_or_above_generalized"
+        elif route.levels.allow_below_generalized is not None:
+            rule = "allowed_below_generalized"
+        else:
+            rule = "generalized_floor"
+    elif "coulomb_bound" in dyn:
+        cb = dyn["coulomb_bound"]
+        unbounded = dyn.get("unbounded_value")
+        allowed = route.levels.allow_below_coulomb is not None
+        if unbounded is not None:
+            rule = "coulomb_floor"
+        elif allowed and (cb is None or (dyn.get("value") or 0.0) < cb):
+            rule = "allowed_below_coulomb"
+        else:
+            rule = "at_or_above_coulomb"
+    else:
+        rule = "not_covered"
+    words = FLOOR_RULES[rule]
+    if rule in ("allowed_below_generalized",):
+        words += f" (reason given: {route.levels.allow_below_generalized!r})"
+    if rule == "allowed_below_coulomb":
+        words += f" (reason given: {route.levels.allow_below_coulomb!r})"
+    return out | {"rule": rule, "words": words, "governing_level": gov_level}
 
 
 # ---- the study ----------------------------------------------------------------------------------
@@ -494,15 +649,13 @@ def assess(
     progress : bool
         A progress bar over the sections.
     curve_files : list of str or None
-        NetCDF curve sweeps for the generalized level (None: the default search,
-        :func:`onbottom.assess.generalized.default_curve_files`).
+        NetCDF curve sweeps of the ``dynamic_curves`` level (None: the route's
+        ``levels.dynamic_curves``; empty: the level is not run).
     source : str
         Where the route came from (a path, or "embedded example").
     """
-    from onbottom.assess.generalized import default_curve_files
-
     t0 = time.perf_counter()
-    files = tuple(default_curve_files() if curve_files is None else curve_files)
+    files = tuple(route.levels.dynamic_curves if curve_files is None else curve_files)
     settings = replace(route, sections=())  # each job carries its own section only
     outp = None if out is None else Path(out)
     results: dict[int, dict[str, Any]] = {}

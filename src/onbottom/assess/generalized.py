@@ -1,15 +1,16 @@
-"""Generalized level of a route section: the tool's own dynamic curves, where they cover it.
+"""Generalized and dynamic-curves levels of a route section.
 
-DNV-RP-F109 (2017) §3.5 tabulates the weight parameter L = w_s/(½ ρ_w D U_s²) at which a pipe
-moves 0.5D (L_stable) or 10D (L_10), against K = U_s T_u/D, M = V/U_s and N = U_s/(g T_u) (Eqs
-3.31–3.37). Those tables are DNV content and are not reproduced here. Instead the level reads
-the curve sweeps the tool computes itself (``onbottom curves``, NetCDF of
-:mod:`onbottom.study.stability_curves`): a combination is **covered** when a sweep has the
-section's soil (``sand`` — Verley & Sotberg silica — or ``clay``) and its N, M and K lie inside
-the sweep's grid; L at the point is then interpolated linearly in (N, M, K) and the
-utilisation is L_required / L_actual. Outside, the row says "not covered" and why; nothing is
-extrapolated. The sweeps use their own soil parameters (γ'_s, G_c) and a long-crested storm
-with γ = 3.3: the report shows the sweep's source with every covered point.
+* **generalized** — DNV-RP-F109 (2010/2017) §3.5 from F109's own tables
+  (:mod:`onbottom.checks.f109_generalized`): the weight parameter L = w_s/(½ ρ_w D U_s²) at
+  which a pipe moves 0.5D (L_stable) or 10D (L_10), against K = U_s T_u/D, M = V/U_s and
+  N = U_s/(g T_u). The utilisation is L_required / L_actual. Where F109's tables do not give
+  L (clay, calcareous or rock seabeds, a point outside the tables) the row says "not covered"
+  and why; nothing is extrapolated.
+* **dynamic curves** — the tool's own curve sweeps (``onbottom curves``, NetCDF of
+  :mod:`onbottom.study.stability_curves`), read in the same groups: a separate level, never
+  presented as F109's. A combination is covered when a sweep has the section's soil and its
+  N, M and K lie inside the sweep's grid; L is then interpolated linearly in (N, M, K).
+  The shipped sweeps are package data (``onbottom/data/stability_curves/*.nc``).
 
 U_s and T_u are the significant flow velocity and zero-up-crossing period at the pipe of the
 absolute check (F109 §3.4.3, its ``us``/``tu``); V is its steady current V* (F109 Eq 3.4,
@@ -25,19 +26,26 @@ from typing import Any
 
 from onbottom.constants import GRAVITY
 
-__all__ = ["default_curve_files", "generalized_rows"]
+__all__ = ["curve_files_at", "default_curve_files", "dynamic_curve_rows", "generalized_rows"]
 
 CRITERION = {"0.5D": "L_stable", "10D": "L_10"}
 
+F109_SOIL = {"sand": "sand", "clay": "clay"}
+"""Seabed model → soil of F109's generalized tables (sand: silica sand; others not covered)."""
+
 
 def default_curve_files() -> list[str]:
-    """Committed sweeps: ``onbottom/data/stability_curves/*.nc`` (package data) and, in a
-    source checkout, ``docs/validation/stability_curves/*.nc``."""
-    here = Path(__file__).resolve().parent.parent
-    folders = [here / "data" / "stability_curves"]
-    repo = here.parent.parent / "docs" / "validation" / "stability_curves"
-    folders.append(repo)
-    return [str(p) for f in folders if f.is_dir() for p in sorted(f.glob("*.nc"))]
+    """The shipped curve sweeps: package data ``onbottom/data/stability_curves/*.nc``."""
+    from importlib.resources import files
+
+    folder = Path(str(files("onbottom") / "data" / "stability_curves"))
+    return [str(p) for p in sorted(folder.glob("*.nc"))] if folder.is_dir() else []
+
+
+def curve_files_at(path: str | Path) -> list[str]:
+    """The sweeps at ``path``: the file itself, or every ``*.nc`` of a folder."""
+    p = Path(path)
+    return [str(f) for f in sorted(p.glob("*.nc"))] if p.is_dir() else [str(p)]
 
 
 @functools.lru_cache(maxsize=16)
@@ -51,48 +59,104 @@ def _load(path: str) -> Any:
         return None
 
 
-def _soil_label(model: str) -> str | None:
-    return {"sand": "sand", "clay": "clay"}.get(model)
+def _point(r: Any, rho: float) -> dict[str, float] | None:
+    det = r.details
+    d, us, tu, v = det["diameter"], det["us"], det["tu"], det.get("v_star", 0.0)
+    if us <= 0.0 or tu <= 0.0:
+        return None
+    return {
+        "K": us * tu / d,
+        "M": v / us,
+        "N": us / (GRAVITY * tu),
+        "L_actual": det["submerged_weight"] / (0.5 * rho * d * us**2),
+        "U_s": us,
+        "diameter": d,
+    }
+
+
+def _lateral(rows: list[Any]) -> list[Any]:
+    return [r for r in rows if r.name == "absolute_lateral" and "us" in r.details]
 
 
 def generalized_rows(
+    rows: list[Any],
+    allowable: str = "0.5D",
+    *,
+    seabed_model: str,
+    water_density: float,
+) -> list[dict[str, Any]]:
+    """One row per absolute-lateral row of ``rows`` (:func:`onbottom.checks.design.run_checks`
+    on the section): level ``generalized`` (F109 §3.5 tables), ``covered`` and ``message``;
+    where covered, ``utilisation`` = L_required/L_actual and the point (K, M, N, L).
+    ``seabed_model``: the section's soil model name; ``water_density``: ρ_w [kg/m³] of L."""
+    from onbottom.checks.f109_generalized import generalized_requirement
+
+    out = []
+    soil = F109_SOIL.get(seabed_model)
+    for r in _lateral(rows):
+        base = {"name": "generalized_lateral", "combination": r.combination,
+                "condition": r.condition, "level": "generalized", "covered": False,
+                "utilisation": None, "pass": None}  # fmt: skip
+        point = _point(r, water_density)
+        if point is None:
+            out.append(base | {"message": "no wave flow at the pipe (U_s = 0)", "details": {}})
+            continue
+        if soil is None:
+            msg = (
+                f"seabed model {seabed_model!r}: F109's generalized method (§3.5) covers sand"
+                " and clay only"
+            )
+            out.append(base | {"message": msg, "details": point})
+            continue
+        req = generalized_requirement(soil, allowable, point["K"], point["M"], point["N"])
+        if not req.covered or req.L is None:
+            out.append(base | {"message": req.reason, "details": point})
+            continue
+        u = req.L / point["L_actual"]
+        wreq = req.required_weight(point["diameter"], point["U_s"], water_density)
+        out.append(
+            base
+            | {
+                "covered": True,
+                "utilisation": u,
+                "pass": u <= 1.0,
+                "message": f"{CRITERION[allowable]} from {req.reason}",
+                "details": point
+                | {"L_required": req.L, "required_submerged_weight": wreq, "source": req.source},
+            }
+        )
+    return out
+
+
+def dynamic_curve_rows(
     rows: list[Any],
     files: list[str],
     allowable: str = "0.5D",
     *,
     seabed_model: str,
     water_density: float,
-) -> list:
-    """One row per absolute-lateral row of ``rows`` (:func:`onbottom.checks.design.run_checks`
-    on the section): level ``generalized``, ``covered`` and ``message``; where covered,
-    ``utilisation`` and the point (K, M, N, L). ``seabed_model``: the section's soil model name
-    (curves exist for ``sand`` and ``clay``); ``water_density``: ρ_w [kg/m³] of L."""
+) -> list[dict[str, Any]]:
+    """As :func:`generalized_rows`, from the tool's own curve sweeps ``files`` (level
+    ``dynamic_curves``: the dynamic model's curves, not F109's tables)."""
     out = []
-    lat = [r for r in rows if r.name == "absolute_lateral" and "us" in r.details]
     sweeps = [(f, ds) for f in files if (ds := _load(f)) is not None]
     crit = CRITERION.get(allowable)
-    rho = water_density
-    for r in lat:
-        det = r.details
-        d, us, tu, v = det["diameter"], det["us"], det["tu"], det.get("v_star", 0.0)
-        base = {"name": "generalized_lateral", "combination": r.combination,
-                "condition": r.condition, "level": "generalized", "covered": False,
+    soil = F109_SOIL.get(seabed_model)
+    for r in _lateral(rows):
+        base = {"name": "dynamic_curves_lateral", "combination": r.combination,
+                "condition": r.condition, "level": "dynamic_curves", "covered": False,
                 "utilisation": None, "pass": None}  # fmt: skip
-        if us <= 0.0 or tu <= 0.0:
+        point = _point(r, water_density)
+        if point is None:
             out.append(base | {"message": "no wave flow at the pipe (U_s = 0)", "details": {}})
             continue
-        k, n, m = us * tu / d, us / (GRAVITY * tu), v / us
-        lact = det["submerged_weight"] / (0.5 * rho * d * us**2)
-        point = {"K": k, "M": m, "N": n, "L_actual": lact}
-        soil = _soil_label(seabed_model)
+        k, m, n = point["K"], point["M"], point["N"]
         msg = None
         if crit is None:
             msg = f"allowable {allowable!r}: the curves give 0.5D and 10D only"
         elif not sweeps:
-            msg = (
-                "no committed stability-curve sweep (onbottom curves NetCDF in"
-                " onbottom/data/stability_curves/ or docs/validation/stability_curves/)"
-            )
+            unread = ", ".join(Path(f).name for f in files) or "none given"
+            msg = f"no readable curve sweep ({unread})"
         elif soil is None:
             msg = f"seabed model {seabed_model!r} has no curves (sand and clay only)"
         found = None
@@ -128,15 +192,15 @@ def generalized_rows(
             out.append(base | {"message": msg, "details": point})
             continue
         f, lreq = found
-        u = lreq / lact
+        u = lreq / point["L_actual"]
         out.append(
             base
             | {
                 "covered": True,
                 "utilisation": u,
                 "pass": u <= 1.0,
-                "message": f"{crit} interpolated in {Path(f).name}",
-                "details": point | {"L_required": lreq, "source": f},
+                "message": f"{crit} interpolated in the dynamic curves {Path(f).name}",
+                "details": point | {"L_required": lreq, "source": Path(f).name},
             }
         )
     return out

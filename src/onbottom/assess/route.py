@@ -55,12 +55,23 @@ dynamic search counts the trial as failing."""
 
 @dataclass(frozen=True)
 class Levels:
-    """The F109 levels run (the pipeline FE needs the dynamic level)."""
+    """The levels run (the pipeline FE needs the dynamic level).
+
+    ``generalized`` is F109 §3.5 from F109's tables; ``dynamic_curves`` (the tool's own curve
+    sweeps, NetCDF files of ``onbottom curves``; empty: not run) is a separate level, never
+    F109's. ``allow_below_generalized``: the reason text of a route that accepts a design
+    below F109's generalized requirement (None: the design is raised to it);
+    ``allow_below_coulomb``: likewise for the Coulomb-friction lower bound of the dynamic level
+    where F109's tables do not cover a current-dominated point (M >= 0.8).
+    """
 
     absolute: bool = True
     generalized: bool = True
     dynamic: bool = True
     pipeline_fe: bool = False
+    dynamic_curves: tuple[str, ...] = ()
+    allow_below_generalized: str | None = None
+    allow_below_coulomb: str | None = None
 
     def __post_init__(self) -> None:
         if self.pipeline_fe and not self.dynamic:

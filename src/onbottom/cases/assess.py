@@ -18,8 +18,13 @@ file, the line and the nearest valid key):
 * ``[design]`` — safety class, region, flotation conditions, and the design variable:
   ``solve_for = "auto"`` (concrete thickness of ``layer`` for a build-up pipe, submerged
   weight for a simple pipe), with its range;
-* ``[levels]`` — ``absolute``, ``generalized``, ``dynamic`` (booleans) and ``pipeline_fe``
-  (false: the pipeline FE run of the governing section, :mod:`onbottom.assess.pipeline`);
+* ``[levels]`` — ``absolute``, ``generalized`` (F109 §3.5 from F109's tables), ``dynamic``
+  (booleans) and ``pipeline_fe`` (false: the pipeline FE run of the governing section,
+  :mod:`onbottom.assess.pipeline`); ``dynamic_curves`` (false; true: the shipped curve sweeps;
+  a path: that NetCDF file or folder of sweeps — a separate level, never F109's);
+  ``allow_below_generalized`` / ``allow_below_coulomb`` (reason texts that accept a design
+  below F109's generalized requirement / the Coulomb-friction bound; see
+  :mod:`onbottom.assess.core`);
 * ``[pipeline]`` — that run's line length, element length, end conditions, strain limit and
   optional duration;
 * ``[dynamic]`` — seeds, the allowable displacement (``allowable = "0.5D" | "10D" | "user"``
@@ -91,6 +96,7 @@ __all__ = [
     "StormTrials",
     "build_route",
     "case_identity",
+    "dynamic_curve_files",
     "example_path",
     "load_route",
     "load_route_case",
@@ -189,10 +195,21 @@ class LevelsTable(StrictModel):
     generalized: bool = True
     dynamic: bool = True
     pipeline_fe: bool = False
-    generalized_curves: str | None = Field(
+    dynamic_curves: bool | str = Field(
+        False,
+        description="the tool's own curve sweeps as a separate level: true (the shipped"
+        " sweeps) or a NetCDF file or folder of `onbottom curves` sweeps (relative to the case)",
+    )
+    allow_below_generalized: str | None = Field(
         None,
         min_length=1,
-        description="folder or NetCDF file of `onbottom curves` sweeps (relative to the case)",
+        description="reason text: accept a design below F109's generalized requirement",
+    )
+    allow_below_coulomb: str | None = Field(
+        None,
+        min_length=1,
+        description="reason text: accept a dynamic design below the Coulomb-friction bound"
+        " where F109's tables leave a current-dominated point uncovered",
     )
 
 
@@ -418,6 +435,7 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             "levels.pipeline_fe = true is invalid without levels.dynamic = true: the pipeline"
             " FE runs the governing section in the governing storm of the dynamic level",
         )
+    dynamic_curve_files(case, file, text)
     if not (case.levels.absolute or case.levels.generalized or case.levels.dynamic):
         _fail(file, text, "levels", "levels: every level is switched off; nothing to run")
     if case.levels.dynamic and case.solve_for == "none":
@@ -613,9 +631,41 @@ def _build_section(case: RouteCase, i: int) -> Section:
     )
 
 
-def build_route(case: RouteCase) -> Route:
+def dynamic_curve_files(
+    case: RouteCase, file: str | os.PathLike | None = None, text: str | None = None
+) -> tuple[str, ...]:
+    """The sweeps of ``[levels] dynamic_curves``: none (false), the shipped ones (true), or
+    the NetCDF file or every ``*.nc`` of the folder named (relative to the case file ``file``;
+    a missing file or a folder without sweeps is a named error on that key and line)."""
+    from onbottom._casefile import resolve_path
+    from onbottom.assess.generalized import curve_files_at, default_curve_files
+
+    value = case.levels.dynamic_curves
+    if value is False:
+        return ()
+    if value is True:
+        return tuple(default_curve_files())
+    name = "<route>" if file is None else str(file)
+    real = file is not None and not name.startswith("<")
+    key = "levels.dynamic_curves"
+    try:
+        p = resolve_path(value, relative_to=file if real else None, field=key, must_exist=False)
+    except CaseFileError as exc:
+        _fail(name, text, key, str(exc))
+    if p.is_dir():
+        found = curve_files_at(p)
+        if not found:
+            _fail(name, text, key, f"{key} = {value!r} is invalid: folder {p} has no *.nc sweep")
+        return tuple(found)
+    if not p.is_file():
+        _fail(name, text, key, f"{key} = {value!r} is invalid: file {p} not found")
+    return (str(p),)
+
+
+def build_route(case: RouteCase, *, file: str | os.PathLike | None = None) -> Route:
     """The :class:`~onbottom.assess.route.Route` of a validated route case (from
-    :func:`load_route_case` or :func:`parse_route_case`)."""
+    :func:`load_route_case` or :func:`parse_route_case`); ``file``: the case file, against
+    which a relative ``[levels] dynamic_curves`` path is resolved."""
     d = case.design
     return Route(
         name=case.route.name,
@@ -626,6 +676,9 @@ def build_route(case: RouteCase) -> Route:
             generalized=case.levels.generalized,
             dynamic=case.levels.dynamic,
             pipeline_fe=case.levels.pipeline_fe,
+            dynamic_curves=dynamic_curve_files(case, file),
+            allow_below_generalized=case.levels.allow_below_generalized,
+            allow_below_coulomb=case.levels.allow_below_coulomb,
         ),
         dynamic=case.dynamic.settings(),
         pipeline=PipelineSettings(**case.pipeline.model_dump()),
@@ -642,4 +695,4 @@ def load_route(path: str | os.PathLike, *, seeds: int | None = None) -> Route:
     if seeds is not None:
         dyn = case.dynamic.model_copy(update={"seeds": seeds})
         case = case.model_copy(update={"dynamic": dyn})
-    return build_route(case)
+    return build_route(case, file=path)

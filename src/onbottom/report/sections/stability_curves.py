@@ -4,9 +4,10 @@ A curve sweep (:mod:`onbottom.study.stability_curves`, ``onbottom curves CASE``)
 order of 10⁴ storms (the committed 256-point sweeps: about 7,000 storms each, 28 and 37 min
 wall on 2 loaded cores, as their ``wall_time_s`` attributes record), too long for a report
 run. The report shows the sweeps committed as NetCDF files (written by ``onbottom curves``) in
-``docs/validation/stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the
-curves. Without such a file the section says so. There is no pass/fail: F109's tables are DNV
-content and are not reproduced (docs/theory/storm_section.md).
+package data ``onbottom/data/stability_curves/`` (``src/onbottom/data/stability_curves/`` in the
+repository): a table of L_stable and L_10 per (soil, N, M, K) and the curves. Without such a
+file the section says so. There is no pass/fail here: the comparison with F109's generalized
+tables (:mod:`onbottom.checks.f109_generalized`) is a validation page of its own.
 """
 
 from __future__ import annotations
@@ -16,18 +17,21 @@ from onbottom.report.registry import section
 
 REQUIRES = ("onbottom.study.stability_curves",)
 
-FOLDER = "docs/validation/stability_curves"
-"""Where committed sweeps (NetCDF from ``onbottom curves``) are looked for."""
+FOLDER = "onbottom/data/stability_curves"
+"""Where committed sweeps (NetCDF from ``onbottom curves``) are looked for (package data)."""
 
 
 @section("stability_curves", "Stability curves from dynamic runs", order=80, requires=REQUIRES)
 def build(ctx: SectionContext) -> SectionContent:
     """Tabulate and plot every committed curve sweep."""
+    from importlib.resources import files as package_files
+    from pathlib import Path
+
     from onbottom.results import load_dataset
     from onbottom.study.stability_curves import curves_table
 
-    folder = None if ctx.repo_root is None else ctx.repo_root / FOLDER
-    files = [] if folder is None or not folder.is_dir() else sorted(folder.glob("*.nc"))
+    folder = Path(str(package_files("onbottom") / "data" / "stability_curves"))
+    files = sorted(folder.glob("*.nc")) if folder.is_dir() else []
     if not files:
         return SectionContent(
             summary="No committed stability-curve sweep: a sweep of about 7,000 storms takes half"
