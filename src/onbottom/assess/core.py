@@ -512,7 +512,7 @@ def _design_floor(
         words += f" (reason given: {route.levels.allow_below_generalized!r})"
     if rule == "allowed_below_coulomb":
         words += f" (reason given: {route.levels.allow_below_coulomb!r})"
-    return out | {"rule": rule, "words": words, "governing_level": gov_level}
+    return out | {"rule": rule, "words": words, "lightest_level": gov_level}
 
 
 # ---- the study ----------------------------------------------------------------------------------
@@ -560,8 +560,12 @@ class Assessment:
                 "governing_check": s["governing_check"], "max_utilisation": s["max_utilisation"],
                 "variable": s["variable"],
                 **{f"{k}_value": (lv.get(k) or {}).get("value")
-                   for k in ("vertical", "absolute", "generalized", "dynamic")},
+                   for k in ("vertical", "absolute", "generalized", "dynamic",
+                             "dynamic_curves")},
                 "governing_level": s["governing_level"], "design_value": s["design_value"],
+                "floor_rule": (s.get("design_floor") or {}).get("rule"),
+                "dynamic_over_generalized_weight": (s.get("design_floor") or {}).get(
+                    "dynamic_over_generalized_weight"),
                 "saved_submerged_weight_n_per_m": ws.get("saved_submerged_weight"),
             })  # fmt: skip
         return pd.DataFrame(rows)

@@ -24,8 +24,6 @@ import math
 from pathlib import Path
 from typing import Any
 
-from onbottom.constants import GRAVITY
-
 __all__ = ["curve_files_at", "default_curve_files", "dynamic_curve_rows", "generalized_rows"]
 
 CRITERION = {"0.5D": "L_stable", "10D": "L_10"}
@@ -60,18 +58,9 @@ def _load(path: str) -> Any:
 
 
 def _point(r: Any, rho: float) -> dict[str, float] | None:
-    det = r.details
-    d, us, tu, v = det["diameter"], det["us"], det["tu"], det.get("v_star", 0.0)
-    if us <= 0.0 or tu <= 0.0:
-        return None
-    return {
-        "K": us * tu / d,
-        "M": v / us,
-        "N": us / (GRAVITY * tu),
-        "L_actual": det["submerged_weight"] / (0.5 * rho * d * us**2),
-        "U_s": us,
-        "diameter": d,
-    }
+    from onbottom.checks.f109_generalized import generalized_point
+
+    return generalized_point(r.details, rho)
 
 
 def _lateral(rows: list[Any]) -> list[Any]:

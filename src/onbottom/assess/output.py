@@ -67,8 +67,10 @@ CLAUSES: dict[str, str] = {
     "absolute_lateral": "DNV-RP-F109 (2017) §3.6, Eq 3.38 (with C*_Y Table 3-9, γ_SC Tables"
     " 3-5 to 3-8, load reductions Eqs 3.17–3.22)",
     "absolute_vertical": "DNV-RP-F109 (2017) §3.6, Eq 3.39 (with C*_Z Table 3-10)",
-    "generalized_lateral": "DNV-RP-F109 (2017) §3.5 (groups K, M, N, L); L from the tool's own"
-    " `onbottom curves` sweeps, not from F109's tables",
+    "generalized_lateral": "DNV-RP-F109 (2010/2017) §3.5 (groups K, M, N, L); L_stable and"
+    " L_10 from F109's Tables 3-2 to 3-4 (sand; clay not reproduced), checks/f109_generalized.py",
+    "dynamic_curves_lateral": "the tool's own `onbottom curves` sweeps (dynamic model), read in"
+    " F109's groups K, M, N, L: not F109's tables",
     "dynamic_lateral": "DNV-RP-F109 (2017) §3.4 (dynamic lateral stability analysis;"
     " allowable displacement §3.4.1); storm section solver docs/theory/storm_section.md",
     "design_sea_state": "DNV-RP-F109 (2017) §3.4.3 (JONSWAP, transfer to the seabed, U_s,"
@@ -93,8 +95,10 @@ VALIDITY: list[str] = [
     " opposing wave and current (Chao, Lambrakos & Verley, OTC 6060, 1989).",
     "F109 tables (C*_Y, C*_Z, γ_SC) as in two agreeing public transcriptions"
     " (checks/f109_tables.py); check against the standard.",
-    "The generalized level uses only the tool's own committed curve sweeps and never"
-    " extrapolates; where none covers the point it says 'not covered'.",
+    "The generalized level uses F109's own tables (§3.5; sand Tables 3-2 to 3-4 from public"
+    " transcriptions, confidence per table in docs/theory/dnv_rp_f109.md; clay not"
+    " reproduced) and never extrapolates; where they do not cover the point it says 'not"
+    " covered'. The design is never below it unless [levels] allow_below_generalized says why.",
     "Pipeline FE of the governing section (when run): a straight stretch with fixed (or"
     " pinned/free) ends, the section's soil and force model, one seed (the worst of the"
     " section at the given design); its strain limit is a user value (default 0.2 %, a"
@@ -529,7 +533,9 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
     out.append("</table>")
     out.append(
         "<p class='note'>Design: the lightest design among the levels run that passes (each is"
-        " a complete F109 method); the dynamic value is never below the flotation minimum."
+        " a complete F109 method), never below F109's generalized requirement unless the route"
+        " opts in by name (each section's 'Design floor' line says which rule applied); the"
+        " dynamic value is never below the flotation minimum."
         " Weight saved: submerged weight (pipe condition of [pipe]) at the absolute design"
         " minus at the dynamic design.</p>"
     )
@@ -587,6 +593,11 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
                 f"<td class='note'>{e(str(v.get('message', '')))}</td></tr>"
             )
         out.append("</table>")
+        fl = s.get("design_floor") or {}
+        if fl:
+            ratio = fl.get("dynamic_over_generalized_weight")
+            rtxt = "" if ratio is None else f" Dynamic/generalized submerged weight: {ratio:.2f}."
+            out.append(f"<p class='note'>Design floor: {e(fl['words'])}.{e(rtxt)}</p>")
         out.append("<h3>V–H diagram (given design)</h3>")
         out.append(_vh_figure(s, a.route.water_density))
         out.append(

@@ -27,6 +27,7 @@ from onbottom.checks.design import (
     penetration_outside_validity,
     run_checks,
 )
+from onbottom.checks.f109_generalized import generalized_table
 from onbottom.errors import InputError
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
@@ -40,6 +41,7 @@ __all__ = [
     "StabilityEvaluation",
     "StabilityInputs",
     "evaluate_stability",
+    "f109_soil",
     "penetration_outside_validity",
     "section_summary",
     "solve_design",
@@ -154,12 +156,16 @@ class StabilityEvaluation:
     :func:`section_summary`), the check ``rows``, the ``design`` solve (a dict:
     ``solve_for`` and, when solved, :meth:`~onbottom.checks.design.DesignResult.as_dict` and
     the designed ``section``, or ``success`` false with the best value found) and the
-    ``invalid`` notes of :func:`penetration_outside_validity`."""
+    ``invalid`` notes of :func:`penetration_outside_validity`; ``generalized``: F109's
+    generalized method at the given design per combination, L_stable and L_10 from F109's
+    tables (:func:`onbottom.checks.f109_generalized.generalized_table`; shown, not a pass/fail
+    row)."""
 
     section: dict[str, Any]
     rows: tuple[CheckRow, ...]
     design: dict[str, Any]
     invalid: tuple[str, ...] = ()
+    generalized: tuple[dict[str, Any], ...] = ()
 
     @property
     def success(self) -> bool:
@@ -189,6 +195,7 @@ class StabilityEvaluation:
             "message": self.message,
             "all_pass": self.all_pass,
             "design": self.design,
+            "generalized": list(self.generalized),
         }
 
 
@@ -239,4 +246,15 @@ def evaluate_stability(inputs: StabilityInputs) -> StabilityEvaluation:
         rows=tuple(rows),
         design=design,
         invalid=tuple(penetration_outside_validity(rows)),
+        generalized=tuple(
+            generalized_table(rows, f109_soil(i.seabed), i.environment.water_density)
+        ),
     )
+
+
+def f109_soil(seabed: Sand | Clay | Rock) -> str | None:
+    """The soil of F109's generalized tables for a seabed: ``"sand"`` (silica sand),
+    ``"clay"``, or None (calcareous sand, rock: not covered by F109 §3.5)."""
+    if isinstance(seabed, Sand):
+        return "sand" if seabed.kind == "silica" else None
+    return "clay" if isinstance(seabed, Clay) else None

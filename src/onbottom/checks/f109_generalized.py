@@ -44,6 +44,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from onbottom.constants import GRAVITY
 from onbottom.errors import InputError, OnbottomError
 
 __all__ = [
@@ -58,7 +59,9 @@ __all__ = [
     "LSTABLE_M",
     "GeneralizedRequirement",
     "NotCoveredError",
+    "generalized_point",
     "generalized_requirement",
+    "generalized_table",
     "l_10_clay",
     "l_10_sand",
     "l_stable_clay",
@@ -340,3 +343,50 @@ def generalized_requirement(
     except NotCoveredError as exc:
         return GeneralizedRequirement(**base, covered=False, L=None, reason=exc.reason)
     return GeneralizedRequirement(**base, covered=True, L=el, reason=_describe(soil, criterion, k))
+
+
+def generalized_point(details: dict, water_density: float) -> dict[str, float] | None:
+    """The F109 groups of an absolute-lateral check row's ``details`` (``diameter`` D [m],
+    ``us`` U_s [m/s], ``tu`` T_u [s], ``v_star`` V [m/s], ``submerged_weight`` w_s [N/m]):
+    K, M, N, L_actual, U_s and D (None without wave flow at the pipe); ρ_w [kg/m³]."""
+    d, us, tu = details["diameter"], details["us"], details["tu"]
+    v = details.get("v_star", 0.0)
+    if us <= 0.0 or tu <= 0.0:
+        return None
+    return {
+        "K": us * tu / d,
+        "M": v / us,
+        "N": us / (GRAVITY * tu),
+        "L_actual": details["submerged_weight"] / (0.5 * water_density * d * us**2),
+        "U_s": us,
+        "diameter": d,
+    }
+
+
+def generalized_table(rows: list, soil: str | None, water_density: float) -> list[dict]:
+    """Both criteria of F109's generalized method for every absolute-lateral row of
+    :func:`onbottom.checks.design.run_checks` (what ``onbottom stability`` reports): per
+    combination the point, L_stable and L_10 (None where not covered, with the reason) and
+    the utilisations L_required/L_actual. ``soil``: ``"sand"``, ``"clay"`` or None (a seabed
+    F109's generalized method does not cover)."""
+    out = []
+    for r in rows:
+        if r.name != "absolute_lateral" or "us" not in r.details:
+            continue
+        p = generalized_point(r.details, water_density)
+        row: dict = {"combination": r.combination, "condition": r.condition, "point": p}
+        for crit, key in CRITERIA.items():
+            if p is None:
+                req = None
+                reason = "no wave flow at the pipe (U_s = 0)"
+            elif soil is None:
+                req, reason = None, "seabed not covered by F109's generalized method (§3.5)"
+            else:
+                req = generalized_requirement(soil, crit, p["K"], p["M"], p["N"])
+                reason = req.reason
+            el = None if req is None else req.L
+            row[key] = el
+            row[f"{key}_reason"] = reason
+            row[f"utilisation_{crit}"] = None if el is None or p is None else el / p["L_actual"]
+        out.append(row)
+    return out

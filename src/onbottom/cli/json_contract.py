@@ -212,11 +212,17 @@ CONTRACT: dict[str, Output] = {
                 "variable": "concrete_thickness [m] or submerged_weight [N/m]",
                 "vertical_value": "flotation minimum of the variable, or null",
                 "absolute_value": "absolute-method minimum, or null (no solution / not run)",
-                "generalized_value": "generalized minimum where the curves cover every"
-                " combination, else null",
+                "generalized_value": "F109 generalized minimum (§3.5 tables) where they cover"
+                " every combination, else null",
                 "dynamic_value": "dynamic minimum (every seed within the allowable), or null",
-                "governing_level": "the level of the design value (the lightest passing)",
+                "dynamic_curves_value": "minimum from the tool's own curve sweeps ([levels]"
+                " dynamic_curves), or null (not run / not covered)",
+                "governing_level": "the level of the design value (the lightest passing, raised"
+                " to the generalized one by the design floor)",
                 "design_value": "the design value of the variable, or null",
+                "floor_rule": "design-floor rule applied (onbottom.assess.core.FLOOR_RULES)",
+                "dynamic_over_generalized_weight": "submerged weight at the dynamic design over"
+                " that at the generalized design [-], or null",
                 "saved_submerged_weight_n_per_m": "submerged weight saved by the dynamic level"
                 " against the absolute one [N/m] (negative: it needs more), or null",
             }

@@ -69,6 +69,13 @@ def _table(payload: dict[str, Any]) -> str:
             )
         else:
             lines.append(f"Design: no solution — {d['message']}")
+    for g in payload.get("generalized", []):
+        crits = []
+        for key, crit in (("L_stable", "0.5D"), ("L_10", "10D")):
+            u = g[f"utilisation_{crit}"]
+            crits.append(f"{key} {g[key]:.3g} (util. {u:.3f})" if u is not None
+                         else f"{key} not covered ({g[f'{key}_reason']})")  # fmt: skip
+        lines.append(f"F109 generalized (§3.5 tables), {g['combination']}: " + "; ".join(crits))
     for w in payload["warnings"]:
         lines.append(f"warning: {w}")
     if not payload["success"] and payload["message"]:
