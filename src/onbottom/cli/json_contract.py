@@ -79,6 +79,9 @@ CONTRACT: dict[str, Output] = {
             "message": "why success is false, else empty",
             "all_pass": "true if every check passes",
             "design": "the design solve ([design] solve_for): value, utilisation, …",
+            "generalized": "F109 §3.5 from F109's tables per lateral combination: point {K, M,"
+            " N, L_actual}, L_stable and L_10 (null where not covered, with *_reason) and"
+            " utilisation_0.5D / utilisation_10D at the given design",
             "warnings": "unusual-input warnings",
         },
         {
