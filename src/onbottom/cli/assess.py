@@ -82,10 +82,11 @@ def command(
     """On-bottom stability of a whole route (CASE: route TOML; none: the embedded example).
 
     Per KP section, condition and load combination: flotation (F109 Eq 3.1), the absolute
-    lateral check (Eqs 3.38/3.39), the generalized level where the tool's own curves cover
-    the point, and storms on the section over seeds; per section the minimum concrete (or
-    submerged weight) per level — the dynamic one by a search with every seed within the
-    allowable displacement — and the governing design. A killed run resumes from the
+    lateral check (Eqs 3.38/3.39), the generalized level from F109's tables (§3.5) where they
+    cover the point, and storms on the section over seeds; per section the minimum concrete
+    (or submerged weight) per level — the dynamic one by a search with every seed within the
+    allowable displacement — and the governing design, never below F109's generalized
+    requirement unless [levels] allow_below_generalized says why. A killed run resumes from the
     sections already done (same inputs). See examples/assess_route.toml.
 
     --json prints the results.json document (keys: schema, provenance, route, summary,
