@@ -1,5 +1,5 @@
-"""The committed curve sweeps (package data, src/onbottom/data/stability_curves/) and the numbers the storm
-section theory page quotes from them.
+"""The committed curve sweeps (package data, src/onbottom/data/stability_curves/) and the
+numbers the storm section theory page quotes from them.
 
 Nothing here is a hard-coded result: every number the page states is parsed from the page and
 recomputed from the committed NetCDF files, so a regenerated sweep that changes a number fails
