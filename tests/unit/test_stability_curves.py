@@ -118,8 +118,11 @@ def test_points_outside_the_soil_model_are_marked(tmp_path, monkeypatch):
     assert open_marker.get_markerfacecolor() == "white"
     assert len(open_marker.get_xdata()) == 1  # only the M = 4 point
     plt.close(fig)
-    folder = tmp_path / "docs" / "validation" / "stability_curves"
+    folder = tmp_path / "stability_curves"  # stands in for the shipped package data
     folder.mkdir(parents=True)
+    import onbottom.report.sections.stability_curves as section
+
+    monkeypatch.setattr(section, "sweep_folder", lambda: folder)
     save_dataset(ds, folder / "fake.nc")
     back = load_dataset(folder / "fake.nc")
     assert back["L_10_out_of_range"].values.ravel().tolist() == [0, 1]

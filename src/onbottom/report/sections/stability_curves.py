@@ -12,6 +12,8 @@ tables (:mod:`onbottom.checks.f109_generalized`) is a validation page of its own
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from onbottom.report.content import Check, SectionContent, SectionContext, Table
 from onbottom.report.registry import section
 
@@ -21,16 +23,20 @@ FOLDER = "onbottom/data/stability_curves"
 """Where committed sweeps (NetCDF from ``onbottom curves``) are looked for (package data)."""
 
 
+def sweep_folder() -> Path:
+    """The folder of the shipped sweeps (package data)."""
+    from importlib.resources import files as package_files
+
+    return Path(str(package_files("onbottom") / "data" / "stability_curves"))
+
+
 @section("stability_curves", "Stability curves from dynamic runs", order=80, requires=REQUIRES)
 def build(ctx: SectionContext) -> SectionContent:
     """Tabulate and plot every committed curve sweep."""
-    from importlib.resources import files as package_files
-    from pathlib import Path
-
     from onbottom.results import load_dataset
     from onbottom.study.stability_curves import curves_table
 
-    folder = Path(str(package_files("onbottom") / "data" / "stability_curves"))
+    folder = sweep_folder()
     files = sorted(folder.glob("*.nc")) if folder.is_dir() else []
     if not files:
         return SectionContent(
