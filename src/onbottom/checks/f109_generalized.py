@@ -20,9 +20,11 @@ Sand (F109 Tables 3-2, 3-3, 3-4; the tabulated quantity is L/(2 + M)²):
   (Table 3-3);
 * L_10, K ≥ 5: Table 3-4 in K (5 … 100) and M.
 
-Between nodes: linear interpolation in each variable (F109 §3.5.3 allows linear
-interpolation in the tables). Edges as F109 labels them: the first M row is "M ≤ 0.2", the
-last "M ≥ 10"; the last K column is "K ≥ 60" (Table 3-3) and "K ≥ 100" (Table 3-4). Any other
+Between nodes: linear interpolation in each variable (the linear rule F109 states for
+5 < K < 10, applied inside the tables too; background knowledge, to confirm against the
+standard). Edges as the tables are labelled (background knowledge, to confirm): the first M
+row is "M ≤ 0.2", the last "M ≥ 10"; the last K column is "K ≥ 60" (Table 3-3) and "K ≥ 100"
+(Table 3-4). Any other
 point outside a table (N < 0.003 or N > 0.048 at K < 10; K < 5 for L_10) is **not covered**:
 :class:`NotCoveredError` (functions) or a :class:`GeneralizedRequirement` with
 ``covered=False`` and the reason — never extrapolated, never NaN.
