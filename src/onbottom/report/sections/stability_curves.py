@@ -5,7 +5,9 @@ order of 10⁴ storms (the committed 256-point sweeps: about 7,000 storms each, 
 wall on 2 loaded cores, as their ``wall_time_s`` attributes record), too long for a report
 run. The report shows the sweeps committed as NetCDF files (written by ``onbottom curves``) in
 ``docs/validation/stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the
-curves. Without such a file the section says so. There is no pass/fail: F109's tables are DNV
+curves, each file with the statistic its L is (:func:`onbottom.study.stability_curves.
+curve_statistic`: a fractile and the median of each seed's own L, or the former mean of
+maxima) and its seed count. Without such a file the section says so. There is no pass/fail: F109's tables are DNV
 content and are not reproduced (docs/theory/storm_section.md).
 """
 
@@ -24,7 +26,7 @@ FOLDER = "docs/validation/stability_curves"
 def build(ctx: SectionContext) -> SectionContent:
     """Tabulate and plot every committed curve sweep."""
     from onbottom.results import load_dataset
-    from onbottom.study.stability_curves import curves_table
+    from onbottom.study.stability_curves import curve_statistic, curves_table
 
     folder = None if ctx.repo_root is None else ctx.repo_root / FOLDER
     files = [] if folder is None or not folder.is_dir() else sorted(folder.glob("*.nc"))
@@ -50,8 +52,11 @@ def build(ctx: SectionContext) -> SectionContent:
     tables, figures = [], []
     flagged = 0
     costs = []
+    stats = []
     for path in files:
         ds = load_dataset(path)
+        stat = curve_statistic(ds)
+        stats.append(f"{path.stem}: {stat['label']}")
         if "wall_time_s" in ds.attrs and "total_storms" in ds.attrs:
             costs.append(
                 f"{path.stem}: {int(ds.attrs['total_storms']):,} storms in"
@@ -65,7 +70,8 @@ def build(ctx: SectionContext) -> SectionContent:
         cols = list(rows[0]) if rows else ["soil"]
         tables.append(
             Table(
-                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria"
+                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria;"
+                f" L = {stat['label']}"
                 " (*_out_of_range = 1: the storms deciding the point buried the pipe beyond"
                 " the soil model's range, z > D/2)",
                 columns=cols,
@@ -76,7 +82,7 @@ def build(ctx: SectionContext) -> SectionContent:
         if plot_stability_curves is not None:
             figures.append(
                 ctx.save_figure(
-                    plot_stability_curves(ds, title=path.stem),
+                    plot_stability_curves(ds, title=f"{path.stem}: L = {stat['label']}"),
                     path.stem,
                     f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
                     " markers: points outside the soil model's range.",
@@ -98,8 +104,9 @@ def build(ctx: SectionContext) -> SectionContent:
                 )
             )
     return SectionContent(
-        summary="Weight parameter L = w_s/(½ρDU_s²) at which the seed-averaged largest lateral"
-        " displacement of a storm equals 0.5D (L_stable) and 10D (L_10)."
+        summary="Weight parameter L = w_s/(½ρDU_s²) at which the largest lateral displacement"
+        " of a storm reaches 0.5D (L_stable) and 10D (L_10). Statistic of each file:"
+        f" {'; '.join(stats)}."
         + (f" Cost of the committed sweeps (from the files): {'; '.join(costs)}." if costs else ""),
         checks=[
             Check(
@@ -108,6 +115,16 @@ def build(ctx: SectionContext) -> SectionContent:
                 reference=None,
                 tolerance="—",
                 status="info",
+            ),
+            *(
+                Check(
+                    name=f"statistic of {path.stem}",
+                    value=s.split(": ", 1)[1],
+                    reference=None,
+                    tolerance="—",
+                    status="info",
+                )
+                for path, s in zip(files, stats, strict=True)
             ),
             Check(
                 name="curve points outside the soil model's range",
