@@ -101,7 +101,9 @@ def test_a_stopped_storm_has_the_verdict_of_the_unstopped_storm():
                         force_model=FAST.force_model,
                         reductions=red,
                         settings=StormSolverSettings(
-                            dt_max=FAST.time_step, stop_displacement_over_d=stop, record_interval=None
+                            dt_max=FAST.time_step,
+                            stop_displacement_over_d=stop,
+                            record_interval=None,
                         ),
                     )
                     for stop in (target, 1.0e6)

@@ -5,10 +5,11 @@ order of 10⁴ storms (the committed 256-point sweeps: about 7,000 storms each, 
 wall on 2 loaded cores, as their ``wall_time_s`` attributes record), too long for a report
 run. The report shows the sweeps committed as NetCDF files (written by ``onbottom curves``) in
 ``docs/validation/stability_curves/``: a table of L_stable and L_10 per (soil, N, M, K) and the
-curves, each file with the statistic its L is (:func:`onbottom.study.stability_curves.
-curve_statistic`: a fractile and the median of each seed's own L, or the former mean of
-maxima) and its seed count. Without such a file the section says so. There is no pass/fail: F109's tables are DNV
-content and are not reproduced (docs/theory/storm_section.md).
+curves, each file with the statistic its L is
+(:func:`~onbottom.study.stability_curves.curve_statistic`: a fractile and the median of each
+seed's own L, or the former mean of maxima) and its seed count. Without such a file the
+section says so. There is no pass/fail here; the comparison with F109's generalized tables is
+docs/validation/dynamic_curves_vs_f109.md.
 """
 
 from __future__ import annotations
