@@ -115,11 +115,12 @@ def _command(
         warnings.simplefilter("always", OutOfRangeWarning)
         settings = build_curve_settings(cfg, case)
     notes_in = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
-    if c.statistic == "fractile" and c.seeds < 10:
-        notes_in.append(
-            f"curves.seeds = {c.seeds}: the {c.fractile:g} fractile of fewer than 10 seeds rests"
-            " on the heaviest seeds (use seeds >= 10 for a design curve)"
-        )
+    seed_note = (
+        f"curves.seeds = {c.seeds}: the {c.fractile:g} fractile of fewer than 10 seeds rests"
+        " on the heaviest seeds (use seeds >= 10 for a design curve)"
+        if c.statistic == "fractile" and c.seeds < 10
+        else None
+    )
     if not as_json:
         for note in notes_in:
             click.echo(f"warning: {note}", err=True)
@@ -179,7 +180,7 @@ def _command(
         "netcdf": str(nc),
         "csv": str(csv_path),
         "figure": str(png),
-        "warnings": notes_in,
+        "warnings": notes_in + ([seed_note] if seed_note else []),
     }
     if as_json:
         emit_json(payload)
@@ -202,6 +203,8 @@ def _command(
                 f" out_of_range): {', '.join(flagged)}"
             )
         click.echo(f"L = {stat['label']}")
+        if seed_note:
+            click.echo(f"note: {seed_note}")
         click.echo(
             f"{payload['total_storms']} storms ({payload['stopped_early']} stopped once their"
             f" verdict was known) in {payload['wall_time_s']:.1f} s on"
