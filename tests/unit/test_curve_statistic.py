@@ -70,6 +70,9 @@ def test_early_stopped_verdicts_and_l_equal_full_runs_on_a_curve_sweep():
             np.testing.assert_array_equal(early[c + v].values, full[c + v].values, c + v)
         assert np.isfinite(early[c].values).all()
         assert int(early[f"{c}_stopped_early"].sum()) > 0
+        np.testing.assert_array_equal(
+            early[f"{c}_per_seed_stopped_early"].sum("seed"), early[f"{c}_stopped_early"]
+        )
         assert int(full[f"{c}_stopped_early"].sum()) == 0
         # each seed's storm at its L_low reached the criterion and stopped there
         target = sc.CRITERIA[c]
@@ -179,3 +182,27 @@ def test_case_file_statistic_and_large_n(tmp_path, capsys):
     assert p["L_10"] == pytest.approx(np.quantile(p["L_10_per_seed"], 0.75))
     ds = load_dataset(case.with_suffix(".nc"))
     assert float(ds.attrs["fractile"]) == 0.75 and ds.attrs["statistic"] == "fractile"
+
+
+def test_report_section_states_each_files_statistic(tmp_path):
+    """The report's curves section names the statistic and seed count of every committed
+    file: a per-seed file beside a file of the former statistic."""
+    from onbottom.report.content import SectionContext
+    from onbottom.report.sections.stability_curves import build
+
+    folder = tmp_path / "docs" / "validation" / "stability_curves"
+    folder.mkdir(parents=True)
+    new = stability_curves([5.0], [0.4], soils=["sand"], settings=FAST, n_workers=0)
+    old = new.drop_vars([v for v in new.data_vars if "median" in v or "per_seed" in v])
+    old = old.drop_dims("seed")
+    for key in ("statistic", "seeds", "fractile", "early_stop", "stopped_early"):
+        old.attrs.pop(key, None)
+    save_dataset(new, folder / "a_new.nc")
+    save_dataset(old, folder / "b_old.nc")
+    content = build(SectionContext(name="stability_curves", out_dir=tmp_path, repo_root=tmp_path))
+    checks = {c.name: c.value for c in content.checks}
+    assert "0.9 fractile (and median) over 3 seeds" in checks["statistic of a_new"]
+    assert "mean of maxima over 3 seeds" in checks["statistic of b_old"]
+    assert "0.9 fractile" in content.tables[0].caption
+    assert "mean of maxima" in content.tables[1].caption
+    assert "L_stable_median" in content.tables[0].columns

@@ -330,7 +330,7 @@ def find_weight_parameter(
     without an answer — that left the soil model's range), a status message, and for
     ``"fractile"`` also ``L_median``, ``per_seed`` (each seed's L, NaN where it has none),
     ``per_seed_low``/``per_seed_high`` (each seed's bracket), ``per_seed_storms``,
-    ``stopped_early`` (storms stopped once their verdict was known) and
+    ``per_seed_stopped_early``, ``stopped_early`` (storms stopped once their verdict was known) and
     ``seeds_no_crossing``.
     """
     if soil not in SOILS:
@@ -540,6 +540,7 @@ def _find_per_seed(
         "per_seed_low": [r["L_low"] for r in seeds],
         "per_seed_high": [r["L_high"] for r in seeds],
         "per_seed_storms": [r["storms"] for r in seeds],
+        "per_seed_stopped_early": [r["stopped_early"] for r in seeds],
         "per_seed_censored": cens,
         "runtime_s": time.perf_counter() - t0,
         "cpu_s": time.process_time() - c0,
@@ -862,7 +863,13 @@ def _per_seed_variables(data, c, idx, soils, ns, ms, ks, s) -> None:
     point["seeds_no_crossing"] = np.full(shape, np.nan)
     seed = {
         name: np.full((*shape, n_seeds), np.nan)
-        for name in ("per_seed", "per_seed_low", "per_seed_high", "per_seed_storms")
+        for name in (
+            "per_seed",
+            "per_seed_low",
+            "per_seed_high",
+            "per_seed_storms",
+            "per_seed_stopped_early",
+        )
     }
     for a, so in enumerate(soils):
         for b, n in enumerate(ns):
@@ -901,6 +908,11 @@ def _per_seed_variables(data, c, idx, soils, ns, ms, ks, s) -> None:
         ("per_seed_low", "low end of each seed's final bracket"),
         ("per_seed_high", "high end of each seed's final bracket"),
         ("per_seed_storms", "storms run by each seed's bisection"),
+        (
+            "per_seed_stopped_early",
+            "storms of each seed's bisection stopped once |y| reached the criterion (every"
+            " storm whose verdict was 'reaches the criterion', with early_stop)",
+        ),
     ):
         data[f"{c}_{name}"] = (sdims, seed[name], {"long_name": f"{c}: {long}", "units": "1"})
 
