@@ -185,7 +185,7 @@ def _command(
     if as_json:
         emit_json(payload)
     else:
-        for r in rows:
+        for r in payload["points"]:
             click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {point_summary(r)}")
         for note in notes:
             click.echo(

@@ -1140,8 +1140,9 @@ def curves_table(ds: xr.Dataset, *, per_seed: bool = False) -> list[dict[str, An
 def point_summary(row: dict[str, Any]) -> str:
     """One line of a row of :func:`curves_table` (``onbottom curves`` prints one per point):
     per criterion L (and the median of the per-seed L where the file has it), its bracket,
-    the seeds' spread of max |y|/D at both ends, and NOT CONVERGED where the bracket is wider
-    than the tolerance."""
+    the seeds' spread (of their L where the row has them, ``per_seed=True``; else of max
+    |y|/D at both ends of the bracket), and NOT CONVERGED where the bracket is wider than the
+    tolerance."""
     parts = []
     for c in ("L_stable", "L_10"):
         if c not in row:
@@ -1156,6 +1157,9 @@ def point_summary(row: dict[str, Any]) -> str:
         )
         median = row.get(f"{c}_median", math.nan)
         med = f", median {median:.3g}" if isinstance(median, float) and median == median else ""
+        seeds = [x for x in row.get(f"{c}_per_seed") or [] if x == x]
+        if seeds:  # the per-seed L: their spread says more than max |y| at the stops
+            spread = f"; seeds' L {min(seeds):.3g}-{max(seeds):.3g}"
         if row.get(f"{c}_converged", True):
             parts.append(
                 f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}]{med}, {c}/(2+M)^2 ="
