@@ -767,7 +767,12 @@ def stability_curves(
     -------
     xarray.Dataset
         L_stable, L_10 (and their L/(2 + M)² forms, brackets, evaluations, storms, runtime)
-        over dimensions (soil, N, M, K); attributes: total storms, wall time, settings.
+        over dimensions (soil, N, M, K); with the statistic ``"fractile"`` also
+        ``<criterion>_median``, ``_stopped_early``, ``_seeds_no_crossing`` and per seed
+        (dimension ``seed``) ``_per_seed`` (each seed's L), ``_per_seed_low``/``_high``,
+        ``_per_seed_storms``, ``_per_seed_stopped_early``; attributes: total storms, wall
+        time, settings, ``statistic``, ``seeds`` (and ``fractile``, ``quantile_method``,
+        ``early_stop``, ``stopped_early``).
     """
     s = settings if settings is not None else CurveSettings()
     for name, vals in (
