@@ -16,7 +16,15 @@ through the same map (:class:`onbottom.study.engine.ParallelMap` on a 1-worker c
 the Python time inside a worker around the storm kernel (one point run in this process: CPU
 time in the point function minus the kernel calls and the storm synthesis, each timed).
 
-Run: ``PYTHONPATH=src python benchmarks/stability_curves.py [--seeds 3] [--peak-hours 3]``.
+Early stop (``--early-stop``): the same small grid in this process (one core, CPU time of
+this process: other processes' load does not count) with the per-seed statistic and storms
+stopped once |y| reaches the criterion, with the same statistic and storms run on to the
+runaway stop (the results are identical: ``tests/unit/test_curve_statistic.py``), and with
+the former mean-of-maxima statistic; prints storms, storms per hour (wall) and per CPU-hour,
+and CPU-s per curve point, paired on the same seeds.
+
+Run: ``PYTHONPATH=src python benchmarks/stability_curves.py [--seeds 3] [--peak-hours 3]``;
+``... --early-stop [--K 10 20] [--M 0.2 0.8 2] [--soils sand]``.
 """
 
 from __future__ import annotations
@@ -29,6 +37,8 @@ from typing import Any
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+from dataclasses import replace
 
 import onbottom.dynamics.storm_section as storm_section
 import onbottom.study.stability_curves as sc
@@ -149,6 +159,53 @@ def overhead(args: argparse.Namespace, s: CurveSettings, one: dict[str, float]) 
     )
 
 
+def early_stop_pair(args: argparse.Namespace, s: CurveSettings) -> None:
+    """Storms per hour and per CPU-hour with and without the early stop (module docstring)."""
+    runs = (
+        ("per-seed 0.9 fractile, early stop", replace(s, statistic="fractile", early_stop=True)),
+        ("per-seed 0.9 fractile, run on", replace(s, statistic="fractile", early_stop=False)),
+        ("mean of maxima (former)", replace(s, statistic="mean_of_maxima")),
+    )
+    results = {}
+    for label, settings in runs:
+        load0 = os.getloadavg()[0]
+        c0 = time.process_time()
+        t0 = time.perf_counter()
+        ds = stability_curves(
+            args.K, args.M, soils=args.soils, settings=settings, n_workers=0, progress=False
+        )
+        cpu = time.process_time() - c0
+        wall = time.perf_counter() - t0
+        storms = int(ds.attrs["total_storms"])
+        points = ds.sizes["soil"] * ds.sizes["N"] * ds.sizes["M"] * ds.sizes["K"] * 2
+        stopped = int(ds.attrs.get("stopped_early", 0))
+        results[label] = (ds, storms, cpu)
+        print(
+            f"{label}: {storms} storms ({stopped} stopped early), {storms / wall * 3600:,.0f}"
+            f" storms/h wall, {storms / cpu * 3600:,.0f} storms/CPU-h, {cpu / points:.2f} CPU-s"
+            f" per point ({points} points), {cpu:.1f} CPU-s, {wall:.1f} s wall;"
+            f" load {load0:.2f} -> {os.getloadavg()[0]:.2f}"
+        )
+    (a, sa, ca), (b, sb, cb) = (results[runs[0][0]], results[runs[1][0]])
+    same = all(
+        bool(((a[v] == b[v]) | (a[v].isnull() & b[v].isnull())).all())
+        for v in a.data_vars
+        if v.startswith(("L_stable", "L_10")) and not v.endswith(("runtime", "stopped_early"))
+        and "seed_m" not in v
+    )  # fmt: skip
+    print(
+        f"early stop against run on: {cb / ca:.2f}x less CPU per point, storms per CPU-hour"
+        f" x{(sa / ca) / (sb / cb):.2f}; L, medians and per-seed L identical: {same}"
+    )
+    for c in ("L_stable", "L_10"):
+        mom = results[runs[2][0]][0][c].values.ravel()
+        print(
+            f"  {c}: 0.9 fractile {' '.join(f'{x:.3g}' for x in a[c].values.ravel())};"
+            f" median {' '.join(f'{x:.3g}' for x in a[c + '_median'].values.ravel())};"
+            f" mean of maxima {' '.join(f'{x:.3g}' for x in mom)}"
+        )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=3)
@@ -159,6 +216,11 @@ def main() -> None:
     ap.add_argument("--soils", nargs="+", default=["sand", "clay"])
     ap.add_argument("--tolerance", type=float, default=0.05)
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    ap.add_argument(
+        "--early-stop",
+        action="store_true",
+        help="only the paired early-stop figures, in this process (module docstring)",
+    )
     args = ap.parse_args()
     s = CurveSettings(
         seeds=args.seeds,
@@ -175,6 +237,11 @@ def main() -> None:
         n_workers=0,
         settings=CurveSettings(seeds=1, peak_hours=0.02, build_up_hours=0.0),
     )
+    if args.early_stop:
+        early_stop_pair(args, s)
+        la = os.getloadavg()
+        print(f"load average (1, 5, 15 min): {la[0]:.2f} {la[1]:.2f} {la[2]:.2f}")
+        return
     times = {}
     cpus = {}
     one: dict[str, float] = {}

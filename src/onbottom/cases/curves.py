@@ -15,7 +15,10 @@ Case file::
     M = [0.0, 0.2, 0.4, 0.8]
     N = [0.003]
     soils = ["sand", "clay"]
-    seeds = 5
+    seeds = 10
+    statistic = "fractile"   # each seed's own L; the 0.9 fractile and the median
+    fractile = 0.9
+    early_stop = true        # a storm stops once |y| reaches the criterion
 """
 
 from __future__ import annotations
@@ -69,7 +72,25 @@ class CurvesTable(StrictModel):
     criteria: list[Literal["L_stable", "L_10"]] = Field(
         default_factory=lambda: ["L_stable", "L_10"]
     )
-    seeds: int = Field(5, ge=1, le=1000, description="storms per evaluation [-]")
+    seeds: int = Field(
+        10,
+        ge=1,
+        le=1000,
+        description="seeds [-]: each has its own bisection (statistic 'fractile'), or storms"
+        " per evaluation (statistic 'mean_of_maxima')",
+    )
+    statistic: Literal["fractile", "mean_of_maxima"] = Field(
+        "fractile",
+        description="curve statistic: 'fractile' (each seed's own L; the point's L is the"
+        " fractile, the median beside it) or 'mean_of_maxima' (the former seed-averaged"
+        " maximum, for comparison)",
+    )
+    fractile: float = Field(
+        0.9, ge=0.5, le=0.99, description="fractile of the per-seed L reported as L [-]"
+    )
+    early_stop: bool = Field(
+        True, description="stop each storm once |y| reaches the criterion ('fractile' only)"
+    )
     first_seed: int = Field(0, ge=0, description="[-]")
     build_up_hours: float = Field(0.5, ge=0.0, le=100.0, description="[h]")
     peak_hours: float = Field(3.0, gt=0.0, le=100.0, description="[h]")
@@ -162,6 +183,9 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
             clay_unit_weight=c.clay_unit_weight,
             clay_submerged_unit_weight=c.clay_submerged_unit_weight,
             clay_friction=c.clay_friction,
+            statistic=c.statistic,
+            fractile=c.fractile,
+            early_stop=c.early_stop,
             water_density=cfg.environment.water_density if cfg.environment else 1025.0,
             force_model=force_model_from_case(h, base_dir=case.resolve().parent, default="wake"),
         )

@@ -70,9 +70,11 @@ def command(
 ) -> None:
     """Stability curves L_stable, L_10 from dynamic storms (CASE: TOML with [curves]).
 
-    For each soil, N, M and K, bisects the weight parameter L = w_s/(½ρDU_s²) at which the
-    seed-averaged maximum displacement of a storm is 0.5D and 10D; writes NetCDF, CSV and a
-    figure of L/(2 + M)² against K (the form of DNV-RP-F109's tables).
+    For each soil, N, M and K, bisects for each seed the weight parameter L = w_s/(½ρDU_s²)
+    at which its storm's maximum displacement reaches 0.5D and 10D, and reports the 0.9
+    fractile (the design value) and the median over the seeds (statistic = "fractile", 10
+    seeds by default; "mean_of_maxima" is the former seed-averaged maximum); writes NetCDF,
+    CSV and a figure of L/(2 + M)² against K (the form of DNV-RP-F109's tables).
 
     Each finished point is kept at once in OUTPUT.tasks/ (one small file per point), so an
     interrupted run (Ctrl-C, a kill) resumes without repeating it; --restart starts afresh.
@@ -94,7 +96,12 @@ def _command(
 ) -> None:
     from onbottom.cases.curves import build_curve_settings, check_budget, load_curves_case
     from onbottom.results import TaskStore, save_dataset, save_figure, write_csv_atomic
-    from onbottom.study.stability_curves import curves_table, point_summary, stability_curves
+    from onbottom.study.stability_curves import (
+        curve_statistic,
+        curves_table,
+        point_summary,
+        stability_curves,
+    )
 
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_names(case, [("--output", nc, (".nc",))])
@@ -108,6 +115,12 @@ def _command(
         warnings.simplefilter("always", OutOfRangeWarning)
         settings = build_curve_settings(cfg, case)
     notes_in = sorted({str(w.message) for w in caught if issubclass(w.category, OutOfRangeWarning)})
+    seed_note = (
+        f"curves.seeds = {c.seeds}: the {c.fractile:g} fractile of fewer than 10 seeds rests"
+        " on the heaviest seeds (use seeds >= 10 for a design curve)"
+        if c.statistic == "fractile" and c.seeds < 10
+        else None
+    )
     if not as_json:
         for note in notes_in:
             click.echo(f"warning: {note}", err=True)
@@ -136,8 +149,11 @@ def _command(
 
     from onbottom.plotting.storm import plot_stability_curves
 
+    stat = curve_statistic(ds)
     fig = plot_stability_curves(
-        ds, title=f"{case.stem}: {c.seeds} seeds, {c.build_up_hours:g} h + {c.peak_hours:g} h"
+        ds,
+        title=f"{case.stem}: {c.build_up_hours:g} h + {c.peak_hours:g} h storms; L ="
+        f" {stat['label']}",
     )
     png = nc.with_suffix(".png")
     save_figure(fig, png, dpi=110)
@@ -150,7 +166,12 @@ def _command(
     notes = ds.attrs.get("no_crossing", "[]")
     notes = json.loads(notes) if isinstance(notes, str) else notes
     payload = {
-        "points": rows,
+        "points": curves_table(ds, per_seed=True),
+        "statistic": stat["statistic"],
+        "statistic_description": stat["label"],
+        "seeds": int(c.seeds),
+        "fractile": c.fractile if c.statistic == "fractile" else None,
+        "stopped_early": int(ds.attrs.get("stopped_early", 0)),
         "total_storms": int(ds.attrs["total_storms"]),
         "wall_time_s": time.perf_counter() - t0,
         "workers": int(ds.attrs["workers"]),
@@ -159,12 +180,12 @@ def _command(
         "netcdf": str(nc),
         "csv": str(csv_path),
         "figure": str(png),
-        "warnings": notes_in,
+        "warnings": notes_in + ([seed_note] if seed_note else []),
     }
     if as_json:
         emit_json(payload)
     else:
-        for r in rows:
+        for r in payload["points"]:
             click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {point_summary(r)}")
         for note in notes:
             click.echo(
@@ -181,8 +202,12 @@ def _command(
                 f"  outside the soil model's range (storms buried the pipe beyond D/2; marked"
                 f" out_of_range): {', '.join(flagged)}"
             )
+        click.echo(f"L = {stat['label']}")
+        if seed_note:
+            click.echo(f"note: {seed_note}")
         click.echo(
-            f"{payload['total_storms']} storms in {payload['wall_time_s']:.1f} s on"
+            f"{payload['total_storms']} storms ({payload['stopped_early']} stopped once their"
+            f" verdict was known) in {payload['wall_time_s']:.1f} s on"
             f" {payload['workers']} worker(s); written: {nc}, {csv_path}, {png}"
         )
     if failures:

@@ -236,6 +236,12 @@ CONTRACT: dict[str, Output] = {
         "Generalized-stability curves L_stable, L_10 from dynamic storms",
         {
             "points": "one item per soil, N, M, K",
+            "statistic": "curve statistic: 'fractile' (each seed's own L; L is the fractile,"
+            " the median beside it) or 'mean_of_maxima' (the former seed-averaged maximum)",
+            "statistic_description": "the statistic in words (seeds, fractile, early stop)",
+            "seeds": "seeds per point",
+            "fractile": "fractile of the per-seed L reported as L [-], or null",
+            "stopped_early": "storms stopped once |y| reached their criterion (verdict known)",
             "total_storms": "storms run",
             "wall_time_s": "[s]",
             "workers": "Dask workers",
@@ -252,16 +258,27 @@ CONTRACT: dict[str, Output] = {
                 "N": "[-]",
                 "M": "[-]",
                 "K": "[-]",
-                "{c}": "L at the criterion c (L_stable, L_10): the geometric mean of the final"
-                " bracket; NaN (null) where not converged",
+                "statistic": "the curve statistic (as the top-level key)",
+                "seeds": "seeds per point",
+                "{c}": "L at the criterion c (L_stable, L_10): the fractile of the per-seed L"
+                " (statistic 'fractile') or the geometric mean of the final bracket of the"
+                " mean of maxima; NaN (null) where not converged",
+                "{c}_median": "median of the per-seed L [-] (null for 'mean_of_maxima')",
+                "{c}_per_seed": "each seed's own L [-] (null: no crossing; empty for"
+                " 'mean_of_maxima')",
+                "{c}_stopped_early": "storms of the point stopped once their verdict was known",
+                "{c}_seeds_no_crossing": "seeds without a crossing in the L tried",
                 "{c}/(2+M)^2": "L/(2 + M)² (the form of F109 Tables 3-9/3-10) [-]",
-                "{c}_L_low": "low end of the final bisection bracket [-]",
-                "{c}_L_high": "high end of the final bisection bracket [-]",
+                "{c}_L_low": "low end of the final bisection bracket [-] (statistic"
+                " 'fractile': the fractile of the seeds' low ends)",
+                "{c}_L_high": "high end of the final bisection bracket [-] (statistic"
+                " 'fractile': the fractile of the seeds' high ends)",
                 "{c}_bracket_width": "L_high/L_low - 1 [-]",
                 "{c}_converged": "true if the bracket is within the tolerance asked for",
                 "{c}_out_of_range": "1 if storms deciding the point buried the pipe beyond the"
                 " soil model's range (z > D/2): the point is marked, not trusted",
-                "{c}_seed_mean_low": "mean over the seeds of max |y|/D at L_low [-]",
+                "{c}_seed_mean_low": "mean over the seeds of max |y|/D at L_low [-] ('fractile':"
+                " at each seed's own L_low; a storm stopped early counts with the criterion)",
                 "{c}_seed_min_low": "smallest seed max |y|/D at L_low [-]",
                 "{c}_seed_max_low": "largest seed max |y|/D at L_low [-]",
                 "{c}_seed_mean_high": "mean over the seeds of max |y|/D at L_high [-]",

@@ -76,7 +76,9 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
     ``curves`` is the dataset of :func:`onbottom.study.stability_curves.stability_curves`
     (variables ``L_stable`` and ``L_10`` over dimensions soil, N, M, K). Points whose storms
     left the soil model's range (``<criterion>_out_of_range`` = 1) are drawn as open markers
-    with a red edge ("outside soil model range" in the legend).
+    with a red edge ("outside soil model range" in the legend). Where the dataset holds the
+    per-seed statistic, L is its fractile (lines) and the median of the per-seed L is drawn
+    as small crosses of the same colour ("median over the seeds").
     """
     soils = [str(s) for s in curves["soil"].values]
     crits = [c for c in ("L_stable", "L_10") if c in curves]
@@ -92,6 +94,7 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
         for j, crit in enumerate(crits):
             ax = axes[i, j]
             marked = False
+            median_shown = False
             for kn, n in enumerate(n_values):
                 for km, m in enumerate(curves["M"].values):
                     y = curves[crit].sel(soil=soil, N=n, M=m).values / (2.0 + m) ** 2
@@ -105,6 +108,18 @@ def plot_stability_curves(curves: xr.Dataset, *, title: str | None = None) -> Fi
                         ls=("-", "--", ":", "-.")[kn % 4],
                         label=label,
                     )
+                    if f"{crit}_median" in curves:
+                        med = curves[f"{crit}_median"].sel(soil=soil, N=n, M=m).values
+                        ax.plot(
+                            curves["K"].values,
+                            med / (2.0 + m) ** 2,
+                            ls="none",
+                            marker="x",
+                            ms=4,
+                            color=f"C{km}",
+                            label=None if median_shown else "median over the seeds",
+                        )
+                        median_shown = True
                     flag = f"{crit}_out_of_range"
                     if flag in curves:
                         out = curves[flag].sel(soil=soil, N=n, M=m).values == 1

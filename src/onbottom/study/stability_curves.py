@@ -1,9 +1,21 @@
 """Generalized-stability curves from dynamic storm analyses (what F109 tabulates, recomputed).
 
-For each point (soil, N, M, K) the weight parameter L = w_s/(½ ρ_w D U_s²) is bisected (in
-log L) for the value at which the seed-averaged maximum lateral displacement of a storm
-(default 0.5 h build-up + 3 h peak) equals 0.5D (L_stable) and 10D (L_10)
-(``shared/spec/on-bottom-stability.md``, "Generalized-stability curves from dynamic runs" [I]).
+For each point (soil, N, M, K) and criterion (max |y| = 0.5D: L_stable; 10D: L_10) the weight
+parameter L = w_s/(½ ρ_w D U_s²) is found by bisection in log L
+(``shared/spec/on-bottom-stability.md``, "Generalized-stability curves from dynamic runs" [I]),
+with one of two **curve statistics** (:attr:`CurveSettings.statistic`):
+
+* ``"fractile"`` (default): **each seed gets its own bisection** for the L at which its storm's
+  maximum |y| crosses the criterion; the point reports the ``fractile`` (default 0.9) of these
+  per-seed L as its L (the design value) and their median beside it
+  (:func:`seed_quantile`: linear interpolation between order statistics, Hyndman & Fan
+  type 7, numpy's default). The 0.9 fractile is on the heavy (conservative) side — at that L
+  nine storms in ten of the sea state keep the pipe within the criterion — and is the highest
+  fractile that 10 seeds resolve by interpolation between two seeds without resting on the
+  single heaviest one (0.95 would sit half-way to it). Default 10 seeds;
+* ``"mean_of_maxima"`` (the former statistic, kept by name for comparison): one bisection of
+  the seed-averaged maximum |y|, in which a single runaway seed (a maximum of tens of D) can
+  decide the mean.
 
 Construction of a point (our choices; F109 and PONDUS do not publish theirs):
 
@@ -14,24 +26,34 @@ Construction of a point (our choices; F109 and PONDUS do not publish theirs):
   current over D);
 * w_s = L·½ ρ_w D U_s², the pipe mass follows from w_s and buoyancy (s_g = 1 + 2NKL/π);
 * sand: Verley & Sotberg silica with γ'_s and μ; clay: Verley & Lund with s_u = G_c D γ_s;
-* the same seeds are used at every L (common random numbers: a smooth L ↦ mean max |y|);
-* runs stop as runaways at twice the target (at least 10D); a stopped seed counts with its
-  displacement at the stop, so the mean is a lower bound of the unstopped mean and the L found
-  can only be lower (less conservative) than with unstopped runs — by little, since the stop is
-  far above the target;
-* a bisection evaluation stops early once the seeds run so far decide which side of the target
-  the mean is on (deterministic: the decision is the one all seeds would give);
+* the same seeds are used at every L (common random numbers: a smooth L ↦ max |y|);
+* **early stop** (``"fractile"`` with ``early_stop``, the default): a storm stops as soon as
+  |y| reaches the criterion (``stop_displacement_over_d`` of the storm solver): its verdict
+  (reaches the criterion or not) is then known, and the trajectory up to the stop is the one
+  of the full run, so the verdict, every bisection step and the per-seed L are exactly those
+  of full runs. A storm that stopped early reports max |y| = the criterion (``_stopped_early``
+  counts them). Without ``early_stop``, and for ``"mean_of_maxima"`` (which averages
+  magnitudes), storms stop as runaways at twice the target (at least 10D); there a stopped seed
+  counts with its displacement at the stop, so the mean is a lower bound of the unstopped mean
+  and the L found can only be lower (less conservative) than with unstopped runs — by little,
+  since the stop is far above the target — and a bisection evaluation stops early once the
+  seeds run so far decide which side of the target the mean is on;
 * a storm whose penetration left the soil model's range (z > D/2, status −3 of
   :func:`~onbottom.dynamics.storm_section.simulate_storm_section`) counts with its
   displacement, and the point is marked ``out_of_range`` (NetCDF variable
   ``<criterion>_out_of_range``, CSV column, open marker in the figure, report table) when any
-  storm at the two L values that bracket the answer (or, without an answer, at any L tried)
-  left the range: its L rests on the model outside its calibration.
+  storm at the two L values that bracket the answer (of any seed, for ``"fractile"``; or,
+  without an answer, at any L tried) left the range: its L rests on the model outside its
+  calibration. A storm stopped early is flagged for what happened up to its stop.
 
 Each point is one task on Dask (:mod:`onbottom.study.engine`); seeds run inside the task.
 With ``store`` (a folder; ``onbottom curves`` uses ``<output>.tasks``) every finished point is
 written at once to its own small file (:class:`onbottom.results.TaskStore`), so an interrupted
 sweep resumes without repeating the points it finished.
+
+Files written before the per-seed statistic (no ``statistic`` attribute, no ``seed``
+dimension) hold the mean of maxima: :func:`curve_statistic` says which statistic a dataset
+holds, and :func:`curves_table` reads both.
 """
 
 from __future__ import annotations
@@ -49,6 +71,7 @@ import xarray as xr
 
 from onbottom._validate import in_range, positive
 from onbottom.constants import GRAVITY, RHO_SEAWATER
+from onbottom.dynamics.status import Status
 from onbottom.dynamics.storm_section import (
     STATUS_OUTSIDE_VALIDITY,
     StormSolverSettings,
@@ -73,21 +96,41 @@ from onbottom.soil.verley_sotberg import VerleySotberg
 
 __all__ = [
     "CRITERIA",
+    "DEFAULT_FRACTILE",
+    "STATISTICS",
     "CurveSettings",
     "clay_validity_limit",
+    "curve_statistic",
     "curves_table",
     "find_weight_parameter",
     "point_kinematics",
     "point_summary",
+    "seed_quantile",
     "stability_curves",
 ]
 
 logger = logging.getLogger(__name__)
 
+STATUS_LIMIT = int(Status.LIMIT)
+
 CRITERIA: dict[str, float] = {"L_stable": 0.5, "L_10": 10.0}
 """Criterion name → target seed-averaged maximum displacement over D."""
 
 SOILS = ("sand", "clay")
+
+STATISTICS: dict[str, str] = {
+    "fractile": "a fractile (and the median) over the seeds of each seed's own L",
+    "mean_of_maxima": "L of the seed-averaged max |y| (mean of maxima; former statistic, a"
+    " single runaway seed can dominate it)",
+}
+"""Curve statistics (module docstring): name → what L is."""
+
+DEFAULT_FRACTILE = 0.9
+"""Fractile of the per-seed L reported as a point's L (the heavy, conservative side: at it nine
+storms in ten stay within the criterion; the highest fractile 10 seeds resolve between two of
+them)."""
+
+QUANTILE_METHOD = "linear (Hyndman & Fan type 7, numpy.quantile's default)"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -100,7 +143,8 @@ class CurveSettings:
         Pipe outer diameter D [m], in [0.005, 5] (results are dimensionless; D sets the
         scale).
     seeds : int
-        Storms per evaluation, >= 1; seeds first_seed, first_seed + 1, ...
+        Seeds (storms per L), >= 1; seeds first_seed, first_seed + 1, ... Default 10, the
+        fewest over which the 0.9 fractile is resolved between two seeds.
     first_seed : int
         >= 0.
     build_up_hours, peak_hours : float
@@ -125,12 +169,22 @@ class CurveSettings:
     force_model : ForceModel
         Hydrodynamic force model (:mod:`onbottom.hydro.registry`: ``MorisonLift``,
         ``WakeModel``, ``FourierModel``); default the wake model with its F109-calibrated
-        constants (:class:`~onbottom.hydro.wake.WakeModel`; issue 30: constant Morison
-        coefficients give peak loads ~2.5x below F109's and unconservative curves).
+        constants (:class:`~onbottom.hydro.wake.WakeModel`; constant Morison coefficients
+        give peak loads ~2.5x below F109's and unconservative curves).
+    statistic : {"fractile", "mean_of_maxima"}
+        Curve statistic (module docstring): per-seed bisections reported as a fractile and the
+        median (default), or the former seed-averaged maximum.
+    fractile : float
+        Fractile of the per-seed L reported as the point's L [-], in [0.5, 0.99]; default
+        :data:`DEFAULT_FRACTILE` (0.9).
+    early_stop : bool
+        ``"fractile"`` only: stop each storm once |y| reaches the criterion (its verdict is
+        then known; the results equal those of full runs). False: run to the runaway stop
+        (twice the criterion, at least 10D), as the former statistic does.
     """
 
     diameter: float = 0.5
-    seeds: int = 5
+    seeds: int = 10
     first_seed: int = 0
     build_up_hours: float = 0.5
     peak_hours: float = 3.0
@@ -148,6 +202,9 @@ class CurveSettings:
     clay_friction: float = 0.2
     water_density: float = RHO_SEAWATER
     force_model: ForceModel = field(default_factory=WakeModel)
+    statistic: str = "fractile"
+    fractile: float = DEFAULT_FRACTILE
+    early_stop: bool = True
 
     def __post_init__(self) -> None:
         in_range("CurveSettings.diameter", self.diameter, 0.005, 5.0)  # mm typed as m
@@ -168,6 +225,12 @@ class CurveSettings:
         positive("CurveSettings.sand_unit_weight", self.sand_unit_weight)
         positive("CurveSettings.clay_gc", self.clay_gc)
         positive("CurveSettings.water_density", self.water_density)
+        if self.statistic not in STATISTICS:
+            raise InputError(
+                f"CurveSettings.statistic = {self.statistic!r} is invalid: must be one of"
+                f" {tuple(STATISTICS)}"
+            )
+        in_range("CurveSettings.fractile", self.fractile, 0.5, 0.99)
 
 
 def point_kinematics(k: float, m: float, n: float, s: CurveSettings) -> list[StormKinematics]:
@@ -260,16 +323,239 @@ def _mean_max(
 def find_weight_parameter(
     soil: str, k: float, m: float, n: float, criterion: str, s: CurveSettings
 ) -> dict[str, Any]:
-    """Bisect log L for the seed-averaged max |y| = target·D of ``criterion``.
+    """L of one point and criterion with the statistic of ``s`` (module docstring).
 
-    Returns a dict with L, bracket, evaluations, storms, runtime, out_of_range (storms at the
-    final bracket — any L tried without an answer — that left the soil model's range), and a
-    status message.
+    Returns a dict with L (the design value: the fractile, or the mean-of-maxima L), bracket,
+    evaluations, storms, runtime, out_of_range (storms at the final bracket — any L tried
+    without an answer — that left the soil model's range), a status message, and for
+    ``"fractile"`` also ``L_median``, ``per_seed`` (each seed's L, NaN where it has none),
+    ``per_seed_low``/``per_seed_high`` (each seed's bracket), ``per_seed_storms``,
+    ``per_seed_stopped_early``, ``stopped_early`` (storms stopped once their verdict was known) and
+    ``seeds_no_crossing``.
     """
     if soil not in SOILS:
         raise InputError(f"soil = {soil!r} is invalid: must be one of {SOILS}")
     if criterion not in CRITERIA:
         raise InputError(f"criterion = {criterion!r} is invalid: must be one of {tuple(CRITERIA)}")
+    if s.statistic == "fractile":
+        return _find_per_seed(soil, k, m, n, criterion, s)
+    return _find_mean_of_maxima(soil, k, m, n, criterion, s)
+
+
+def seed_quantile(values: Sequence[float], censored: Sequence[str], p: float) -> float:
+    """The ``p`` quantile of per-seed L (linear interpolation between order statistics,
+    Hyndman & Fan type 7 — ``numpy.quantile``'s default), seeds without a crossing included.
+
+    ``censored[i]`` is ``""`` where ``values[i]`` is the seed's L, ``"below"`` where the seed
+    stayed below the criterion at every L tried (its L is lower than any tried) and ``"above"``
+    where it exceeded the criterion at every L tried (higher than any tried). Such seeds take
+    their place in the order; the quantile is NaN where it would interpolate from one of them.
+    """
+    x = [
+        -math.inf if c == "below" else math.inf if c == "above" else float(v)
+        for v, c in zip(values, censored, strict=True)
+    ]
+    if not x or any(math.isnan(v) for v in x):
+        return math.nan
+    x.sort()
+    h = (len(x) - 1) * p
+    i = math.floor(h)
+    frac = h - i
+    a = x[i]
+    if frac == 0.0:
+        return a if math.isfinite(a) else math.nan
+    b = x[min(i + 1, len(x) - 1)]
+    if not (math.isfinite(a) and math.isfinite(b)):
+        return math.nan
+    return a + frac * (b - a)
+
+
+def _pipe_and_soil(
+    soil: str, weight_parameter: float, us: float, s: CurveSettings
+) -> tuple[Pipe, LateralResistanceModel]:
+    d = s.diameter
+    ws = weight_parameter * 0.5 * s.water_density * d * us * us
+    pipe = Pipe(outer_diameter=d, submerged_weight=ws, seawater_density=s.water_density)
+    return pipe, _soil(soil, pipe, s)
+
+
+def _bisect(moves: Any, s: CurveSettings, cap: float) -> tuple[float, float, str, str]:
+    """Bracket and bisect in log L for the crossing of ``moves`` (True: the criterion is
+    reached at that L). Returns (lo, hi, censored, message) with censored ``""`` when
+    [lo, hi] brackets the crossing within the tolerance, ``"below"`` when the criterion is
+    not reached even at the lightest L tried (lo), ``"above"`` when it is reached even at the
+    heaviest L tried (hi)."""
+    lo, hi = s.l_min, s.l_max
+    if hi > cap:
+        hi = cap
+        lo = min(lo, cap / 4.0)
+    tries = 0
+    while not moves(lo):
+        if tries == 6:
+            return (
+                lo,
+                hi,
+                "below",
+                f"even L = {lo:.3g} stays below the target (a light pipe lifts off and"
+                " oscillates with the flow without drifting)",
+            )
+        hi, lo = lo, lo / 4.0
+        tries += 1
+    tries = 0
+    while moves(hi):
+        if hi >= cap:
+            return (
+                lo,
+                hi,
+                "above",
+                f"the target is exceeded up to L = {cap:.3g}, the Verley & Lund validity"
+                " limit S·G_c^0.3 = 2.5 (Bai, Pipelines and Risers, §5): L is beyond the soil"
+                " model",
+            )
+        if tries == 6:
+            return lo, hi, "above", f"even L = {hi:.3g} exceeds the target"
+        lo, hi = hi, min(hi * 4.0, cap)
+        tries += 1
+    while hi / lo > 1.0 + s.tolerance:
+        mid = math.sqrt(lo * hi)
+        if moves(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi, "", "converged"
+
+
+def _seed_search(
+    soil: str, kin: StormKinematics, us: float, target: float, cap: float, s: CurveSettings
+) -> dict[str, Any]:
+    """One seed's own bisection: the L at which its storm's max |y| crosses target·D."""
+    d = s.diameter
+    stop = target if s.early_stop else max(2.0 * target, 10.0)
+    settings = StormSolverSettings(
+        dt_max=s.time_step, stop_displacement_over_d=stop, record_interval=None
+    )
+    red = LoadReductions(permeable_seabed=soil != "clay")
+    runs: dict[float, tuple[bool, float, bool, bool]] = {}
+
+    def moves(lv: float) -> bool:
+        if lv not in runs:
+            pipe, soil_model = _pipe_and_soil(soil, lv, us, s)
+            r = simulate_storm_section(
+                pipe, soil_model, kin, force_model=s.force_model, reductions=red, settings=settings
+            )
+            outside = r.status == STATUS_OUTSIDE_VALIDITY
+            if not outside and not r.success:
+                raise RuntimeError(f"seed {kin.seed}: {r.message}")
+            runs[lv] = (
+                bool(r.max_displacement >= target * d),  # the verdict: reaches the criterion
+                r.max_displacement / d,
+                bool(r.max_displacement >= stop * d),  # stopped at the stop limit
+                outside,
+            )
+        return runs[lv][0]
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", OutOfRangeWarning)
+        lo, hi, censored, message = _bisect(moves, s, cap)
+    ok = not censored
+    keep = (lo, hi) if ok else tuple(runs)
+    return {
+        "L": math.sqrt(lo * hi) if ok else math.nan,
+        "L_low": lo if ok else math.nan,
+        "L_high": hi if ok else math.nan,
+        "censored": censored,
+        "message": message,
+        "max_low": runs[lo][1] if ok else math.nan,
+        "max_high": runs[hi][1] if ok else math.nan,
+        "storms": len(runs),
+        "stopped_early": sum(1 for v in runs.values() if v[2]) if s.early_stop else 0,
+        "stopped": sum(1 for v in runs.values() if v[2]),
+        "out_of_range": sum(1 for lv in keep if runs[lv][3]),
+    }
+
+
+def _find_per_seed(
+    soil: str, k: float, m: float, n: float, criterion: str, s: CurveSettings
+) -> dict[str, Any]:
+    """Each seed's own bisection; the point's L is the fractile of the per-seed L."""
+    target = CRITERIA[criterion]
+    t0 = time.perf_counter()
+    c0 = time.process_time()
+    kins = point_kinematics(k, m, n, s)
+    us = math.sqrt(k * n * GRAVITY * s.diameter)
+    cap = clay_validity_limit(k, n, s) if soil == "clay" else math.inf
+    seeds = [_seed_search(soil, kin, us, target, cap, s) for kin in kins]
+    cens = [r["censored"] for r in seeds]
+    per_seed = [r["L"] for r in seeds]
+    value = seed_quantile(per_seed, cens, s.fractile)
+    median = seed_quantile(per_seed, cens, 0.5)
+    # the quantile is monotone in each seed's value: the fractiles of the seeds' bracket ends
+    # bracket the fractile of their crossings, within the tolerance
+    lo = seed_quantile([r["L_low"] for r in seeds], cens, s.fractile)
+    hi = seed_quantile([r["L_high"] for r in seeds], cens, s.fractile)
+    ok = math.isfinite(value)
+    width = hi / lo - 1.0 if ok and lo > 0.0 else math.nan
+    n_no = sum(1 for c in cens if c)
+    if ok:
+        message = "converged"
+        if n_no:
+            message += (
+                f"; {n_no} of {len(seeds)} seed(s) without a crossing in the L tried, ranked"
+                " beyond it"
+            )
+    else:
+        reasons = sorted({r["message"] for r in seeds if r["censored"]})
+        message = (
+            f"no {s.fractile:g} fractile: {n_no} of {len(seeds)} seed(s) have no crossing"
+            f" ({'; '.join(reasons)})"
+        )
+    n_out = sum(r["out_of_range"] for r in seeds)
+    if n_out:
+        message += (
+            f"; outside the soil model's range: {n_out} storm(s) at the seeds' bracketing L"
+            " values (or any L tried without a crossing) buried the pipe beyond D/2"
+        )
+    low = [r["max_low"] for r in seeds if not r["censored"]]
+    high = [r["max_high"] for r in seeds if not r["censored"]]
+    storms = sum(r["storms"] for r in seeds)
+    return {
+        "soil": soil,
+        "K": float(k),
+        "M": float(m),
+        "N": float(n),
+        "criterion": criterion,
+        "L": value,
+        "L_median": median,
+        "L_low": lo,
+        "L_high": hi,
+        "bracket_width": width,
+        "converged": bool(ok and width <= s.tolerance * (1.0 + 1e-9)),
+        **_seed_spread("low", low),
+        **_seed_spread("high", high),
+        "evaluations": storms,
+        "storms": storms,
+        "stopped_early": sum(r["stopped_early"] for r in seeds),
+        "seeds_no_crossing": n_no,
+        "per_seed": per_seed,
+        "per_seed_low": [r["L_low"] for r in seeds],
+        "per_seed_high": [r["L_high"] for r in seeds],
+        "per_seed_storms": [r["storms"] for r in seeds],
+        "per_seed_stopped_early": [r["stopped_early"] for r in seeds],
+        "per_seed_censored": cens,
+        "runtime_s": time.perf_counter() - t0,
+        "cpu_s": time.process_time() - c0,
+        "success": bool(ok),
+        "error": False,
+        "out_of_range": int(n_out),
+        "message": message,
+    }
+
+
+def _find_mean_of_maxima(
+    soil: str, k: float, m: float, n: float, criterion: str, s: CurveSettings
+) -> dict[str, Any]:
+    """Bisect log L for the seed-averaged max |y| = target·D of ``criterion`` (the former
+    statistic)."""
     target = CRITERIA[criterion]
     t0 = time.perf_counter()
     c0 = time.process_time()
@@ -481,7 +767,12 @@ def stability_curves(
     -------
     xarray.Dataset
         L_stable, L_10 (and their L/(2 + M)² forms, brackets, evaluations, storms, runtime)
-        over dimensions (soil, N, M, K); attributes: total storms, wall time, settings.
+        over dimensions (soil, N, M, K); with the statistic ``"fractile"`` also
+        ``<criterion>_median``, ``_stopped_early``, ``_seeds_no_crossing`` and per seed
+        (dimension ``seed``) ``_per_seed`` (each seed's L), ``_per_seed_low``/``_high``,
+        ``_per_seed_storms``, ``_per_seed_stopped_early``; attributes: total storms, wall
+        time, settings, ``statistic``, ``seeds`` (and ``fractile``, ``quantile_method``,
+        ``early_stop``, ``stopped_early``).
     """
     s = settings if settings is not None else CurveSettings()
     for name, vals in (
@@ -568,6 +859,69 @@ def _point_key(item: tuple) -> dict[str, Any]:
     return {"soil": soil, "K": float(k), "M": float(m), "N": float(n), "criterion": crit}
 
 
+def _per_seed_variables(data, c, idx, soils, ns, ms, ks, s) -> None:
+    """Variables of the per-seed statistic: the median, the storms stopped early, the seeds
+    without a crossing (soil, N, M, K) and each seed's L and bracket (…, seed)."""
+    shape = (len(soils), len(ns), len(ms), len(ks))
+    n_seeds = int(s.seeds)
+    point = {name: np.full(shape, np.nan) for name in ("L_median", "stopped_early")}
+    point["seeds_no_crossing"] = np.full(shape, np.nan)
+    seed = {
+        name: np.full((*shape, n_seeds), np.nan)
+        for name in (
+            "per_seed",
+            "per_seed_low",
+            "per_seed_high",
+            "per_seed_storms",
+            "per_seed_stopped_early",
+        )
+    }
+    for a, so in enumerate(soils):
+        for b, n in enumerate(ns):
+            for i, m in enumerate(ms):
+                for j, k in enumerate(ks):
+                    r = idx[(so, n, m, k, c)]
+                    for name, arr in point.items():
+                        arr[a, b, i, j] = r.get(name, np.nan)
+                    for name, arr in seed.items():
+                        values = r.get(name)
+                        if values is not None and len(values) == n_seeds:
+                            arr[a, b, i, j, :] = values
+    dims = ("soil", "N", "M", "K")
+    data[f"{c}_median"] = (
+        dims,
+        point["L_median"],
+        {"long_name": f"median over the seeds of each seed's own L at {c}", "units": "1"},
+    )
+    data[f"{c}_stopped_early"] = (
+        dims,
+        point["stopped_early"],
+        {
+            "long_name": f"storms of the point ({c}) stopped once |y| reached the criterion"
+            " (their max |y| is the criterion, not the storm's maximum)",
+            "units": "1",
+        },
+    )
+    data[f"{c}_seeds_no_crossing"] = (
+        dims,
+        point["seeds_no_crossing"],
+        {"long_name": f"seeds without a crossing of {c} in the L tried", "units": "1"},
+    )
+    sdims = (*dims, "seed")
+    for name, long in (
+        ("per_seed", "each seed's own L (geometric mean of its final bracket; NaN: none)"),
+        ("per_seed_low", "low end of each seed's final bracket"),
+        ("per_seed_high", "high end of each seed's final bracket"),
+        ("per_seed_storms", "storms run by each seed's bisection"),
+        (
+            "per_seed_stopped_early",
+            "storms of each seed's bisection stopped once |y| reached the criterion (every"
+            " storm whose verdict was 'reaches the criterion', with early_stop)",
+        ),
+    ):
+        data[f"{c}_{name}"] = (sdims, seed[name], {"long_name": f"{c}: {long}", "units": "1"})
+
+
 def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Dataset:
     shape = (len(soils), len(ns), len(ms), len(ks))
     idx = {(r["soil"], r["N"], r["M"], r["K"], r["criterion"]): r for r in rows}
@@ -598,6 +952,8 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
         data[f"{c}_storms"] = (dims, arrs["storms"])
         data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
         data[f"{c}_out_of_range"] = (dims, (arrs["out_of_range"] > 0).astype(np.int8))
+        if s.statistic == "fractile":
+            _per_seed_variables(data, c, idx, soils, ns, ms, ks, s)
     failures = [
         {k2: r[k2] for k2 in ("soil", "K", "M", "N", "criterion", "message")}
         for r in rows
@@ -611,9 +967,12 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     total_storms = int(sum(r["storms"] for r in rows))
     busy = float(sum(r["runtime_s"] for r in rows))
     cpu = float(sum(r["cpu_s"] for r in rows))
+    coords: dict[str, Any] = {"soil": soils, "N": ns, "M": ms, "K": ks}
+    if s.statistic == "fractile":
+        coords["seed"] = np.arange(int(s.first_seed), int(s.first_seed) + int(s.seeds))
     ds = xr.Dataset(
         data,
-        coords={"soil": soils, "N": ns, "M": ms, "K": ks},
+        coords=coords,
         attrs=provenance(
             "stability_curves",
             {k2: (v.describe() if k2 == "force_model" else v) for k2, v in s.__dict__.items()},
@@ -626,15 +985,37 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
             failures=failures,
             no_crossing=no_crossing,
             method=(
-                "bisection in log L of the seed-averaged max |y| of storms"
+                "per-seed bisections in log L of each storm's max |y|, reported as a fractile"
+                " and the median over the seeds (onbottom.study.stability_curves)"
+                if s.statistic == "fractile"
+                else "bisection in log L of the seed-averaged max |y| of storms"
                 " (onbottom.study.stability_curves)"
+            ),
+            statistic=s.statistic,
+            statistic_description=STATISTICS[s.statistic],
+            seeds=int(s.seeds),
+            **(
+                {
+                    "fractile": float(s.fractile),
+                    "quantile_method": QUANTILE_METHOD,
+                    "early_stop": int(bool(s.early_stop)),
+                    "stopped_early": int(sum(r.get("stopped_early", 0) for r in rows)),
+                }
+                if s.statistic == "fractile"
+                else {}
             ),
         ),
     )
     for c in criteria:
         ds[c].attrs.update(
-            long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D",
+            long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D: "
+            + (
+                f"the {s.fractile:g} fractile over {s.seeds} seeds of each seed's own L"
+                if s.statistic == "fractile"
+                else f"L of the mean over {s.seeds} seeds of the max |y| (mean of maxima)"
+            ),
             units="1",
+            statistic=s.statistic,
         )
         ds[f"{c}_out_of_range"].attrs.update(
             long_name=f"1: storms deciding {c} buried the pipe beyond the soil model's range",
@@ -653,8 +1034,18 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
         for end in ("low", "high"):
             for stat in ("mean", "min", "max"):
                 ds[f"{c}_seed_{stat}_{end}"].attrs.update(
-                    long_name=f"{stat} over the seeds run of max |y|/D at the {end} end of the"
-                    f" bracket of {c}",
+                    long_name=(
+                        f"{stat} over the seeds of max |y|/D at the {end} end of each seed's own"
+                        f" bracket of {c}"
+                        + (
+                            " (storms stopped early at the criterion count with the criterion)"
+                            if end == "low" and s.early_stop
+                            else ""
+                        )
+                        if s.statistic == "fractile"
+                        else f"{stat} over the seeds run of max |y|/D at the {end} end of the"
+                        f" bracket of {c}"
+                    ),
                     units="1",
                 )
     ds["out_of_range"] = sum(ds[f"{c}_out_of_range"] for c in criteria).clip(max=1)
@@ -668,14 +1059,53 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     return annotate(ds)
 
 
-def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
+def curve_statistic(ds: xr.Dataset) -> dict[str, Any]:
+    """Which statistic a curve dataset holds: ``{"statistic", "seeds", "fractile", "label"}``.
+
+    Files written before the per-seed statistic have no ``statistic`` attribute: they hold the
+    mean of maxima (``"mean_of_maxima"``); their seed count is read from the ``parameters``
+    attribute (None if absent). ``label`` says it in words for tables and figures.
+    """
+    import json
+
+    name = str(ds.attrs.get("statistic", "mean_of_maxima"))
+    seeds = ds.attrs.get("seeds")
+    if seeds is None:
+        try:
+            seeds = json.loads(ds.attrs.get("parameters", "{}")).get("seeds")
+        except (TypeError, ValueError):
+            seeds = None
+    seeds = None if seeds is None else int(seeds)
+    fractile = float(ds.attrs["fractile"]) if "fractile" in ds.attrs else None
+    over = f" over {seeds} seeds" if seeds is not None else ""
+    if name == "fractile":
+        label = f"{fractile:g} fractile (and median){over} of each seed's own L"
+        if int(ds.attrs.get("early_stop", 0)):
+            label += "; storms stopped once their verdict was known"
+    else:
+        label = (
+            f"mean of maxima{over}: L of the seed-averaged max |y| (former statistic; a single"
+            " runaway seed can dominate it)"
+        )
+    return {"statistic": name, "seeds": seeds, "fractile": fractile, "label": label}
+
+
+def curves_table(ds: xr.Dataset, *, per_seed: bool = False) -> list[dict[str, Any]]:
     """Rows soil, N, M, K, L_stable, L_10 and their L/(2 + M)² forms, and per criterion its
     bracket (``_L_low``, ``_L_high``, ``_bracket_width``), ``_converged`` and the seeds' spread
     at both ends of the bracket (``_seed_mean/min/max_low/high``, max |y|/D), ``_evaluations``,
-    ``_storms``, ``_runtime_s``, and ``<criterion>_out_of_range`` (1: storms deciding the point
-    left the soil model's range) (for CSV and JSON)."""
+    ``_storms``, ``_runtime_s``, ``<criterion>_out_of_range`` (1: storms deciding the point
+    left the soil model's range), ``_median`` (the median of the per-seed L; NaN in a file of
+    the mean-of-maxima statistic), ``_stopped_early`` (storms stopped once their verdict was
+    known), ``_seeds_no_crossing``, and the row's ``statistic`` and ``seeds``
+    (:func:`curve_statistic`) (for CSV and JSON). Both the per-seed and the former
+    (mean-of-maxima, no seed dimension) files are read.
+
+    ``per_seed``: add ``<criterion>_per_seed``, the list of each seed's L (JSON; not for CSV).
+    """
     rows = []
     crits = [c for c in CRITERIA if c in ds]
+    stat = curve_statistic(ds)
     for so in ds["soil"].values:
         for n in ds["N"].values:
             for m in ds["M"].values:
@@ -685,6 +1115,8 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                         "N": float(n),
                         "M": float(m),
                         "K": float(k),
+                        "statistic": stat["statistic"],
+                        "seeds": stat["seeds"],
                     }
                     for c in crits:
                         at = {"soil": so, "N": n, "M": m, "K": k}
@@ -698,14 +1130,24 @@ def curves_table(ds: xr.Dataset) -> list[dict[str, Any]]:
                             if f"{c}_{var}" in ds:
                                 x = ds[f"{c}_{var}"].sel(**at).item()
                                 row[f"{c}_{name}"] = bool(x) if name == "converged" else float(x)
+                        for name in ("median", "stopped_early", "seeds_no_crossing"):
+                            var = f"{c}_{name}"
+                            row[var] = float(ds[var].sel(**at).item()) if var in ds else math.nan
+                        if per_seed:
+                            var = f"{c}_per_seed"
+                            row[var] = (
+                                [float(x) for x in ds[var].sel(**at).values] if var in ds else []
+                            )
                     rows.append(row)
     return rows
 
 
 def point_summary(row: dict[str, Any]) -> str:
     """One line of a row of :func:`curves_table` (``onbottom curves`` prints one per point):
-    per criterion L, its bracket, the seeds' spread of max |y|/D at both ends, and NOT
-    CONVERGED where the bracket is wider than the tolerance."""
+    per criterion L (and the median of the per-seed L where the file has it), its bracket,
+    the seeds' spread (of their L where the row has them, ``per_seed=True``; else of max
+    |y|/D at both ends of the bracket), and NOT CONVERGED where the bracket is wider than the
+    tolerance."""
     parts = []
     for c in ("L_stable", "L_10"):
         if c not in row:
@@ -718,13 +1160,18 @@ def point_summary(row: dict[str, Any]) -> str:
             if f"{c}_seed_min_low" in row
             else ""
         )
+        median = row.get(f"{c}_median", math.nan)
+        med = f", median {median:.3g}" if isinstance(median, float) and median == median else ""
+        seeds = [x for x in row.get(f"{c}_per_seed") or [] if x == x]
+        if seeds:  # the per-seed L: their spread says more than max |y| at the stops
+            spread = f"; seeds' L {min(seeds):.3g}-{max(seeds):.3g}"
         if row.get(f"{c}_converged", True):
             parts.append(
-                f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}], {c}/(2+M)^2 ="
+                f"{c} = {row[c]:.3g} [{lo:.3g}, {hi:.3g}]{med}, {c}/(2+M)^2 ="
                 f" {row[f'{c}/(2+M)^2']:.3g}{spread}"
             )
         else:
-            parts.append(f"{c} NOT CONVERGED (bracket [{lo:.3g}, {hi:.3g}]){spread}")
+            parts.append(f"{c} NOT CONVERGED (bracket [{lo:.3g}, {hi:.3g}]){med}{spread}")
     return "; ".join(parts)
 
 

@@ -5,9 +5,12 @@ order of 10⁴ storms (the committed 256-point sweeps: about 7,000 storms each, 
 wall on 2 loaded cores, as their ``wall_time_s`` attributes record), too long for a report
 run. The report shows the sweeps committed as NetCDF files (written by ``onbottom curves``) in
 package data ``onbottom/data/stability_curves/`` (``src/onbottom/data/stability_curves/`` in the
-repository): a table of L_stable and L_10 per (soil, N, M, K) and the curves. Without such a
+repository): a table of L_stable and L_10 per (soil, N, M, K) and the curves, each file with the
+statistic its L is (:func:`~onbottom.study.stability_curves.curve_statistic`: a fractile and the
+median of each seed's own L, or the former mean of maxima) and its seed count. Without such a
 file the section says so. There is no pass/fail here: the comparison with F109's generalized
-tables (:mod:`onbottom.checks.f109_generalized`) is a validation page of its own.
+tables (:mod:`onbottom.checks.f109_generalized`) is a validation page of its own
+(docs/validation/dynamic_curves_vs_f109.md).
 """
 
 from __future__ import annotations
@@ -34,7 +37,7 @@ def sweep_folder() -> Path:
 def build(ctx: SectionContext) -> SectionContent:
     """Tabulate and plot every committed curve sweep."""
     from onbottom.results import load_dataset
-    from onbottom.study.stability_curves import curves_table
+    from onbottom.study.stability_curves import curve_statistic, curves_table
 
     folder = sweep_folder()
     files = sorted(folder.glob("*.nc")) if folder.is_dir() else []
@@ -60,8 +63,11 @@ def build(ctx: SectionContext) -> SectionContent:
     tables, figures = [], []
     flagged = 0
     costs = []
+    stats = []
     for path in files:
         ds = load_dataset(path)
+        stat = curve_statistic(ds)
+        stats.append(f"{path.stem}: {stat['label']}")
         if "wall_time_s" in ds.attrs and "total_storms" in ds.attrs:
             costs.append(
                 f"{path.stem}: {int(ds.attrs['total_storms']):,} storms in"
@@ -75,7 +81,8 @@ def build(ctx: SectionContext) -> SectionContent:
         cols = list(rows[0]) if rows else ["soil"]
         tables.append(
             Table(
-                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria"
+                caption=f"{path.name}: weight parameter L at the 0.5D and 10D criteria;"
+                f" L = {stat['label']}"
                 " (*_out_of_range = 1: the storms deciding the point buried the pipe beyond"
                 " the soil model's range, z > D/2)",
                 columns=cols,
@@ -86,7 +93,7 @@ def build(ctx: SectionContext) -> SectionContent:
         if plot_stability_curves is not None:
             figures.append(
                 ctx.save_figure(
-                    plot_stability_curves(ds, title=path.stem),
+                    plot_stability_curves(ds, title=f"{path.stem}: L = {stat['label']}"),
                     path.stem,
                     f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
                     " markers: points outside the soil model's range.",
@@ -108,8 +115,9 @@ def build(ctx: SectionContext) -> SectionContent:
                 )
             )
     return SectionContent(
-        summary="Weight parameter L = w_s/(½ρDU_s²) at which the seed-averaged largest lateral"
-        " displacement of a storm equals 0.5D (L_stable) and 10D (L_10)."
+        summary="Weight parameter L = w_s/(½ρDU_s²) at which the largest lateral displacement"
+        " of a storm reaches 0.5D (L_stable) and 10D (L_10). Statistic of each file:"
+        f" {'; '.join(stats)}."
         + (f" Cost of the committed sweeps (from the files): {'; '.join(costs)}." if costs else ""),
         checks=[
             Check(
@@ -118,6 +126,16 @@ def build(ctx: SectionContext) -> SectionContent:
                 reference=None,
                 tolerance="—",
                 status="info",
+            ),
+            *(
+                Check(
+                    name=f"statistic of {path.stem}",
+                    value=s.split(": ", 1)[1],
+                    reference=None,
+                    tolerance="—",
+                    status="info",
+                )
+                for path, s in zip(files, stats, strict=True)
             ),
             Check(
                 name="curve points outside the soil model's range",
