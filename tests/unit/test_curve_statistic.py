@@ -184,14 +184,16 @@ def test_case_file_statistic_and_large_n(tmp_path, capsys):
     assert float(ds.attrs["fractile"]) == 0.75 and ds.attrs["statistic"] == "fractile"
 
 
-def test_report_section_states_each_files_statistic(tmp_path):
+def test_report_section_states_each_files_statistic(tmp_path, monkeypatch):
     """The report's curves section names the statistic and seed count of every committed
     file: a per-seed file beside a file of the former statistic."""
     from onbottom.report.content import SectionContext
+    from onbottom.report.sections import stability_curves as section
     from onbottom.report.sections.stability_curves import build
 
-    folder = tmp_path / "docs" / "validation" / "stability_curves"
+    folder = tmp_path / "stability_curves"
     folder.mkdir(parents=True)
+    monkeypatch.setattr(section, "sweep_folder", lambda: folder)
     new = stability_curves([5.0], [0.4], soils=["sand"], settings=FAST, n_workers=0)
     old = new.drop_vars([v for v in new.data_vars if "median" in v or "per_seed" in v])
     old = old.drop_dims("seed")
