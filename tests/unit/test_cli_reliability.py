@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import shutil
 from pathlib import Path
 
 import pytest
@@ -22,8 +23,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "reliability_case.t
 
 def _tiny(tmp_path: Path, **changes: str) -> Path:
     text = EXAMPLE.read_text(encoding="utf-8")
-    hindcast = EXAMPLE.parent / "hindcast_synthetic.csv"
-    text = text.replace('"hindcast_synthetic.csv"', json.dumps(str(hindcast)))
+    shutil.copy(EXAMPLE.parent / "hindcast_synthetic.csv", tmp_path)  # inside the case folder
     subs = {
         "max_storms": "40",
         "block_size": "20",

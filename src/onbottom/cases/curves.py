@@ -172,6 +172,9 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
         if obj == "CurveSettings" and attr:
             key = "environment.water_density" if attr == "water_density" else f"curves.{attr}"
             chk.fail(key, key + msg[len(head) :])
+        field = getattr(exc, "field", None)
+        if isinstance(field, str) and field.startswith("hydro."):
+            chk.fail(field, msg)
         chk.fail("hydro", f"[hydro] is invalid: {msg}")
     d = c.diameter
     tps: list[tuple[float, float, float]] = []

@@ -144,6 +144,27 @@ class PipeTable(StrictModel):
         )
 
 
+_SOIL_KEYS_USED = {
+    "sand": "submerged_unit_weight, friction_coefficient, d50",
+    "calcareous": "submerged_unit_weight, friction_coefficient, d50",
+    "clay": "undrained_shear_strength, submerged_unit_weight, unit_weight, friction_coefficient",
+    "rock": "friction_coefficient",
+    "coulomb": "friction_coefficient",
+}
+"""The soil keys each seabed model reads (besides initial_penetration and the trench)."""
+
+_SOIL_KEYS_NOT_USED = {
+    model: tuple(
+        k
+        for k in ("submerged_unit_weight", "unit_weight", "undrained_shear_strength", "d50")
+        if k not in used
+    )
+    for model, used in _SOIL_KEYS_USED.items()
+}
+"""Keys given for a model that does not read them: refused (a key that silently does nothing,
+such as a sand's γ' and d50 on rock, would hide a wrong seabed model)."""
+
+
 class SeabedTable(StrictModel):
     model: Literal["sand", "calcareous", "clay", "rock", "coulomb"] = "sand"
     submerged_unit_weight: float | None = Field(None, gt=0.0, le=2.0e4, description="γ' [N/m³]")
@@ -171,6 +192,13 @@ class SeabedTable(StrictModel):
             ]
             if missing:
                 raise ValueError(f"model = 'clay' needs {', '.join(missing)}")
+        unused = [k for k in _SOIL_KEYS_NOT_USED[self.model] if getattr(self, k) is not None]
+        if unused:
+            raise ValueError(
+                f"{', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply to"
+                f" model = {self.model!r} (its keys: {_SOIL_KEYS_USED[self.model]}); remove"
+                f" {'it' if len(unused) == 1 else 'them'} or choose the model they belong to"
+            )
         return self
 
     def seabed(self) -> Sand | Clay | Rock:

@@ -170,6 +170,11 @@ def run_reliability(
                 current_given_hs=None if cm is None else (lambda h: float(cm.quantile(h, 0.5))),
             )
             dstats = dc.stats
+        from onbottom.metocean.run import extrapolation_note
+
+        note = extrapolation_note(float(d.return_period), float(result.hindcast.years))
+        if note:
+            notes.append(f"design: {note}")
     return ReliabilityRun(
         estimates=estimates,
         design=design,
