@@ -457,7 +457,58 @@ def find_key_line(text: str | None, field: str) -> int | None:
 
 
 def find_line(text: str, loc: Sequence[Any]) -> int | None:
-    """Best-effort 1-based line of the key at ``loc`` in TOML ``text`` (None if not found)."""
+    """Best-effort 1-based line of the key at ``loc`` in TOML ``text`` (None if not found):
+    the n-th ``[[array.of.tables]]`` where ``loc`` holds an index, else the first match."""
+    if any(isinstance(k, int) for k in loc):
+        found = _find_indexed(text, [k if isinstance(k, int) else str(k) for k in loc if k != ""])
+        if found is not None:
+            return found
+    return _find_first(text, loc)
+
+
+def _find_indexed(text: str, target: list[Any]) -> int | None:
+    """The line of ``target`` (names and array indices) counting ``[[...]]`` headers."""
+    header = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+    assign = re.compile(r"^\s*([A-Za-z0-9_\-\"'. ]+?)\s*=")
+    arrays: dict[tuple[Any, ...], int] = {}
+
+    def resolve(names: list[str]) -> list[Any]:
+        out: list[Any] = []
+        for n in names:
+            out.append(n)
+            k = tuple(out)
+            if k in arrays:
+                out.append(arrays[k])
+        return out
+
+    table: list[Any] = []
+    for i, raw in enumerate(text.splitlines(), start=1):
+        m = header.match(raw)
+        if m:
+            names = [p.strip().strip("\"'") for p in m.group(2).split(".")]
+            if m.group(1) == "[[":
+                key = (*resolve(names[:-1]), names[-1])
+                arrays[key] = arrays.get(key, -1) + 1
+                # the nested arrays of the previous element start again
+                for k in [k for k in arrays if len(k) > len(key) and k[: len(key)] == key]:
+                    del arrays[k]
+                table = [*key, arrays[key]]
+            else:
+                table = resolve(names)
+            if table == target or (table[:-1] == target and isinstance(table[-1], int)):
+                return i
+            continue
+        m = assign.match(raw)
+        if m:
+            key = [p.strip().strip("\"'") for p in m.group(1).split(".")]
+            if table + key == target:
+                return i
+            if table + key == target[: len(table) + len(key)] and ("{" in raw or "[" in raw):
+                return i
+    return None
+
+
+def _find_first(text: str, loc: Sequence[Any]) -> int | None:
     keys = [str(k) for k in loc if not isinstance(k, int) and k != ""]
     if not keys:
         return None

@@ -13,7 +13,9 @@ __all__ = [
     "FRICTION_COEFFICIENT",
     "PIPE_DIAMETER_M",
     "SOIL_UNIT_WEIGHT_N_M3",
+    "file_token",
     "finite",
+    "header_mismatch",
     "in_range",
     "integer",
     "non_negative",
@@ -170,3 +172,54 @@ def warn_outside(
             OutOfRangeWarning,
             stacklevel=stacklevel,
         )
+
+
+_TOKEN_MAX = 24
+
+
+def file_token(text: str, known: Iterable[str] = ()) -> str:
+    """A cell of a data file fit for an error message: quoted when it is one of ``known`` or
+    a close misspelling of one, or a short number-like token; else only its length. Error
+    messages never echo a file's content (a case file can name any file the user can read:
+    its first line must not reach a terminal or a log)."""
+    import difflib
+    import re
+
+    t = str(text).strip()
+    names = list(known)
+    if t in names or difflib.get_close_matches(t, names, n=1, cutoff=0.75):
+        return repr(t)
+    if len(t) <= _TOKEN_MAX and re.fullmatch(r"[-+0-9.eE]*|nan|inf|-inf|-|1", t, re.I):
+        return repr(t)
+    return f"<{len(t)} characters>"
+
+
+def header_mismatch(found: Iterable[str], expected: Iterable[str]) -> str:
+    """Why a header line is not ``expected``, without echoing it (:func:`file_token`): the
+    expected columns it lacks, the misspellings of expected ones it has, and how many other
+    columns there are."""
+    import difflib
+
+    exp = list(expected)
+    got = [str(c).strip() for c in found]
+    parts = [f"{len(got)} column(s)"]
+    missing = [c for c in exp if c not in got]
+    if missing:
+        parts.append(f"missing {', '.join(missing)}")
+    near, other = [], 0
+    for c in got:
+        if c in exp:
+            continue
+        close = difflib.get_close_matches(c, exp, n=1, cutoff=0.75)
+        if close:
+            near.append(f"{c!r} (did you mean {close[0]!r}?)")
+        else:
+            other += 1
+    if near:
+        parts.append(", ".join(near))
+    if other:
+        parts.append(f"{other} other column(s) (not shown)")
+    order = [c for c in got if c in exp]
+    if not missing and not near and not other and order != exp:
+        parts.append("the columns are in another order")
+    return "; ".join(parts)

@@ -519,6 +519,8 @@ def _check_kp(sections: list[RouteSection], file: str, text: str | None) -> None
                   f"route.sections[{i}] ({b.name!r}) is invalid: KP {b.kp_start:g} m comes"
                   f" before section {a.name!r} (KP {a.kp_start:g} m) listed above it: list"
                   " the sections in KP order")  # fmt: skip
+    for i in range(1, len(sections)):
+        a, b = sections[i - 1], sections[i]
         gap = b.kp_start - a.kp_end
         if gap > KP_TOLERANCE_M and b.gap_reason is None:
             _fail(file, text, _kp_key(b, i, "start"),

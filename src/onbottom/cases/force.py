@@ -30,7 +30,7 @@ def case_file(value: str, base_dir: str | Path | None, where: str) -> Path:
             p = Path(base_dir) / p
         p = contained(value, p, folder=base_dir, field=where)
     if not p.is_file():
-        raise InputError(f"{where} = {value!r} is invalid: no such file ({p})")
+        raise _named(f"{where} = {value!r} is invalid: no such file ({p})", where)
     return p
 
 
@@ -69,9 +69,12 @@ def force_model_from_case(
         if table is not None:
             from onbottom.hydro.morison_table import MorisonCoefficientTable
 
-            rule = MorisonCoefficientTable.from_csv(
-                case_file(table, base_dir, "hydro.coefficient_table")
-            )
+            where = "hydro.coefficient_table"
+            path = case_file(table, base_dir, where)
+            try:
+                rule = MorisonCoefficientTable.from_csv(path)
+            except InputError as exc:
+                raise _named(f"{where} = {table!r} is invalid: {exc}", where) from None
             return MorisonLift.per_sea_state(rule, added_mass=hydro.added_mass_coefficient)
         return MorisonLift(
             cd=hydro.cd, cm=hydro.cm, cl=hydro.cl, added_mass=hydro.added_mass_coefficient
@@ -138,4 +141,8 @@ def _options(name: str, options: Any, base_dir: str | Path | None) -> Any:
     from onbottom.hydro.fourier_table import FourierTable
 
     where = f"hydro.{name}.table"
-    return {**options, "table": FourierTable.load(case_file(value, base_dir, where))}
+    path = case_file(value, base_dir, where)
+    try:
+        return {**options, "table": FourierTable.load(path)}
+    except InputError as exc:
+        raise _named(f"{where} = {value!r} is invalid: {exc}", where) from None

@@ -182,7 +182,9 @@ def run_metocean_analysis(
     src = hc.source if source is None else source
     result = analyse_hindcast(hc, o)
     rows = design_rows(result)
-    notes: list[str] = []
+    from onbottom.metocean.hindcast import hindcast_notes
+
+    notes: list[str] = hindcast_notes(hc)
     note = extrapolation_note(max(o.return_periods), hc.years)
     if note:
         notes.append(note)
