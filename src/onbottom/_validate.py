@@ -174,14 +174,15 @@ def warn_outside(
         )
 
 
-_TOKEN_MAX = 24
+_TOKEN_MAX = 12
 
 
 def file_token(text: str, known: Iterable[str] = ()) -> str:
     """A cell of a data file fit for an error message: quoted when it is one of ``known`` or
-    a close misspelling of one, or a short number-like token; else only its length. Error
-    messages never echo a file's content (a case file can name any file the user can read:
-    its first line must not reach a terminal or a log)."""
+    a close misspelling of one, or a short token of a column name or a number (at most
+    :data:`_TOKEN_MAX` letters, digits, spaces and ``_ . + - / [ ] ^``); else only its length.
+    Error messages never echo a file's content beyond that (a case file can name any file the
+    user can read: a line such as /etc/passwd's must not reach a terminal or a log)."""
     import difflib
     import re
 
@@ -189,7 +190,7 @@ def file_token(text: str, known: Iterable[str] = ()) -> str:
     names = list(known)
     if t in names or difflib.get_close_matches(t, names, n=1, cutoff=0.75):
         return repr(t)
-    if len(t) <= _TOKEN_MAX and re.fullmatch(r"[-+0-9.eE]*|nan|inf|-inf|-|1", t, re.I):
+    if len(t) <= _TOKEN_MAX and re.fullmatch(r"[A-Za-z0-9_.+\-/\[\]^ ]*", t):
         return repr(t)
     return f"<{len(t)} characters>"
 
@@ -206,7 +207,8 @@ def header_mismatch(found: Iterable[str], expected: Iterable[str]) -> str:
     missing = [c for c in exp if c not in got]
     if missing:
         parts.append(f"missing {', '.join(missing)}")
-    near, other = [], 0
+    near: list[str] = []
+    other: list[str] = []
     for c in got:
         if c in exp:
             continue
@@ -214,11 +216,11 @@ def header_mismatch(found: Iterable[str], expected: Iterable[str]) -> str:
         if close:
             near.append(f"{c!r} (did you mean {close[0]!r}?)")
         else:
-            other += 1
+            other.append(file_token(c))
     if near:
         parts.append(", ".join(near))
     if other:
-        parts.append(f"{other} other column(s) (not shown)")
+        parts.append(f"other column(s) {', '.join(other[:8])}")
     order = [c for c in got if c in exp]
     if not missing and not near and not other and order != exp:
         parts.append("the columns are in another order")
