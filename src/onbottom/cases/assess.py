@@ -53,7 +53,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal, NoReturn
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from onbottom._casefile import (
     CaseFileError,
@@ -86,7 +86,9 @@ from onbottom.cases.stability import (
     WavesTable,
     _check_section,
     check_options,
+    viscosity_not_used,
 )
+from onbottom.constants import KINEMATIC_VISCOSITY_SEAWATER
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
@@ -194,7 +196,14 @@ class RouteTable(StrictModel):
 
 class RouteEnvironmentTable(StrictModel):
     water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
-    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
+    kinematic_viscosity: float = Field(
+        KINEMATIC_VISCOSITY_SEAWATER,
+        ge=1.0e-7,
+        le=1.0e-4,
+        description="ν [m²/s] (not used: default only)",
+    )
+
+    _nu = field_validator("kinematic_viscosity")(viscosity_not_used)
 
 
 class RouteDesignTable(DesignTable):
@@ -439,6 +448,12 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
     if not (case.levels.absolute or case.levels.generalized or case.levels.dynamic):
         _fail(file, text, "levels", "levels: every level is switched off; nothing to run")
     _check_allowable(case, file, text)
+    default_checks = RouteDesignTable.model_fields["checks"].default_factory()
+    if list(case.design.checks) != list(default_checks):
+        _fail(file, text, "design.checks",
+              f"design.checks = {list(case.design.checks)!r} is not used by onbottom assess: it"
+              f" runs the design checks {', '.join(default_checks)} at every level; remove the"
+              " key (it selects the checks of onbottom stability)")  # fmt: skip
     if case.levels.dynamic and case.solve_for == "none":
         pass  # dynamic runs at the given weight only
     # each section through the stability and storm loaders (their checks, their messages)
