@@ -349,3 +349,18 @@ def test_reliability_errors_name_case_keys_not_internal_names(tmp_path):
     err = _reliability_error(_reliability(tmp_path, top_points="20"))
     assert err.field == "reliability.design.top_points"
     assert "ReliabilitySetup" not in str(err) and "ContourDesign" not in str(err)
+
+
+def test_route_storm_errors_name_the_dynamic_keys_not_the_storm_document(tmp_path):
+    doc = route_document()
+    doc["dynamic"]["peak_hours"] = 1.0e-4  # shorter than 3 peak periods
+    err = _route_error(tmp_path, doc)
+    assert err.field == "dynamic.peak_hours"
+    assert err.line == _line_of((tmp_path / "route.toml").read_text(), "peak_hours")
+    assert "storm.peak_hours" not in str(err) and "sections[0].storm" not in str(err)
+
+
+def test_contour_points_the_contour_cannot_take_are_refused_by_the_schema(tmp_path):
+    """4 points passed the schema and failed after the hindcast analysis as ``n_points``."""
+    err = _reliability_error(_reliability(tmp_path, contour_points="4"))
+    assert err.field == "reliability.design.contour_points" and "n_points" not in str(err)

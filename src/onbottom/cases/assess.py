@@ -478,6 +478,8 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             route_key = _route_key(case, i, getattr(exc, "field", None) or "")
             inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
                            str(exc))  # fmt: skip
+            for inner_key, outer_key in _STORM_KEYS.items():
+                inner = re.sub(rf"\b{re.escape(inner_key)}\b", outer_key, inner)
             line = find_key_line(text, route_key)
             where = f"{file}{f', line {line}' if line else ''}"
             raise CaseFileError(
@@ -589,7 +591,21 @@ def _route_key(case: RouteCase, i: int, field: str) -> str:
     name = case.route.sections[i].metocean
     if top in ("waves", "current", "combinations") and name is not None:
         return f"metocean.{name}.{field}"
+    if field in _STORM_KEYS:  # the storm document's keys come from [dynamic]
+        return _STORM_KEYS[field]
+    if top in ("storm", "run", "solver"):
+        return "dynamic"
     return f"{key}.{field}"
+
+
+_STORM_KEYS = {
+    "storm.peak_hours": "dynamic.peak_hours",
+    "storm.build_up_hours": "dynamic.build_up_hours",
+    "storm.time_step": "dynamic.time_step",
+    "storm.seed": "dynamic.first_seed",
+    "run.seeds": "dynamic.seeds",
+}
+"""Keys of a section's storm document → the route file's keys they are taken from."""
 
 
 def parse_route_case(

@@ -56,7 +56,9 @@ class ClimateTable(StrictModel):
 
 class DesignTable(StrictModel):
     return_period: float = Field(100.0, ge=1.0, le=1.0e4, description="[years]")
-    contour_points: int = Field(12, ge=4, le=360, description="IFORM contour points [-]")
+    contour_points: int = Field(
+        12, ge=8, le=360, description="IFORM contour points [-] (the contour needs >= 8)"
+    )
     seeds: int = Field(2, ge=1, le=1000, description="seeds per contour point [-]")
     top_points: int = Field(2, ge=1, le=360, description="points rerun with more seeds [-]")
     top_seeds: int = Field(8, ge=1, le=10000, description="seeds at those points [-]")
