@@ -134,3 +134,16 @@ def test_lock_refuses_a_second_run_and_takes_over_a_dead_ones(tmp_path):
         with pytest.raises(InputError, match=rf"in use: process {os.getpid()} on"):
             claim_output_folder(out)  # this run holds it
     assert not (out / LOCK_NAME).exists()
+
+
+def test_reliability_out_with_files_onbottom_did_not_write_is_refused(tmp_path, capsys):
+    pytest.importorskip("openturns")
+    pytest.importorskip("zarr")
+    shutil.copy(ROOT / "examples" / "reliability_case.toml", tmp_path / "case.toml")
+    shutil.copy(ROOT / "examples" / "hindcast_synthetic.csv", tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "thesis.tex").write_text("mine", encoding="utf-8")
+    err = _error(["reliability", tmp_path / "case.toml", "--out", out, "--workers", "0"], capsys)
+    assert err["field"] == "--out" and "thesis.tex" in err["message"]
+    assert sorted(p.name for p in out.iterdir()) == ["thesis.tex"]

@@ -47,6 +47,7 @@ __all__ = [
     "CLAUSES",
     "LOCK_NAME",
     "MARK_NAME",
+    "RELIABILITY_NAMES",
     "RESULTS_KEYS",
     "VALIDITY",
     "OutputFolder",
@@ -692,9 +693,22 @@ MARK_NAME = ".onbottom-assess"
 LOCK_NAME = ".onbottom-assess.lock"
 """The lock file of the run writing a folder (its process id and host)."""
 
-_OWN_NAMES = frozenset(
-    {"results.json", "dynamic.nc", "report.html", "report.pdf", "sections", MARK_NAME, LOCK_NAME}
+_OWN_NAMES = frozenset({"results.json", "dynamic.nc", "report.html", "report.pdf", "sections"})
+
+RELIABILITY_NAMES = frozenset(
+    {
+        "campaign.zarr",
+        "design.zarr",
+        "reliability.json",
+        "exceedance.png",
+        "convergence.png",
+        "importance.png",
+        "design.png",
+        "report.html",
+        "tables",
+    }
 )
+"""What ``onbottom reliability`` writes into its ``--out``."""
 _GENERATOR = '<meta name="generator" content="onbottom'
 
 
@@ -703,9 +717,10 @@ class OutputFolder:
     a context manager: the lock file is removed on exit). ``notes``: what was found (a stale
     lock taken over)."""
 
-    def __init__(self, path: Path, notes: list[str]) -> None:
+    def __init__(self, path: Path, notes: list[str], lock: Path | None = None) -> None:
         self.path = path
         self.notes = notes
+        self.lock = path / LOCK_NAME if lock is None else lock
 
     def __enter__(self) -> OutputFolder:
         return self
@@ -715,7 +730,7 @@ class OutputFolder:
 
     def release(self) -> None:
         """Remove the lock file if it is still this process's."""
-        lock = self.path / LOCK_NAME
+        lock = self.lock
         try:
             if _lock_owner(lock)[0] == os.getpid():
                 lock.unlink()
@@ -729,14 +744,14 @@ def _refuse(message: str) -> InputError:
     return err
 
 
-def _foreign(out: Path) -> list[str]:
-    """Entries of ``out`` that ``onbottom assess`` did not write (empty: the folder is its
-    own or empty). With the mark file every entry is taken as the tool's; without it (a
-    folder of an older run) only the tool's names, and a report.html carrying its mark."""
+def _foreign(out: Path, mark: str, own: frozenset[str]) -> list[str]:
+    """Entries of ``out`` that the command did not write (empty: the folder is its own or
+    empty). With the ``mark`` file every entry is taken as the tool's; without it (a folder of
+    an older run) only the tool's names ``own``, and a report.html carrying its mark."""
     entries = sorted(out.iterdir(), key=lambda q: q.name)
-    if (out / MARK_NAME).is_file():
+    if (out / mark).is_file():
         return []
-    foreign = [q.name for q in entries if q.name not in _OWN_NAMES]
+    foreign = [q.name for q in entries if q.name not in own | {mark, mark + ".lock"}]
     page = out / "report.html"
     if page.is_file():
         try:
@@ -770,8 +785,15 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def claim_output_folder(out: str | Path, *, force: bool = False) -> OutputFolder:
-    """Check and lock ``--out`` for one ``onbottom assess`` run.
+def claim_output_folder(
+    out: str | Path,
+    *,
+    force: bool = False,
+    command: str = "assess",
+    own: frozenset[str] = _OWN_NAMES,
+) -> OutputFolder:
+    """Check and lock ``--out`` for one ``onbottom assess`` run (or ``command``'s, writing the
+    names ``own``: ``onbottom reliability`` with :data:`RELIABILITY_NAMES`).
 
     * the filesystem root and the home folder: refused (as ``onbottom report``'s
       :func:`onbottom.report.build.check_report_folder`; an assessment writes report.html,
@@ -791,14 +813,14 @@ def claim_output_folder(out: str | Path, *, force: bool = False) -> OutputFolder
     if full.parent == full or full == Path.home().resolve():
         where = "the filesystem root" if full.parent == full else "the home folder"
         raise _refuse(
-            f"--out = {str(p)!r} is invalid: an assessment needs a folder of its own, not"
-            f" {where} (e.g. --out assess_results)"
+            f"--out = {str(p)!r} is invalid: onbottom {command} needs a folder of its own,"
+            f" not {where} (e.g. --out {command}_results)"
         )
     if p.exists() and not p.is_dir():
         raise _refuse(f"--out = {str(p)!r} is invalid: it is a file, expected a folder")
     notes: list[str] = []
     if p.is_dir() and not force:
-        foreign = _foreign(p)
+        foreign = _foreign(p, f".onbottom-{command}", own)
         if foreign:
             shown = ", ".join(foreign[:5]) + (
                 f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
@@ -808,7 +830,7 @@ def claim_output_folder(out: str | Path, *, force: bool = False) -> OutputFolder
                 f" ({shown}); choose another folder or pass --force to write there anyway"
             )
     p.mkdir(parents=True, exist_ok=True)
-    lock = p / LOCK_NAME
+    lock = p / f".onbottom-{command}.lock"
     me = f"{os.getpid()} {socket.gethostname()}"
     for _ in range(2):
         try:
@@ -833,7 +855,7 @@ def claim_output_folder(out: str | Path, *, force: bool = False) -> OutputFolder
         break
     else:  # pragma: no cover - two takeovers raced
         raise _refuse(f"--out = {str(p)!r} is in use: its lock file {lock} keeps reappearing")
-    mark = p / MARK_NAME
+    mark = p / f".onbottom-{command}"
     if not mark.is_file():
-        write_text_atomic(mark, "written by onbottom assess: its files here may be replaced\n")
-    return OutputFolder(p, notes)
+        write_text_atomic(mark, f"written by onbottom {command}: its files may be replaced\n")
+    return OutputFolder(p, notes, lock)

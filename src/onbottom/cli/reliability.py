@@ -48,18 +48,13 @@ def _write_run(
 ) -> dict:
     """Read the case, run it (:func:`onbottom.reliability.run.run_reliability`) and write the
     outputs; returns the JSON payload."""
-    import json
     import time
 
     from onbottom.cases.reliability import load_reliability_case
     from onbottom.errors import InputError
     from onbottom.reliability.run import (
-        planned_storms,
         require_packages,
-        run_payload,
-        run_reliability,
     )
-    from onbottom.results import write_text_atomic
 
     t0 = time.perf_counter()
     require_packages()
@@ -70,6 +65,34 @@ def _write_run(
         err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
         err.field = "--out"  # type: ignore[attr-defined]
         raise err
+    from onbottom.assess.output import RELIABILITY_NAMES, claim_output_folder
+
+    with claim_output_folder(
+        out, force=force, command="reliability", own=RELIABILITY_NAMES
+    ) as held:
+        for note in held.notes:
+            click.echo(f"note: {note}", err=True)
+        return _run_in(setup, case, out, t0, n_workers, scheduler, progress, figures, report)
+
+
+def _run_in(
+    setup: Any,
+    case: Path,
+    out: Path,
+    t0: float,
+    n_workers: int | None,
+    scheduler: str | None,
+    progress: bool,
+    figures: bool,
+    report: bool,
+) -> dict:
+    """The run of :func:`_write_run` in its held ``--out`` folder."""
+    import json
+    import time
+
+    from onbottom.reliability.run import planned_storms, run_payload, run_reliability
+    from onbottom.results import write_text_atomic
+
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -192,7 +215,8 @@ def _figures(r: Any, out: Path, title: str, files: list[str]) -> dict[str, str]:
     "--force",
     is_flag=True,
     help="Run even when the estimated time or memory of the campaign exceeds the budget"
-    " (onbottom.study.budget: 12 h, 8 GB).",
+    " (onbottom.study.budget: 12 h, 8 GB), and write into an --out holding files onbottom did"
+    " not write.",
 )
 @click.option("--no-figures", is_flag=True, help="Skip the figures.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
