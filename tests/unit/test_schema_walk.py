@@ -181,8 +181,15 @@ def _bounds(info: Any) -> tuple[float, float]:
 
 
 def _candidates(info: Any, current: Any) -> list[Any]:
-    if current is None and info.default is not None and not callable(info.default):
-        current = info.default
+    if current is None and not info.is_required():
+        current = info.get_default(call_default_factory=True)
+    if isinstance(current, (list, dict)):
+        nums = (
+            isinstance(current, list)
+            and current
+            and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in current)
+        )
+        return [[x * 1.1 for x in current], current[:1]] if nums else []
     ann = info.annotation
     args = set(typing.get_args(ann)) | {ann}
     lits = [a for a in args if typing.get_origin(a) is typing.Literal]
@@ -400,6 +407,7 @@ ROUTE = Kind(
         "design.layer": ["corrosion"],
         "design.checks": [["vertical"]],
         "route.sections.0.gap_reason": ["a crossing"],
+        "design.vertical_conditions": [["operation"]],
         "route.sections.0.kp_end_km": [2.0],
         "route.sections.0.metocean": ["open_sea"],
         "route.sections.0.combinations.0.name": ["storm A"],
@@ -445,7 +453,105 @@ RELIABILITY = Kind(
     metadata={},
 )
 
-KINDS = {"storm": STORM, "stability": STABILITY, "assess": ROUTE, "reliability": RELIABILITY}
+
+def _curves_build(path: Path) -> Any:
+    from onbottom.cases.curves import build_curve_settings, load_curves_case
+
+    cfg = load_curves_case(path)
+    c = cfg.curves
+    return build_curve_settings(cfg, path), c.K, c.M, c.N, c.soils, c.criteria, c.seeds
+
+
+CURVES = Kind(
+    schema=__import__("onbottom.cases.curves", fromlist=["CurvesCase"]).CurvesCase,
+    bases=[
+        lambda: _toml(EXAMPLES / "curves_case.toml"),
+        lambda: _toml(EXAMPLES / "curves_case.toml") | {"environment": {"water_depth": 30.0}},
+    ],
+    build=_curves_build,
+    special={
+        "curves.K": [[5.0, 10.0]],
+        "curves.M": [[0.0]],
+        "curves.N": [[0.004]],
+        "curves.soils": [["sand"]],
+        "curves.criteria": [["L_10"]],
+        "hydro.model": ["morison"],
+        "hydro.wake": [{"drag_excess": 0.5}],
+        "hydro.fourier": [{"table": "example"}],
+    },
+    pairs={"hydro.fourier": {"hydro.model": "fourier"}},
+    metadata={
+        **{
+            k: _SHARED
+            for k in (
+                "pipe",
+                "seabed",
+                "waves",
+                "current",
+                "storm",
+                "solver",
+                "run",
+                "pipeline",
+                "combinations",
+                "design",
+            )
+        },
+        "environment.water_depth": "required by the shared [environment] table; the curves"
+        " are in K, M, N (no depth): documented in cases/curves.py",
+    },
+)
+
+
+class _PipelineOnly(StrictModel):
+    pipeline: __import__("onbottom.cases.pipeline", fromlist=["PipelineTable"]).PipelineTable
+
+
+def _pipeline_build(path: Path) -> Any:
+    from onbottom.cases.pipeline import load_pipeline_run
+
+    return load_pipeline_run(path)
+
+
+def _pipeline_sections(clay: bool) -> dict:
+    d = _toml(EXAMPLES / "pipeline_case.toml")
+    soil = (
+        {"model": "clay", "undrained_shear_strength": 5.0e3, "submerged_unit_weight": 6.0e3,
+         "unit_weight": 16.0e3, "friction_coefficient": 0.3}
+        if clay
+        else {"model": "sand", "submerged_unit_weight": 9.0e3, "friction_coefficient": 0.5}
+    )  # fmt: skip
+    d["pipeline"]["sections"] = [
+        {"start": 0.0, "end": 80.0, **soil, "axial_friction_coefficient": 0.4},
+        {"start": 80.0, "end": 200.0},
+    ]
+    return d
+
+
+PIPELINE = Kind(
+    schema=_PipelineOnly,
+    bases=[
+        lambda: _toml(EXAMPLES / "pipeline_case.toml"),
+        functools.partial(_pipeline_sections, False),
+        functools.partial(_pipeline_sections, True),
+    ],
+    build=_pipeline_build,
+    root=("pipeline",),
+    special={"pipeline.sections.0.end": [100.0]},
+    pairs={
+        "pipeline.end_springs": {"pipeline.end_conditions": "spring"},
+        "pipeline.sections.0.end": {"pipeline.sections.1.start": 100.0},
+    },
+    metadata={},
+)
+
+KINDS = {
+    "storm": STORM,
+    "stability": STABILITY,
+    "assess": ROUTE,
+    "reliability": RELIABILITY,
+    "curves": CURVES,
+    "pipeline": PIPELINE,
+}
 
 
 def _walk(kind: Kind, tmp_path: Path) -> dict[str, list[str]]:
