@@ -4,11 +4,13 @@ table (``examples/reliability_case.toml``).
 ``[reliability]`` (strict; SI unless a key says otherwise):
 
 * ``limits``: displacement limits, each ``"0.5D"``-style (a multiple of the pipe's outer
-  diameter) or a number of metres (default ``["0.5D", "10D"]``);
+  diameter) or a number of metres (default ``["0.5D", "10D"]``); each once, and at most
+  ``[solver] max_displacement_over_d`` D (the storms stop there);
 * ``method``: ``"subset"`` (default), ``"importance"`` or ``"monte_carlo"``; ``target_cv``,
   ``max_storms`` (per limit), ``block_size`` (storms per block / per subset level),
   ``task_size`` (storms per Dask task), ``seed`` (openturns' generator);
-* ``storms_per_year`` (λ; required without a climate), ``design_life_years``;
+* ``storms_per_year`` (λ; required without a climate, refused beside one: the climate's
+  ``storm_rate`` is the rate), ``design_life_years``;
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
   ``sectors`` (1: omnidirectional, waves from the case's direction), ``pipe_heading_deg``,
   ``storm_rate`` (the POT threshold's target storms per year), ``current`` (true: the current
