@@ -364,3 +364,17 @@ def test_contour_points_the_contour_cannot_take_are_refused_by_the_schema(tmp_pa
     """4 points passed the schema and failed after the hindcast analysis as ``n_points``."""
     err = _reliability_error(_reliability(tmp_path, contour_points="4"))
     assert err.field == "reliability.design.contour_points" and "n_points" not in str(err)
+
+
+def test_metocean_notes_a_25_m_spike_in_the_shipped_hindcast():
+    import dataclasses
+
+    from onbottom.metocean.hindcast import read_hindcast
+    from onbottom.metocean.run import run_metocean_analysis
+
+    h = read_hindcast(EXAMPLES / "hindcast_synthetic.csv")
+    hs = np.array(h.hs)
+    hs[1000:1008] = 25.0  # one day (3-hourly) at 25 m
+    spiky = dataclasses.replace(h, hs=hs, tp=np.maximum(np.array(h.tp), 18.0))
+    notes = run_metocean_analysis(spiky).notes
+    assert any(n.startswith("hs: 1 outlier(s)") and "25 m" in n for n in notes), notes
