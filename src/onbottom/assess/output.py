@@ -693,7 +693,9 @@ MARK_NAME = ".onbottom-assess"
 LOCK_NAME = ".onbottom-assess.lock"
 """The lock file of the run writing a folder (its process id and host)."""
 
-_OWN_NAMES = frozenset({"results.json", "dynamic.nc", "report.html", "report.pdf", "sections"})
+_OWN_NAMES = frozenset(
+    {"results.json", "dynamic.nc", "report.html", "report.pdf", "sections", "pipeline.nc"}
+)
 
 RELIABILITY_NAMES = frozenset(
     {
@@ -751,7 +753,14 @@ def _foreign(out: Path, mark: str, own: frozenset[str]) -> list[str]:
     entries = sorted(out.iterdir(), key=lambda q: q.name)
     if (out / mark).is_file():
         return []
-    foreign = [q.name for q in entries if q.name not in own | {mark, mark + ".lock"}]
+    names = own | {mark, mark + ".lock"}
+    foreign = [
+        q.name
+        for q in entries
+        if q.name not in names
+        and not any(q.name.startswith(n) for n in names)  # its partial and temporary files
+        and not (q.name.startswith(".") and q.name.endswith(".tmp"))
+    ]
     page = out / "report.html"
     if page.is_file():
         try:
