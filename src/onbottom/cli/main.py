@@ -159,9 +159,12 @@ def cli(allow_outside_paths: bool = False) -> None:
     Every command accepts --json for scripting. Input errors exit with status 1 and a message
     naming the field, its value and the allowed range.
     """
-    from onbottom._casefile import allow_outside_paths as _allow
+    import sys
 
-    _allow(allow_outside_paths)
+    if allow_outside_paths or "onbottom._casefile" in sys.modules:  # pydantic only when needed
+        from onbottom._casefile import allow_outside_paths as _allow
+
+        _allow(allow_outside_paths)
 
 
 class CompileNotice:
