@@ -624,3 +624,51 @@ def test_every_key_is_used_or_refused(name, tmp_path):
     found = _walk(KINDS[name], tmp_path)
     assert not found["unused"], "keys parsed and never used:\n" + "\n".join(found["unused"])
     assert not found["not walked"], "keys no base case holds:\n" + "\n".join(found["not walked"])
+
+
+def _extremes(info: Any) -> list[Any]:
+    """The ends of a numeric field's range the schema accepts (finite ends only)."""
+    ann = info.annotation
+    args = set(typing.get_args(ann)) | {ann}
+    if bool in args or not (int in args or float in args):
+        return []
+    out = []
+    for m in info.metadata:
+        for attr, step in (("ge", 0.0), ("gt", 1e-9), ("le", 0.0), ("lt", -1e-9)):
+            v = getattr(m, attr, None)
+            if v is not None and abs(float(v)) < 1e12:
+                x = float(v) + step * max(abs(float(v)), 1.0)
+                out.append(round(x) if int in args and float not in args else x)
+    return out
+
+
+@pytest.mark.parametrize("name", list(KINDS))
+def test_schema_extremes_are_built_or_named_errors(name, tmp_path):
+    """Every numeric key at the ends of its schema range: the command's loader builds it or
+    names a key; never another exception (a value the schema accepts that the code after it
+    cannot take)."""
+    kind = KINDS[name]
+    if kind.prepare is not None:
+        kind.prepare(tmp_path)
+    path = tmp_path / "case.toml"
+    bad = []
+    for rel, info in leaves(kind.schema):
+        key = ".".join(map(str, rel))
+        if kind.root and rel[: len(kind.root)] != kind.root:
+            continue
+        doc = next((m() for m in kind.bases if _has_parent(m(), rel)), None)
+        if doc is None:
+            continue
+        for v in _extremes(info):
+            changed = copy.deepcopy(doc)
+            _get(changed, rel[:-1])[rel[-1]] = v
+            path.write_text(dump_toml(changed), encoding="utf-8")
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    kind.build(path)
+            except InputError:
+                pass
+            except Exception as exc:  # the failure under test
+                bad.append(f"{key} = {v!r}: {type(exc).__name__}: {exc}"[:200])
+    assert not bad, "schema-accepted values the loader cannot take:\n" + "\n".join(bad)
