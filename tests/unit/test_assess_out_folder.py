@@ -147,3 +147,48 @@ def test_reliability_out_with_files_onbottom_did_not_write_is_refused(tmp_path, 
     err = _error(["reliability", tmp_path / "case.toml", "--out", out, "--workers", "0"], capsys)
     assert err["field"] == "--out" and "thesis.tex" in err["message"]
     assert sorted(p.name for p in out.iterdir()) == ["thesis.tex"]
+
+
+def test_pipeline_checkpoint_of_other_inputs_restarts_instead_of_advising_restart(
+    tmp_path, monkeypatch
+):
+    """assess has no --restart: a pipeline checkpoint that belongs to other inputs (an edited
+    [pipeline]) makes the FE start afresh (resume="never") instead of an error advising
+    options assess does not have."""
+    import onbottom.dynamics.pipeline as dp
+    from onbottom.assess.pipeline import run_governing_pipeline
+    from onbottom.cases.assess import build_route, parse_route_case
+    from onbottom.errors import ResultFileError
+
+    doc = route_document()
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"length": 40.0, "element_length": 5.0}
+    route = build_route(parse_route_case(doc))
+    combo = route.sections[0].storms[0].name
+    sections = [
+        {
+            "name": route.sections[0].name,
+            "index": 0,
+            "design_value": 0.04,
+            "dynamic": {
+                "base": {combo: {"utilisation": 0.5, "seeds": [0], "max_displacement": [0.01]}}
+            },
+        }
+    ]
+    calls = []
+
+    class Done(Exception):
+        pass
+
+    def fake(*args, resume="auto", **kwargs):
+        calls.append(resume)
+        if resume == "auto":
+            raise ResultFileError(
+                "checkpoint 'x' belongs to another run; rerun with --restart", field="checkpoint"
+            )
+        raise Done
+
+    monkeypatch.setattr(dp, "simulate_pipeline", fake)
+    with pytest.raises(Done):
+        run_governing_pipeline(route, sections, out=tmp_path)
+    assert calls == ["auto", "never"]
