@@ -52,3 +52,40 @@ def route_document(*, sections: int = 1, seeds: int = 2, peak_hours: float = 0.1
             "thickness_tolerance_m": 0.004,
         },
     }
+
+
+def route_toml(doc: dict) -> str:
+    """A route document as TOML (the value types of :func:`route_document`)."""
+    import json
+
+    def val(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return json.dumps(v)
+        return repr(v)
+
+    lines: list[str] = []
+
+    def table(prefix: str, d: dict, array: bool = False) -> None:
+        lines.append(f"[[{prefix}]]" if array else f"[{prefix}]")
+        subs = []
+        for k, v in d.items():
+            if isinstance(v, dict):
+                subs.append((k, v, False))
+            elif isinstance(v, list) and v and isinstance(v[0], dict):
+                subs.append((k, v, True))
+            else:
+                lines.append(f"{k} = {val(v)}")
+        for k, v, arr in subs:
+            for item in v if arr else [v]:
+                table(f"{prefix}.{k}", item, arr)
+
+    for k, v in doc.items():
+        if k == "route":
+            lines.append(f"[route]\nname = {val(v['name'])}")
+            for s in v["sections"]:
+                table("route.sections", s, True)
+        else:
+            table(k, v)
+    return "\n".join(lines) + "\n"

@@ -42,10 +42,12 @@ __all__ = [
     "MAX_NESTING",
     "CaseFileError",
     "StrictModel",
+    "allow_outside_paths",
     "contained",
     "find_key_line",
     "find_line",
     "load_case_file",
+    "outside_paths_allowed",
     "parse_case",
     "read_json",
     "read_toml",
@@ -217,6 +219,23 @@ def _too_deep(p: Path) -> CaseFileError:
     )
 
 
+_OUTSIDE = {"allowed": False}
+
+OUTSIDE_OPTION = "onbottom --allow-outside-paths <command> ..."
+"""How a user lets a case file name files outside its folder (the global CLI option)."""
+
+
+def allow_outside_paths(allowed: bool = True) -> None:
+    """Let case files name files outside their own folder tree (``allowed``) or not (the
+    default). Set by the global option ``onbottom --allow-outside-paths`` for one command."""
+    _OUTSIDE["allowed"] = bool(allowed)
+
+
+def outside_paths_allowed() -> bool:
+    """Whether case files may name files outside their folder (:func:`allow_outside_paths`)."""
+    return _OUTSIDE["allowed"]
+
+
 def resolve_path(
     value: str,
     *,
@@ -226,15 +245,16 @@ def resolve_path(
 ) -> Path:
     """Resolve a file named in a case file (relative to the case file's folder).
 
-    The file must lie inside the case file's folder (an absolute path or ``..`` that leaves
-    it is a :class:`CaseFileError` naming ``field``: a case file never reaches other files on
-    the disk) and, with ``must_exist``, exist.
+    The one containment rule of every path a case file names (:func:`contained`): absolute or
+    relative, the file must lie inside the case file's folder tree unless
+    :func:`allow_outside_paths`; with ``must_exist`` it must exist. Errors name ``field``
+    and never the file's content.
     """
-    p = Path(value)
+    p = Path(value).expanduser()
     if not p.is_absolute() and relative_to is not None:
-        p = Path(relative_to).parent / p
+        p = Path(relative_to).resolve().parent / p
     if relative_to is not None:
-        contained(value, p, folder=Path(relative_to).parent, field=field)
+        p = contained(value, p, folder=Path(relative_to).resolve().parent, field=field)
     if must_exist and not p.is_file():
         raise CaseFileError(
             f"{field} = {value!r} is invalid: file {p} not found", field=field, file=str(p)
@@ -246,14 +266,22 @@ def contained(
     value: str, path: str | os.PathLike, *, folder: str | os.PathLike, field: str
 ) -> Path:
     """``path`` resolved; a :class:`CaseFileError` naming ``field`` unless it lies inside
-    ``folder`` (the case file's folder)."""
+    ``folder`` (the case file's folder) or :func:`outside_paths_allowed`.
+
+    Absolute paths, ``~`` and ``..`` get the same rule, after symbolic links are resolved:
+    a case file someone sends cannot make onbottom read (and echo) files elsewhere on the
+    disk, such as ``/etc/passwd``.
+    """
     base = Path(folder).resolve()
-    full = Path(path).resolve()
+    full = Path(path).expanduser().resolve()
+    if outside_paths_allowed():
+        return full
     if full != base and base not in full.parents:
         raise CaseFileError(
             f"{field} = {value!r} is invalid: it leaves the case file's folder {base} (a file"
-            " named in a case file must lie in that folder or below it; give a relative path"
-            " without '..')",
+            " named in a case file must lie in that folder or below it, absolute or relative;"
+            " give a path inside it, or allow files elsewhere with"
+            f" {OUTSIDE_OPTION})",
             field=field,
         )
     return full
@@ -429,7 +457,58 @@ def find_key_line(text: str | None, field: str) -> int | None:
 
 
 def find_line(text: str, loc: Sequence[Any]) -> int | None:
-    """Best-effort 1-based line of the key at ``loc`` in TOML ``text`` (None if not found)."""
+    """Best-effort 1-based line of the key at ``loc`` in TOML ``text`` (None if not found):
+    the n-th ``[[array.of.tables]]`` where ``loc`` holds an index, else the first match."""
+    if any(isinstance(k, int) for k in loc):
+        found = _find_indexed(text, [k if isinstance(k, int) else str(k) for k in loc if k != ""])
+        if found is not None:
+            return found
+    return _find_first(text, loc)
+
+
+def _find_indexed(text: str, target: list[Any]) -> int | None:
+    """The line of ``target`` (names and array indices) counting ``[[...]]`` headers."""
+    header = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+    assign = re.compile(r"^\s*([A-Za-z0-9_\-\"'. ]+?)\s*=")
+    arrays: dict[tuple[Any, ...], int] = {}
+
+    def resolve(names: list[str]) -> list[Any]:
+        out: list[Any] = []
+        for n in names:
+            out.append(n)
+            k = tuple(out)
+            if k in arrays:
+                out.append(arrays[k])
+        return out
+
+    table: list[Any] = []
+    for i, raw in enumerate(text.splitlines(), start=1):
+        m = header.match(raw)
+        if m:
+            names = [p.strip().strip("\"'") for p in m.group(2).split(".")]
+            if m.group(1) == "[[":
+                key = (*resolve(names[:-1]), names[-1])
+                arrays[key] = arrays.get(key, -1) + 1
+                # the nested arrays of the previous element start again
+                for k in [k for k in arrays if len(k) > len(key) and k[: len(key)] == key]:
+                    del arrays[k]
+                table = [*key, arrays[key]]
+            else:
+                table = resolve(names)
+            if table == target or (table[:-1] == target and isinstance(table[-1], int)):
+                return i
+            continue
+        m = assign.match(raw)
+        if m:
+            key = [p.strip().strip("\"'") for p in m.group(1).split(".")]
+            if table + key == target:
+                return i
+            if table + key == target[: len(table) + len(key)] and ("{" in raw or "[" in raw):
+                return i
+    return None
+
+
+def _find_first(text: str, loc: Sequence[Any]) -> int | None:
     keys = [str(k) for k in loc if not isinstance(k, int) and k != ""]
     if not keys:
         return None

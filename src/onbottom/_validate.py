@@ -13,7 +13,9 @@ __all__ = [
     "FRICTION_COEFFICIENT",
     "PIPE_DIAMETER_M",
     "SOIL_UNIT_WEIGHT_N_M3",
+    "file_token",
     "finite",
+    "header_mismatch",
     "in_range",
     "integer",
     "non_negative",
@@ -170,3 +172,56 @@ def warn_outside(
             OutOfRangeWarning,
             stacklevel=stacklevel,
         )
+
+
+_TOKEN_MAX = 12
+
+
+def file_token(text: str, known: Iterable[str] = ()) -> str:
+    """A cell of a data file fit for an error message: quoted when it is one of ``known`` or
+    a close misspelling of one, or a short token of a column name or a number (at most
+    :data:`_TOKEN_MAX` letters, digits, spaces and ``_ . + - / [ ] ^``); else only its length.
+    Error messages never echo a file's content beyond that (a case file can name any file the
+    user can read: a line such as /etc/passwd's must not reach a terminal or a log)."""
+    import difflib
+    import re
+
+    t = str(text).strip()
+    names = list(known)
+    if t in names or difflib.get_close_matches(t, names, n=1, cutoff=0.75):
+        return repr(t)
+    if len(t) <= _TOKEN_MAX and re.fullmatch(r"[A-Za-z0-9_.+\-/\[\]^ ]*", t):
+        return repr(t)
+    return f"<{len(t)} characters>"
+
+
+def header_mismatch(found: Iterable[str], expected: Iterable[str]) -> str:
+    """Why a header line is not ``expected``, without echoing it (:func:`file_token`): the
+    expected columns it lacks, the misspellings of expected ones it has, and how many other
+    columns there are."""
+    import difflib
+
+    exp = list(expected)
+    got = [str(c).strip() for c in found]
+    parts = [f"{len(got)} column(s)"]
+    missing = [c for c in exp if c not in got]
+    if missing:
+        parts.append(f"missing {', '.join(missing)}")
+    near: list[str] = []
+    other: list[str] = []
+    for c in got:
+        if c in exp:
+            continue
+        close = difflib.get_close_matches(c, exp, n=1, cutoff=0.75)
+        if close:
+            near.append(f"{c!r} (did you mean {close[0]!r}?)")
+        else:
+            other.append(file_token(c))
+    if near:
+        parts.append(", ".join(near))
+    if other:
+        parts.append(f"other column(s) {', '.join(other[:8])}")
+    order = [c for c in got if c in exp]
+    if not missing and not near and not other and order != exp:
+        parts.append("the columns are in another order")
+    return "; ".join(parts)

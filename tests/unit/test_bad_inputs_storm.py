@@ -356,9 +356,17 @@ PIPELINE_ERRORS = [
 ]
 _SECTIONS = "\n[[pipeline.sections]]\nstart = {a}\nend = {b}\n"
 PIPELINE_APPENDED = [
-    ("sections-overlap", _SECTIONS.format(a=0.0, b=150.0) + _SECTIONS.format(a=100.0, b=200.0)),
-    ("sections-gap", _SECTIONS.format(a=0.0, b=50.0) + _SECTIONS.format(a=100.0, b=200.0)),
-    ("sections-beyond-line", _SECTIONS.format(a=0.0, b=500.0)),
+    (
+        "sections-overlap",
+        _SECTIONS.format(a=0.0, b=150.0) + _SECTIONS.format(a=100.0, b=200.0),
+        "pipeline.sections[1].start",
+    ),
+    (
+        "sections-gap",
+        _SECTIONS.format(a=0.0, b=50.0) + _SECTIONS.format(a=100.0, b=200.0),
+        "pipeline.sections[1].start",
+    ),
+    ("sections-beyond-line", _SECTIONS.format(a=0.0, b=500.0), "pipeline.sections[0].end"),
 ]
 PIPELINE_DEFECTS = [
     (
@@ -410,7 +418,7 @@ PIPELINE_DEFECTS = [
 @pytest.mark.parametrize(
     ("text", "field"),
     [pytest.param(_edit(PIPELINE, *c[1:3]), c[3], id=c[0]) for c in PIPELINE_ERRORS]
-    + [pytest.param(PIPELINE + extra, "pipeline", id=name) for name, extra in PIPELINE_APPENDED]
+    + [pytest.param(PIPELINE + extra, key, id=name) for name, extra, key in PIPELINE_APPENDED]
     + [
         pytest.param(_edit(PIPELINE, *c[1:3]), c[3], id=c[0])  # fixed by H18
         for c in PIPELINE_DEFECTS

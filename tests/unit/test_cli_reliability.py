@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import shutil
 from pathlib import Path
 
 import pytest
@@ -22,8 +23,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "reliability_case.t
 
 def _tiny(tmp_path: Path, **changes: str) -> Path:
     text = EXAMPLE.read_text(encoding="utf-8")
-    hindcast = EXAMPLE.parent / "hindcast_synthetic.csv"
-    text = text.replace('"hindcast_synthetic.csv"', json.dumps(str(hindcast)))
+    shutil.copy(EXAMPLE.parent / "hindcast_synthetic.csv", tmp_path)  # inside the case folder
     subs = {
         "max_storms": "40",
         "block_size": "20",
@@ -40,7 +40,7 @@ def _tiny(tmp_path: Path, **changes: str) -> Path:
 
 
 def test_tiny_case_json_figures_and_resume(tmp_path, capsys):
-    case = _tiny(tmp_path)
+    case = _tiny(tmp_path, return_period="1000.0")  # 40 times the 25-year record
     out = tmp_path / "out"
     args = ["reliability", str(case), "--out", str(out), "--workers", "0", "--json"]
     assert main([*args, "--no-progress"]) == 0
@@ -89,6 +89,8 @@ def test_tiny_case_json_figures_and_resume(tmp_path, capsys):
         assert "storm_seed and interactions" in e["importance"]
     d = first["design"]
     assert d["design_displacement"] >= d["governing"]["median"]
+    assert d["return_period"] == 1000.0  # beyond 4 records: metocean's extrapolation note
+    assert any(n.startswith("design: return periods up to 1000 years") for n in first["notes"])
     for name in (
         "exceedance.png",
         "convergence.png",

@@ -74,6 +74,19 @@ def test_seed_mapping_and_rank_importance():
     imp = rank_importance(x, y, ["a", "b"])
     assert imp["a"] / imp["b"] == pytest.approx(4.0, rel=0.15)
     assert imp["storm_seed and interactions"] < 0.05
+    assert sum(imp.values()) == pytest.approx(1.0)
+
+
+def test_rank_importance_shares_sum_to_one_with_correlated_columns():
+    """A small block whose columns are nearly collinear: raw SRRC² (about 1 + 2·0.99·c1·c2 per
+    unit variance) would sum well above 1; the printed shares sum to one."""
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=20)
+    x = np.column_stack([a, a + 0.05 * rng.normal(size=20), rng.normal(size=20)])
+    y = 3.0 * x[:, 0] - 2.0 * x[:, 1] + 0.3 * rng.normal(size=20)
+    imp = rank_importance(x, y, ["a", "b", "c"])
+    assert all(v >= 0.0 for v in imp.values())
+    assert sum(imp.values()) == pytest.approx(1.0)
 
 
 def test_climate_current_sets_the_storm_current_by_hand():

@@ -75,6 +75,9 @@ def test_clay_and_rock(tmp_path):
     ).replace('model = "sand"', 'model = "clay"')
     assert isinstance(_load(tmp_path, SIMPLE + clay).seabed.seabed(), Clay)
     rock = BASE.replace('model = "sand"', 'model = "rock"')
+    with pytest.raises(CaseFileError, match="submerged_unit_weight does not apply to model"):
+        _load(tmp_path, SIMPLE + rock)  # a sand key on rock: refused, not silently unused
+    rock = rock.replace("submerged_unit_weight = 9.0e3\n", "friction_coefficient = 0.6\n")
     assert isinstance(_load(tmp_path, SIMPLE + rock).seabed.seabed(), Rock)
 
 

@@ -238,6 +238,8 @@ def _run_section(
                 )
     notes += sorted({str(w.message) for w in caught if issubclass(w.category, Warning)})
     notes += penetration_outside_validity(rows)
+    if sec.gap:
+        notes.insert(0, sec.gap)
     checks = [
         _clean({k: v for k, v in r.as_dict().items() if k != "details"} | {"level": "absolute"
                if r.name.startswith("absolute") else "vertical", "details": r.details})

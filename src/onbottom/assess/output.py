@@ -25,24 +25,33 @@ Figures are embedded (inline SVG, PNG as data URIs): the report is one self-cont
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
 import hashlib
 import html
 import json
 import math
+import os
 import platform
+import socket
 import subprocess
 from pathlib import Path
 from typing import Any
 
 from onbottom._version import __version__
 from onbottom.assess.core import Assessment
+from onbottom.errors import InputError
 from onbottom.results import atomic_write, save_dataset, write_text_atomic
 
 __all__ = [
     "CLAUSES",
+    "LOCK_NAME",
+    "MARK_NAME",
+    "RELIABILITY_NAMES",
     "RESULTS_KEYS",
     "VALIDITY",
+    "OutputFolder",
+    "claim_output_folder",
     "comparison",
     "format_value",
     "provenance_block",
@@ -490,6 +499,7 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
     e, fv = html.escape, format_value
     out = [
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
+        f'<meta name="generator" content="onbottom assess {e(__version__)}">',
         f"<title>On-bottom stability assessment — {e(a.route.name)}</title>",
         f"<style>{_CSS}</style></head><body>",
         f"<h1>On-bottom stability assessment — {e(a.route.name)}</h1>",
@@ -685,3 +695,187 @@ def write_outputs(
     else:
         why = "report.pdf not asked for"
     return {"files": [str(f) for f in files], "pdf": why}
+
+
+# ---- the output folder: whose files, which run -----------------------------------------------
+MARK_NAME = ".onbottom-assess"
+"""The file that marks a folder as written by ``onbottom assess`` (its files may be replaced)."""
+
+LOCK_NAME = ".onbottom-assess.lock"
+"""The lock file of the run writing a folder (its process id and host)."""
+
+_OWN_NAMES = frozenset(
+    {"results.json", "dynamic.nc", "report.html", "report.pdf", "sections", "pipeline.nc"}
+)
+
+RELIABILITY_NAMES = frozenset(
+    {
+        "campaign.zarr",
+        "design.zarr",
+        "reliability.json",
+        "exceedance.png",
+        "convergence.png",
+        "importance.png",
+        "design.png",
+        "report.html",
+        "tables",
+    }
+)
+"""What ``onbottom reliability`` writes into its ``--out``."""
+_GENERATOR = '<meta name="generator" content="onbottom'
+
+
+class OutputFolder:
+    """The ``--out`` folder of ``onbottom assess``, held for one run (:func:`claim_output_folder`;
+    a context manager: the lock file is removed on exit). ``notes``: what was found (a stale
+    lock taken over)."""
+
+    def __init__(self, path: Path, notes: list[str], lock: Path | None = None) -> None:
+        self.path = path
+        self.notes = notes
+        self.lock = path / LOCK_NAME if lock is None else lock
+
+    def __enter__(self) -> OutputFolder:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.release()
+
+    def release(self) -> None:
+        """Remove the lock file if it is still this process's."""
+        lock = self.lock
+        try:
+            if _lock_owner(lock)[0] == os.getpid():
+                lock.unlink()
+        except OSError:
+            pass
+
+
+def _refuse(message: str) -> InputError:
+    err = InputError(message)
+    err.field = "--out"  # type: ignore[attr-defined]
+    return err
+
+
+def _foreign(out: Path, mark: str, own: frozenset[str]) -> list[str]:
+    """Entries of ``out`` that the command did not write (empty: the folder is its own or
+    empty). With the ``mark`` file every entry is taken as the tool's; without it (a folder of
+    an older run) only the tool's names ``own``, and a report.html carrying its mark."""
+    entries = sorted(out.iterdir(), key=lambda q: q.name)
+    if (out / mark).is_file():
+        return []
+    names = own | {mark, mark + ".lock"}
+    foreign = [
+        q.name
+        for q in entries
+        if q.name not in names
+        and not any(q.name.startswith(n) for n in names)  # its partial and temporary files
+        and not (q.name.startswith(".") and q.name.endswith(".tmp"))
+    ]
+    page = out / "report.html"
+    if page.is_file():
+        try:
+            with page.open("rb") as fh:
+                head = fh.read(4096).decode("utf-8", "replace")
+        except OSError:
+            head = ""
+        if _GENERATOR not in head:
+            foreign.append("report.html")
+    return foreign
+
+
+def _lock_owner(lock: Path) -> tuple[int | None, str]:
+    """(process id, host) written in a lock file; (None, "") if unreadable."""
+    try:
+        pid, _, host = lock.read_text(encoding="utf-8").strip().partition(" ")
+        return int(pid), host
+    except (OSError, ValueError):
+        return None, ""
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # a process of another user
+    except OSError:
+        return True
+    return True
+
+
+def claim_output_folder(
+    out: str | Path,
+    *,
+    force: bool = False,
+    command: str = "assess",
+    own: frozenset[str] = _OWN_NAMES,
+) -> OutputFolder:
+    """Check and lock ``--out`` for one ``onbottom assess`` run (or ``command``'s, writing the
+    names ``own``: ``onbottom reliability`` with :data:`RELIABILITY_NAMES`).
+
+    * the filesystem root and the home folder: refused (as ``onbottom report``'s
+      :func:`onbottom.report.build.check_report_folder`; an assessment writes report.html,
+      results.json, dynamic.nc and sections/ into the folder);
+    * a folder holding files that onbottom did not write (no :data:`MARK_NAME`, and a name
+      that is not the tool's, or a report.html without its generator mark): refused unless
+      ``force``;
+    * a folder that another run is writing (:data:`LOCK_NAME` of a live process on this
+      host): refused, naming the process; a lock left by a process that is gone (killed) is
+      taken over, with a note.
+
+    Returns the held :class:`OutputFolder` (use it in ``with``); every refusal is an
+    :class:`~onbottom.errors.InputError` with ``field = "--out"``.
+    """
+    p = Path(out).expanduser()
+    full = p.resolve()
+    if full.parent == full or full == Path.home().resolve():
+        where = "the filesystem root" if full.parent == full else "the home folder"
+        raise _refuse(
+            f"--out = {str(p)!r} is invalid: onbottom {command} needs a folder of its own,"
+            f" not {where} (e.g. --out {command}_results)"
+        )
+    if p.exists() and not p.is_dir():
+        raise _refuse(f"--out = {str(p)!r} is invalid: it is a file, expected a folder")
+    notes: list[str] = []
+    if p.is_dir() and not force:
+        foreign = _foreign(p, f".onbottom-{command}", own)
+        if foreign:
+            shown = ", ".join(foreign[:5]) + (
+                f" and {len(foreign) - 5} more" if len(foreign) > 5 else ""
+            )
+            raise _refuse(
+                f"--out = {str(p)!r} is invalid: it holds files that onbottom did not write"
+                f" ({shown}); choose another folder or pass --force to write there anyway"
+            )
+    p.mkdir(parents=True, exist_ok=True)
+    lock = p / f".onbottom-{command}.lock"
+    me = f"{os.getpid()} {socket.gethostname()}"
+    for _ in range(2):
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            pid, host = _lock_owner(lock)
+            if pid is not None and host == socket.gethostname() and not _alive(pid):
+                notes.append(
+                    f"{lock} was left by process {pid}, which is gone (killed?): taken over"
+                )
+                with contextlib.suppress(OSError):
+                    lock.unlink()
+                continue
+            who = f"process {pid} on {host or 'an unknown host'}" if pid else "another run"
+            raise _refuse(
+                f"--out = {str(p)!r} is in use: {who} is writing it (lock file {lock}); wait"
+                " for it to finish or choose another --out (if no such run exists, delete the"
+                " lock file)"
+            ) from None
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(me + "\n")
+        break
+    else:  # pragma: no cover - two takeovers raced
+        raise _refuse(f"--out = {str(p)!r} is in use: its lock file {lock} keeps reappearing")
+    mark = p / f".onbottom-{command}"
+    if not mark.is_file():
+        write_text_atomic(mark, f"written by onbottom {command}: its files may be replaced\n")
+    return OutputFolder(p, notes, lock)

@@ -30,6 +30,7 @@ the NetCDF (records off: envelopes only) is ``pipeline.nc`` in the output folder
 
 from __future__ import annotations
 
+import logging
 import time
 from pathlib import Path
 from typing import Any
@@ -121,17 +122,29 @@ def run_governing_pipeline(
         sample_interval=setup.sample_interval,
     )
     output = None if out is None else Path(out) / "pipeline.nc"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        r = simulate_pipeline(
-            model,
-            kin,
-            duration=p.duration,
-            settings=settings,
-            output=output,
-            attrs={"assess_section": gov["section"], "combination": gov["combination"]},
-            identity_extra={"assess": gov},
-        )
+    from onbottom.errors import ResultFileError
+
+    def run(resume: str) -> Any:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            return simulate_pipeline(
+                model,
+                kin,
+                duration=p.duration,
+                settings=settings,
+                output=output,
+                attrs={"assess_section": gov["section"], "combination": gov["combination"]},
+                identity_extra={"assess": gov},
+                resume=resume,
+            )
+
+    try:
+        r = run("auto")
+    except ResultFileError as exc:
+        # a checkpoint or partial pipeline.nc of other inputs (an edited [pipeline], another
+        # governing storm): assess owns the folder and has no --restart; start this run afresh
+        logging.getLogger(__name__).warning("pipeline FE started afresh: %s", exc)
+        r = run("never")
     env = r.envelopes
     return gov | {
         "length_m": p.length,

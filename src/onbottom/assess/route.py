@@ -249,6 +249,9 @@ class Section:
     document : dict
         The section's inputs as plain data, reported in ``results.json``
         (``stability_document``: the ``onbottom stability`` case of the section).
+    gap : str
+        Why the KP range before this section (from the previous section's end) is not
+        assessed, with that range; empty: the sections meet. Reported in the section's notes.
     """
 
     name: str
@@ -267,6 +270,7 @@ class Section:
     trial_storm: TrialStorm | None = None
     identity: str = ""
     document: dict[str, Any] = field(default_factory=dict)
+    gap: str = ""
 
     def __post_init__(self) -> None:
         if not self.name:

@@ -58,9 +58,16 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal, NoReturn
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, find_key_line, parse_case, read_toml
+from onbottom._casefile import (
+    CaseFileError,
+    StrictModel,
+    contained,
+    find_key_line,
+    parse_case,
+    read_toml,
+)
 from onbottom._version import __version__
 from onbottom.assess.route import (
     ALLOWABLE_OVER_D,
@@ -84,7 +91,9 @@ from onbottom.cases.stability import (
     WavesTable,
     _check_section,
     check_options,
+    viscosity_not_used,
 )
+from onbottom.constants import KINEMATIC_VISCOSITY_SEAWATER
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
@@ -104,6 +113,10 @@ __all__ = [
     "section_identity",
     "trial_pipe",
 ]
+
+ALLOWABLE_MAX_OVER_D = 10.0
+"""Largest user allowable displacement over D: the storms' runaway stop (``[solver]
+max_displacement_over_d``, 10) and F109's largest criterion (10D, generalized method)."""
 
 EXAMPLE = "assess_example.toml"
 """The embedded example route (package data ``onbottom/data/``)."""
@@ -137,6 +150,12 @@ class RouteSection(StrictModel):
     waves: WavesTable | None = None
     current: CurrentTable | None = None
     combinations: list[CombinationTable] = Field(default_factory=list)
+    gap_reason: str | None = Field(
+        None,
+        min_length=1,
+        description="why the KP range between the section before and this one is not assessed"
+        " (a crossing, a landfall by HDD); required for a gap, printed in the report [-]",
+    )
 
     @model_validator(mode="after")
     def _kp_and_metocean(self) -> RouteSection:
@@ -183,7 +202,14 @@ class RouteTable(StrictModel):
 
 class RouteEnvironmentTable(StrictModel):
     water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
-    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
+    kinematic_viscosity: float = Field(
+        KINEMATIC_VISCOSITY_SEAWATER,
+        ge=1.0e-7,
+        le=1.0e-4,
+        description="ν [m²/s] (not used: default only)",
+    )
+
+    _nu = field_validator("kinematic_viscosity")(viscosity_not_used)
 
 
 class RouteDesignTable(DesignTable):
@@ -413,11 +439,12 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             _fail(
                 file,
                 text,
-                f"route.sections[{b}].kp_start_km",
+                _kp_key(sections[b], b, "start"),
                 f"route.sections[{b}] ({sections[b].name!r}) is invalid: its KP range"
                 f" [{sections[b].kp_start:g}, {sections[b].kp_end:g}] m overlaps section"
                 f" {sections[a].name!r} [{sections[a].kp_start:g}, {sections[a].kp_end:g}] m",
             )
+    _check_kp(sections, file, text)
     for i, s in enumerate(sections):
         if s.metocean is not None and s.metocean not in case.metocean:
             _fail(
@@ -438,6 +465,13 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
     dynamic_curve_files(case, file, text)
     if not (case.levels.absolute or case.levels.generalized or case.levels.dynamic):
         _fail(file, text, "levels", "levels: every level is switched off; nothing to run")
+    _check_allowable(case, file, text)
+    default_checks = RouteDesignTable.model_fields["checks"].default_factory()
+    if list(case.design.checks) != list(default_checks):
+        _fail(file, text, "design.checks",
+              f"design.checks = {list(case.design.checks)!r} is not used by onbottom assess: it"
+              f" runs the design checks {', '.join(default_checks)} at every level; remove the"
+              " key (it selects the checks of onbottom stability)")  # fmt: skip
     if case.levels.dynamic and case.solve_for == "none":
         pass  # dynamic runs at the given weight only
     # each section through the stability and storm loaders (their checks, their messages)
@@ -462,6 +496,8 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             route_key = _route_key(case, i, getattr(exc, "field", None) or "")
             inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
                            str(exc))  # fmt: skip
+            for inner_key, outer_key in _STORM_KEYS.items():
+                inner = re.sub(rf"\b{re.escape(inner_key)}\b", outer_key, inner)
             line = find_key_line(text, route_key)
             where = f"{file}{f', line {line}' if line else ''}"
             raise CaseFileError(
@@ -474,6 +510,90 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             raise CaseFileError(
                 f"{file}: {key} ({s.name!r}): {exc}", field=key, file=file
             ) from None
+
+
+MAX_ROUTE_KM = 2000.0
+"""Longest route accepted [km]: the longest subsea pipelines are about 1200 km (Nord Stream,
+1224 km); a longer route is KP typed in metres under a ``_km`` key."""
+
+MIN_SECTION_M = 10.0
+"""Shortest section accepted [m]: a route's KP sections are hundreds of metres to kilometres;
+a shorter one is KP typed in km under a ``_m`` key."""
+
+KP_TOLERANCE_M = 1.0e-3
+"""Largest gap or misfit between one section's KP end and the next one's start [m]."""
+
+
+def _kp_key(s: RouteSection, i: int, end: str) -> str:
+    unit = "m" if s.kp_start_m is not None else "km"
+    return f"route.sections[{i}].kp_{end}_{unit}"
+
+
+def _check_kp(sections: list[RouteSection], file: str, text: str | None) -> None:
+    """KP sections in order, one after the other (a gap needs ``gap_reason`` on the section
+    after it), and lengths that can be a route's (metres typed as km, or km as metres)."""
+    for i, s in enumerate(sections):
+        if s.kp_end - s.kp_start < MIN_SECTION_M:
+            _fail(file, text, _kp_key(s, i, "end"),
+                  f"route.sections[{i}] ({s.name!r}) is invalid: it is"
+                  f" {s.kp_end - s.kp_start:.4g} m long, shorter than {MIN_SECTION_M:g} m (KP in"
+                  " km given under kp_start_m/kp_end_m?)")  # fmt: skip
+    total = sections[-1].kp_end - sections[0].kp_start
+    if max(s.kp_end for s in sections) - min(s.kp_start for s in sections) > MAX_ROUTE_KM * 1e3:
+        i = max(range(len(sections)), key=lambda k: sections[k].kp_end)
+        s = sections[i]
+        _fail(file, text, _kp_key(s, i, "end"),
+              f"route.sections[{i}] ({s.name!r}) is invalid: the route would be"
+              f" {total / 1e3:.4g} km long, more than {MAX_ROUTE_KM:g} km (the longest subsea"
+              " pipelines are about 1200 km): KP in metres given under kp_start_km/kp_end_km?"
+              " Use kp_start_m/kp_end_m for metres")  # fmt: skip
+    for i in range(1, len(sections)):
+        a, b = sections[i - 1], sections[i]
+        if b.kp_start < a.kp_start:
+            _fail(file, text, _kp_key(b, i, "start"),
+                  f"route.sections[{i}] ({b.name!r}) is invalid: KP {b.kp_start:g} m comes"
+                  f" before section {a.name!r} (KP {a.kp_start:g} m) listed above it: list"
+                  " the sections in KP order")  # fmt: skip
+    for i in range(1, len(sections)):
+        a, b = sections[i - 1], sections[i]
+        gap = b.kp_start - a.kp_end
+        if gap > KP_TOLERANCE_M and b.gap_reason is None:
+            _fail(file, text, _kp_key(b, i, "start"),
+                  f"route.sections[{i}] ({b.name!r}) is invalid: it starts at KP"
+                  f" {b.kp_start:g} m, {gap:.4g} m after section {a.name!r} ends (KP"
+                  f" {a.kp_end:g} m): the route has a hole. Make the sections meet, or say"
+                  f" why the KP range is not assessed with route.sections[{i}].gap_reason ="
+                  ' "..." (a crossing, a landfall by HDD)')  # fmt: skip
+        if b.gap_reason is not None and gap <= KP_TOLERANCE_M:
+            _fail(file, text, f"route.sections[{i}].gap_reason",
+                  f"route.sections[{i}].gap_reason is given but there is no gap before"
+                  f" section {b.name!r}: remove it")  # fmt: skip
+    if sections[0].gap_reason is not None:
+        _fail(file, text, "route.sections[0].gap_reason",
+              "route.sections[0].gap_reason is invalid on the first section (no section before"
+              " it): remove it")  # fmt: skip
+
+
+def _check_allowable(case: RouteCase, file: str, text: str | None) -> None:
+    """A user allowable displacement within (0, :data:`ALLOWABLE_MAX_OVER_D`·D] of the given
+    pipe: the storms of the dynamic level stop at that runaway displacement, so a larger
+    allowable would pass every design."""
+    d = case.dynamic
+    if not case.levels.dynamic or d.allowable != "user" or d.allowable_displacement_m is None:
+        return
+    sc = parse_case(StabilityCase, case.stability_document(0))
+    section = sc.section()
+    pipe = section if hasattr(section, "outer_diameter") else section.pipe(case.pipe.condition)
+    diameter = float(pipe.outer_diameter)
+    top = ALLOWABLE_MAX_OVER_D * diameter
+    if d.allowable_displacement_m > top:
+        _fail(file, text, "dynamic.allowable_displacement_m",
+              f"dynamic.allowable_displacement_m = {d.allowable_displacement_m:g} m is invalid:"
+              f" {d.allowable_displacement_m / diameter:.4g} D of the pipe (D ="
+              f" {diameter:.4g} m), above {ALLOWABLE_MAX_OVER_D:g}D = {top:.4g} m. The storms"
+              f" stop at a runaway displacement of {ALLOWABLE_MAX_OVER_D:g}D, and F109's"
+              " criteria run from 0.5D (virtually stable, §3.5) to 10D (generalized"
+              " method, §3.6): give an allowable in (0, 10D]")  # fmt: skip
 
 
 def _route_key(case: RouteCase, i: int, field: str) -> str:
@@ -489,16 +609,65 @@ def _route_key(case: RouteCase, i: int, field: str) -> str:
     name = case.route.sections[i].metocean
     if top in ("waves", "current", "combinations") and name is not None:
         return f"metocean.{name}.{field}"
+    if field in _STORM_KEYS:  # the storm document's keys come from [dynamic]
+        return _STORM_KEYS[field]
+    if top in ("storm", "run", "solver"):
+        return "dynamic"
     return f"{key}.{field}"
+
+
+_STORM_KEYS = {
+    "storm.peak_hours": "dynamic.peak_hours",
+    "storm.build_up_hours": "dynamic.build_up_hours",
+    "storm.time_step": "dynamic.time_step",
+    "storm.seed": "dynamic.first_seed",
+    "run.seeds": "dynamic.seeds",
+}
+"""Keys of a section's storm document → the route file's keys they are taken from."""
 
 
 def parse_route_case(
     doc: dict[str, Any], *, file: str | os.PathLike = "<route>", text: str | None = None
 ) -> RouteCase:
-    """Validate a parsed route document (schema, cross-table rules, every section)."""
+    """Validate a parsed route document (schema, cross-table rules, every section).
+
+    The files that ``[hydro]`` names (``coefficient_table``, ``[hydro.fourier] table``) are
+    resolved against the case file's folder and must lie in its folder tree (the one rule of
+    :func:`onbottom._casefile.contained`); without a file (``file`` in angle brackets) they
+    are taken as given."""
+    doc = _resolve_files(doc, str(file), text)
     case = parse_case(RouteCase, doc, file=file, text=text)
     _check_route(case, str(file), text)
     return case
+
+
+_FILE_KEYS = (("coefficient_table",), ("fourier", "table"))
+"""Keys of ``[hydro]`` naming a file (the storm documents carry them resolved)."""
+
+
+def _resolve_files(doc: dict[str, Any], file: str, text: str | None) -> dict[str, Any]:
+    """``doc`` with the files of :data:`_FILE_KEYS` made absolute and checked to lie in the
+    case file's folder tree (an error names the key and its line)."""
+    hydro = doc.get("hydro") if isinstance(doc, dict) else None
+    if file.startswith("<") or not isinstance(hydro, dict):
+        return doc
+    base = Path(file).resolve().parent
+    doc = copy.deepcopy(doc)
+    for keys in _FILE_KEYS:
+        table = doc["hydro"]
+        for k in keys[:-1]:
+            table = table.get(k) if isinstance(table, dict) else None
+        value = table.get(keys[-1]) if isinstance(table, dict) else None
+        if not isinstance(value, str) or not value or value == "example":
+            continue  # absent, the built-in table or a wrong type (the schema names it)
+        field = "hydro." + ".".join(keys)
+        try:
+            p = Path(value).expanduser()
+            table[keys[-1]] = str(contained(value, p if p.is_absolute() else base / p,
+                                            folder=base, field=field))  # fmt: skip
+        except CaseFileError as exc:
+            _fail(file, text, field, str(exc))
+    return doc
 
 
 def load_route_case(path: str | os.PathLike) -> RouteCase:
@@ -628,6 +797,19 @@ def _build_section(case: RouteCase, i: int) -> Section:
         trial_storm=trials,
         identity=section_identity(case, i),
         document=doc,
+        gap=_gap(case, i),
+    )
+
+
+def _gap(case: RouteCase, i: int) -> str:
+    """The note of the gap before section ``i`` (its ``gap_reason``), or empty."""
+    s = case.route.sections[i]
+    if i == 0 or s.gap_reason is None:
+        return ""
+    a = case.route.sections[i - 1].kp_end
+    return (
+        f"KP {a / 1e3:g}–{s.kp_start / 1e3:g} km before this section is not assessed:"
+        f" {s.gap_reason}"
     )
 
 

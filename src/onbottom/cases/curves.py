@@ -2,7 +2,10 @@
 
 The ``[curves]`` table (the grid K × M × N × soils × criteria and the storm, soil and bisection
 settings) and the optional ``[hydro]`` and ``[environment]`` tables (strict tables of
-:mod:`onbottom.cases.stability`); other tables of a shared case file are accepted and not used.
+:mod:`onbottom.cases.stability`); other tables of a shared case file are accepted and not used,
+and so is ``[environment] water_depth`` (required by the shared table; the curves are given in
+K, M and N, without a depth). ``[hydro] reductions = false`` is refused: every point applies
+F109's permeable-seabed reduction on sand.
 :func:`build_curve_settings` turns a parsed case into
 :class:`~onbottom.study.stability_curves.CurveSettings` (the API of
 :func:`~onbottom.study.stability_curves.stability_curves`), :func:`check_budget` refuses a grid
@@ -164,6 +167,13 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
     chk = Checker(case, text)
     c = cfg.curves
     h = cfg.hydro
+    if not h.reductions:
+        chk.fail(
+            "hydro.reductions",
+            "hydro.reductions = false is not used by onbottom curves: every curve point applies"
+            " F109's permeable-seabed load reduction on sand (none on clay), as the generalized"
+            " method's curves do; remove the key",
+        )
     try:
         settings = CurveSettings(
             diameter=c.diameter,
@@ -196,6 +206,9 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
         if obj == "CurveSettings" and attr:
             key = "environment.water_density" if attr == "water_density" else f"curves.{attr}"
             chk.fail(key, key + msg[len(head) :])
+        field = getattr(exc, "field", None)
+        if isinstance(field, str) and field.startswith("hydro."):
+            chk.fail(field, msg)
         chk.fail("hydro", f"[hydro] is invalid: {msg}")
     d = c.diameter
     tps: list[tuple[float, float, float]] = []

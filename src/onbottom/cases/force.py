@@ -30,7 +30,7 @@ def case_file(value: str, base_dir: str | Path | None, where: str) -> Path:
             p = Path(base_dir) / p
         p = contained(value, p, folder=base_dir, field=where)
     if not p.is_file():
-        raise InputError(f"{where} = {value!r} is invalid: no such file ({p})")
+        raise _named(f"{where} = {value!r} is invalid: no such file ({p})", where)
     return p
 
 
@@ -62,20 +62,71 @@ def force_model_from_case(
             f"hydro.coefficient_table is given but hydro.model = {name!r}: a coefficient table"
             " is for model = 'morison' (per-sea-state C_D, C_M, C_L)"
         )
+    _check_coefficients(hydro, name, table)
     if name == "morison":
         from onbottom.hydro.force_model import MorisonLift
 
         if table is not None:
             from onbottom.hydro.morison_table import MorisonCoefficientTable
 
-            rule = MorisonCoefficientTable.from_csv(
-                case_file(table, base_dir, "hydro.coefficient_table")
-            )
+            where = "hydro.coefficient_table"
+            path = case_file(table, base_dir, where)
+            try:
+                rule = MorisonCoefficientTable.from_csv(path)
+            except InputError as exc:
+                raise _named(f"{where} = {table!r} is invalid: {exc}", where) from None
             return MorisonLift.per_sea_state(rule, added_mass=hydro.added_mass_coefficient)
         return MorisonLift(
             cd=hydro.cd, cm=hydro.cm, cl=hydro.cl, added_mass=hydro.added_mass_coefficient
         )
     return build_force_model(name, _options(name, getattr(hydro, name), base_dir))
+
+
+_COEFFICIENTS = ("cd", "cm", "cl", "added_mass_coefficient")
+
+
+def _named(message: str, field: str) -> InputError:
+    err = InputError(message)
+    err.field = field  # type: ignore[attr-defined]
+    return err
+
+
+def _check_coefficients(hydro: Any, name: str, table: Any) -> None:
+    """Constant Morison coefficients that no model reads, or that make no force, are errors:
+    ``cd``, ``cm``, ``cl`` other than their defaults with ``model`` other than morison or with
+    a ``coefficient_table`` (which gives them per sea state), and all three zero."""
+    fields = getattr(type(hydro), "model_fields", None)
+    if not fields:
+        return
+    defaults = {k: fields[k].default for k in _COEFFICIENTS if k in fields}
+    changed = [k for k, v in defaults.items() if getattr(hydro, k) != v]
+    if name != "morison":
+        if changed:
+            k = changed[0]
+            raise _named(
+                f"hydro.{k} = {getattr(hydro, k)!r} is not used by hydro.model = {name!r} (the"
+                f" constant Morison coefficients are for model = 'morison'); remove"
+                f" {', '.join(f'hydro.{c}' for c in changed)} or set model = 'morison'",
+                f"hydro.{k}",
+            )
+        return
+    if table is not None:
+        given = [k for k in changed if k != "added_mass_coefficient"]
+        if given:
+            raise _named(
+                f"hydro.{given[0]} = {getattr(hydro, given[0])!r} is not used with"
+                " hydro.coefficient_table (the table gives C_D, C_M, C_L per sea state); remove"
+                f" {', '.join(f'hydro.{c}' for c in given)}",
+                f"hydro.{given[0]}",
+            )
+        return
+    if hydro.cd == 0.0 and hydro.cm == 0.0 and hydro.cl == 0.0:
+        raise _named(
+            "hydro.cd = hydro.cm = hydro.cl = 0 is invalid: no wave or current force at all"
+            " (F109 §3.4.3: C_D, C_M, C_L > 0); give the coefficients or remove the keys for"
+            " the defaults",
+            "hydro.cd",
+        )
 
 
 def _options(name: str, options: Any, base_dir: str | Path | None) -> Any:
@@ -90,4 +141,8 @@ def _options(name: str, options: Any, base_dir: str | Path | None) -> Any:
     from onbottom.hydro.fourier_table import FourierTable
 
     where = f"hydro.{name}.table"
-    return {**options, "table": FourierTable.load(case_file(value, base_dir, where))}
+    path = case_file(value, base_dir, where)
+    try:
+        return {**options, "table": FourierTable.load(path)}
+    except InputError as exc:
+        raise _named(f"{where} = {value!r} is invalid: {exc}", where) from None

@@ -126,6 +126,15 @@ class PipelineTable(StrictModel):
             raise ValueError("end_conditions: one name, or [start, end]")
         if len(self.end_springs) != 3 or any(k < 0 for k in self.end_springs):
             raise ValueError("end_springs: three values >= 0 (axial, lateral, rotational)")
+        ends = (
+            [self.end_conditions] if isinstance(self.end_conditions, str) else self.end_conditions
+        )
+        default = type(self).model_fields["end_springs"].get_default(call_default_factory=True)
+        if "spring" not in ends and list(self.end_springs) != list(default):
+            raise ValueError(
+                "end_springs is used by end_conditions = 'spring' only (no end is a spring"
+                " here): remove end_springs or set a spring end"
+            )
         return self
 
 
@@ -154,9 +163,16 @@ def _soil_for(
             )
             if getattr(section, k) is not None
         }
+        base = sb.model_dump(exclude_defaults=True)
+        if upd.get("model", sb.model) != sb.model:
+            # another soil model: the [seabed] keys it does not read are not inherited
+            from onbottom.cases.stability import _SOIL_KEYS_NOT_USED
+
+            for k in _SOIL_KEYS_NOT_USED[upd["model"]]:
+                base.pop(k, None)
         sb = parse_case(
             type(sb),
-            {**sb.model_dump(exclude_defaults=True), **upd},
+            {**base, **upd},
             file=file,
             text=text,
             root=root,
@@ -183,6 +199,29 @@ def _fail(p: Path, text: str | None, field: str, message: str) -> None:
     from onbottom.cases.stability import Checker
 
     Checker(p, text).fail(field, message)
+
+
+def _check_sections(p: Path, text: str | None, table: PipelineTable) -> None:
+    """``[[pipeline.sections]]`` cover [0, length], one after the other (errors name the key
+    and its line, not the model's internals)."""
+    secs = table.sections
+    if not secs:
+        return
+    if abs(secs[0].start) > 1e-9:
+        _fail(p, text, "pipeline.sections[0].start",
+              f"pipeline.sections[0].start = {secs[0].start:g} m is invalid: the sections cover"
+              f" the line from 0 to pipeline.length = {table.length:g} m; start at 0")  # fmt: skip
+    for i in range(1, len(secs)):
+        if abs(secs[i].start - secs[i - 1].end) > 1e-6:
+            _fail(p, text, f"pipeline.sections[{i}].start",
+                  f"pipeline.sections[{i}].start = {secs[i].start:g} m is invalid: the section"
+                  f" before ends at {secs[i - 1].end:g} m (sections follow each other, no gap"
+                  " or overlap)")  # fmt: skip
+    last = len(secs) - 1
+    if abs(secs[-1].end - table.length) > 1e-6:
+        _fail(p, text, f"pipeline.sections[{last}].end",
+              f"pipeline.sections[{last}].end = {secs[-1].end:g} m is invalid: the sections"
+              f" cover the line to pipeline.length = {table.length:g} m; end there")  # fmt: skip
 
 
 def _check_mesh(p: Path, text: str | None, table: PipelineTable, setup: StormSetup) -> None:
@@ -367,6 +406,7 @@ def load_pipeline_run(path: str | os.PathLike) -> PipelineStormRun:
     table = parse_case(PipelineTable, doc.get("pipeline") or {}, file=p, text=text, root="pipeline")
     setup = build_setup(case, p)
     _check_mesh(p, text, table, setup)
+    _check_sections(p, text, table)
     _check_chunks(p, text, table, setup)
     _check_animation(p, text, table)
     pipe = setup.pipe

@@ -4,11 +4,13 @@ table (``examples/reliability_case.toml``).
 ``[reliability]`` (strict; SI unless a key says otherwise):
 
 * ``limits``: displacement limits, each ``"0.5D"``-style (a multiple of the pipe's outer
-  diameter) or a number of metres (default ``["0.5D", "10D"]``);
+  diameter) or a number of metres (default ``["0.5D", "10D"]``); each once, and at most
+  ``[solver] max_displacement_over_d`` D (the storms stop there);
 * ``method``: ``"subset"`` (default), ``"importance"`` or ``"monte_carlo"``; ``target_cv``,
   ``max_storms`` (per limit), ``block_size`` (storms per block / per subset level),
   ``task_size`` (storms per Dask task), ``seed`` (openturns' generator);
-* ``storms_per_year`` (λ; required without a climate), ``design_life_years``;
+* ``storms_per_year`` (λ; required without a climate, refused beside one: the climate's
+  ``storm_rate`` is the rate), ``design_life_years``;
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
   ``sectors`` (1: omnidirectional, waves from the case's direction), ``pipe_heading_deg``,
   ``storm_rate`` (the POT threshold's target storms per year), ``current`` (true: the current
@@ -56,7 +58,9 @@ class ClimateTable(StrictModel):
 
 class DesignTable(StrictModel):
     return_period: float = Field(100.0, ge=1.0, le=1.0e4, description="[years]")
-    contour_points: int = Field(12, ge=4, le=360, description="IFORM contour points [-]")
+    contour_points: int = Field(
+        12, ge=8, le=360, description="IFORM contour points [-] (the contour needs >= 8)"
+    )
     seeds: int = Field(2, ge=1, le=1000, description="seeds per contour point [-]")
     top_points: int = Field(2, ge=1, le=360, description="points rerun with more seeds [-]")
     top_seeds: int = Field(8, ge=1, le=10000, description="seeds at those points [-]")
@@ -83,6 +87,21 @@ class ReliabilityCase(StrictModel):
     reliability: ReliabilityTable
 
 
+def _hindcast(case: Path, value: str, chk: Any) -> Path:
+    """The hindcast file of ``[reliability.climate]``: in the case file's folder tree, and a
+    file (errors name the key and its line, never the file's content)."""
+    from onbottom.cases.storm import case_relative
+
+    key = "reliability.climate.hindcast"
+    try:
+        path = case_relative(case, value, field=key)
+    except CaseFileError as exc:
+        chk.fail(key, str(exc))
+    if not path.is_file():
+        chk.fail(key, f"{key} = {value!r} is invalid: no file {path}")
+    return path
+
+
 _LIMIT = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*D\s*$")
 
 
@@ -106,7 +125,8 @@ def parse_limit(value: str | float, diameter: float) -> tuple[str, float]:
 def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     """Read a reliability case and build its :class:`ReliabilitySetup` (errors:
     :class:`CaseFileError` naming the key)."""
-    from onbottom.cases.storm import StormCase, build_setup, case_relative
+    from onbottom.cases.stability import Checker
+    from onbottom.cases.storm import StormCase, build_setup
     from onbottom.errors import InputError
 
     p = Path(path)
@@ -122,30 +142,61 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     storm_case = parse_case(StormCase, rest, file=p, text=text)
     setup = build_setup(storm_case, p)
     t = rel.reliability
+    chk = Checker(p, text)
     try:
         inputs = tuple(parameter_from_table(k, v) for k, v in t.inputs.items())
-        d = float(setup.pipe.outer_diameter)
-        limits = tuple(parse_limit(v, d) for v in t.limits)
     except InputError as exc:
-        raise CaseFileError(f"{p}: {exc}", field="reliability", file=str(p)) from None
+        chk.fail("reliability.inputs", str(exc))
+    d = float(setup.pipe.outer_diameter)
+    stop = float(storm_case.solver.max_displacement_over_d)
+    limits = []
+    for i, v in enumerate(t.limits):
+        key = f"reliability.limits[{i}]"
+        try:
+            label, metres = parse_limit(v, d)
+        except InputError as exc:
+            chk.fail(key, str(exc))
+        if metres > stop * d * (1.0 + 1e-9):
+            chk.fail(
+                key,
+                f"{key} = {v!r} ({metres:.4g} m = {metres / d:.4g} D) is invalid: the storm runs"
+                f" stop at solver.max_displacement_over_d = {stop:g} D, so a larger limit is"
+                f" never exceeded; give a limit in (0, {stop:g}D] (F109's criteria are 0.5D"
+                " and 10D) or raise solver.max_displacement_over_d",
+            )
+        same = [j for j, (_, m) in enumerate(limits) if abs(m - metres) <= 1e-9 * metres]
+        if same:
+            chk.fail(
+                key,
+                f"{key} = {v!r} is invalid: the same limit as reliability.limits[{same[0]}]"
+                f" ({metres:.4g} m); each limit once",
+            )
+        limits.append((label, metres))
     if t.climate is None and t.storms_per_year is None:
-        raise CaseFileError(
-            f"{p}: reliability.storms_per_year is needed without [reliability.climate]",
-            field="reliability.storms_per_year",
-            file=str(p),
+        chk.fail(
+            "reliability.storms_per_year",
+            "reliability.storms_per_year is needed without [reliability.climate] (the storm"
+            " rate λ [1/year])",
+        )
+    if t.climate is not None and t.storms_per_year is not None:
+        chk.fail(
+            "reliability.storms_per_year",
+            f"reliability.storms_per_year = {t.storms_per_year!r} conflicts with"
+            " [reliability.climate]: the storm rate is the hindcast's peaks-over-threshold"
+            f" rate (reliability.climate.storm_rate = {t.climate.storm_rate:g} per year);"
+            " remove one of them",
         )
     if t.design is not None and t.climate is None:
-        raise CaseFileError(
-            f"{p}: [reliability.design] needs [reliability.climate] (the contour's joint model)",
-            field="reliability.design",
-            file=str(p),
+        chk.fail(
+            "reliability.design",
+            "[reliability.design] needs [reliability.climate] (the contour's joint model)",
         )
     c = t.climate
     climate = (
         None
         if c is None
         else ClimateSettings(
-            hindcast=case_relative(p, c.hindcast),
+            hindcast=_hindcast(p, c.hindcast, chk),
             sectors=c.sectors,
             pipe_heading_deg=c.pipe_heading_deg,
             storm_rate=c.storm_rate,
@@ -153,20 +204,32 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
         )
     )
     design = None if t.design is None else ContourDesign(**t.design.model_dump())
-    return ReliabilitySetup(
-        storm=setup,
-        limits=limits,
-        seabed_model=storm_case.seabed.model,
-        inputs=inputs,
-        method=t.method,
-        target_cv=t.target_cv,
-        max_storms=t.max_storms,
-        block_size=t.block_size,
-        task_size=t.task_size,
-        seed=t.seed,
-        storms_per_year=t.storms_per_year,
-        design_life_years=t.design_life_years,
-        form_storms=t.form_storms,
-        climate=climate,
-        design=design,
-    )
+    if design is not None and design.top_points > design.contour_points:
+        chk.fail(
+            "reliability.design.top_points",
+            f"reliability.design.top_points = {design.top_points} is invalid: more than the"
+            f" contour's reliability.design.contour_points = {design.contour_points}",
+        )
+    try:
+        return ReliabilitySetup(
+            storm=setup,
+            limits=tuple(limits),
+            seabed_model=storm_case.seabed.model,
+            inputs=inputs,
+            method=t.method,
+            target_cv=t.target_cv,
+            max_storms=t.max_storms,
+            block_size=t.block_size,
+            task_size=t.task_size,
+            seed=t.seed,
+            storms_per_year=t.storms_per_year,
+            design_life_years=t.design_life_years,
+            form_storms=t.form_storms,
+            climate=climate,
+            design=design,
+        )
+    except InputError as exc:  # the setup's own checks, under the case file's keys
+        msg = re.sub(r"\b(?:ReliabilitySetup|ContourDesign|ClimateSettings)\.", "reliability.",
+                     str(exc))  # fmt: skip
+        m = re.match(r"(reliability\.[\w.]+)", msg)
+        chk.fail(m.group(1) if m else "reliability", msg)

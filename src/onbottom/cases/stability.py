@@ -28,7 +28,7 @@ from dataclasses import fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
 from onbottom.checks.design import CheckOptions
@@ -38,6 +38,7 @@ from onbottom.checks.evaluation import (
     StabilityInputs,
     penetration_outside_validity,
 )
+from onbottom.constants import KINEMATIC_VISCOSITY_SEAWATER
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.inputs import consistency
 from onbottom.inputs.environment import Environment, LoadCombination
@@ -110,6 +111,28 @@ class PipeTable(StrictModel):
             )
         if self.contents_density is not None and self.contents is not None:
             raise ValueError("give contents_density or [pipe.contents], not both")
+        if simple:
+            fields = type(self).model_fields
+            unused = (
+                [
+                    k
+                    for k in ("steel_density", "youngs_modulus")
+                    if getattr(self, k) != fields[k].default
+                ]
+                + [
+                    k
+                    for k in ("contents_density", "contents", "marine_growth")
+                    if getattr(self, k) is not None
+                ]
+                + (["layers"] if self.layers else [])
+            )
+            if unused:
+                raise ValueError(
+                    f"{', '.join(unused)} {'applies' if len(unused) == 1 else 'apply'} to the"
+                    " build-up form (steel_outer_diameter + wall_thickness) only: the simple"
+                    " form's outer_diameter and submerged_weight already hold them; remove"
+                    f" {'it' if len(unused) == 1 else 'them'}"
+                )
         return self
 
     @property
@@ -144,6 +167,27 @@ class PipeTable(StrictModel):
         )
 
 
+_SOIL_KEYS_USED = {
+    "sand": "submerged_unit_weight, friction_coefficient, d50",
+    "calcareous": "submerged_unit_weight, friction_coefficient, d50",
+    "clay": "undrained_shear_strength, submerged_unit_weight, unit_weight, friction_coefficient",
+    "rock": "friction_coefficient",
+    "coulomb": "friction_coefficient",
+}
+"""The soil keys each seabed model reads (besides initial_penetration and the trench)."""
+
+_SOIL_KEYS_NOT_USED = {
+    model: tuple(
+        k
+        for k in ("submerged_unit_weight", "unit_weight", "undrained_shear_strength", "d50")
+        if k not in used
+    )
+    for model, used in _SOIL_KEYS_USED.items()
+}
+"""Keys given for a model that does not read them: refused (a key that silently does nothing,
+such as a sand's γ' and d50 on rock, would hide a wrong seabed model)."""
+
+
 class SeabedTable(StrictModel):
     model: Literal["sand", "calcareous", "clay", "rock", "coulomb"] = "sand"
     submerged_unit_weight: float | None = Field(None, gt=0.0, le=2.0e4, description="γ' [N/m³]")
@@ -171,6 +215,13 @@ class SeabedTable(StrictModel):
             ]
             if missing:
                 raise ValueError(f"model = 'clay' needs {', '.join(missing)}")
+        unused = [k for k in _SOIL_KEYS_NOT_USED[self.model] if getattr(self, k) is not None]
+        if unused:
+            raise ValueError(
+                f"{', '.join(unused)} {'does' if len(unused) == 1 else 'do'} not apply to"
+                f" model = {self.model!r} (its keys: {_SOIL_KEYS_USED[self.model]}); remove"
+                f" {'it' if len(unused) == 1 else 'them'} or choose the model they belong to"
+            )
         return self
 
     def seabed(self) -> Sand | Clay | Rock:
@@ -195,10 +246,30 @@ class SeabedTable(StrictModel):
         return Rock(**mu)
 
 
+def viscosity_not_used(value: float) -> float:
+    """``environment.kinematic_viscosity``: only its default is accepted. No model of onbottom
+    reads ν (DNV-RP-F109's load coefficients and the time-domain force models are given for
+    the flow's K and M, without a Reynolds number): another value would be silently unused."""
+    if value != KINEMATIC_VISCOSITY_SEAWATER:
+        raise ValueError(
+            f"is not used by any model of onbottom (F109's coefficients and the force models"
+            f" take no Reynolds number): remove the key (default {KINEMATIC_VISCOSITY_SEAWATER:g}"
+            " m²/s)"
+        )
+    return value
+
+
 class EnvironmentTable(StrictModel):
     water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
     water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
-    kinematic_viscosity: float = Field(1.19e-6, ge=1.0e-7, le=1.0e-4, description="ν [m²/s]")
+    kinematic_viscosity: float = Field(
+        KINEMATIC_VISCOSITY_SEAWATER,
+        ge=1.0e-7,
+        le=1.0e-4,
+        description="ν [m²/s] (not used: default only)",
+    )
+
+    _nu = field_validator("kinematic_viscosity")(viscosity_not_used)
 
 
 class WavesTable(StrictModel):

@@ -29,7 +29,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, load_case_file
+from onbottom._casefile import CaseFileError, StrictModel, contained, load_case_file
 from onbottom.cases.force import force_model_from_case
 from onbottom.cases.stability import (
     Checker,
@@ -223,6 +223,8 @@ class _Keys:
         return self
 
     def __exit__(self, kind: Any, exc: BaseException | None, tb: Any) -> bool:
+        if isinstance(exc, CaseFileError) and exc.file is None and exc.field:
+            self.chk.fail(exc.field, str(exc))  # a key's error: now with the file and line
         if exc is None or isinstance(exc, CaseFileError) or not isinstance(exc, InputError):
             return False
         text = str(exc)
@@ -412,12 +414,15 @@ def _build_objects(
     )
 
 
-def case_relative(path: str | os.PathLike | None, name: str) -> Path:
-    """A path named in a case file: absolute as given, else relative to the case's folder."""
+def case_relative(path: str | os.PathLike | None, name: str, *, field: str) -> Path:
+    """A path named in a case file at key ``field``: relative to the case's folder, and inside
+    its folder tree (absolute or relative: :func:`onbottom._casefile.contained`); ``path``
+    None (a case built in memory): as given."""
     p = Path(name).expanduser()
-    if p.is_absolute() or path is None:
+    if path is None:
         return p
-    return Path(path).resolve().parent / p
+    base = Path(path).resolve().parent
+    return contained(name, p if p.is_absolute() else base / p, folder=base, field=field)
 
 
 def _flow_input(
@@ -449,13 +454,13 @@ def _flow_input(
             )
         except InputError as exc:
             raise _flow_error(file, "storm.height", f"storm.height/storm.period: {exc}") from None
-    series = case_relative(path, st.series)
+    series = case_relative(path, st.series, field="storm.series")
     if not series.is_file():
         raise _flow_error(
             file,
             "storm.series",
             f"storm.series = {st.series!r} is invalid: no file {series}"
-            " (a path relative to the case file's folder, or absolute)",
+            " (a path relative to the case file's folder)",
         )
     if st.sample_interval is not None:
         raise _flow_error(
@@ -477,8 +482,10 @@ def _flow_input(
 
 
 def _flow_error(file: str | None, field: str, message: str) -> CaseFileError:
-    """An error of the flow keys of ``[storm]``, naming the file (or ``<case>``) and ``field``."""
-    return CaseFileError(f"{file or '<case>'}: {message}", field=field, file=file)
+    """An error of the flow keys of ``[storm]`` naming ``field`` (the file and the key's line
+    are added where it is raised, by ``_Keys``)."""
+    del file
+    return CaseFileError(message, field=field)
 
 
 def load_storm_case(path: str | os.PathLike) -> StormSetup:

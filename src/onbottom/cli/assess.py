@@ -38,6 +38,49 @@ def _refuse_case_in_out(case: Path, out: Path) -> None:
         raise err
 
 
+def estimate(route: Any, *, workers: int | None) -> Any:
+    """The :class:`~onbottom.study.budget.Estimate` of a route's dynamic level: per section
+    and load combination, the seeds at the given design and, with a design variable, the
+    search's trials (about 3 + log2(range / tolerance), as the curves' bisection), each
+    a storm of ``[dynamic]`` build-up + peak at its time step; None without the dynamic level."""
+    import math
+
+    from onbottom.study import budget
+
+    if not route.levels.dynamic:
+        return None
+    d = route.dynamic
+    trials = 0
+    if route.variable == "concrete_thickness":
+        span, tol = route.design.thickness_max - route.design.thickness_min, d.thickness_tolerance_m
+    elif route.variable == "submerged_weight":
+        span, tol = route.design.weight_max - route.design.weight_min, d.weight_tolerance_n_per_m
+    else:
+        span, tol = 0.0, 1.0
+    if span > 0.0:
+        trials = 3 + math.ceil(math.log2(max(span / tol, 1.0)))
+    setups = [c.setup for s in route.sections for c in s.storms]
+    if not setups:
+        return None
+    n = len(setups) * d.seeds * (1 + trials)
+    st = setups[0]
+    tp = max((x.tp for c in setups for x in getattr(c.storm, "stages", ())), default=10.0)
+    return budget.section_storms(
+        n, float(st.storm.duration_s), st.settings.dt_max, tp=tp, workers=workers
+    )
+
+
+def check_budget(route: Any, *, workers: int | None, force: bool) -> None:
+    """Refuse a route whose dynamic level is estimated above the budget (unless ``force``,
+    the command's ``--force``): :func:`onbottom.study.budget.check`, as ``storm --seeds``
+    and ``curves``."""
+    from onbottom.study import budget
+
+    est = estimate(route, workers=workers)
+    if est is not None:
+        budget.check(est, force=force, field="[dynamic]")
+
+
 @click.command("assess")
 @click.argument(
     "case", required=False, type=click.Path(exists=True, dir_okay=False, path_type=Path)
@@ -63,6 +106,13 @@ def _refuse_case_in_out(case: Path, out: Path) -> None:
     help="Local Dask worker processes (default one per core; 0 = in this process).",
 )
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler address.")
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory of the storms exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB), and write into an --out holding files onbottom did"
+    " not write.",
+)
 @click.option("--no-pdf", is_flag=True, help="Do not write report.pdf.")
 @click.option("--example", is_flag=True, help="Print the embedded example route and exit.")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
@@ -74,6 +124,7 @@ def command(
     seeds: int | None,
     workers: int | None,
     scheduler: str | None,
+    force: bool,
     no_pdf: bool,
     example: bool,
     quiet: bool,
@@ -95,7 +146,7 @@ def command(
     outputs; failing checks at the given design are a result (exit 0); input errors exit 1.
     """
     from onbottom.assess.core import assess
-    from onbottom.assess.output import write_outputs
+    from onbottom.assess.output import claim_output_folder, write_outputs
     from onbottom.cases.assess import example_path, load_route
 
     path = example_path() if case is None else case
@@ -104,17 +155,21 @@ def command(
         return
     _refuse_case_in_out(path, out)
     route = load_route(path, seeds=seeds)  # every bad input raises here, before any work
+    check_budget(route, workers=workers, force=force)
     text = path.read_text(encoding="utf-8")
     source = "embedded example" if case is None else str(case)
-    a = assess(
-        route,
-        out=out,
-        n_workers=workers,
-        scheduler=scheduler,
-        progress=not quiet and not as_json,
-        source=source,
-    )
-    written = write_outputs(a, out, case_text=text, pdf=not no_pdf)
+    with claim_output_folder(out, force=force) as held:
+        for note in held.notes:
+            click.echo(f"note: {note}", err=True)
+        a = assess(
+            route,
+            out=out,
+            n_workers=workers,
+            scheduler=scheduler,
+            progress=not quiet and not as_json,
+            source=source,
+        )
+        written = write_outputs(a, out, case_text=text, pdf=not no_pdf)
     if as_json:
         from onbottom.assess.output import results_payload
 

@@ -143,7 +143,12 @@ class LazyGroup(JsonErrorGroup):
     context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
 )
 @click.version_option(__version__, prog_name="onbottom")
-def cli() -> None:
+@click.option(
+    "--allow-outside-paths",
+    is_flag=True,
+    help="Let case files name files outside their own folder tree (absolute paths, '..').",
+)
+def cli(allow_outside_paths: bool = False) -> None:
     """onbottom — subsea pipeline–seabed interaction.
 
     Pipe–soil resistance models (Verley & Sotberg sand and its calcareous calibration,
@@ -154,6 +159,12 @@ def cli() -> None:
     Every command accepts --json for scripting. Input errors exit with status 1 and a message
     naming the field, its value and the allowed range.
     """
+    import sys
+
+    if allow_outside_paths or "onbottom._casefile" in sys.modules:  # pydantic only when needed
+        from onbottom._casefile import allow_outside_paths as _allow
+
+        _allow(allow_outside_paths)
 
 
 class CompileNotice:

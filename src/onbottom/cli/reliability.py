@@ -44,30 +44,55 @@ def _write_run(
     progress: bool,
     figures: bool = True,
     report: bool = True,
+    force: bool = False,
 ) -> dict:
     """Read the case, run it (:func:`onbottom.reliability.run.run_reliability`) and write the
     outputs; returns the JSON payload."""
-    import json
     import time
 
     from onbottom.cases.reliability import load_reliability_case
     from onbottom.errors import InputError
     from onbottom.reliability.run import (
-        planned_storms,
         require_packages,
-        run_payload,
-        run_reliability,
     )
-    from onbottom.results import write_text_atomic
 
     t0 = time.perf_counter()
     require_packages()
     setup = load_reliability_case(case)
+    check_budget(setup, workers=n_workers, force=force)
     out = out if out is not None else case.resolve().parent / f"{case.stem}_reliability"
     if out.exists() and not out.is_dir():
         err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
         err.field = "--out"  # type: ignore[attr-defined]
         raise err
+    from onbottom.assess.output import RELIABILITY_NAMES, claim_output_folder
+
+    with claim_output_folder(
+        out, force=force, command="reliability", own=RELIABILITY_NAMES
+    ) as held:
+        for note in held.notes:
+            click.echo(f"note: {note}", err=True)
+        return _run_in(setup, case, out, t0, n_workers, scheduler, progress, figures, report)
+
+
+def _run_in(
+    setup: Any,
+    case: Path,
+    out: Path,
+    t0: float,
+    n_workers: int | None,
+    scheduler: str | None,
+    progress: bool,
+    figures: bool,
+    report: bool,
+) -> dict:
+    """The run of :func:`_write_run` in its held ``--out`` folder."""
+    import json
+    import time
+
+    from onbottom.reliability.run import planned_storms, run_payload, run_reliability
+    from onbottom.results import write_text_atomic
+
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -113,6 +138,30 @@ def _write_run(
             json_name="reliability.json",
         )
     return payload
+
+
+def check_budget(setup: Any, *, workers: int | None, force: bool) -> None:
+    """Refuse a campaign whose estimated time or memory exceeds the budget (unless ``force``,
+    the command's ``--force``): :func:`onbottom.study.budget.check` of the storms it may run
+    (:func:`onbottom.reliability.run.planned_storms`: every limit's ``max_storms``, the FORM
+    search and the contour design), each a storm of the case's duration and time step."""
+    from onbottom.reliability.run import planned_storms
+    from onbottom.study import budget
+
+    s = setup.storm
+    stages = getattr(s.storm, "stages", ())
+    tp = max((st.tp for st in stages), default=10.0)
+    budget.check(
+        budget.section_storms(
+            planned_storms(setup),
+            float(s.storm.duration_s),
+            s.settings.dt_max,
+            tp=tp,
+            workers=workers,
+        ),
+        force=force,
+        field="reliability.max_storms",
+    )
 
 
 def _figures(r: Any, out: Path, title: str, files: list[str]) -> dict[str, str]:
@@ -162,6 +211,13 @@ def _figures(r: Any, out: Path, title: str, files: list[str]) -> dict[str, str]:
     default=None,
     help="Address of a running Dask scheduler (tcp://host:8786) instead of a local cluster.",
 )
+@click.option(
+    "--force",
+    is_flag=True,
+    help="Run even when the estimated time or memory of the campaign exceeds the budget"
+    " (onbottom.study.budget: 12 h, 8 GB), and write into an --out holding files onbottom did"
+    " not write.",
+)
 @click.option("--no-figures", is_flag=True, help="Skip the figures.")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
 @click.option("--no-report", is_flag=True, help="Skip the report page (report.html).")
@@ -172,6 +228,7 @@ def command(
     out: Path | None,
     workers: int | None,
     scheduler: str | None,
+    force: bool,
     no_figures: bool,
     no_progress: bool,
     no_report: bool,
@@ -190,6 +247,7 @@ def command(
         progress=not no_progress,
         figures=not no_figures,
         report=not no_report,
+        force=force,
     )
     if as_json:
         emit_json(payload)

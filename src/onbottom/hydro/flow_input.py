@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from onbottom._validate import finite, non_negative, positive
+from onbottom._validate import file_token, finite, non_negative, positive
 from onbottom.errors import InputError, OutOfRangeWarning
 from onbottom.hydro.kinematics import regular_wave_bed_velocity, wave_number
 
@@ -302,6 +302,7 @@ _NAMES = {
     "U": ("u", "velocity"),
     "dU/dt": ("du/dt", "dudt", "acceleration"),
 }
+_KNOWN = ("t [s]", "U [m/s]", "dU/dt [m/s^2]", "t", "U", "dU/dt", "time", "velocity")
 _UNITS = {
     "t": ("s",),
     "U": ("m/s",),
@@ -341,14 +342,16 @@ def read_velocity_series(
         key = next((k for k, alias in _NAMES.items() if name in alias), None)
         if key is None:
             raise InputError(
-                f"{p}, line {head_no}: column {col + 1} {cell.strip()!r} is unknown: expected"
+                f"{p}, line {head_no}: column {col + 1} {file_token(cell, _KNOWN)} is unknown:"
+                " expected"
                 " 't [s]', 'U [m/s]' and optionally 'dU/dt [m/s^2]'"
             )
         if key in order:
             raise InputError(f"{p}, line {head_no}: column {key} appears twice")
         if not unit:
             raise InputError(
-                f"{p}, line {head_no}: column {cell.strip()!r} has no unit: write it in brackets,"
+                f"{p}, line {head_no}: column {file_token(cell, _KNOWN)} has no unit: write it"
+                " in brackets,"
                 f" e.g. '{key} [{_UNITS[key][0]}]'"
             )
         if unit not in _UNITS[key]:
@@ -373,7 +376,7 @@ def read_velocity_series(
                 data[key].append(float(cell) if cell.strip() else math.nan)
             except ValueError:
                 raise InputError(
-                    f"{p}, line {line_no}: {key} = {cell.strip()!r} is invalid: not a number"
+                    f"{p}, line {line_no}: {key} = {file_token(cell)} is invalid: not a number"
                 ) from None
         rows.append(line_no)
     return velocity_series(

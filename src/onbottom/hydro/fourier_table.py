@@ -48,6 +48,7 @@ from typing import Any
 
 import numpy as np
 
+from onbottom._validate import file_token
 from onbottom.errors import InputError, OutOfRangeWarning
 
 __all__ = [
@@ -533,7 +534,8 @@ def _check_columns(columns: list[str]) -> int:
         m = _COEF.match(col)
         if not m:
             raise InputError(
-                f"FourierTable: unknown column {col!r}: expected K, M, k_over_D or"
+                f"FourierTable: unknown column {file_token(col, ('K', 'M', 'k_over_D'))}:"
+                " expected K, M, k_over_D or"
                 " coefficients named like Y_A0, Y_A1, Y_B1, Z_A0"
             )
         n = int(m.group(3))

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from onbottom._validate import file_token, header_mismatch
 from onbottom.errors import InputError, OutOfRangeWarning
 
 __all__ = ["MorisonCoefficientTable"]
@@ -100,12 +101,13 @@ class MorisonCoefficientTable:
         header, units = rows[0][1], rows[1][1]
         if tuple(header) != COLUMNS:
             raise InputError(
-                f"Morison coefficient table {p.name} line {rows[0][0]}: header {header} is"
-                f" invalid: expected {','.join(COLUMNS)}"
+                f"Morison coefficient table {p.name} line {rows[0][0]}: the header is"
+                f" invalid ({header_mismatch(header, COLUMNS)}): expected {','.join(COLUMNS)}"
             )
         if len(units) != len(COLUMNS) or any(u not in DIMENSIONLESS for u in units):
+            shown = ", ".join(file_token(u, DIMENSIONLESS) for u in units[: len(COLUMNS) + 1])
             raise InputError(
-                f"Morison coefficient table {p.name} line {rows[1][0]}: units {units} are"
+                f"Morison coefficient table {p.name} line {rows[1][0]}: units {shown} are"
                 " invalid: every column is dimensionless, write '-' or '1'"
             )
         data = []

@@ -24,7 +24,10 @@ NetCDF: a ``time`` coordinate and the same variable names, each with a ``units``
 
 Impossible values are errors naming the row and time: non-finite values, H_s outside
 [0, 30] m, T_p outside (0, 40] s, a steepness 2πH_s/(gT_p²) above 1/7 (breaking), directions
-outside [0, 360] deg, a current speed outside [0, 10] m/s.
+outside [0, 360] deg, a current speed outside [0, 10] m/s, and a direction column whose values
+all lie within [0, 2π] (radians, not degrees). Implausible but possible values are notes
+(:func:`hindcast_notes`): an H_s that rises faster than :data:`SPIKE_RISE_M_PER_H` between
+two steps (a spike, such as a one-day 25 m value in a 3 m sea).
 """
 
 from __future__ import annotations
@@ -37,10 +40,18 @@ from pathlib import Path
 
 import numpy as np
 
+from onbottom._validate import header_mismatch
 from onbottom.constants import GRAVITY
 from onbottom.errors import InputError
 
-__all__ = ["COLUMNS", "UNITS", "Hindcast", "read_hindcast", "write_hindcast_csv"]
+__all__ = [
+    "COLUMNS",
+    "UNITS",
+    "Hindcast",
+    "hindcast_notes",
+    "read_hindcast",
+    "write_hindcast_csv",
+]
 
 COLUMNS: tuple[str, ...] = (
     "time",
@@ -70,6 +81,15 @@ _LIMITS = {
     "current_direction_deg": (0.0, 360.0, "deg"),
 }
 _MAX_LISTED = 5
+
+_RADIANS_MIN_ROWS = 24
+"""Fewest direction values for the radians check (a day of hourly data: directions of a real
+record in degrees leave [0, 2π] ≈ [0, 6.3]° long before that)."""
+
+SPIKE_RISE_M_PER_H = 2.0
+"""Fastest plausible rise of H_s between two steps [m/h] (at least 4 m per step): storms build
+up over hours (growth of about 0.5–1 m/h in the severest North Sea and hurricane records); a
+faster rise is a spike in the data (a note names the rows, the value is kept)."""
 
 
 def _fail(field: str, message: str) -> None:
@@ -247,6 +267,19 @@ def _check_series(h: Hindcast, row_offset: int = 0, label: str = "index") -> Non
                 f"{name} = {a[r]!r} {unit} is invalid at {_row_list(out, t, off, label)}:"
                 f" must lie in {rng} {unit} (check the unit)",
             )
+    for name in ("wave_direction_deg", "current_direction_deg"):
+        a = getattr(h, name)
+        if a is None:
+            continue
+        a = np.asarray(a, dtype=float)
+        ok = a[np.isfinite(a)]
+        if ok.size >= _RADIANS_MIN_ROWS and float(np.max(ok)) <= 2.0 * math.pi + 1e-9:
+            _fail(
+                name,
+                f"{name} is invalid: all {ok.size} values lie within [0, 2π] ="
+                f" [0, {2.0 * math.pi:.4g}] (max {float(np.max(ok)):.4g}): they look like"
+                " radians; the column is in degrees [0, 360] (multiply by 180/π)",
+            )
     with np.errstate(invalid="ignore"):
         steep = 2.0 * math.pi * np.asarray(h.hs) / (GRAVITY * np.asarray(h.tp) ** 2)
         over = np.flatnonzero(steep > MAX_STEEPNESS)
@@ -291,7 +324,8 @@ def _read_csv(path: Path) -> Hindcast:
     if cols not in allowed:
         _fail(
             "header",
-            f"header = {','.join(cols)!r} (line {header_row}) is invalid: expected"
+            f"header (line {header_row}) is invalid ({header_mismatch(cols, COLUMNS)}):"
+            " expected"
             f" {','.join(COLUMNS)!r} (the two current columns may be left out, and then the"
             " wave direction too)",
         )
@@ -402,6 +436,34 @@ def _read_netcdf(path: Path) -> Hindcast:
         object.__setattr__(h, k, v)
     _check_series(h)  # NetCDF: time indices from 0
     return h
+
+
+def hindcast_notes(h: Hindcast) -> list[str]:
+    """Notes on a valid hindcast's plausibility: H_s rises faster than
+    :data:`SPIKE_RISE_M_PER_H` (at least 4 m in one step), naming the first rows (file or
+    array rows, times). The values are kept: a note, not an error."""
+    hs = np.asarray(h.hs, dtype=float)
+    ok = np.flatnonzero(np.isfinite(hs))
+    if ok.size < 2:
+        return []
+    step_h = h.step_hours
+    rise = np.diff(hs[ok])
+    hours = np.diff(ok) * step_h
+    limit = np.maximum(SPIKE_RISE_M_PER_H * hours, 4.0)
+    jumps = np.flatnonzero(rise > limit)
+    if not jumps.size:
+        return []
+    rows = ok[jumps + 1]
+    shown = ", ".join(
+        f"{str(h.time[r])[:19]} ({hs[ok[j]]:.3g} → {hs[r]:.3g} m)"
+        for j, r in zip(jumps[:_MAX_LISTED], rows[:_MAX_LISTED], strict=True)
+    )
+    more = f" and {rows.size - _MAX_LISTED} more" if rows.size > _MAX_LISTED else ""
+    return [
+        f"hs: {rows.size} outlier(s): H_s rises faster than {SPIKE_RISE_M_PER_H:g} m/h (at"
+        f" least 4 m in one {step_h:g}-h step) at {shown}{more}; a spike in the data? The"
+        " values are used as given: check the record"
+    ]
 
 
 def read_hindcast(path: str | os.PathLike) -> Hindcast:

@@ -26,6 +26,7 @@ from onbottom.metocean.table import DesignRow, design_rows, design_table_csv, se
 __all__ = [
     "EXTRAPOLATION_FACTOR",
     "MetoceanRun",
+    "extrapolation_note",
     "run_metocean_analysis",
     "write_metocean_outputs",
 ]
@@ -34,6 +35,20 @@ EXTRAPOLATION_FACTOR = 4.0
 """Return periods beyond this many times the record length get a note: the values are
 extrapolations (Coles 2001, *An Introduction to Statistical Modeling of Extreme Values*,
 §4.4)."""
+
+
+def extrapolation_note(return_period: float, record_years: float) -> str | None:
+    """The note of a return period [years] beyond :data:`EXTRAPOLATION_FACTOR` times the
+    record's length [years] (None within it): the same words wherever such a value is used
+    (``onbottom metocean``'s table, ``onbottom reliability``'s contour design)."""
+    if return_period <= EXTRAPOLATION_FACTOR * record_years:
+        return None
+    return (
+        f"return periods up to {return_period:g} years from a {record_years:.1f}-year record:"
+        f" beyond about {EXTRAPOLATION_FACTOR:g} times the record the values are extrapolations"
+        " (Coles 2001 §4.4); read the intervals"
+    )
+
 
 _ROW_KEYS = (
     "hs",
@@ -167,14 +182,12 @@ def run_metocean_analysis(
     src = hc.source if source is None else source
     result = analyse_hindcast(hc, o)
     rows = design_rows(result)
-    notes: list[str] = []
-    longest = max(o.return_periods)
-    if longest > EXTRAPOLATION_FACTOR * hc.years:
-        notes.append(
-            f"return periods up to {longest:g} years from a"
-            f" {hc.years:.1f}-year record: beyond about 4 times the record the values are"
-            " extrapolations (Coles 2001 §4.4); read the intervals"
-        )
+    from onbottom.metocean.hindcast import hindcast_notes
+
+    notes: list[str] = hindcast_notes(hc)
+    note = extrapolation_note(max(o.return_periods), hc.years)
+    if note:
+        notes.append(note)
     f109 = 10.0 in o.return_periods and 100.0 in o.return_periods and hc.has_current
     if not f109:
         notes.append(

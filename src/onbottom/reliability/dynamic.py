@@ -113,7 +113,8 @@ class ExceedanceEstimate:
     importance : dict of str to float
         Sensitivity of the result to each input (see ``importance_kind``).
     importance_kind : str
-        ``"FORM alpha^2 (seed frozen)"``, ``"SRRC^2 (rank regression, first block)"`` or,
+        ``"FORM alpha^2 (seed frozen)"``,
+        ``"SRRC^2 shares of R^2 (rank regression, first block)"`` or,
         when FORM fails, ``"pilot centre u_i^2/|u|^2 (FORM did not converge)"``.
     design_point : dict of str to float
         FORM design point (importance sampling only).
@@ -168,8 +169,9 @@ class ExceedanceEstimate:
 
 
 def rank_importance(x: np.ndarray, y: np.ndarray, names: Sequence[str]) -> dict[str, float]:
-    """SRRC² of ``y`` on each column of ``x`` and the residual 1 − R² (key ``"storm_seed and
-    interactions"``): rank-transform, standardise, least squares (Saltelli et al. 2004 §1.2.5)."""
+    """Shares of the variance of ``y``'s ranks: each column's SRRC² scaled to share R², and the
+    residual 1 − R² (key ``"storm_seed and interactions"``); the shares sum to one.
+    Rank-transform, standardise, least squares (Saltelli et al. 2004 §1.2.5)."""
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     ok = np.isfinite(y) & np.all(np.isfinite(x), axis=1)
@@ -182,9 +184,14 @@ def rank_importance(x: np.ndarray, y: np.ndarray, names: Sequence[str]) -> dict[
     rx = (rx - rx.mean(0)) / rx.std(0)
     ry = (ry - ry.mean()) / ry.std()
     coef, *_ = np.linalg.lstsq(rx, ry, rcond=None)
-    r2 = 1.0 - float(np.mean((ry - rx @ coef) ** 2))
-    out = {names[j]: float(c * c) for j, c in zip(keep, coef, strict=True)}
-    out[f"{SEED_INPUT} and interactions"] = max(0.0, 1.0 - r2)
+    r2 = min(max(1.0 - float(np.mean((ry - rx @ coef) ** 2)), 0.0), 1.0)
+    # SRRC² sum to R² only for uncorrelated columns; the sample's chance correlations (a
+    # first block of tens of storms) make the raw sum exceed 1. Shares: each input's SRRC²
+    # scaled so that the inputs share R² and the remainder 1 − R² (Σ = 1).
+    total = float(np.sum(coef * coef))
+    scale = r2 / total if total > 0.0 else 0.0
+    out = {names[j]: float(c * c * scale) for j, c in zip(keep, coef, strict=True)}
+    out[f"{SEED_INPUT} and interactions"] = 1.0 - r2
     return out
 
 
@@ -302,7 +309,7 @@ def estimate_exceedance(
     ls = _LimitState(campaign, limit)
     form_calls = 0
     importance: dict[str, float] = {}
-    kind = "SRRC^2 (rank regression, first block)"
+    kind = "SRRC^2 shares of R^2 (rank regression, first block)"
     design: dict[str, float] = {}
     history: list[tuple[int, float, float]] = []
     curve: list[tuple[float, float]] = []
@@ -356,8 +363,10 @@ def estimate_exceedance(
         algo = ot.SubsetSampling(event)
         algo.setConditionalProbability(0.1)
         # L = max_storms/block levels: openturns stops once the level probability 0.1^k falls
-        # below the minimum; half of 0.1^(L-1) stops after level L (away from round-off ties)
-        algo.setMinimumProbability(0.5 * 0.1 ** (max(2, n_max // block) - 1))
+        # below the minimum; half of 0.1^(L-1) stops after level L (away from round-off ties);
+        # L at most 300 (0.1^299 is still a positive double; beyond it P would underflow)
+        levels = min(max(2, n_max // block), 300)
+        algo.setMinimumProbability(0.5 * 0.1 ** (levels - 1))
         algo.setMaximumOuterSampling(1)  # block_size storms per level
     algo.setBlockSize(block)
     if method != "subset":

@@ -62,8 +62,12 @@ def run_reliability(
         rps = {1.0, 10.0, 100.0}
         if setup.design is not None:
             rps.add(float(setup.design.return_period))
+        from onbottom.metocean.hindcast import hindcast_notes
+
+        hc = read_hindcast(setup.climate.hindcast)
+        early_notes = hindcast_notes(hc)
         result = analyse_hindcast(
-            read_hindcast(setup.climate.hindcast),
+            hc,
             MetoceanOptions(
                 sectors=setup.climate.sectors,
                 return_periods=tuple(sorted(rps)),
@@ -94,7 +98,7 @@ def run_reliability(
     params = (climate.parameters() if climate is not None else []) + user
     out.mkdir(parents=True, exist_ok=True)
     estimates = []
-    notes: list[str] = []
+    notes: list[str] = list(early_notes) if setup.climate is not None else []
     with Campaign(
         model,
         out / "campaign.zarr",
@@ -170,6 +174,11 @@ def run_reliability(
                 current_given_hs=None if cm is None else (lambda h: float(cm.quantile(h, 0.5))),
             )
             dstats = dc.stats
+        from onbottom.metocean.run import extrapolation_note
+
+        note = extrapolation_note(float(d.return_period), float(result.hindcast.years))
+        if note:
+            notes.append(f"design: {note}")
     return ReliabilityRun(
         estimates=estimates,
         design=design,

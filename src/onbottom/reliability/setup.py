@@ -82,7 +82,7 @@ class ContourDesign:
 
     def __post_init__(self) -> None:
         positive("ContourDesign.return_period", self.return_period)
-        integer("ContourDesign.contour_points", self.contour_points, 4)
+        integer("ContourDesign.contour_points", self.contour_points, 8)
         integer("ContourDesign.seeds", self.seeds, 1)
         integer("ContourDesign.top_points", self.top_points, 1)
         integer("ContourDesign.top_seeds", self.top_seeds, 1)
