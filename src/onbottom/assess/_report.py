@@ -14,7 +14,6 @@ is one entry; validity marks (:data:`MARKS`) are attached to the design cell of 
 from __future__ import annotations
 
 import csv
-
 import io
 import json
 import math
