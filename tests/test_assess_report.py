@@ -105,7 +105,7 @@ def test_no_python_none_and_marks_with_legend(report):
 
 
 def test_one_design_passes_every_level_run(report):
-    route, a, out, _ = report
+    _route, a, out, _ = report
     p = a.pipeline
     gov = a.sections[p["index"]]
     payload = json.loads((out / "results.json").read_text())
@@ -134,6 +134,7 @@ def test_the_pdf_holds_the_design(report):
         assert header in flat, header
     for s in a.sections:
         assert s["name"] in flat
-        design = f"{format_value(s['design_value'], a.route.variable)} ({level_name(s['governing_level'])})"
+        value = format_value(s["design_value"], a.route.variable)
+        design = f"{value} ({level_name(s['governing_level'])})"
         assert design in flat, design
     assert re.search(r"page 1 of \d+", flat)

@@ -39,8 +39,9 @@ def test_stop_at_allowable_gives_the_full_runs_verdict(route, value):
 
 
 def _section(index, design, level="dynamic"):
+    lv = {level: {"success": True, "value": design}}
     return {"index": index, "name": f"s{index}", "design_value": design,
-            "governing_level": level, "levels": {level: {"success": True, "value": design}}}  # fmt: skip
+            "governing_level": level, "levels": lv}  # fmt: skip
 
 
 def test_a_raised_design_governs_the_section(route):

@@ -192,8 +192,11 @@ def _pipe_tables(a: Assessment, T: Tables) -> list[dict[str, Any]]:
             ["steel", "Young's modulus", f"{pipe.youngs_modulus / 1e9:g}", "GPa"],
         ]
         for layer in pipe.layers:
-            sized = " (design variable)" if (a.route.variable == "concrete_thickness"
-                                             and layer.name == a.route.design.layer) else ""  # fmt: skip
+            sized = (
+                " (design variable)"
+                if a.route.variable == "concrete_thickness" and layer.name == a.route.design.layer
+                else ""
+            )
             rows.append([f"coating: {layer.name}", f"thickness{sized}",
                          f"{1e3 * layer.thickness:.1f}", "mm"])  # fmt: skip
             rows.append([f"coating: {layer.name}", "density", f"{layer.density:g}", "kg/m³"])
@@ -215,7 +218,8 @@ def _pipe_tables(a: Assessment, T: Tables) -> list[dict[str, Any]]:
                 pr = built.properties(c)
                 prow.append([cell(label, text=True), cell(c, text=True),
                              f"{1e3 * pr.outer_diameter:.1f}", f"{pr.mass:.1f}",
-                             f"{pr.submerged_weight:.1f}", f"{pr.specific_gravity:.3f}"])  # fmt: skip
+                             f"{pr.submerged_weight:.1f}",
+                             f"{pr.specific_gravity:.3f}"])  # fmt: skip
         parts.append(T.add("pipe-properties",
                            "Computed per condition: outer diameter D, mass, submerged weight w_s,"
                            " specific gravity (pipe condition of the lateral checks: "
@@ -237,7 +241,7 @@ def _basis_tables(a: Assessment, T: Tables) -> list[dict[str, Any]]:
     doc = (a.sections[0].get("stability_document") or {}).get("design", {})
     gsc = sorted({c["details"].get("gamma_sc") for s in a.sections for c in s["checks"]
                   if c["name"] == "absolute_lateral" and c.get("details")} - {None})  # fmt: skip
-    allow = ("%g m" % r.dynamic.allowable_displacement_m if r.dynamic.allowable == "user"
+    allow = (f"{r.dynamic.allowable_displacement_m:g} m" if r.dynamic.allowable == "user"
              else r.dynamic.allowable)  # fmt: skip
     rows = [
         ["safety class", doc.get("safety_class", "—"), "DNV-RP-F109 (2017) Table 3-5"],
@@ -288,7 +292,7 @@ def _basis_tables(a: Assessment, T: Tables) -> list[dict[str, Any]]:
         ["time step (largest)", _fmt(getattr(st0, "dt_max", None)), "s"],
         ["design search tolerance", tol, ""],
         ["pipeline FE line", f"{r.pipeline.length:g} m, elements {r.pipeline.element_length:g} m"
-         f" ({int(round(r.pipeline.length / r.pipeline.element_length)) + 1} nodes), ends"
+         f" ({round(r.pipeline.length / r.pipeline.element_length) + 1} nodes), ends"
          f" {r.pipeline.end_conditions}", ""],
         ["pipeline FE storm", "whole storm" if r.pipeline.duration is None
          else f"first {r.pipeline.duration:g} s", ""],
@@ -308,7 +312,8 @@ def _soil_table(s: dict[str, Any], T: Tables) -> dict[str, Any]:
              "undrained_shear_strength": "Pa", "trench_depth": "m", "trench_angle_deg": "deg",
              "friction_coefficient": "-"}  # fmt: skip
     rows = [[cell(k.replace("_", " "), text=True), cell(v if isinstance(v, str) else _fmt(v, 4)),
-             cell(units.get(k, ""), text=True)] for k, v in sb.items() if v is not None]  # fmt: skip
+             cell(units.get(k, ""), text=True)]
+            for k, v in sb.items() if v is not None]  # fmt: skip
     return T.add(f"s{s['index']}-soil", f"Soil of {s['name']}", ["Quantity", "Value", "Unit"], rows)
 
 
@@ -375,7 +380,8 @@ def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[st
         rows += [
             (f"Design value {label}", "the given design" if r.get("design_value") is None
              else format_value(r["design_value"], var)),
-            (f"D, w_s {label}", f"{r['diameter_m']:.4g} m, {r['submerged_weight_n_per_m']:.4g} N/m"),
+            (f"D, w_s {label}",
+             f"{r['diameter_m']:.4g} m, {r['submerged_weight_n_per_m']:.4g} N/m"),
             (f"Max |y| {label}", f"{r['max_displacement_m']:.3g} m = "
              f"{r['max_displacement_over_D']:.3g} D at x = {r['worst_node_x_m']:.0f} m"
              f" (allowable {r['allowable_m']:.3g} m): {'pass' if r['pass'] else 'FAIL'}"),
@@ -455,7 +461,8 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
         crow.append([cell(c["level"], text=True), cell(c["name"].replace("_", " "), text=True),
                      cell(str(c["combination"]), text=True), cell(str(c["condition"]), text=True),
                      cell(_fmt(c.get("utilisation"))), verdict_cell(ok),
-                     cell(CLAUSES.get(c["name"], ""), text=True), cell(note, text=True)])  # fmt: skip
+                     cell(CLAUSES.get(c["name"], ""), text=True),
+                     cell(note, text=True)])  # fmt: skip
     parts.append(T.add(f"s{s['index']}-checks", f"Checks at the given design: {s['name']}",
                        ["Level", "Check", "Combination", "Condition", "Utilisation", "Verdict",
                         "Clause", "Note"], crow, wide=True))  # fmt: skip

@@ -243,7 +243,7 @@ def run_governing_pipeline(
     if not first["pass"] and x0 is not None:
         d = route.dynamic
         rng = route.design
-        lo, hi, tol = (
+        _lo, hi, tol = (
             (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
             if route.variable == "concrete_thickness"
             else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
