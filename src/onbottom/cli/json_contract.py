@@ -215,7 +215,10 @@ CONTRACT: dict[str, Output] = {
                 "generalized_value": "generalized minimum where the curves cover every"
                 " combination, else null",
                 "dynamic_value": "dynamic minimum (every seed within the allowable), or null",
-                "governing_level": "the level of the design value (the lightest passing)",
+                "pipeline_fe_value": "the design passing the pipeline FE (governing section"
+                " only; null elsewhere, or where no design in range passes it)",
+                "governing_level": "the level of the design value (the lightest passing;"
+                " pipeline_fe where the pipeline FE raised it)",
                 "design_value": "the design value of the variable, or null",
                 "saved_submerged_weight_n_per_m": "submerged weight saved by the dynamic level"
                 " against the absolute one [N/m] (negative: it needs more), or null",
