@@ -28,9 +28,24 @@ def _command_lines() -> list[str]:
     lines = []
     for block in re.findall(r"```bash\n(.*?)```", text, flags=re.S):
         lines += [ln.split("#")[0].strip() for ln in block.splitlines()]
+    lines = [ln.split(">")[0].strip() for ln in lines]  # "onbottom assess --example > f"
     lines += re.findall(r"`(onbottom [^`|]+)`", text)  # not "dem prepare|penetrate|plot"
     # a command line has arguments ("onbottom calibrate" alone names a command in the prose)
     return [ln for ln in lines if ln.startswith("onbottom ") and len(shlex.split(ln)) > 2]
+
+
+def _run_lines() -> list[str]:
+    """The page's command lines as a shell runs them (redirections kept), page order."""
+    text = PAGE.read_text(encoding="utf-8")
+    lines = []
+    for block in re.findall(r"```bash\n(.*?)```", text, flags=re.S):
+        lines += [ln.split("#")[0].strip() for ln in block.splitlines()]
+    lines += re.findall(r"`(onbottom [^`|]+)`", text)
+    return [
+        ln
+        for ln in lines
+        if ln == "onbottom warmup" or (ln.startswith("onbottom ") and len(shlex.split(ln)) > 2)
+    ]
 
 
 LINES = _command_lines()
@@ -38,7 +53,16 @@ LINES = _command_lines()
 
 def test_the_quickstart_shows_the_stability_commands():
     named = {shlex.split(ln)[1] for ln in LINES}
-    assert {"stability", "loads", "storm", "curves", "report"} <= named
+    assert {
+        "assess",
+        "metocean",
+        "reliability",
+        "stability",
+        "loads",
+        "storm",
+        "curves",
+        "report",
+    } <= named
 
 
 @pytest.mark.parametrize("line", LINES)

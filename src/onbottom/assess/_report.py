@@ -583,7 +583,8 @@ def report_context(a: Assessment, payload: dict[str, Any]) -> dict[str, Any]:
                       "v": ("pass, design raised" if p.get("raised") else "pass")
                       if p["pass"] else "FAIL"})  # fmt: skip
     cards.append({"k": "allowable displacement", "v": str(payload["route"]["allowable"]), "c": ""})
-    cards.append({"k": "run time", "v": f"{a.wall_time_s:.0f} s", "c": ""})
+    cards.append({"k": f"run time (wall; {len(a.reused)} section(s) reused)" if a.reused
+                  else "run time (wall)", "v": f"{a.wall_time_s:.0f} s", "c": ""})  # fmt: skip
 
     used = sorted({m["key"] for s in a.sections for m in section_marks(s, a)})
     summary = [
