@@ -2,7 +2,8 @@
 
 The page's ``onbottom …`` lines (code blocks and inline code) are split as a shell would and
 handed to click's parser of that command, run from a folder with a link to examples/ (as the
-page says): the command exists, every option is one it takes with a valid value, and every input file the line names exists.
+page says): the command exists, every option is one it takes with a valid value, and every
+input file the line names exists.
 Nothing is run here (``tests/test_quickstart_run.py``, long, runs them all from a temporary
 folder).
 """
