@@ -555,8 +555,11 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
     return parts
 
 
-def report_context(a: Assessment, payload: dict[str, Any]) -> dict[str, Any]:
-    """Everything the template needs (and ``tables``: every table with its CSV text)."""
+def report_context(
+    a: Assessment, payload: dict[str, Any], *, notes: list[str] | tuple[str, ...] = ()
+) -> dict[str, Any]:
+    """Everything the template needs (and ``tables``: every table with its CSV text);
+    ``notes``: warnings raised outside the sections (reading the route), listed once each."""
     T = Tables()
     var = a.route.variable
     found = [s for s in a.sections if s["governing_level"]]
@@ -606,10 +609,12 @@ def report_context(a: Assessment, payload: dict[str, Any]) -> dict[str, Any]:
             f"{s['name']}: NO DESIGN — " + (s.get("no_design_reason")
                                            or "no level run finds a passing design in the range")
             for s in no]})  # fmt: skip
-    notes: dict[str, list[str]] = {}
+    extra = list(notes)
+    notes: dict[str, list[str]] = {n: ["route"] for n in dict.fromkeys(extra)}
     for s in a.sections:
         for n in s["notes"]:
-            notes.setdefault(n, []).append(s["name"])
+            if s["name"] not in notes.setdefault(n, []):
+                notes[n].append(s["name"])
     warn = [
         {"kind": "ul", "c": "", "items": [f"{n} ({', '.join(v)})" for n, v in notes.items()]}
         if notes

@@ -427,10 +427,16 @@ def report_html(a: Assessment, payload: dict[str, Any]) -> str:
 
 
 def write_outputs(
-    a: Assessment, out: str | Path, *, case_text: str | None = None, pdf: bool = True
+    a: Assessment,
+    out: str | Path,
+    *,
+    case_text: str | None = None,
+    pdf: bool = True,
+    notes: list[str] | tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """Write results.json, dynamic.nc, report.html and (WeasyPrint installed) report.pdf into
-    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``."""
+    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``. ``notes``: warnings
+    raised while the route was read and run, listed in the report with the sections' own."""
     outp = Path(out)
     payload = results_payload(a, case_text)
     files = [write_text_atomic(outp / "results.json", json.dumps(payload, indent=1))]
@@ -439,7 +445,7 @@ def write_outputs(
         files.append(save_dataset(ds, outp / "dynamic.nc"))
     from onbottom.assess._report import render, report_context
 
-    ctx = report_context(a, payload)
+    ctx = report_context(a, payload, notes=notes)
     for tb in ctx["tables"]:
         files.append(write_text_atomic(outp / tb["csv"], tb["csv_text"]))
     text = render(ctx)

@@ -117,8 +117,8 @@ def command(
             progress=not quiet and not as_json,
             source=source,
         )
-    raised = list(dict.fromkeys(str(w.message) for w in caught))
-    written = write_outputs(a, out, case_text=text, pdf=not no_pdf)
+    raised = _once([str(w.message) for w in caught])
+    written = write_outputs(a, out, case_text=text, pdf=not no_pdf, notes=raised)
     if as_json:
         from onbottom.assess.output import results_payload
 
@@ -128,6 +128,22 @@ def command(
         _print(a, out, written, raised)
     if route.variable != "none" and any(s["governing_level"] is None for s in a.sections):
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _once(messages: list[str]) -> list[str]:
+    """Each warning once: messages that differ only by their ``<where>: `` prefix (one per
+    section or condition) are one note, with the places listed after it."""
+    import re
+
+    where: dict[str, list[str]] = {}
+    for m in messages:
+        k = re.match(r"<([^>]+)>: (.*)", m, re.S)
+        text, place = (k.group(2), k.group(1)) if k else (m, None)
+        places = where.setdefault(text, [])
+        if place and place not in places:
+            places.append(place)
+    return [t + (f" (in {', '.join(p)})" if len(p) > 1 else (f" ({p[0]})" if p else ""))
+            for t, p in where.items()]  # fmt: skip
 
 
 def _print(a: Any, out: Path, written: dict[str, Any], raised: list[str] = ()) -> None:
