@@ -35,6 +35,7 @@ from onbottom.assess.output import (
     format_value,
     level_name,
 )
+from onbottom.assess.pipeline import DISAGREEMENT_FACTOR
 
 __all__ = ["MARKS", "SUMMARY_COLUMNS", "render", "report_context", "section_marks"]
 
@@ -404,12 +405,18 @@ def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[st
     )
     if at:
         f = at.get("fe_over_section", math.nan)
+        sec = next((s for s in a.sections if s["index"] == p["index"]), {})
+        trials = ((sec.get("dynamic") or {}).get("bisection") or {}).get("trials", [])
+        g0 = [g for x, g in trials if x0 is not None and abs(x - x0) < 1e-12]
+        worst = (f"(The section solver's worst over every seed and combination at this design:"
+                 f" {g0[0]:.3g} × the allowable.) " if g0 else "")  # fmt: skip
         parts.append({"kind": "p", "c": "fail" if at.get("disagree") else "muted", "text": (
             f"Section solver against pipeline FE at the section design, same storm and seed:"
             f" section max |y| {at['section_solver_max_displacement_m']:.3g} m, FE"
             f" {at['max_displacement_m']:.3g} m: ratio FE/section {f:.3g}. "
-            + (f"They DISAGREE (beyond a factor {2:g}). Candidate causes:"
-               if at.get("disagree") else f"Within a factor {2:g}.")
+            + worst
+            + (f"They DISAGREE (beyond a factor {DISAGREEMENT_FACTOR:g}). Candidate causes:"
+               if at.get("disagree") else f"Within a factor {DISAGREEMENT_FACTOR:g}.")
         )})  # fmt: skip
         if at.get("disagree"):
             parts.append({"kind": "ul", "c": "", "items": at.get("causes", [])})
