@@ -147,3 +147,22 @@ def test_no_design_in_range_exits_3(tmp_path, capsys):
     assert rc == 3
     assert "no solution" in capsys.readouterr().out
     assert (tmp_path / "o" / "report.html").is_file()  # the outputs are still written
+
+
+def test_warnings_printed_once_as_notes_and_listed_in_the_report(tmp_path, capsys):
+    """A coating lighter than water warns once (a `note:` line, no source line), however many
+    sections and conditions meet it, and the report lists it."""
+    doc = route_document(sections=2)
+    doc["levels"] = {"generalized": False, "dynamic": False}
+    doc["pipe"]["layers"][0]["density"] = 940.0  # a 3LPP-like layer, lighter than water
+    case = tmp_path / "light.toml"
+    case.write_text(_toml(doc), encoding="utf-8")
+    out = tmp_path / "o"
+    rc = main(["assess", str(case), "--out", str(out), "--workers", "0", "--quiet", "--no-pdf"])
+    assert rc == 0
+    cap = capsys.readouterr()
+    lines = [ln for ln in (cap.out + cap.err).splitlines() if "lighter than the water" in ln]
+    assert len(lines) == 1 and lines[0].startswith("note: "), lines
+    assert "warnings.warn" not in cap.out + cap.err
+    html = (out / "report.html").read_text(encoding="utf-8")
+    assert "lighter than the water" in html

@@ -140,3 +140,40 @@ def test_checker_sees_broken_images_and_links(browser, tmp_path):
             "page.html: " + (tmp_path / "missing.png").as_uri() + " (no such file)",
         ]
     )
+
+
+def _style(html: str) -> str:
+    import re
+
+    return re.search(r"<style>(.*?)</style>", html, re.S).group(1)
+
+
+@pytest.mark.long
+def test_assess_and_metocean_pages_share_one_style(browser, shots, tmp_path):
+    """The assess design report and a command page (metocean) open in Chromium with the same
+    style sheet, header band and contents (the reliability page is written by the same
+    :func:`onbottom.report.pages.write_page` as metocean's)."""
+    pytest.importorskip("pyextremes")
+    pytest.importorskip("virocon")
+    sys.path.insert(0, str(ROOT / "tests"))
+    from assess_cases import route_document
+    from onbottom.assess import assess
+    from onbottom.assess.output import write_outputs
+    from onbottom.cases.assess import build_route, parse_route_case
+    from onbottom.cli.main import main
+
+    a = assess(build_route(parse_route_case(route_document(seeds=1, peak_hours=0.05))),
+               n_workers=0)  # fmt: skip
+    write_outputs(a, tmp_path / "assess", pdf=False)
+    met = tmp_path / "metocean"
+    hind = ROOT / "examples" / "hindcast_synthetic.csv"
+    assert main(["metocean", str(hind), "--out", str(met), "--no-figures"]) == 0
+    pages = {"assess": tmp_path / "assess" / "report.html", "metocean": met / "report.html"}
+    styles = set()
+    for name, page in pages.items():
+        rep = browser_check.check_page(browser, page, shots / f"{name}_page.png")
+        _assert_page_ok(rep)
+        text = page.read_text(encoding="utf-8")
+        assert "<header>" in text and 'class="toc"' in text, name
+        styles.add(_style(text))
+    assert len(styles) == 1

@@ -201,3 +201,16 @@ def test_report_section_runs_and_passes(tmp_path):
     html = res.index.read_text(encoding="utf-8")
     assert "100-year H_s (omni) against the generating model" in html
     assert (tmp_path / "figures" / "metocean_contours.png").is_file()
+
+
+def test_no_direction_column_falls_back_to_one_sector(tmp_path, capsys):
+    """The shipped NDBC hindcast has no wave direction: without --sectors the analysis is
+    omnidirectional, with a note (an explicit --sectors 8 still asks for the column)."""
+    ndbc = ROOT / "examples" / "hindcast_ndbc_44007.csv"
+    out = tmp_path / "o"
+    args = ["metocean", str(ndbc), "--out", str(out), "--no-figures", "--no-report", "--json"]
+    assert main(args) in (0, 3)
+    payload = json.loads(capsys.readouterr().out)
+    assert len(payload["sectors"]) == 1
+    assert any("no wave direction column" in n for n in payload["notes"])
+    assert main([*args, "--sectors", "8"]) == 1

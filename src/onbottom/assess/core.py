@@ -563,7 +563,7 @@ class Assessment:
                 "variable": s["variable"],
                 **{f"{k}_value": (lv.get(k) or {}).get("value")
                    for k in ("vertical", "absolute", "generalized", "dynamic",
-                             "dynamic_curves")},
+                             "dynamic_curves", "pipeline_fe")},
                 "governing_level": s["governing_level"], "design_value": s["design_value"],
                 "floor_rule": (s.get("design_floor") or {}).get("rule"),
                 "dynamic_over_generalized_weight": (s.get("design_floor") or {}).get(
@@ -696,6 +696,8 @@ def assess(
             results[r["index"]] = r
     sections = [results[i] for i in range(len(route.sections))]
     pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
+    if pipe is not None:
+        sections = _apply_pipeline(route, sections, pipe)
     return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
                       source=source, pipeline=pipe)  # fmt: skip
@@ -711,7 +713,7 @@ def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) ->
         return None
     ident = hashlib.sha256(
         json.dumps(
-            {"governing": gov, "pipeline": dataclasses.asdict(route.pipeline),
+            {"governing": gov, "pipeline": dataclasses.asdict(route.pipeline), "design": 2,
              "section": next(s["identity"] for s in sections if s["index"] == gov["index"]),
              "version": __version__},
             sort_keys=True,
@@ -730,6 +732,57 @@ def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) ->
     if f is not None:
         write_text_atomic(f, json.dumps(res, indent=1))
     return res
+
+
+def _apply_pipeline(
+    route: Route, sections: list[dict[str, Any]], pipe: dict[str, Any]
+) -> list[dict[str, Any]]:
+    """The governing section with its ``pipeline_fe`` level: its design rises to the value that
+    passes the pipeline FE (governing level ``pipeline_fe``), or it has no design (the reason in
+    ``no_design_reason``) when none in range passes. The other sections are unchanged (the FE
+    runs on the governing section only)."""
+    out = []
+    for s in sections:
+        if s["index"] != pipe.get("index"):
+            out.append(s)
+            continue
+        s = dict(s)
+        levels = dict(s["levels"])
+        at = pipe.get("at_section_design") or {}
+        if route.variable == "none":
+            levels["pipeline_fe"] = {
+                "success": bool(pipe["pass"]), "value": None,
+                "governing_check": "pipeline FE: max |y| <= allowable, strain <= limit",
+                "message": "at the given design: " + ("pass" if pipe["pass"] else "FAIL"),
+            }  # fmt: skip
+        elif pipe["pass"]:
+            raised = bool(pipe.get("raised"))
+            levels["pipeline_fe"] = {
+                "success": True, "value": pipe["design_value"],
+                "governing_check": "pipeline FE: max |y| <= allowable, strain <= limit",
+                "message": (
+                    f"the section design fails the pipeline FE (max |y| "
+                    f"{at.get('max_displacement_m', float('nan')):.3g} m = "
+                    f"{at.get('max_displacement_over_D', float('nan')):.3g} D): raised until "
+                    f"it passes. {(pipe.get('search') or {}).get('message', '')}"
+                    if raised else "passes at the section design"
+                ),
+            }  # fmt: skip
+            if raised:
+                s["design_value"] = pipe["design_value"]
+                s["governing_level"] = "pipeline_fe"
+        else:
+            reason = "no design in range passes the pipeline FE of the governing storm: " + str(
+                (pipe.get("search") or {}).get("message", pipe.get("message", ""))
+            )
+            levels["pipeline_fe"] = {"success": False, "value": None,
+                                     "governing_check": None, "message": reason}  # fmt: skip
+            s["design_value"] = None
+            s["governing_level"] = None
+            s["no_design_reason"] = reason
+        s["levels"] = levels
+        out.append(s)
+    return out
 
 
 def _call(job: _SectionJob) -> dict[str, Any]:

@@ -54,6 +54,7 @@ __all__ = [
     "claim_output_folder",
     "comparison",
     "format_value",
+    "level_name",
     "provenance_block",
     "results_payload",
     "write_outputs",
@@ -257,6 +258,22 @@ def _fmt(x: Any, unit: str = "", digits: int = 3) -> str:
     return html.escape(str(x))
 
 
+LEVEL_NAMES = {
+    "vertical": "flotation",
+    "absolute": "absolute",
+    "generalized": "generalized",
+    "dynamic": "dynamic",
+    "dynamic_curves": "dynamic curves",
+    "pipeline_fe": "pipeline FE",
+}
+"""How each level is named on the page and the console."""
+
+
+def level_name(level: str | None) -> str:
+    """The printed name of a level key (None: "none")."""
+    return "none" if level is None else LEVEL_NAMES.get(level, level)
+
+
 def format_value(x: Any, variable: str) -> str:
     """A design value as text: mm of concrete, N/m of submerged weight, or "no solution"."""
     if x is None:
@@ -309,7 +326,7 @@ def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
     t, y = h.get("time") or [], h.get("y") or []
     if len(t) < 2:
         return ""
-    w, hh, left, pad = 640, 160, 50, 18
+    w, hh, left, pad = 640, 160, 58, 18
     top = max(max(abs(v) for v in y), allowable) * 1.1 or 1.0
     tx = lambda v: left + (w - left - 10) * (v - t[0]) / (t[-1] - t[0])  # noqa: E731
     ty = lambda v: hh / 2 - (hh / 2 - pad) * v / top  # noqa: E731
@@ -326,10 +343,13 @@ def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
             for s in (1, -1)
         )
         + f'<polyline fill="none" stroke="#06c" stroke-width="1" points="{pts}"/>'
-        f'<text x="2" y="{ty(top / 1.1) + 4:.1f}" font-size="10">{top / 1.1:.2g}</text>'
-        f'<text x="2" y="{ty(0) + 4:.1f}" font-size="10">0</text>'
-        f'<text x="{left}" y="{hh + 12}" font-size="10">t = {t[0]:.0f} s</text>'
-        f'<text x="{w - 80}" y="{hh + 12}" font-size="10">{t[-1]:.0f} s</text></svg>'
+        f'<text x="22" y="{ty(top / 1.1) + 4:.1f}" font-size="10">{top / 1.1:.2g}</text>'
+        f'<text x="22" y="{ty(0) + 4:.1f}" font-size="10">0</text>'
+        f'<text x="{left}" y="{hh + 12}" font-size="10">{t[0]:.0f}</text>'
+        f'<text x="{(left + w) / 2 - 30:.0f}" y="{hh + 12}" font-size="11">time t [s]</text>'
+        f'<text x="12" y="{hh / 2 + 30:.0f}" font-size="11" transform="rotate(-90 12'
+        f' {hh / 2 + 30:.0f})">y [m]</text>'
+        f'<text x="{w - 40}" y="{hh + 12}" font-size="10">{t[-1]:.0f}</text></svg>'
     )
 
 
@@ -339,9 +359,10 @@ def _png(fig: Any, alt: str) -> str:
     import io
 
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=80)
+    fig.savefig(buf, format="png", dpi=160)
     data = base64.b64encode(buf.getvalue()).decode("ascii")
-    return f"<img alt='{html.escape(alt)}' src='data:image/png;base64,{data}'>"
+    width = int(fig.get_figwidth() * 80)  # drawn at 160 dpi, shown at 80 px per inch
+    return f"<img alt='{html.escape(alt)}' width='{width}' src='data:image/png;base64,{data}'>"
 
 
 def _vh_figure(s: dict[str, Any], water_density: float) -> str:
@@ -396,72 +417,6 @@ def _vh_figure(s: dict[str, Any], water_density: float) -> str:
     return _png(fig, f"V–H diagram of {s['name']}")
 
 
-def _pipeline_html(p: dict[str, Any], var: str) -> str:
-    """The pipeline FE run of the governing section: envelopes along the line and a table."""
-    from matplotlib.figure import Figure
-
-    e = html.escape
-    env = p["envelopes"]
-    fig = Figure(figsize=(7.5, 4.2), layout="constrained")
-    ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    d = p["diameter_m"]
-    ax1.plot(env["x"], [v / d for v in env["max_abs_y"]], "k-", lw=1.2)
-    ax1.axhline(0.5, color="#c00", ls="--", lw=1.0, label="0.5D")
-    ax1.set_ylabel("max |y| / D [-]")
-    ax1.legend(fontsize="small")
-    ax2.plot(env["x"], [100.0 * v for v in env["max_strain"]], "C3-", lw=1.2)
-    ax2.axhline(100.0 * p["strain_limit"], color="#c00", ls="--", lw=1.0, label="strain limit")
-    ax2.set_ylabel("max strain [%]")
-    ax2.set_xlabel("x along the line [m]")
-    ax2.legend(fontsize="small")
-    for ax in (ax1, ax2):
-        ax.grid(True, alpha=0.3)
-    verdict = {None: "not checked", True: "pass", False: "FAIL"}[p.get("strain_check")]
-    rows = [
-        ("Governing storm", f"{p['combination']} (seed {p['seed']}), condition {p['condition']}"),
-        ("Design value", "the given design" if p["design_value"] is None
-         else format_value(p["design_value"], var)),
-        ("Line", f"{p['length_m']:g} m, {p['n_nodes']} nodes, ends {p['end_conditions']}"),
-        ("D, w_s", f"{d:.4g} m, {p['submerged_weight_n_per_m']:.4g} N/m"),
-        ("Max lateral displacement", f"{p['max_displacement_m']:.3g} m"
-         f" = {p['max_displacement_over_D']:.3g} D at x = {p['worst_node_x_m']:.0f} m"),
-        ("Max strain", f"{100 * p['max_strain']:.3g} % (limit {100 * p['strain_limit']:.3g} %:"
-         f" {verdict})"),
-        ("F109 criteria", ", ".join(f"{k}: {'pass' if v else 'FAIL'}"
-                                    for k, v in p["criteria"].items())),
-        ("Run", f"{e(p['message'])} (status {p['status']}), {p['wall_time_s']:.0f} s"),
-    ]  # fmt: skip
-    out = [
-        "<h3>Pipeline FE of the governing section</h3>",
-        _png(fig, "pipeline envelopes along the line"),
-        "<table>",
-        *(f"<tr><th>{e(k)}</th><td>{e(str(v))}</td></tr>" for k, v in rows),
-        "</table>",
-        f"<p class='note'>{e(CLAUSES['pipeline_strain'])}. Theory: docs/theory/pipeline_fe.md.</p>",
-    ]
-    return "\n".join(out)
-
-
-def _seed_stats(base: dict[str, Any]) -> str:
-    """Distribution over seeds per combination: mean, standard deviation, largest, and the
-    final displacement's mean."""
-    import statistics as st
-
-    out = ["<table><tr><th>Combination</th><th>Seeds</th><th>mean max |y| [m]</th>"
-           "<th>std [m]</th><th>largest [m]</th><th>largest / allowable</th>"
-           "<th>mean final y [m]</th></tr>"]  # fmt: skip
-    for n, b in base.items():
-        ys = b["max_displacement"]
-        sd = st.stdev(ys) if len(ys) > 1 else 0.0
-        out.append(
-            f"<tr><td>{html.escape(n)}</td><td>{len(ys)}</td><td>{st.mean(ys):.3g}</td>"
-            f"<td>{sd:.3g}</td><td>{max(ys):.3g}</td><td>{max(ys) / b['allowable']:.3g}</td>"
-            f"<td>{st.mean(b['final_displacement']):.3g}</td></tr>"
-        )
-    out.append("</table>")
-    return "".join(out)
-
-
 def _section_validity(s: dict[str, Any], a: Assessment) -> list[str]:
     """The assumptions and validity notes that apply to this section (reconstructed models
     flagged)."""
@@ -478,210 +433,36 @@ def _section_validity(s: dict[str, Any], a: Assessment) -> list[str]:
     return notes
 
 
-_SEA_STATE_KEYS = (
-    "combination", "condition", "hs", "tp", "gamma", "wave_direction_deg", "spreading_s",
-    "current_velocity", "current_reference_height", "current_direction_deg",
-)  # fmt: skip
-
-_CSS = """
-body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:70em;color:#222}
-h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-top:1em}
-table{border-collapse:collapse;margin:.5em 0 1em}td,th{border:1px solid #bbb;padding:3px 7px;
-font-size:.9em;text-align:left}th{background:#eef}.fail{color:#b00;font-weight:bold}
-.pass{color:#070}.note{font-size:.9em;color:#444}code{background:#f4f4f4}
-@media print{.section{page-break-before:always}}
-"""
-
-
 def report_html(a: Assessment, payload: dict[str, Any]) -> str:
-    """The design report (self-contained HTML: inline CSS and SVG, no external resource)."""
-    var = a.route.variable
-    e, fv = html.escape, format_value
-    out = [
-        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>",
-        f'<meta name="generator" content="onbottom assess {e(__version__)}">',
-        f"<title>On-bottom stability assessment — {e(a.route.name)}</title>",
-        f"<style>{_CSS}</style></head><body>",
-        f"<h1>On-bottom stability assessment — {e(a.route.name)}</h1>",
-        f"<p class='note'>onbottom {e(__version__)} · design variable: {e(var)} · allowable"
-        f" displacement of the dynamic level: {e(str(payload['route']['allowable']))} (every"
-        f" seed) · {a.route.dynamic.seeds} seeds · storms {a.route.dynamic.build_up_hours:g} h"
-        f" build-up + {a.route.dynamic.peak_hours:g} h peak.</p>",
-        "<h2 id='summary'>Summary per KP section</h2><table><tr><th>Section</th><th>KP [km]"
-        "</th><th>Depth [m]</th><th>Seabed</th><th>Governing check (given design)</th>"
-        "<th>Utilisation</th><th>Flotation min.</th><th>Absolute min.</th><th>Generalized</th>"
-        "<th>Dynamic min.</th><th>Design (level)</th><th>Weight saved by dynamic [N/m]</th>"
-        "</tr>",
-    ]
-    for s in a.sections:
-        lv = s["levels"]
-        ws = s.get("weight_saved") or {}
-        u = s["max_utilisation"]
-        gen = lv.get("generalized")
-        if gen is None:
-            gtxt = "not run"
-        elif gen.get("value") is not None:
-            gtxt = format_value(gen["value"], var)
-        else:
-            gtxt = "not covered" if not gen["covered"] else "partly covered"
-        out.append(
-            f"<tr><td><a href='#s{s['index']}'>{e(s['name'])}</a></td>"
-            f"<td>{s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g}</td>"
-            f"<td>{s['water_depth']:g}</td><td>{e(s['seabed_model'])}</td>"
-            f"<td>{e(s['governing_check'])}</td>"
-            f"<td class='{'fail' if u and u > 1 else 'pass'}'>{_fmt(u)}</td>"
-            + "".join(
-                f"<td>{fv((lv.get(k) or {}).get('value'), var) if k in lv else 'not run'}</td>"
-                for k in ("vertical", "absolute")
-            )
-            + f"<td>{gtxt}</td>"
-            + f"<td>{fv(lv['dynamic']['value'], var) if 'dynamic' in lv else 'not run'}</td>"
-            + f"<td>{fv(s['design_value'], var) if s['governing_level'] else 'no solution'}"
-            f" ({e(str(s['governing_level']))})</td>"
-            f"<td>{_fmt(ws.get('saved_submerged_weight'), digits=4)}</td></tr>"
-        )
-    out.append("</table>")
-    out.append(
-        "<p class='note'>Design: the lightest design among the levels run that passes (each is"
-        " a complete F109 method), never below F109's generalized requirement unless the route"
-        " opts in by name (each section's 'Design floor' line says which rule applied); the"
-        " dynamic value is never below the flotation minimum."
-        " Weight saved: submerged weight (pipe condition of [pipe]) at the absolute design"
-        " minus at the dynamic design.</p>"
-    )
-    out.append("<h2 id='comparison'>Absolute against dynamic</h2>")
-    out.append(f"<p class='note'>{e(WHY_LIGHTER)} Where the dynamic level asks for more than"
-               " the absolute method, the row says so as a finding to review.</p>")  # fmt: skip
-    out.append("<table><tr><th>Section</th>"
-               "<th>Absolute</th><th>Dynamic</th><th>Heavier</th><th>Why</th></tr>")  # fmt: skip
-    for c in payload["comparison"]:
-        out.append(
-            f"<tr><td>{e(c['section'])}</td><td>{format_value(c['absolute_value'], var)}</td>"
-            f"<td>{format_value(c['dynamic_value'], var)}</td><td>{e(c['heavier'])}</td>"
-            f"<td>{e(c['reason'])}</td></tr>"
-        )
-    out.append("</table>")
-    for s in a.sections:
-        out.append(f"<div class='section'><h2 id='s{s['index']}'>Section {e(s['name'])}"
-                   f" (KP {s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g} km)</h2>")  # fmt: skip
-        doc = s["stability_document"]
-        out.append(
-            "<h3>Inputs</h3><pre>"
-            + e(json.dumps({k: doc[k] for k in ("environment", "seabed")}, indent=1))
-            + "</pre>"
-        )
-        out.append("<h3>Design sea states and currents</h3><table><tr><th>Combination</th>"
-                   "<th>Condition</th><th>H_s [m]</th><th>T_p [s]</th><th>γ</th>"
-                   "<th>Wave dir. [deg]</th><th>Spreading s</th><th>Current [m/s]</th>"
-                   "<th>at z_r [m]</th><th>Current dir. [deg]</th></tr>")  # fmt: skip
-        for ss in s["sea_states"]:
-            out.append(
-                "<tr>" + "".join(f"<td>{_fmt(ss[k])}</td>" for k in _SEA_STATE_KEYS) + "</tr>"
-            )
-        out.append(f"</table><p class='note'>{e(CLAUSES['design_sea_state'])}</p>")
-        out.append("<h3>Checks at the given design</h3><table><tr><th>Level</th><th>Check</th>"
-                   "<th>Combination</th><th>Condition</th><th>Utilisation</th><th>Verdict</th>"
-                   "<th>Clause / note</th></tr>")  # fmt: skip
-        for c in s["checks"]:
-            note = CLAUSES.get(c["name"], "")
-            if c["level"] == "generalized":
-                note = f"{note}. {c.get('message', '')}"
-            verdict = "not covered" if c.get("pass") is None else ("pass" if c["pass"] else "FAIL")
-            out.append(
-                f"<tr><td>{e(c['level'])}</td><td>{e(c['name'])}</td>"
-                f"<td>{e(str(c['combination']))}</td><td>{e(str(c['condition']))}</td>"
-                f"<td>{_fmt(c.get('utilisation'))}</td>"
-                f"<td class='{'fail' if verdict == 'FAIL' else 'pass'}'>{verdict}</td>"
-                f"<td class='note'>{e(note)}</td></tr>"
-            )
-        out.append("</table><h3>Minimum design per level</h3><table><tr><th>Level</th>"
-                   "<th>Minimum</th><th>Governed by</th><th>Message</th></tr>")  # fmt: skip
-        for k, v in s["levels"].items():
-            out.append(
-                f"<tr><td>{e(k)}</td><td>{format_value(v.get('value'), var)}</td>"
-                f"<td>{e(str(v.get('governing_check') or '—'))}</td>"
-                f"<td class='note'>{e(str(v.get('message', '')))}</td></tr>"
-            )
-        out.append("</table>")
-        fl = s.get("design_floor") or {}
-        if fl:
-            ratio = fl.get("dynamic_over_generalized_weight")
-            rtxt = "" if ratio is None else f" Dynamic/generalized submerged weight: {ratio:.2f}."
-            out.append(f"<p class='note'>Design floor: {e(fl['words'])}.{e(rtxt)}</p>")
-        out.append("<h3>V–H diagram (given design)</h3>")
-        out.append(_vh_figure(s, a.route.water_density))
-        out.append(
-            "<p class='note'>Dots: the peak load of every wave cycle of a 3-h record of the"
-            " design sea state on a fixed pipe (Morison C_D 0.9, C_M 3.29, C_L 0.9, times r_y,"
-            " r_z; seed 0), V = w_s − F_Z, H = |F_Y|. Crosses: the absolute check's design load"
-            " (F*_Y, w_s − F*_Z). Lines: the soil's resistance envelope H = μV + F_R at the"
-            f" as-laid penetration, without γ_SC. {e(CLAUSES['soil_resistance'])}.</p>"
-        )
-        dyn = s.get("dynamic") or {}
-        if dyn.get("base"):
-            out.append("<h3>Dynamic level: max displacement over seeds (given design)</h3>")
-            out.append(_strip_svg(dyn["base"]))
-            out.append(_seed_stats(dyn["base"]))
-            out.append("<table><tr><th>Combination</th><th>D [m]</th><th>w_s [N/m]</th>"
-                       "<th>Allowable [m]</th><th>max |y| per seed [m]</th><th>Status</th>"
-                       "</tr>")  # fmt: skip
-            for n, b in dyn["base"].items():
-                ys = ", ".join(f"{y:.3g}" for y in b["max_displacement"])
-                out.append(
-                    f"<tr><td>{e(n)}</td><td>{b['diameter']:.4g}</td>"
-                    f"<td>{b['submerged_weight']:.4g}</td><td>{b['allowable']:.3g}</td>"
-                    f"<td>{ys}</td><td>{e(str(sorted(set(b['status']))))}</td></tr>"
-                )
-            out.append("</table>")
-            for n, b in dyn["base"].items():
-                if b.get("history"):
-                    out.append(_history_svg(n, b["history"], b["allowable"]))
-        if dyn.get("bisection"):
-            tr = "; ".join(
-                f"{format_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"]
-            )
-            out.append(
-                "<p class='note'>Search on the design variable (g = max over combinations"
-                " and seeds of max |y| / allowable; pass at g ≤ 1; a failing trial stops at its"
-                f" first seed above the allowable): {e(tr)}. {e(dyn['bisection']['message'])}"
-                f" — {dyn['bisection']['storms']} storms.</p>"
-            )
-        if a.pipeline and a.pipeline.get("index") == s["index"]:
-            out.append(_pipeline_html(a.pipeline, var))
-        out.append("<h3>Assumptions and validity</h3><ul>")
-        out += [f"<li class='note'>{e(n)}</li>" for n in _section_validity(s, a) + s["notes"]]
-        out.append("</ul>")
-        out.append(
-            f"<p class='note'>Provenance: section run identity {e(str(s.get('identity')))}"
-            f" (SHA-256 of its inputs, levels, options and the onbottom version);"
-            f" {_fmt(s.get('wall_time_s'))} s of worker time"
-            + (", reused from a previous run" if s["name"] in a.reused else "")
-            + "; see <a href='#provenance'>Provenance</a>.</p>"
-        )
-        out.append("</div>")
-    out.append("<h2 id='validity'>Assumptions and validity</h2><ul>")
-    out += [f"<li>{e(v)}</li>" for v in VALIDITY]
-    out.append("</ul><h2 id='clauses'>Clause references</h2><table>")
-    out += [f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in CLAUSES.items()]
-    out.append("</table><h2 id='provenance'>Provenance</h2><table>")
-    out += [f"<tr><td>{e(k)}</td><td>{e(str(v))}</td></tr>"
-            for k, v in payload["provenance"].items()]  # fmt: skip
-    out.append("</table></body></html>")
-    return "\n".join(out)
+    """The design report (self-contained HTML: the shared report style, inline figures)."""
+    from onbottom.assess._report import render, report_context
+
+    return render(report_context(a, payload))
 
 
 def write_outputs(
-    a: Assessment, out: str | Path, *, case_text: str | None = None, pdf: bool = True
+    a: Assessment,
+    out: str | Path,
+    *,
+    case_text: str | None = None,
+    pdf: bool = True,
+    notes: list[str] | tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """Write results.json, dynamic.nc, report.html and (WeasyPrint installed) report.pdf into
-    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``."""
+    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``. ``notes``: warnings
+    raised while the route was read and run, listed in the report with the sections' own."""
     outp = Path(out)
     payload = results_payload(a, case_text)
     files = [write_text_atomic(outp / "results.json", json.dumps(payload, indent=1))]
     ds = a.dynamic_dataset()
     if ds.data_vars:
         files.append(save_dataset(ds, outp / "dynamic.nc"))
-    text = report_html(a, payload)
+    from onbottom.assess._report import render, report_context
+
+    ctx = report_context(a, payload, notes=notes)
+    for tb in ctx["tables"]:
+        files.append(write_text_atomic(outp / tb["csv"], tb["csv_text"]))
+    text = render(ctx)
     files.append(write_text_atomic(outp / "report.html", text))
     why = None
     if pdf:
@@ -690,7 +471,10 @@ def write_outputs(
         except (ImportError, OSError) as exc:
             why = f"report.pdf not written: WeasyPrint is not available ({type(exc).__name__})"
         else:
-            atomic_write(outp / "report.pdf", lambda tmp: HTML(string=text).write_pdf(tmp))
+            atomic_write(
+                outp / "report.pdf",
+                lambda tmp: HTML(string=text, base_url=str(outp)).write_pdf(tmp),
+            )
             files.append(outp / "report.pdf")
     else:
         why = "report.pdf not asked for"

@@ -26,18 +26,40 @@ Returned (results.json ``pipeline``): the section, combination, seed and design 
 max lateral displacement [m] and over D, the max strain and its check, the worst node, the
 status, the envelopes along the line (x, max |y|, max strain, max |moment|) and the run time;
 the NetCDF (records off: envelopes only) is ``pipeline.nc`` in the output folder.
+
+Design (issue: one design that passes every level run). When the FE run fails at the section's
+design (max |y| above the route's allowable, or the strain above its limit), the design of that
+section rises until the FE passes, by the dynamic level's search
+(:func:`onbottom.assess.dynamic.search_dynamic`: bracket [failing, passing], ascent from below in
+steps of the dynamic tolerance, one confirming step): the first passing guesses are the
+section's heavier passing values already known (the absolute design, the search trials that
+passed), then the design + 2, 4, 8, ... tolerances; a failing FE trial stops once |y| passes the
+allowable (:data:`~onbottom.assess.dynamic.STOP_MARGIN` × allowable: its verdict is that of the
+full run, its max |y| a lower bound). The run at the section's own design is always complete, and
+the section solver is run once more on the same storm and seed at that design, to state the
+ratio of the two solvers' max |y| (:data:`DISAGREEMENT_FACTOR`). Cost: the FE line has
+``length / element_length + 1`` nodes (the route's ``[pipeline]``; default 200 m / 5 m = 41
+nodes); one complete FE storm costs about as much as 45 section storms of the same storm.
 """
 
 from __future__ import annotations
 
-import logging
 import time
 from pathlib import Path
 from typing import Any
 
 from onbottom.assess.route import Route
 
-__all__ = ["governing_storm", "run_governing_pipeline"]
+__all__ = [
+    "DISAGREEMENT_FACTOR",
+    "governing_storm",
+    "pipeline_trial",
+    "run_governing_pipeline",
+]
+
+DISAGREEMENT_FACTOR = 2.0
+"""The two solvers (section, pipeline FE) disagree at the design point when the ratio of their
+max |y| on the same storm and seed is above this factor or below its inverse."""
 
 
 def governing_storm(route: Route, sections: list[dict[str, Any]]) -> dict[str, Any] | None:
@@ -70,29 +92,35 @@ def governing_storm(route: Route, sections: list[dict[str, Any]]) -> dict[str, A
     }
 
 
-def run_governing_pipeline(
-    route: Route, sections: list[dict[str, Any]], out: str | Path | None
-) -> dict[str, Any] | None:
-    """Run the pipeline FE of the governing section (see the module); None when no section
-    qualifies. ``out``: folder of ``pipeline.nc`` (None: kept in memory)."""
+def pipeline_trial(
+    route: Route,
+    gov: dict[str, Any],
+    value: float | None,
+    *,
+    stop_at_allowable: bool = False,
+) -> tuple[dict[str, Any], Any]:
+    """One pipeline FE run of the governing storm ``gov`` (:func:`governing_storm`) at design
+    value ``value`` (None: the given design). ``stop_at_allowable``: stop the storm once a
+    node's |y| passes :data:`~onbottom.assess.dynamic.STOP_MARGIN` × the allowable (the verdict
+    is the full run's; max |y| is then a lower bound). Returns (the row of results.json
+    ``pipeline``, without ``envelopes``; the :class:`~onbottom.dynamics.pipeline.PipelineResult`).
+    The row's ``pass`` is max |y| <= allowable and the strain within its limit; ``ratio`` is
+    max(max |y| / allowable, strain / limit)."""
     import warnings
 
+    from onbottom.assess.dynamic import STOP_MARGIN
     from onbottom.dynamics.pipeline import PipelineModel, PipelineSettings, simulate_pipeline
     from onbottom.hydro.short_crested import pipeline_kinematics
     from onbottom.hydro.storm_kinematics import current_normal_to_pipe
 
-    gov = governing_storm(route, sections)
-    if gov is None:
-        return None
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     p = route.pipeline
     sec = route.sections[gov["index"]]
     k = sec.storm_index(gov["combination"])
-    setup = (
-        sec.storms[k].setup if route.variable == "none" else sec.trial_storm(k, gov["design_value"])
-    )
+    setup = sec.storms[k].setup if value is None else sec.trial_storm(k, value)
     pipe = setup.pipe
     d = pipe.outer_diameter
+    allow = route.dynamic.allowable_for(d)
     steel = getattr(sec.pipe, "steel_outer_diameter", None)
     model = PipelineModel(
         pipe=pipe,
@@ -106,71 +134,176 @@ def run_governing_pipeline(
         strain_fibre_distance=None if steel is None else 0.5 * steel,
     )
     s = setup.settings
+    stop = s.stop_displacement_over_d
+    if stop_at_allowable:
+        limit = STOP_MARGIN * allow / d
+        stop = limit if stop is None else min(stop, limit)
     settings = PipelineSettings(
         dt_max=s.dt_max,
         dt_min=s.dt_min,
         max_displacement_increment_over_d=max(s.max_displacement_increment_over_d, 0.05),
-        stop_displacement_over_d=s.stop_displacement_over_d,
+        stop_displacement_over_d=stop,
         record_interval=None,  # envelopes only
         chunk_duration=3600.0,
         strain_limit=p.strain_limit,
     )
     kin = pipeline_kinematics(
-        setup.storm.with_seed(gov["seed"]),
-        setup.depth,
-        model.x,
+        setup.storm.with_seed(gov["seed"]), setup.depth, model.x,
         sample_interval=setup.sample_interval,
-    )
-    output = None if out is None else Path(out) / "pipeline.nc"
-    from onbottom.errors import ResultFileError
-
-    def run(resume: str) -> Any:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return simulate_pipeline(
-                model,
-                kin,
-                duration=p.duration,
-                settings=settings,
-                output=output,
-                attrs={"assess_section": gov["section"], "combination": gov["combination"]},
-                identity_extra={"assess": gov},
-                resume=resume,
-            )
-
-    try:
-        r = run("auto")
-    except ResultFileError as exc:
-        # a checkpoint or partial pipeline.nc of other inputs (an edited [pipeline], another
-        # governing storm): assess owns the folder and has no --restart; start this run afresh
-        logging.getLogger(__name__).warning("pipeline FE started afresh: %s", exc)
-        r = run("never")
-    env = r.envelopes
-    return gov | {
-        "length_m": p.length,
-        "element_length_m": p.element_length,
-        "n_nodes": int(model.x.size),
-        "end_conditions": p.end_conditions,
+    )  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = simulate_pipeline(model, kin, duration=p.duration, settings=settings)
+    ymax = float(r.max_displacement)
+    strain_ok = r.criteria.get("strain")
+    ratio = max(ymax / allow, float(r.max_strain) / p.strain_limit)
+    row = {
+        "design_value": value,
         "diameter_m": d,
         "submerged_weight_n_per_m": float(pipe.submerged_weight),
         "condition": sec.storms[k].condition,
-        "max_displacement_m": float(r.max_displacement),
-        "max_displacement_over_D": float(r.max_displacement) / d,
+        "allowable_m": allow,
+        "max_displacement_m": ymax,
+        "max_displacement_over_D": ymax / d,
         "worst_node_x_m": r.worst_node_x,
         "max_strain": float(r.max_strain),
-        "strain_limit": p.strain_limit,
-        "strain_check": r.criteria.get("strain"),
-        "criteria": {k: v for k, v in r.criteria.items() if k != "strain"},
+        "strain_check": strain_ok,
+        "criteria": {c: v for c, v in r.criteria.items() if c != "strain"},
         "status": int(r.status),
         "success": bool(r.success),
         "message": r.message,
-        "duration_s": p.duration,
-        "envelopes": {
-            "x": [float(v) for v in env["x"].values],
-            "max_abs_y": [float(v) for v in env["max_abs_y"].values],
-            "max_strain": [float(v) for v in env["max_strain"].values],
-            "max_abs_moment": [float(v) for v in env["max_abs_moment"].values],
-        },
-        "netcdf": None if r.netcdf is None else str(r.netcdf),
+        "stopped_at_allowable": bool(stop_at_allowable and ymax > allow),
+        "pass": bool(ymax <= allow and strain_ok is not False),
+        "ratio": ratio,
+        "cpu_time_s": time.process_time() - c0,
         "wall_time_s": time.perf_counter() - t0,
     }
+    return row, r
+
+
+def _section_solver(route: Route, gov: dict[str, Any], value: float | None) -> dict[str, Any]:
+    """The section solver on the FE's storm and seed at ``value``: max |y| [m]."""
+    from onbottom.assess.dynamic import run_seeds
+
+    sec = route.sections[gov["index"]]
+    k = sec.storm_index(gov["combination"])
+    setup = sec.storms[k].setup if value is None else sec.trial_storm(k, value)
+    r = run_seeds(setup, [gov["seed"]])[0]
+    return {"max_displacement_m": r["max_displacement"], "status": r["status"]}
+
+
+CAUSES = (
+    "end conditions: the FE stretch is held at its ends ({ends}) over {length:g} m, the section"
+    " solver is a rigid unit length; a short fixed stretch stiffens the line, a free one does not",
+    "short-crestedness: the FE line sees the storm synthesised short-crested along it (phase"
+    " and amplitude vary node to node), the section solver one point's kinematics; where the"
+    " crests are long the line moves as a whole and the loads do not average out",
+    "axial restraint: the FE line mobilises axial friction and bending, so a node that slides"
+    " drags its neighbours (and is dragged back); the section solver has no axial or bending"
+    " stiffness",
+)
+"""Candidate causes stated where the two solvers disagree (:data:`DISAGREEMENT_FACTOR`)."""
+
+
+def run_governing_pipeline(
+    route: Route, sections: list[dict[str, Any]], out: str | Path | None
+) -> dict[str, Any] | None:
+    """Run the pipeline FE of the governing section at its design and, where it fails, raise the
+    design until it passes (see the module); None when no section qualifies. ``out``: folder of
+    ``pipeline.nc`` (the envelopes of the accepted run; None: not written).
+
+    Returns the results.json ``pipeline`` document: the keys of :func:`governing_storm`, the
+    line (length_m, element_length_m, n_nodes, end_conditions, strain_limit, duration_s), the
+    accepted run's results (keys of :func:`pipeline_trial`, ``envelopes``), ``section_design``
+    (the section's design before the FE), ``at_section_design`` (the complete FE run there, with
+    the section solver's max |y| on the same storm and seed, their ratio and ``disagree``),
+    ``search`` (the trials and message; None when the section design passes), ``design_value``
+    (the accepted design; None: no design in range passes the FE) and ``raised``.
+    """
+    from onbottom.assess.dynamic import search_dynamic
+    from onbottom.results import save_dataset
+
+    gov = governing_storm(route, sections)
+    if gov is None:
+        return None
+    t0, c0 = time.perf_counter(), time.process_time()
+    p = route.pipeline
+    x0 = gov["design_value"]
+    first, r0 = pipeline_trial(route, gov, x0)
+    sect = _section_solver(route, gov, x0)
+    y_fe, y_sec = first["max_displacement_m"], sect["max_displacement_m"]
+    factor = y_fe / y_sec if y_sec > 0 else float("inf")
+    at_design = first | {
+        "section_solver_max_displacement_m": y_sec,
+        "fe_over_section": factor,
+        "disagree": bool(factor > DISAGREEMENT_FACTOR or factor < 1.0 / DISAGREEMENT_FACTOR),
+        "causes": [c.format(ends=p.end_conditions, length=p.length) for c in CAUSES],
+    }
+    accepted, result, search, value = first, r0, None, x0
+    if not first["pass"] and x0 is not None:
+        d = route.dynamic
+        rng = route.design
+        _lo, hi, tol = (
+            (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
+            if route.variable == "concrete_thickness"
+            else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
+        )
+        runs: dict[float, tuple[dict[str, Any], Any]] = {}
+
+        def evaluate(x: float) -> tuple[float, int]:
+            row, res = pipeline_trial(route, gov, x, stop_at_allowable=True)
+            runs[float(x)] = (row, res)
+            return row["ratio"], 1
+
+        sec = next(s for s in sections if s["index"] == gov["index"])
+        known_pass = sorted(
+            v for v in [(sec["levels"].get(k) or {}).get("value") for k in sec["levels"]]
+            + [x for x, g in ((sec.get("dynamic") or {}).get("bisection") or {}).get("trials", [])
+               if g <= 1.0]
+            if v is not None and v > x0
+        )  # fmt: skip
+        ladder = [x0 + tol * 2**j for j in range(1, 12) if x0 + tol * 2**j < hi]
+        guesses = sorted(set(ladder) | set(known_pass))
+        search = search_dynamic(evaluate, lo=x0, hi=hi, tol=tol,
+                                known=[(x0, first["ratio"])], guesses=guesses)  # fmt: skip
+        search = {k: search[k] for k in ("value", "status", "bracket", "trials", "message")}
+        value = search["value"]
+        if value is not None:
+            accepted, result = runs.get(float(value), (first, r0))
+        else:
+            accepted, result = first, r0
+    env = result.envelopes
+    if out is not None and env is not None:
+        save_dataset(env.assign_attrs(assess_section=gov["section"],
+                                      combination=gov["combination"]),
+                     Path(out) / "pipeline.nc")  # fmt: skip
+    ok = accepted["pass"] and (value is not None or x0 is None)
+    return (
+        gov
+        | accepted
+        | {
+            "design_value": value if ok or x0 is None else None,
+            "section_design": x0,
+            "raised": bool(ok and x0 is not None and value is not None and value > x0),
+            "pass": bool(ok),
+            "at_section_design": at_design,
+            "search": search,
+            "length_m": p.length,
+            "element_length_m": p.element_length,
+            "n_nodes": int(result.x.size),
+            "end_conditions": p.end_conditions,
+            "strain_limit": p.strain_limit,
+            "duration_s": p.duration,
+            "envelopes": None
+            if env is None
+            else {
+                "x": [float(v) for v in env["x"].values],
+                "max_abs_y": [float(v) for v in env["max_abs_y"].values],
+                "max_strain": [float(v) for v in env["max_strain"].values],
+                "max_abs_moment": [float(v) for v in env["max_abs_moment"].values],
+            },
+            "netcdf": None if out is None else str(Path(out) / "pipeline.nc"),
+            "cpu_time_s": time.process_time() - c0,
+            "wall_time_s": time.perf_counter() - t0,
+        }
+    )

@@ -154,36 +154,64 @@ def command(
         click.echo(path.read_text(encoding="utf-8"), nl=False)
         return
     _refuse_case_in_out(path, out)
-    route = load_route(path, seeds=seeds)  # every bad input raises here, before any work
-    check_budget(route, workers=workers, force=force)
-    text = path.read_text(encoding="utf-8")
-    source = "embedded example" if case is None else str(case)
-    with claim_output_folder(out, force=force) as held:
-        for note in held.notes:
-            click.echo(f"note: {note}", err=True)
-        a = assess(
-            route,
-            out=out,
-            n_workers=workers,
-            scheduler=scheduler,
-            progress=not quiet and not as_json,
-            source=source,
-        )
-        written = write_outputs(a, out, case_text=text, pdf=not no_pdf)
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:  # printed once each, as notes
+        warnings.simplefilter("always")
+        route = load_route(path, seeds=seeds)  # every bad input raises here, before any work
+        check_budget(route, workers=workers, force=force)
+        text = path.read_text(encoding="utf-8")
+        source = "embedded example" if case is None else str(case)
+        with claim_output_folder(out, force=force) as held:
+            for note in held.notes:
+                click.echo(f"note: {note}", err=True)
+            a = assess(
+                route,
+                out=out,
+                n_workers=workers,
+                scheduler=scheduler,
+                progress=not quiet and not as_json,
+                source=source,
+            )
+            raised = _once([str(w.message) for w in caught])
+            written = write_outputs(a, out, case_text=text, pdf=not no_pdf, notes=raised)
     if as_json:
         from onbottom.assess.output import results_payload
 
         payload: dict[str, Any] = results_payload(a, text) | written
         emit_json(payload)
     else:
-        _print(a, out, written)
+        _print(a, out, written, raised)
     if route.variable != "none" and any(s["governing_level"] is None for s in a.sections):
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
 
 
-def _print(a: Any, out: Path, written: dict[str, Any]) -> None:
+def _once(messages: list[str]) -> list[str]:
+    """Each warning once: messages that differ only by their ``<where>: `` prefix (one per
+    section or condition) are one note, with the places listed after it."""
+    import re
+
+    where: dict[str, list[str]] = {}
+    for m in messages:
+        k = re.match(r"<([^>]+)>: (.*)", m, re.S)
+        text, place = (k.group(2), k.group(1)) if k else (m, None)
+        places = where.setdefault(text, [])
+        if place and place not in places:
+            places.append(place)
+    return [t + (f" (in {', '.join(p)})" if len(p) > 1 else (f" ({p[0]})" if p else ""))
+            for t, p in where.items()]  # fmt: skip
+
+
+def _print(a: Any, out: Path, written: dict[str, Any], raised: list[str] = ()) -> None:
     click.echo(_table(a))
-    click.echo(f"wrote {', '.join(written['files'])}")
+    files = [f for f in written["files"] if Path(f).parent.name != "tables"]
+    n_csv = len(written["files"]) - len(files)
+    click.echo(
+        f"wrote {', '.join(files)}" + (f" and {n_csv} CSV tables in tables/" if n_csv else "")
+    )
+    notes = list(dict.fromkeys([*raised, *(n for s in a.sections for n in s.get("notes", []))]))
+    for n in notes:
+        click.echo(f"note: {n}")
     if written["pdf"]:
         click.echo(written["pdf"])
     if a.reused:
@@ -192,24 +220,40 @@ def _print(a: Any, out: Path, written: dict[str, Any]) -> None:
 
 def _table(a: Any) -> str:
     from onbottom.assess.output import format_value as fv
+    from onbottom.assess.output import level_name
 
     var = a.route.variable
+    fe = a.route.levels.pipeline_fe
     lines = [
         f"{a.route.name}: {len(a.sections)} sections, {a.wall_time_s:.1f} s",
-        f"{'section':<20} {'KP [km]':<12} {'util.':>7}  {'absolute':>12} {'dynamic':>12}  design",
+        f"{'section':<20} {'KP [km]':<12} {'util.':>7}  {'absolute':>12} {'dynamic':>12}"
+        + (f" {'pipeline FE':>12}" if fe else "")
+        + "  design",
     ]
+    reasons = []
     for s in a.sections:
         lv = s["levels"]
         u = s["max_utilisation"]
+        pf = lv.get("pipeline_fe")
         lines.append(
             f"{s['name'][:20]:<20} {s['kp_start_m'] / 1e3:g}–{s['kp_end_m'] / 1e3:g}".ljust(33)
             + f" {u:>7.3f}  "
             + f"{fv((lv.get('absolute') or {}).get('value'), var):>12} "
-            + f"{fv((lv.get('dynamic') or {}).get('value'), var):>12}  "
+            + f"{fv((lv.get('dynamic') or {}).get('value'), var):>12}"
+            + ((f" {fv(pf.get('value'), var) if pf else 'not run':>12}") if fe else "")
+            + "  "
             + (
-                f"{fv(s['design_value'], var)} ({s['governing_level']})"
+                f"{fv(s['design_value'], var)} ({level_name(s['governing_level'])})"
                 if s["governing_level"]
-                else "no solution"
+                else "NO DESIGN"
             )
         )
+        if not s["governing_level"] and var != "none":
+            reasons.append(f"  {s['name']}: " + (s.get("no_design_reason")
+                           or "no level run finds a passing design in the range"))  # fmt: skip
+    if fe:
+        lines.append("pipeline FE: run on the governing section only (the heaviest design)")
+    if reasons:
+        lines.append("no design:")
+        lines += reasons
     return "\n".join(lines)

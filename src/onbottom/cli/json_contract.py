@@ -220,8 +220,11 @@ CONTRACT: dict[str, Output] = {
                 "dynamic_value": "dynamic minimum (every seed within the allowable), or null",
                 "dynamic_curves_value": "minimum from the tool's own curve sweeps ([levels]"
                 " dynamic_curves), or null (not run / not covered)",
+                "pipeline_fe_value": "the design passing the pipeline FE (governing section"
+                " only; null elsewhere, or where no design in range passes it)",
                 "governing_level": "the level of the design value (the lightest passing, raised"
-                " to the generalized one by the design floor)",
+                " to the generalized one by the design floor; pipeline_fe where the pipeline FE"
+                " raised it)",
                 "design_value": "the design value of the variable, or null",
                 "floor_rule": "design-floor rule applied (onbottom.assess.core.FLOOR_RULES)",
                 "dynamic_over_generalized_weight": "submerged weight at the dynamic design over"

@@ -149,15 +149,29 @@ class LazyGroup(JsonErrorGroup):
     help="Let case files name files outside their own folder tree (absolute paths, '..').",
 )
 def cli(allow_outside_paths: bool = False) -> None:
-    """onbottom — subsea pipeline–seabed interaction.
+    """onbottom — on-bottom stability of subsea pipelines (DNV-RP-F109), from the sea states
+    to a design report.
 
-    Pipe–soil resistance models (Verley & Sotberg sand and its calcareous calibration,
-    Verley & Lund clay, Coulomb), DNVGL-RP-F114 vertical penetration, load-controlled pipe
-    section simulations of centrifuge tests, calibration, and a 2D DEM of pipe penetration.
+    \b
+    Start here:
+      onbottom assess --out DIR    a whole route: every F109 level per KP section (flotation,
+                                   absolute, generalized, dynamic storms over seeds, pipeline
+                                   FE of the governing section) and the design report
+      onbottom assess --example    the example route case, to copy and edit
+    \b
+    Design inputs and single studies:
+      metocean      return values and the F109 design table from a hindcast
+      stability     F109 static checks and the minimum concrete of one section
+      storm         a pipe section (or pipeline FE) through a storm, over seeds
+      reliability   long-term probability of failure of a section
+      curves        the tool's own generalized stability curves from dynamic storms
+    \b
+    Models and research: backbone, penetration, simulate, reproduce, calibrate, sweep, dem.
+    Setup: warmup (compile the kernels once, ~1 min). Validation: report.
 
     Inputs are SI (m, N, N/m, Pa) unless an option name carries a unit (e.g. --gamma-kn).
     Every command accepts --json for scripting. Input errors exit with status 1 and a message
-    naming the field, its value and the allowed range.
+    naming the field, its value and the allowed range. docs/quickstart.md walks through it.
     """
     import sys
 

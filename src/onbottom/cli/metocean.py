@@ -64,7 +64,7 @@ def run_metocean(
     hindcast_path: Path,
     out: Path,
     *,
-    sectors: int = 8,
+    sectors: int | None = None,
     return_periods: tuple[float, ...] = (1.0, 10.0, 100.0),
     storm_rate: float = 3.0,
     r_hours: float = 48.0,
@@ -79,7 +79,8 @@ def run_metocean(
 ) -> dict:
     """Run the analysis (:func:`onbottom.metocean.run.run_metocean_analysis`), write its files
     (:func:`onbottom.metocean.run.write_metocean_outputs`), the figures and the report page;
-    returns the JSON payload."""
+    returns the JSON payload. ``sectors`` None: 8 when the hindcast has a wave direction column,
+    else 1 (omnidirectional) with a note."""
     import importlib.util
     import time
 
@@ -101,6 +102,15 @@ def run_metocean(
         err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
         err.field = "--out"  # type: ignore[attr-defined]
         raise err
+    hindcast = read_hindcast(hindcast_path)
+    chosen = []
+    if sectors is None:
+        sectors = 8 if hindcast.has_direction else 1
+        if not hindcast.has_direction:
+            chosen.append(
+                "the hindcast has no wave direction column: omnidirectional statistics only"
+                " (--sectors 1); give a wave_direction_deg column for direction sectors"
+            )
     options = MetoceanOptions(
         sectors=sectors,
         return_periods=return_periods,
@@ -112,12 +122,14 @@ def run_metocean(
         seed=seed,
     )
     run = run_metocean_analysis(
-        read_hindcast(hindcast_path),
+        hindcast,
         options,
         source=str(hindcast_path),
         pipe_heading_deg=pipe_heading_deg,
         current_height=current_height,
     )
+    if chosen:
+        run.notes[:0] = chosen
     files = [str(f) for f in write_metocean_outputs(run, out)]
     figs: dict[str, str] = {}
     if figures:
@@ -164,9 +176,9 @@ def run_metocean(
 @click.option(
     "--sectors",
     type=Number(int, min=1, max=36),
-    default=8,
-    show_default=True,
-    help="Equal direction sectors, the first centred on north (1: omnidirectional only).",
+    default=None,
+    help="Equal direction sectors, the first centred on north (1: omnidirectional only)."
+    " Default 8, or 1 (with a note) when the hindcast has no wave direction column.",
 )
 @click.option(
     "--return-periods",
@@ -239,7 +251,7 @@ def run_metocean(
 def command(
     hindcast: Path,
     out: Path,
-    sectors: int,
+    sectors: int | None,
     return_periods: str,
     storm_rate: float,
     r_hours: float,

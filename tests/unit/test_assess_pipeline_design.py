@@ -1,0 +1,65 @@
+"""The pipeline FE in the design search of ``onbottom assess`` (assess/pipeline.py, core.py).
+
+The FE storm of a failing trial stops once |y| passes the allowable: its verdict must be the
+full run's. The governing section's design, summary row and exit condition follow the FE."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import pytest
+
+from onbottom.assess.core import _apply_pipeline
+from onbottom.assess.pipeline import pipeline_trial
+from onbottom.cases.assess import example_path, load_route
+
+
+@pytest.fixture(scope="module")
+def route():
+    r = load_route(example_path(), seeds=1)
+    # a 1-hour window of the deep end's storm on a short line keeps the runs to seconds
+    return replace(r, pipeline=replace(r.pipeline, length=100.0, element_length=10.0,
+                                       duration=3600.0))  # fmt: skip
+
+
+GOV = {"section": "deep end", "index": 2, "combination": "100-yr wave + 10-yr current",
+       "seed": 1, "variable": "concrete_thickness"}  # fmt: skip
+
+
+@pytest.mark.parametrize("value", [0.0, 0.008, 0.03])
+def test_stop_at_allowable_gives_the_full_runs_verdict(route, value):
+    full, _ = pipeline_trial(route, GOV, value)
+    stopped, _ = pipeline_trial(route, GOV, value, stop_at_allowable=True)
+    assert stopped["pass"] == full["pass"]
+    assert stopped["max_displacement_m"] <= full["max_displacement_m"] * (1 + 1e-9)
+    if full["pass"]:  # a passing run never reaches the stop: the same run
+        assert stopped["max_displacement_m"] == pytest.approx(full["max_displacement_m"])
+    else:
+        assert stopped["max_displacement_m"] > stopped["allowable_m"]
+
+
+def _section(index, design, level="dynamic"):
+    lv = {level: {"success": True, "value": design}}
+    return {"index": index, "name": f"s{index}", "design_value": design,
+            "governing_level": level, "levels": lv}  # fmt: skip
+
+
+def test_a_raised_design_governs_the_section(route):
+    pipe = {"index": 1, "pass": True, "raised": True, "design_value": 0.01,
+            "at_section_design": {"max_displacement_m": 0.19, "max_displacement_over_D": 0.76},
+            "search": {"message": "ascent"}}  # fmt: skip
+    out = _apply_pipeline(route, [_section(0, 0.006), _section(1, 0.008)], pipe)
+    assert out[0]["design_value"] == 0.006 and "pipeline_fe" not in out[0]["levels"]
+    assert out[1]["design_value"] == 0.01
+    assert out[1]["governing_level"] == "pipeline_fe"
+    assert out[1]["levels"]["pipeline_fe"]["value"] == 0.01
+    assert "0.76 D" in out[1]["levels"]["pipeline_fe"]["message"]
+
+
+def test_no_design_passing_the_fe_leaves_the_section_without_design(route):
+    pipe = {"index": 1, "pass": False, "raised": False, "design_value": None,
+            "search": {"message": "the upper bound 0.2 fails"}}  # fmt: skip
+    out = _apply_pipeline(route, [_section(0, 0.006), _section(1, 0.008)], pipe)
+    assert out[1]["design_value"] is None and out[1]["governing_level"] is None
+    assert "upper bound 0.2 fails" in out[1]["no_design_reason"]
+    assert out[1]["levels"]["pipeline_fe"]["success"] is False
