@@ -53,7 +53,7 @@ def adhesive_coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     f = 0.0
     k = 0.0
     stored = 0.0
-    if v_load > 0.0:
+    if not v_load <= 0.0:  # V > 0, or NaN (which then gives NaN resistance)
         cap = params[P_MU] * v_load + params[P_ADHESION]
         k = cap / params[P_DELTA]
         f0 = min(max(f0, -cap), cap)
