@@ -151,3 +151,57 @@ def test_route_case_names_models_with_their_own_kernels(tmp_path):
         assert storm.setup.soil.adhesion == 100.0
         assert isinstance(storm.setup.force_model, recipe_models.QuadraticDrag)
         assert storm.setup.force_model.cd == 0.9
+
+
+# ---- an unknown model name is a named error in every case kind -----------------------------------
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+KINDS = {  # case kind: (example file, command, the tables that name a model)
+    "section": ("section_case.toml", ["simulate"], ("soil",)),  # a load programme: no flow
+    "stability": ("stability_case.toml", ["stability"], ("hydro",)),  # F109: no soil model
+    "curves": ("curves_case.toml", ["curves"], ("hydro",)),  # soils: the F109 sand and clay
+    "pipeline": ("pipeline_case.toml", ["storm", "--workers", "0"], ("soil", "hydro")),
+    "reliability": ("reliability_case.toml", ["reliability", "--workers", "0"], ("soil", "hydro")),
+    "route": ("assess_route.toml", ["assess", "--workers", "0"], ("soil", "hydro")),
+}
+
+
+def _with_model(text: str, table: str, name: str) -> str:
+    """``text`` with ``[table] model = name`` (the table's own model line replaced)."""
+    lines, out, inside, done = text.splitlines(), [], False, False
+    for line in lines:
+        head = line.split("#", 1)[0].strip()
+        if head.startswith("["):
+            inside = head == f"[{table}]"
+            out.append(line)
+            if inside:
+                out.append(f'model = "{name}"')
+                done = True
+            continue
+        if inside and head.startswith("model"):
+            continue
+        out.append(line)
+    if not done:
+        out += ["", f"[{table}]", f'model = "{name}"']
+    return "\n".join(out) + "\n"
+
+
+@pytest.mark.parametrize("table", ["soil", "hydro"])
+@pytest.mark.parametrize("kind", list(KINDS))
+def test_unknown_model_names_in_every_case_kind(tmp_path, kind, table):
+    example, command, tables = KINDS[kind]
+    if table not in tables:
+        pytest.skip(f"the {kind} case has no [{table}] model")
+    for csv in EXAMPLES.glob("*.csv"):
+        (tmp_path / csv.name).write_bytes(csv.read_bytes())
+    case = tmp_path / example
+    bad = f"no_such_{table}"
+    case.write_text(_with_model(EXAMPLES.joinpath(example).read_text("utf-8"), table, bad))
+    args = [*command, str(case)]
+    if kind == "route":
+        args += ["--out", str(tmp_path / "out"), "--no-pdf", "--quiet"]
+    res = CliRunner().invoke(cli, args)
+    assert res.exit_code not in (0, 70) and res.exc_info[0] is SystemExit, res.output
+    assert f"{table}.model = '{bad}' is invalid" in res.output, res.output
+    assert "line" in res.output and "Traceback" not in res.output
+    names = "coulomb" if table == "soil" else "morison"
+    assert names in res.output  # the registered names are listed

@@ -122,6 +122,15 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     storm_case = parse_case(StormCase, rest, file=p, text=text)
     setup = build_setup(storm_case, p)
     t = rel.reliability
+    soil_inputs = [k for k in ("friction_coefficient", "submerged_unit_weight") if k in t.inputs]
+    if soil_inputs and storm_case.soil is not None and storm_case.soil.model is not None:
+        raise CaseFileError(
+            f"{p}: reliability.inputs.{soil_inputs[0]} is invalid with [soil] model ="
+            f" {storm_case.soil.model!r}: random seabed properties rebuild the seabed kind's"
+            " default model; remove [soil] or make the seabed properties fixed",
+            field=f"reliability.inputs.{soil_inputs[0]}",
+            file=str(p),
+        )
     try:
         inputs = tuple(parameter_from_table(k, v) for k, v in t.inputs.items())
         d = float(setup.pipe.outer_diameter)

@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any, Literal, NoReturn
 from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
-from onbottom.cases.models import collect_model_tables
+from onbottom.cases.models import check_model_names, collect_model_tables
 from onbottom.checks.design import CheckOptions
 from onbottom.checks.evaluation import (
     DesignBounds,
@@ -722,6 +722,7 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     """
     p = Path(path)
     case = load_case_file(p, StabilityCase)
+    check_model_names(case, Checker.of_file(p))
     _check_section(case, Checker.of_file(p))
     return case
 
