@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from onbottom._casefile import contained
+from onbottom.cases.models import model_tables
 from onbottom.errors import InputError
 from onbottom.hydro.registry import build_force_model, force_model_class, model_options
 
@@ -50,10 +51,7 @@ def force_model_from_case(
     """
     name = default if hydro.model is None else hydro.model
     force_model_class(name)
-    tables = {**(getattr(hydro, "models", None) or {})}
-    for builtin in ("wake", "fourier"):
-        if getattr(hydro, builtin, None):
-            tables[builtin] = getattr(hydro, builtin)
+    tables = model_tables(hydro)
     for other in tables:
         if other != name:
             raise InputError(

@@ -30,7 +30,13 @@ from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.soil.base import LateralResistanceModel
 from onbottom.soil.registry import SOIL_MODELS, build_soil_model, soil_model_for_seabed
 
-__all__ = ["SoilTable", "check_model_names", "collect_model_tables", "soil_from_case"]
+__all__ = [
+    "SoilTable",
+    "check_model_names",
+    "collect_model_tables",
+    "model_tables",
+    "soil_from_case",
+]
 
 
 def collect_model_tables(data: Any, fields: set[str]) -> Any:
@@ -65,6 +71,17 @@ class SoilTable(StrictModel):
         return collect_model_tables(data, {"model", "models"})
 
 
+def model_tables(hydro: Any) -> dict[str, dict[str, Any]]:
+    """The non-empty ``[hydro.<name>]`` option tables of a ``[hydro]`` table: its ``models``
+    and the fields of the table that are named after a registered force model."""
+    tables = dict(getattr(hydro, "models", None) or {})
+    for field in type(hydro).model_fields:
+        value = getattr(hydro, field)
+        if field in FORCE_REGISTRY.load() and isinstance(value, dict) and value:
+            tables[field] = value
+    return tables
+
+
 def check_model_names(case: Any, chk: Any) -> None:
     """The ``[soil]`` and ``[hydro]`` model names and option tables of ``case`` against the
     registries; the first problem is a :class:`CaseFileError` through ``chk`` (a
@@ -74,11 +91,7 @@ def check_model_names(case: Any, chk: Any) -> None:
         _check_table(chk, "soil", soil.model, soil.models, SOIL_MODELS)
     hydro = getattr(case, "hydro", None)
     if hydro is not None and hydro.model is not None:
-        tables = dict(getattr(hydro, "models", {}) or {})
-        for name in ("wake", "fourier"):
-            if getattr(hydro, name, None):
-                tables[name] = getattr(hydro, name)
-        _check_table(chk, "hydro", hydro.model, tables, FORCE_REGISTRY)
+        _check_table(chk, "hydro", hydro.model, model_tables(hydro), FORCE_REGISTRY)
     elif hydro is not None:
         for name in getattr(hydro, "models", {}) or {}:
             if name not in FORCE_REGISTRY.load():

@@ -64,9 +64,17 @@ from onbottom.soil.coulomb import CoulombFriction
 __all__ = ["SectionCase", "build_section_run", "load_case", "run_case"]
 
 _KN = 1.0e3
-_FLAT_KEYS = ("verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb")
-"""Models whose parameters the flat keys of ``[soil]`` give (any other registered model takes
-its options from ``[soil.<name>]``)."""
+
+
+def _flat(model: str) -> bool:
+    """Whether the flat keys of ``[soil]`` give the parameters of ``model`` (the Verley &
+    Sotberg and Coulomb models; any other registered model takes its options from
+    ``[soil.<name>]``)."""
+    from onbottom.soil.registry import SOIL_MODELS
+    from onbottom.soil.verley_sotberg import VerleySotberg
+
+    return model in SOIL_MODELS and SOIL_MODELS[model].cls in (CoulombFriction, VerleySotberg)
+
 
 _Pos = Annotated[float, Field(gt=0.0)]
 _Factor = Annotated[float, Field(gt=0.0, le=10.0)]
@@ -270,7 +278,7 @@ def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
         flat = ("A", "B", "C", "mobilisation_displacement", "passive_law", "work_law")
         flat += ("max_penetration_law", "work_integrand")
         given = [k for k in flat if getattr(case.soil, k) is not None]
-        if case.soil.model not in _FLAT_KEYS and given:
+        if not _flat(case.soil.model) and given:
             Checker(path or "<case>", text).fail(
                 f"soil.{given[0]}",
                 f"soil.{given[0]} is invalid with model = {case.soil.model!r}: its options go"
@@ -353,7 +361,7 @@ def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionR
             )
         )
     prog = programme_from_toml({"programme": table})
-    if st.model not in _FLAT_KEYS:
+    if not _flat(st.model):
         seabed = Sand(
             submerged_unit_weight=st.submerged_unit_weight_kn * _KN,
             friction_coefficient=st.friction_coefficient,
