@@ -120,6 +120,15 @@ def register_force_model(
                 " when the kernel is registered (the registry sets the class's model_id)"
             )
         cls.model_id = register_force_kernel(kernel)
+    else:
+        from onbottom.hydro._force_dispatch import _KERNELS
+
+        if getattr(cls, "model_id", None) not in _KERNELS:
+            raise InputError(
+                f"force model {name!r}: {cls.__name__}.model_id ="
+                f" {getattr(cls, 'model_id', None)!r} names no kernel of the solvers'"
+                " dispatch: pass kernel=<the model's numba kernel>"
+            )
     FORCE_REGISTRY.add(
         ForceModelEntry(name, cls, description, options, dict(example or {})), replace=replace
     )

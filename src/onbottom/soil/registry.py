@@ -117,10 +117,16 @@ def register_soil_model(
 
     if options is None:
         options = options_schema(cls, name=f"{cls.__name__}Options")
-    if kernel is not None:
-        from onbottom.soil._dispatch import register_soil_kernel
+    from onbottom.soil._dispatch import _KERNELS, register_soil_kernel
 
+    if kernel is not None:
         cls.model_id = register_soil_kernel(kernel)
+    elif getattr(cls, "model_id", None) not in _KERNELS:
+        raise InputError(
+            f"soil model {name!r}: {cls.__name__}.model_id ="
+            f" {getattr(cls, 'model_id', None)!r} names no kernel of the solvers' dispatch:"
+            " pass kernel=<the model's numba kernel>"
+        )
     entry = SoilModelEntry(
         name, cls, build, tuple(seabeds), description, options, dict(example or {})
     )
