@@ -75,7 +75,7 @@ def model_tables(hydro: Any) -> dict[str, dict[str, Any]]:
     """The non-empty ``[hydro.<name>]`` option tables of a ``[hydro]`` table: its ``models``
     and the fields of the table that are named after a registered force model."""
     tables = dict(getattr(hydro, "models", None) or {})
-    for field in type(hydro).model_fields:
+    for field in getattr(type(hydro), "model_fields", None) or vars(hydro):
         value = getattr(hydro, field)
         if field in FORCE_REGISTRY.load() and isinstance(value, dict) and value:
             tables[field] = value
