@@ -205,3 +205,25 @@ def test_unknown_model_names_in_every_case_kind(tmp_path, kind, table):
     assert "line" in res.output and "Traceback" not in res.output
     names = "coulomb" if table == "soil" else "morison"
     assert names in res.output  # the registered names are listed
+
+
+def test_section_case_names_a_registered_model(tmp_path):
+    case = tmp_path / "section.toml"
+    case.write_text(
+        "[pipe]\nouter_diameter = 0.4\nsubmerged_weight_kn = 1.5\n"
+        '[soil]\nmodel = "adhesive_coulomb"\nfriction_coefficient = 0.5\n'
+        "submerged_unit_weight_kn = 10.0\n[soil.adhesive_coulomb]\nadhesion = 300.0\n"
+        '[programme]\nkind = "inclined_cyclic"\nname = "t"\ninstallation_load_kn = 1.5\n'
+        "vertical_load_kn = 1.5\namplitude_step_kn = 0.2\nperiod = 20.0\nalpha_deg = 90.0\n"
+        "n_cycles = 6\n",
+        encoding="utf-8",
+    )
+    out = tmp_path / "section.nc"
+    res = CliRunner().invoke(cli, ["simulate", str(case), "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    with xr.open_dataset(out) as ds:
+        params = json.loads(ds.attrs["parameters"])
+        f_soil = ds["F_soil"].values
+    assert params["soil_model"] == "adhesive_coulomb" and params["adhesion"] == 300.0
+    # the resistance plateau is μV + a = 0.5 · 1500 + 300 N/m (hand calculation)
+    assert np.max(np.abs(f_soil)) == pytest.approx(0.5 * 1500.0 + 300.0, rel=1e-9)
