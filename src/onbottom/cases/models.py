@@ -58,8 +58,8 @@ class SoilTable(StrictModel):
     model: str | None = Field(
         None,
         min_length=1,
-        description="soil model by name (onbottom.soil.registry.SOIL_MODELS; `onbottom models`"
-        " lists them); default: the seabed kind's model [-]",
+        description="soil model by name (onbottom.soil.registry.SOIL_MODELS; the docs'"
+        " api/models.md lists them); default: the seabed kind's model [-]",
     )
     models: dict[str, dict[str, Any]] = Field(
         default_factory=dict, description="options of each model: the [soil.<name>] tables"

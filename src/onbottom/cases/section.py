@@ -118,9 +118,9 @@ class SoilTable(StrictModel):
 
     model: str = Field(
         min_length=1,
-        description="soil model by name (onbottom.soil.registry.SOIL_MODELS; `onbottom models`"
-        " lists them); options of other models than the Verley & Sotberg and Coulomb ones in"
-        " [soil.<name>] [-]",
+        description="soil model by name (onbottom.soil.registry.SOIL_MODELS; the docs'"
+        " api/models.md lists them); options of other models than the Verley & Sotberg and"
+        " Coulomb ones in [soil.<name>] [-]",
     )
     models: dict[str, dict[str, Any]] = Field(
         default_factory=dict, description="options of each model: the [soil.<name>] tables"

@@ -265,8 +265,8 @@ class HydroTable(StrictModel):
     model: str | None = Field(
         None,
         min_length=1,
-        description="time-domain force model by name (onbottom.hydro.registry; `onbottom"
-        " models` lists them), options in [hydro.<name>]; default: the command's [-]",
+        description="time-domain force model by name (onbottom.hydro.registry; the docs'"
+        " api/models.md lists them), options in [hydro.<name>]; default: the command's [-]",
     )
     coefficient_table: str | None = Field(
         None,
