@@ -294,7 +294,26 @@ def _api(files: Files, config) -> None:
             body += "\n" + _exports() + "\n"
         _add(files, config, f"api/{slug}.md", content=body)
         index.append(f"- [`{mod}`]({slug}.md)")
+    _add(files, config, "api/models.md", content=_models())
+    index.append("- [Models by name: the registries](models.md)")
     _add(files, config, "api/index.md", content="\n".join(index) + "\n")
+
+
+def _models() -> str:
+    """The registered soil models, force models and design checks (the names case files use),
+    from the registries themselves (`onbottom.registry.Registry.table`)."""
+    from onbottom.checks.registry import CHECKS
+    from onbottom.hydro.registry import FORCE_REGISTRY
+    from onbottom.soil.registry import SOIL_MODELS
+
+    parts = ["# Models by name", "", "Generated from the registries at build time."]
+    for title, key, reg in (
+        ("Soil models", "`[soil] model`, options in `[soil.<name>]`", SOIL_MODELS),
+        ("Force models", "`[hydro] model`, options in `[hydro.<name>]`", FORCE_REGISTRY),
+        ("Design checks", "`[design] checks`", CHECKS),
+    ):
+        parts += ["", f"## {title}", "", f"Case-file key: {key}.", "", reg.table()]
+    return "\n".join(parts) + "\n"
 
 
 def on_files(files: Files, config) -> Files:

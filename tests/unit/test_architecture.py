@@ -14,7 +14,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
 BASE = {
     "_version", "errors", "constants", "_validate", "_casefile", "results", "_lazy", "_roots",
-    "_jit",
+    "_jit", "registry",
 }  # fmt: skip
 
 ALLOWED: dict[str, set[str]] = {
@@ -26,6 +26,7 @@ ALLOWED: dict[str, set[str]] = {
     "constants": set(),
     "_validate": {"errors"},
     "_casefile": {"errors"},
+    "registry": {"errors"},
     "results": {"_version", "errors"},
     "inputs": BASE,
     "hydro": BASE | {"inputs"},

@@ -56,3 +56,42 @@ def test_twin_decorator_is_the_base_one():
     assert _twin.pure_python is _jit.pure_python
     assert soil_contract.lateral_step_of.__name__ == "lateral_step_of"
     assert node_layout.N_NODE_COLS == len([n for n in node_layout.__all__ if n.startswith("ND_")])
+
+
+# ---- a registered model must name a kernel of the dispatch ---------------------------------------
+def test_registration_without_a_dispatch_kernel_is_a_named_error():
+    from dataclasses import dataclass
+
+    from onbottom.errors import InputError
+    from onbottom.hydro.registry import register_force_model
+    from onbottom.soil.coulomb import CoulombFriction
+    from onbottom.soil.registry import SOIL_MODELS, register_soil_model
+
+    class Orphan(CoulombFriction):
+        model_id = 987654321
+
+    with pytest.raises(InputError, match=r"soil model 'orphan': Orphan.model_id = 987654321"):
+        register_soil_model("orphan", Orphan)
+    assert "orphan" not in SOIL_MODELS
+
+    @dataclass(frozen=True)
+    class OrphanForce:
+        model_id: int = 987654321
+
+    with pytest.raises(InputError, match="names no kernel of the solvers' dispatch"):
+        register_force_model("orphan_force", OrphanForce)
+
+
+@pytest.mark.parametrize(("suite", "name"), [("soil", "coulomb"), ("force", "morison")])
+def test_a_missing_dispatch_entry_fails_the_named_conformance_test(monkeypatch, suite, name):
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "conformance"))
+    module = importlib.import_module(f"test_{suite}_models")
+    kernels = module._KERNELS
+    model_id = next(k for k in kernels if k == module._model(name).model_id)
+    module.test_dispatch_entry_exists(name)  # passes with the entry
+    monkeypatch.delitem(kernels, model_id)
+    with pytest.raises(AssertionError, match="not in the dispatch"):
+        module.test_dispatch_entry_exists(name)

@@ -99,12 +99,12 @@ class FrictionAngle(LateralResistanceModel):
 def clean_registries():
     soils = dict(soil_registry.SOIL_MODELS)
     checks = dict(check_registry.CHECKS)
-    forces = dict(force_registry._REGISTERED)
+    forces = dict(force_registry.FORCE_REGISTRY.load())
     yield
     for reg, saved in (
         (soil_registry.SOIL_MODELS, soils),
         (check_registry.CHECKS, checks),
-        (force_registry._REGISTERED, forces),
+        (force_registry.FORCE_REGISTRY, forces),
     ):
         reg.clear()
         reg.update(saved)

@@ -28,7 +28,7 @@ def test_names_build_the_right_models():
     f = lateral_model("verley_sotberg_f109", PIPE, SAND)
     assert f.passive_law == "dnv_f109"
     assert isinstance(lateral_model("verley_lund", PIPE, CLAY), VerleyLund)
-    assert set(LATERAL_MODELS) == {
+    assert set(LATERAL_MODELS) >= {  # the built-in ones (tests may register more)
         "coulomb",
         "verley_sotberg_silica",
         "verley_sotberg_calcareous",

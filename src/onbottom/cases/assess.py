@@ -79,6 +79,7 @@ from onbottom.assess.route import (
     Section,
     StormCombination,
 )
+from onbottom.cases.models import SoilTable, check_model_names
 from onbottom.cases.stability import (
     Checker,
     CombinationTable,
@@ -321,6 +322,7 @@ class RouteCase(StrictModel):
     pipe: PipeTable
     environment: RouteEnvironmentTable = RouteEnvironmentTable()
     hydro: HydroTable = HydroTable()
+    soil: SoilTable | None = None
     design: RouteDesignTable = RouteDesignTable()
     levels: LevelsTable = LevelsTable()
     dynamic: DynamicTable = DynamicTable()
@@ -407,11 +409,15 @@ class RouteCase(StrictModel):
             "solver": {"record_interval": 0.0},
             "run": {"seeds": d.seeds if seeds is None else seeds},
         }
+        if self.soil is not None:
+            doc["soil"] = _dump(self.soil)
         doc["hydro"].setdefault("model", DEFAULT_FORCE_MODEL)
         if not doc["hydro"].get("wake"):
             doc["hydro"].pop("wake", None)
         if not doc["hydro"].get("fourier"):
             doc["hydro"].pop("fourier", None)
+        if not doc["hydro"].get("models"):
+            doc["hydro"].pop("models", None)
         return doc
 
 
@@ -637,6 +643,7 @@ def parse_route_case(
     are taken as given."""
     doc = _resolve_files(doc, str(file), text)
     case = parse_case(RouteCase, doc, file=file, text=text)
+    check_model_names(case, Checker(str(file), text))
     _check_route(case, str(file), text)
     return case
 
@@ -685,7 +692,12 @@ def load_route_case(path: str | os.PathLike) -> RouteCase:
 
 def case_identity(case: RouteCase) -> str:
     """SHA-256 of the validated case (canonical JSON): the run identity of a study."""
-    blob = json.dumps(json.loads(case.model_dump_json()), sort_keys=True).encode()
+    data = json.loads(case.model_dump_json())
+    if data.get("soil") is None:  # the tables of model selection count only when given
+        data.pop("soil", None)
+    if not data["hydro"].get("models"):
+        data["hydro"].pop("models", None)
+    blob = json.dumps(data, sort_keys=True).encode()
     return hashlib.sha256(blob).hexdigest()
 
 

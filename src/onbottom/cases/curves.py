@@ -159,6 +159,7 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
     ``curves.l_max``), warnings (:class:`~onbottom.errors.OutOfRangeWarning`) the file and
     line."""
     from onbottom.cases.force import force_model_from_case
+    from onbottom.cases.models import check_model_names
     from onbottom.hydro.storm_kinematics import sea_state_for_velocity
     from onbottom.study.stability_curves import CurveSettings
 
@@ -167,6 +168,7 @@ def build_curve_settings(cfg: CurvesCase, case: str | os.PathLike) -> CurveSetti
     chk = Checker(case, text)
     c = cfg.curves
     h = cfg.hydro
+    check_model_names(cfg, chk)
     if not h.reductions:
         chk.fail(
             "hydro.reductions",

@@ -2,7 +2,7 @@
 
 :func:`force_model_from_case` turns the parsed ``[hydro]`` table of a storm-type case file
 (``model``, ``cd``/``cm``/``cl``/``added_mass_coefficient``, ``coefficient_table``, the
-sub-tables ``[hydro.wake]`` and ``[hydro.fourier]``) into a model of :mod:`onbottom.hydro`
+sub-table ``[hydro.<model>]`` of the model's options) into a model of :mod:`onbottom.hydro`
 by its registry name (:mod:`onbottom.hydro.registry`). Files the table names (a Morison
 coefficient table, a Fourier coefficient table) are relative to the case file's folder and must
 stay inside it (:func:`onbottom._casefile.contained`).
@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from onbottom._casefile import contained
+from onbottom.cases.models import model_tables
 from onbottom.errors import InputError
 from onbottom.hydro.registry import build_force_model, force_model_class, model_options
 
@@ -42,16 +43,17 @@ def force_model_from_case(
     ``model`` not given (None) → ``default`` (the command's default model). ``model =
     "morison"`` with ``coefficient_table`` (a CSV of C_D, C_M, C_L over K, M:
     :mod:`onbottom.hydro.morison_table`) is Morison per sea state; without it, it takes
-    ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of ``[hydro]``; ``"wake"`` and
-    ``"fourier"`` take their options from ``[hydro.wake]`` or ``[hydro.fourier]``. Options
+    ``cd``, ``cm``, ``cl``, ``added_mass_coefficient`` of ``[hydro]``; every other registered
+    model takes its options from ``[hydro.<name>]``. Options
     given for a model that is not selected are a named error (a sub-table that silently does
     nothing would be a silent wrong result). ``base_dir`` is the case file's folder: the
     files the table names are relative to it and must stay inside it.
     """
     name = default if hydro.model is None else hydro.model
     force_model_class(name)
-    for other in ("wake", "fourier"):
-        if other != name and getattr(hydro, other):
+    tables = model_tables(hydro)
+    for other in tables:
+        if other != name:
             raise InputError(
                 f"[hydro.{other}] is given but hydro.model = {name!r}: set model = {other!r}"
                 f" or remove [hydro.{other}]"
@@ -79,7 +81,7 @@ def force_model_from_case(
         return MorisonLift(
             cd=hydro.cd, cm=hydro.cm, cl=hydro.cl, added_mass=hydro.added_mass_coefficient
         )
-    return build_force_model(name, _options(name, getattr(hydro, name), base_dir))
+    return build_force_model(name, _options(name, tables.get(name), base_dir))
 
 
 _COEFFICIENTS = ("cd", "cm", "cl", "added_mass_coefficient")

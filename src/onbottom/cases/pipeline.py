@@ -147,7 +147,7 @@ def _soil_for(
     file: str | os.PathLike | None = None,
     text: str | None = None,
 ):
-    from onbottom.soil.registry import soil_model_for_seabed as soil_model
+    from onbottom.cases.models import soil_from_case
 
     sb = case.seabed
     root = f"pipeline.sections[{index}]"
@@ -178,7 +178,7 @@ def _soil_for(
             root=root,
         )
     try:
-        return soil_model(sb.model, pipe, sb.seabed())
+        return soil_from_case(getattr(case, "soil", None), sb.model, pipe, sb.seabed())
     except InputError as exc:
         if section is None:
             raise

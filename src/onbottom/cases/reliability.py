@@ -143,6 +143,14 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     setup = build_setup(storm_case, p)
     t = rel.reliability
     chk = Checker(p, text)
+    soil_inputs = [k for k in ("friction_coefficient", "submerged_unit_weight") if k in t.inputs]
+    if soil_inputs and storm_case.soil is not None and storm_case.soil.model is not None:
+        chk.fail(
+            f"reliability.inputs.{soil_inputs[0]}",
+            f"reliability.inputs.{soil_inputs[0]} is invalid with [soil] model ="
+            f" {storm_case.soil.model!r}: random seabed properties rebuild the seabed kind's"
+            " default model; remove [soil] or make the seabed properties fixed",
+        )
     try:
         inputs = tuple(parameter_from_table(k, v) for k, v in t.inputs.items())
     except InputError as exc:

@@ -38,7 +38,7 @@ import os
 from collections.abc import Mapping
 from typing import Annotated, Any, Literal
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from onbottom._casefile import (
     CaseFileError,
@@ -47,7 +47,9 @@ from onbottom._casefile import (
     read_toml,
     resolve_path,
 )
+from onbottom.cases.models import check_model_names, collect_model_tables, soil_from_case
 from onbottom.cases.programme import programme_from_toml
+from onbottom.cases.stability import Checker
 from onbottom.dynamics import centrifuge
 from onbottom.dynamics.section import (
     SectionResult,
@@ -62,7 +64,17 @@ from onbottom.soil.coulomb import CoulombFriction
 __all__ = ["SectionCase", "build_section_run", "load_case", "run_case"]
 
 _KN = 1.0e3
-_SOIL_MODELS = ("verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb")
+
+
+def _flat(model: str) -> bool:
+    """Whether the flat keys of ``[soil]`` give the parameters of ``model`` (the Verley &
+    Sotberg and Coulomb models; any other registered model takes its options from
+    ``[soil.<name>]``)."""
+    from onbottom.soil.registry import SOIL_MODELS
+    from onbottom.soil.verley_sotberg import VerleySotberg
+
+    return model in SOIL_MODELS and SOIL_MODELS[model].cls in (CoulombFriction, VerleySotberg)
+
 
 _Pos = Annotated[float, Field(gt=0.0)]
 _Factor = Annotated[float, Field(gt=0.0, le=10.0)]
@@ -104,7 +116,15 @@ class PipeTable(StrictModel):
 class SoilTable(StrictModel):
     """``[soil]``: model and its parameters (μ [-], γ' [kN/m³], A, B, C [-])."""
 
-    model: Literal["verley_sotberg_calcareous", "verley_sotberg_silica", "coulomb"]
+    model: str = Field(
+        min_length=1,
+        description="soil model by name (onbottom.soil.registry.SOIL_MODELS; the docs'"
+        " api/models.md lists them); options of other models than the Verley & Sotberg and"
+        " Coulomb ones in [soil.<name>] [-]",
+    )
+    models: dict[str, dict[str, Any]] = Field(
+        default_factory=dict, description="options of each model: the [soil.<name>] tables"
+    )
     friction_coefficient: _Mu = 0.6
     submerged_unit_weight_kn: _GammaKn | None = None
     A: _Factor | None = None
@@ -115,6 +135,11 @@ class SoilTable(StrictModel):
     work_law: str | None = None
     max_penetration_law: str | None = None
     work_integrand: str | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _sub_tables(cls, data: Any) -> Any:
+        return collect_model_tables(data, set(cls.model_fields))
 
 
 class SolverTable(StrictModel):
@@ -249,6 +274,16 @@ def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
                     field=key,
                     file=path,
                 )
+        check_model_names(case, Checker(path or "<case>", text))
+        flat = ("A", "B", "C", "mobilisation_displacement", "passive_law", "work_law")
+        flat += ("max_penetration_law", "work_integrand")
+        given = [k for k in flat if getattr(case.soil, k) is not None]
+        if not _flat(case.soil.model) and given:
+            Checker(path or "<case>", text).fail(
+                f"soil.{given[0]}",
+                f"soil.{given[0]} is invalid with model = {case.soil.model!r}: its options go"
+                f" in [soil.{case.soil.model}]",
+            )
         if case.soil.model != "coulomb" and case.soil.submerged_unit_weight_kn is None:
             raise CaseFileError(
                 "soil.submerged_unit_weight_kn is missing (required for the Verley & Sotberg"
@@ -326,7 +361,13 @@ def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionR
             )
         )
     prog = programme_from_toml({"programme": table})
-    if st.model == "coulomb":
+    if not _flat(st.model):
+        seabed = Sand(
+            submerged_unit_weight=st.submerged_unit_weight_kn * _KN,
+            friction_coefficient=st.friction_coefficient,
+        )
+        soil = soil_from_case(st, "sand", pipe, seabed)
+    elif st.model == "coulomb":
         extra = {}
         if st.mobilisation_displacement is not None:
             extra["mobilisation_displacement"] = st.mobilisation_displacement

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, Literal, NoReturn
 from pydantic import Field, field_validator, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, find_key_line, load_case_file
+from onbottom.cases.models import check_model_names, collect_model_tables
 from onbottom.checks.design import CheckOptions
 from onbottom.checks.evaluation import (
     DesignBounds,
@@ -335,8 +336,8 @@ class HydroTable(StrictModel):
     model: str | None = Field(
         None,
         min_length=1,
-        description="time-domain force model: morison, wake or fourier (hydro/registry.py);"
-        " default: the command's (morison for storm and pipeline, wake for curves) [-]",
+        description="time-domain force model by name (onbottom.hydro.registry; the docs'"
+        " api/models.md lists them), options in [hydro.<name>]; default: the command's [-]",
     )
     coefficient_table: str | None = Field(
         None,
@@ -351,6 +352,15 @@ class HydroTable(StrictModel):
         default_factory=dict,
         description="options of the Fourier model (FourierModel fields; table = path)",
     )
+    models: dict[str, dict[str, Any]] = Field(
+        default_factory=dict,
+        description="options of the other registered force models: the [hydro.<name>] tables",
+    )
+
+    @model_validator(mode="before")
+    @classmethod
+    def _model_tables(cls, data: Any) -> Any:
+        return collect_model_tables(data, set(cls.model_fields))
 
 
 class DesignTable(StrictModel):
@@ -783,6 +793,7 @@ def load_stability_case(path: str | os.PathLike) -> StabilityCase:
     """
     p = Path(path)
     case = load_case_file(p, StabilityCase)
+    check_model_names(case, Checker.of_file(p))
     _check_section(case, Checker.of_file(p))
     return case
 

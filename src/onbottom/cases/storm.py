@@ -13,11 +13,12 @@ amplitude) or ``"measured"`` (``series``: CSV ``t [s], U [m/s][, dU/dt [m/s^2]]`
 relative to the case file's folder; ``sampling_tolerance``). The last two are deterministic
 (``run.seeds`` = 1) and give :class:`~onbottom.hydro.storm_kinematics.StormKinematics`.
 
-Soil model from ``[seabed].model``: ``sand`` → Verley & Sotberg silica, ``calcareous`` →
-Verley & Sotberg calcareous (Youssef & Cassidy 2014 Table 3), ``clay`` → Verley & Lund,
-``rock``/``coulomb`` → Coulomb friction. Seabed roughness z_0 (when ``[current].z0`` is absent):
-DNV-RP-F109 Table 3-1 from ``d50`` (log–log interpolation; fine sand 0.25 mm if absent), silt
-and clay for clay, gravel for rock.
+Soil model from ``[soil] model`` (a registry name, options in ``[soil.<name>]``:
+:mod:`onbottom.cases.models`), else the default of the seabed kind ``[seabed].model``
+(:data:`onbottom.soil.registry.SEABED_MODELS`: sand → Verley & Sotberg silica, calcareous →
+Verley & Sotberg calcareous, clay → Verley & Lund, rock → Coulomb friction). Seabed roughness
+z_0 (when ``[current].z0`` is absent): DNV-RP-F109 Table 3-1 from ``d50`` (log–log
+interpolation; fine sand 0.25 mm if absent), silt and clay for clay, gravel for rock.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from pydantic import Field, model_validator
 
 from onbottom._casefile import CaseFileError, StrictModel, contained, load_case_file
 from onbottom.cases.force import force_model_from_case
+from onbottom.cases.models import SoilTable, check_model_names, soil_from_case
 from onbottom.cases.stability import (
     Checker,
     CurrentTable,
@@ -52,7 +54,6 @@ from onbottom.inputs import consistency
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.inputs.storm import Current, SeaState, Storm
-from onbottom.soil.registry import soil_model_for_seabed
 
 __all__ = [
     "StormCase",
@@ -167,6 +168,7 @@ class StormCase(StrictModel):
     waves: WavesTable | None = None
     current: CurrentTable = CurrentTable()
     hydro: HydroTable = HydroTable()
+    soil: SoilTable | None = None
     storm: StormTable = StormTable()
     solver: SolverTable = SolverTable()
     run: RunTable = RunTable()
@@ -295,6 +297,7 @@ def build_setup(case: StormCase, path: str | os.PathLike | None = None) -> Storm
         (f"stage {i}", s.hs, s.tp, f"storm.stages[{i}]", f"storm.stages[{i}]")
         for i, s in enumerate(case.storm.stages)
     ]
+    check_model_names(case, chk)
     check_common_tables(case, where, sea_states=stages)
     _check_time_step(case, chk)
     if case.storm.kind != "spectral" and case.run.seeds > 1:
@@ -330,7 +333,7 @@ def _build_objects(
             field="seabed.initial_penetration",
             file=None if path is None else str(path),
         )
-    soil = soil_model_for_seabed(case.seabed.model, pipe, seabed)
+    soil = soil_from_case(case.soil, case.seabed.model, pipe, seabed)
     st = case.storm
     c = case.current
     current = c.current()

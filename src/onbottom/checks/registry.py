@@ -24,7 +24,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
+from pydantic import BaseModel
+
 from onbottom.errors import InputError
+from onbottom.registry import Registry
 
 __all__ = ["CHECKS", "DesignCheck", "check_names", "get_check", "register_check"]
 
@@ -36,7 +39,9 @@ class DesignCheck:
     ``name`` (the case-file name), ``per`` (``"condition"`` or ``"combination"``), ``run``
     (the function, signature in the module docstring), ``rows`` (the names of the rows it
     returns; a floating pipe gets these rows with an infinite utilisation), ``reference`` (the
-    source: standard, edition, equations).
+    source: standard, edition, equations), ``options`` (a pydantic schema of the check's own
+    options; None: it reads :class:`~onbottom.checks.design.CheckOptions` only). An entry of
+    :class:`onbottom.registry.Registry`, like the soil and force models.
     """
 
     name: str
@@ -44,11 +49,21 @@ class DesignCheck:
     run: Callable[..., list[Any]]
     rows: tuple[str, ...]
     reference: str
+    options: type[BaseModel] | None = None
+
+    @property
+    def description(self) -> str:
+        """One line: the reference."""
+        return self.reference
 
 
-CHECKS: dict[str, DesignCheck] = {}
+def _register_builtin() -> None:
+    import onbottom.checks.design  # noqa: F401  (registers the F109 checks)
+
+
+CHECKS: Registry[DesignCheck] = Registry("design check", "checks", loader=_register_builtin)
 """Registered design checks by name (the F109 ones register on import of
-:mod:`onbottom.checks.design`)."""
+:mod:`onbottom.checks.design`, loaded on first look-up)."""
 
 
 def register_check(check: DesignCheck, *, replace: bool = False) -> DesignCheck:
@@ -61,28 +76,14 @@ def register_check(check: DesignCheck, *, replace: bool = False) -> DesignCheck:
         )
     if not check.rows:
         raise InputError(f"DesignCheck.rows = () is invalid for {check.name!r}: name its rows")
-    if check.name in CHECKS and not replace:
-        raise InputError(f"design check {check.name!r} is registered already (replace=True)")
-    CHECKS[check.name] = check
-    return check
-
-
-def _builtin() -> dict[str, DesignCheck]:
-    import onbottom.checks.design  # noqa: F401  (registers the F109 checks)
-
-    return CHECKS
+    return CHECKS.add(check, replace=replace)
 
 
 def check_names() -> tuple[str, ...]:
     """The registered names, in registration order."""
-    return tuple(_builtin())
+    return CHECKS.names()
 
 
 def get_check(name: str, *, where: str = "checks") -> DesignCheck:
     """The check registered under ``name``; an :class:`InputError` listing the choices."""
-    checks = _builtin()
-    if not isinstance(name, str) or name not in checks:
-        raise InputError(
-            f"{where} = {name!r} is invalid: choose one of {', '.join(map(repr, checks))}"
-        )
-    return checks[name]
+    return CHECKS.entry(name, where=where)

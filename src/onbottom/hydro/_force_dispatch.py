@@ -52,13 +52,17 @@ What the solver does, not the kernel: the added mass on the pipe's own accelerat
 ``params`` row (per kinematics sample when the model's parameters change with the sea state,
 blended with the stage weights; see :func:`onbottom.hydro.force_model.parameter_rows`).
 
-Adding a model: a kernel module, a new id below and a branch in :func:`force_step` and an entry
-in ``_KERNELS`` (without it the model's runs compile every force kernel; same results), a class
-with that ``model_id`` (docs/contributing.md, "Add a force model"). The storm and pipeline
+Adding a model: a kernel and a class, registered with
+:func:`onbottom.hydro.registry.register_force_model` (``kernel=``), which gives the kernel an id
+and a ``_KERNELS`` entry (:func:`register_force_kernel`) with no edit of this module
+(docs/contributing.md, "Add a force model"). The storm and pipeline
 kernels call :func:`force_step_of` with a literal id: they compile the model used only.
 """
 
 from __future__ import annotations
+
+import inspect
+import zlib
 
 import numpy as np
 
@@ -105,7 +109,35 @@ def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, sta
     so the caller compiles one force model, not all of them. With a non-literal id it is
     :func:`force_step`; in plain Python too.
     """
-    force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    kernel = _KERNELS.get(model_id)
+    if kernel is None or model_id < FIRST_REGISTERED_ID:
+        force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+    else:
+        kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
 
 
 literal_dispatch(force_step_of, _KERNELS, force_step)
+
+
+FIRST_REGISTERED_ID = 1000
+"""Force-model ids from here up belong to kernels added by :func:`register_force_kernel`."""
+
+
+def register_force_kernel(kernel) -> int:
+    """Add force kernel ``kernel`` (contract: the module docstring) to the dispatch table;
+    returns its model id.
+
+    The id is derived from the kernel's module, name and source, so that numba's on-disk cache
+    of a solver specialised on it (a literal id) never serves another kernel. The storm and
+    pipeline kernels (literal ids) then call it directly, with no edit of this module; the
+    non-literal :func:`force_step` knows the built-in models only.
+    """
+    py = getattr(kernel, "py_func", kernel)
+    try:
+        source = inspect.getsource(py)
+    except (OSError, TypeError):
+        source = ""
+    text = f"{py.__module__}.{py.__qualname__}\n{source}"
+    model_id = FIRST_REGISTERED_ID + zlib.crc32(text.encode()) % (2**30)
+    _KERNELS[model_id] = kernel
+    return model_id

@@ -19,76 +19,136 @@ path (CSV or NetCDF) or ``"example"`` for the synthetic table the package ships.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from pydantic import BaseModel
+
 from onbottom.errors import InputError
+from onbottom.registry import Registry, options_schema
 
 __all__ = [
     "FORCE_MODELS",
+    "FORCE_REGISTRY",
+    "ForceModelEntry",
     "build_force_model",
     "force_model_class",
     "force_model_names",
     "register_force_model",
 ]
 
+_NOT_OPTIONS = ("name", "model_id", "rule")
 
-def _classes() -> dict[str, type]:
+
+@dataclass(frozen=True)
+class ForceModelEntry:
+    """One registered force model (an entry of :class:`onbottom.registry.Registry`):
+    ``name``, ``cls`` (a frozen dataclass on the
+    :class:`~onbottom.hydro.force_model.ForceModel` protocol), ``description`` (one line),
+    ``options`` (the pydantic schema of ``[hydro.<name>]``), ``example`` (options that build
+    a model for the conformance tests when the class needs some)."""
+
+    name: str
+    cls: type
+    description: str = ""
+    options: type[BaseModel] | None = None
+    example: Mapping[str, Any] = field(default_factory=dict)
+
+
+def _register_builtin() -> None:
     from onbottom.hydro.force_model import MorisonLift
     from onbottom.hydro.fourier import FourierModel
     from onbottom.hydro.wake import WakeModel
 
-    return {"morison": MorisonLift, "wake": WakeModel, "fourier": FourierModel, **_REGISTERED}
+    for name, cls, text, example in (
+        ("morison", MorisonLift, "Morison drag and inertia with a lift force", {}),
+        ("wake", WakeModel, "wake model (Lambrakos et al. 1987 / Wake II structure)", {}),
+        (
+            "fourier",
+            FourierModel,
+            "Fourier force model (Sørensen et al. 1986, Bryndum et al. 1992)",
+            {"table": "example"},
+        ),
+    ):
+        register_force_model(name, cls, description=text, example=example)
 
+
+FORCE_REGISTRY: Registry[ForceModelEntry] = Registry(
+    "force model", "hydro.model", loader=_register_builtin
+)
+"""Registered force models by name (the built-in ones registered on first look-up)."""
 
 FORCE_MODELS: tuple[str, ...] = ("morison", "wake", "fourier")
-"""Names of the registered force models, in the order the documentation lists them."""
-
-_NOT_OPTIONS = frozenset({"name", "model_id", "rule"})
-
-
-_REGISTERED: dict[str, type] = {}
-"""Force models added by :func:`register_force_model` (after the built-in ones)."""
+"""The built-in force models, in the order the documentation lists them (all registered ones:
+:func:`force_model_names`)."""
 
 
-def register_force_model(name: str, cls: type, *, replace: bool = False) -> type:
+def register_force_model(
+    name: str,
+    cls: type,
+    *,
+    description: str = "",
+    options: type[BaseModel] | None = None,
+    kernel: Callable[..., None] | None = None,
+    example: Mapping[str, Any] | None = None,
+    replace: bool = False,
+) -> type:
     """Register force-model class ``cls`` (a frozen dataclass on the
     :class:`~onbottom.hydro.force_model.ForceModel` protocol) under ``name``.
 
-    Its dataclass fields are the options a case file may give (``[hydro.<name>]``). A name
-    taken is an error unless ``replace`` (docs/contributing.md, "Add a force model").
+    Its dataclass fields (less ``name``, ``model_id``, ``rule``) are the options a case file
+    may give (``[hydro.<name>]``) unless ``options`` gives the schema. ``kernel``: the model's
+    own numba kernel, added to the solvers' dispatch
+    (:func:`onbottom.hydro._force_dispatch.register_force_kernel`); the class's ``model_id``
+    (then a class attribute, not a field) is set to its id. A name taken is an error unless
+    ``replace`` (docs/contributing.md, "Add a force model").
     """
-    if not isinstance(name, str) or not name.isidentifier():
-        raise InputError(f"force model name = {name!r} is invalid: a lower-case identifier")
     if not dataclasses.is_dataclass(cls) or not isinstance(cls, type):
         raise InputError(f"force model {name!r}: cls = {cls!r} is invalid: a dataclass")
-    if (name in FORCE_MODELS or name in _REGISTERED) and not replace:
+    if name in FORCE_REGISTRY and not replace:
         raise InputError(f"force model {name!r} is registered already (pass replace=True)")
-    _REGISTERED[name] = cls
+    if options is None:
+        options = options_schema(cls, exclude=_NOT_OPTIONS, name=f"{cls.__name__}Options")
+    if kernel is not None:
+        from onbottom.hydro._force_dispatch import register_force_kernel
+
+        if any(f.name == "model_id" for f in dataclasses.fields(cls)):
+            raise InputError(
+                f"force model {name!r}: model_id is a field of {cls.__name__}: leave it out"
+                " when the kernel is registered (the registry sets the class's model_id)"
+            )
+        cls.model_id = register_force_kernel(kernel)
+    else:
+        from onbottom.hydro._force_dispatch import _KERNELS
+
+        if getattr(cls, "model_id", None) not in _KERNELS:
+            raise InputError(
+                f"force model {name!r}: {cls.__name__}.model_id ="
+                f" {getattr(cls, 'model_id', None)!r} names no kernel of the solvers'"
+                " dispatch: pass kernel=<the model's numba kernel>"
+            )
+    FORCE_REGISTRY.add(
+        ForceModelEntry(name, cls, description, options, dict(example or {})), replace=replace
+    )
     return cls
 
 
 def force_model_names() -> tuple[str, ...]:
     """The registered names."""
-    return FORCE_MODELS + tuple(k for k in _REGISTERED if k not in FORCE_MODELS)
+    return FORCE_REGISTRY.names()
 
 
 def force_model_class(name: str, *, where: str = "hydro.model") -> type:
     """The class registered under ``name``; a named error listing the choices otherwise."""
-    classes = _classes()
-    if not isinstance(name, str) or name not in classes:
-        raise InputError(
-            f"{where} = {name!r} is invalid: choose one of"
-            f" {', '.join(map(repr, force_model_names()))}"
-        )
-    return classes[name]
+    return FORCE_REGISTRY.entry(name, where=where).cls
 
 
 def model_options(name: str) -> tuple[str, ...]:
     """The option names a case file may give for model ``name``."""
-    cls = force_model_class(name)
-    return tuple(f.name for f in dataclasses.fields(cls) if f.name not in _NOT_OPTIONS)
+    schema = FORCE_REGISTRY.entry(name).options
+    return tuple(schema.model_fields) if schema is not None else ()
 
 
 def build_force_model(
@@ -113,14 +173,7 @@ def build_force_model(
         Prefix of the error messages (the case-file table).
     """
     cls = force_model_class(name, where=f"{where}.model")
-    opts = dict(options or {})
-    allowed = model_options(name)
-    for key in opts:
-        if key not in allowed:
-            raise InputError(
-                f"{where}.{name}.{key} is not an option of the {name!r} force model: choose from"
-                f" {', '.join(allowed)}"
-            )
+    opts = FORCE_REGISTRY.check_options(name, options, where=f"{where}.{name}")
     if name == "fourier":
         opts["table"] = _fourier_table(opts.get("table"), f"{where}.{name}.table")
     try:

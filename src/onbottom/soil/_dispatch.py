@@ -1,9 +1,10 @@
 """Static dispatch from a model id to its numba kernel (private).
 
 numba cannot cache functions that receive other jitted functions as arguments, so solvers call
-:func:`lateral_step` with the integer ``model_id`` of the model class instead. Adding a model:
-give its class a new ``model_id``, add one branch here and its kernel to ``_KERNELS`` (without
-that entry its runs compile every model's kernel; the results are the same).
+:func:`lateral_step` with the integer ``model_id`` of the model class instead. The built-in
+models have a branch here and an entry in ``_KERNELS``; a model added through
+:func:`onbottom.soil.registry.register_soil_model` with ``kernel=`` gets an id and a
+``_KERNELS`` entry from :func:`register_soil_kernel`, with no edit of this module.
 
 Compile time (issue 33 item 2): the storm, section and pipeline kernels take the model id as a
 numba literal (``numba.literally``; called from Python through
@@ -20,6 +21,9 @@ kernel itself. The one-node solvers keep the called form (less to compile).
 """
 
 from __future__ import annotations
+
+import inspect
+import zlib
 
 import numpy as np
 from numba.extending import overload
@@ -76,10 +80,39 @@ def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
     integers). With a non-literal id it is :func:`lateral_step`; in plain Python too (this
     body).
     """
-    lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+    kernel = _KERNELS.get(model_id)
+    if kernel is None or model_id < FIRST_REGISTERED_ID:
+        lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+    else:
+        kernel(params, state_old, u_new, v_load, state_new, out)
 
 
 literal_dispatch(lateral_step_of, _KERNELS, lateral_step)
+
+
+FIRST_REGISTERED_ID = 1000
+"""Model ids from here up belong to kernels added by :func:`register_soil_kernel`."""
+
+
+def register_soil_kernel(kernel) -> int:
+    """Add soil kernel ``kernel`` (an ``@njit(cache=True)`` function on the contract of
+    :mod:`onbottom.soil.base`) to the dispatch table; returns its model id.
+
+    The id is derived from the kernel's module, name and source, so that numba's on-disk
+    cache of a solver specialised on it (a literal id) never serves another kernel. The
+    solvers that take a literal model id (section, storm section, pipeline with one soil)
+    then call it directly, with no edit of this module; the non-literal :func:`lateral_step`
+    (pipeline nodes on several soil models) knows the built-in models only.
+    """
+    py = getattr(kernel, "py_func", kernel)
+    try:
+        source = inspect.getsource(py)
+    except (OSError, TypeError):
+        source = ""
+    text = f"{py.__module__}.{py.__qualname__}\n{source}"
+    model_id = FIRST_REGISTERED_ID + zlib.crc32(text.encode()) % (2**30)
+    _KERNELS[model_id] = kernel
+    return model_id
 
 
 MODELS_MIXED = -1

@@ -1,12 +1,11 @@
 """Build a lateral pipe–soil resistance model by name (through :mod:`onbottom.soil.registry`).
 
-Names: "coulomb" (any seabed; rock: friction only, DNV-RP-F109 §3.4.6),
-"verley_sotberg_silica", "verley_sotberg_calcareous", "verley_sotberg_f109" (sand) and
-"verley_lund" (clay).
+The names are those of :data:`onbottom.soil.registry.SOIL_MODELS` (the one list).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Mapping
 from typing import Any
 
 from onbottom.inputs.pipe import Pipe
@@ -16,11 +15,23 @@ from onbottom.soil.registry import SOIL_MODELS, build_soil_model
 
 __all__ = ["LATERAL_MODELS", "lateral_model"]
 
-LATERAL_MODELS: dict[str, tuple[type, ...]] = {
-    name: entry.seabeds for name, entry in SOIL_MODELS.items()
-}
-"""Model names and the seabed types each accepts (a view of :data:`.registry.SOIL_MODELS` at
-import; the registry is the one list)."""
+
+class _SeabedsView(Mapping[str, tuple[type, ...]]):
+    """Live view of :data:`SOIL_MODELS`: name → the seabed types the model accepts."""
+
+    def __getitem__(self, name: str) -> tuple[type, ...]:
+        return SOIL_MODELS[name].seabeds
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(SOIL_MODELS.names())
+
+    def __len__(self) -> int:
+        return len(SOIL_MODELS.names())
+
+
+LATERAL_MODELS: Mapping[str, tuple[type, ...]] = _SeabedsView()
+"""Model names and the seabed types each accepts (a live view of
+:data:`.registry.SOIL_MODELS`, the one list: a model registered later is in it)."""
 
 
 def lateral_model(

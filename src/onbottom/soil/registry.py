@@ -17,18 +17,23 @@ vh_parabolic            :class:`~onbottom.soil.vh_parabolic.ParabolicVH`  sand, 
 The F109 case files name a seabed *kind* (``[seabed] model = "sand"``); :data:`SEABED_MODELS`
 maps each kind to its default soil model, so the two vocabularies meet here. An unknown name is
 an :class:`~onbottom.errors.InputError` naming the field and listing the choices. A new model
-registers with :func:`register_soil_model` (docs/contributing.md, "Add a soil model").
+registers with :func:`register_soil_model`, its kernel with it (docs/contributing.md, "Add a
+soil model"); :data:`SOIL_MODELS` is an :class:`onbottom.registry.Registry`, the same type as
+the force models' and the design checks'.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from typing import Any
+
+from pydantic import BaseModel
 
 from onbottom.errors import InputError
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.registry import Registry, options_schema
 from onbottom.soil.base import LateralResistanceModel
 
 __all__ = [
@@ -47,11 +52,13 @@ Builder = Callable[..., LateralResistanceModel]
 
 @dataclass(frozen=True)
 class SoilModelEntry:
-    """One registered soil model.
+    """One registered soil model (an entry of :class:`onbottom.registry.Registry`).
 
     ``name`` (the case-file name), ``cls`` (a :class:`LateralResistanceModel` subclass),
     ``build(pipe, seabed, **options)`` (the model for a pipe on a seabed; options are the
-    class's keyword arguments), ``seabeds`` (the seabed types accepted), ``description``.
+    class's keyword arguments), ``seabeds`` (the seabed types accepted), ``description`` (one
+    line), ``options`` (the pydantic schema of ``[soil.<name>]``), ``example`` (options that
+    build a model for the conformance tests when the class needs some).
     """
 
     name: str
@@ -59,10 +66,12 @@ class SoilModelEntry:
     build: Builder
     seabeds: tuple[type, ...]
     description: str = ""
+    options: type[BaseModel] | None = None
+    example: Mapping[str, Any] = field(default_factory=dict)
 
 
-SOIL_MODELS: dict[str, SoilModelEntry] = {}
-"""Registered soil models by name (filled below; :func:`register_soil_model` adds one)."""
+SOIL_MODELS: Registry[SoilModelEntry] = Registry("soil model", "soil.model")
+"""Registered soil models by name (the built-in ones below; :func:`register_soil_model`)."""
 
 SEABED_MODELS: dict[str, str] = {
     "sand": "verley_sotberg_silica",
@@ -81,16 +90,20 @@ def register_soil_model(
     *,
     seabeds: tuple[type, ...] = (Sand, Clay, Rock),
     description: str = "",
+    options: type[BaseModel] | None = None,
+    kernel: Callable[..., None] | None = None,
+    example: Mapping[str, Any] | None = None,
     replace: bool = False,
 ) -> SoilModelEntry:
     """Register soil model ``cls`` under ``name``; returns its entry.
 
-    ``build`` defaults to ``cls.from_seabed(pipe, seabed, **options)`` when the class has it
-    with a pipe argument, else ``cls(**options)``. A name already taken is an error unless
-    ``replace``.
+    ``build(pipe, seabed, **options)`` defaults to ``cls(**options)``. ``options``, the schema
+    of ``[soil.<name>]``, defaults to the class's fields (:func:`onbottom.registry.
+    options_schema`). ``kernel``: the model's own numba kernel; it is added to the solvers'
+    dispatch (:func:`onbottom.soil._dispatch.register_soil_kernel`) and ``cls.model_id`` set
+    to its id — no other file to edit. Without it ``cls.model_id`` must name a kernel of the
+    dispatch already. A name already taken is an error unless ``replace``.
     """
-    if not isinstance(name, str) or not name.isidentifier():
-        raise InputError(f"soil model name = {name!r} is invalid: a lower-case identifier")
     if not (isinstance(cls, type) and issubclass(cls, LateralResistanceModel)):
         raise InputError(
             f"soil model {name!r}: cls = {cls!r} is invalid: a LateralResistanceModel subclass"
@@ -102,23 +115,32 @@ def register_soil_model(
         def build(pipe: Pipe, seabed: Any, **options: Any) -> LateralResistanceModel:
             return cls(**options)
 
-    entry = SoilModelEntry(name, cls, build, tuple(seabeds), description)
-    SOIL_MODELS[name] = entry
-    return entry
+    if options is None:
+        options = options_schema(cls, name=f"{cls.__name__}Options")
+    from onbottom.soil._dispatch import _KERNELS, register_soil_kernel
+
+    if kernel is not None:
+        cls.model_id = register_soil_kernel(kernel)
+    elif getattr(cls, "model_id", None) not in _KERNELS:
+        raise InputError(
+            f"soil model {name!r}: {cls.__name__}.model_id ="
+            f" {getattr(cls, 'model_id', None)!r} names no kernel of the solvers' dispatch:"
+            " pass kernel=<the model's numba kernel>"
+        )
+    entry = SoilModelEntry(
+        name, cls, build, tuple(seabeds), description, options, dict(example or {})
+    )
+    return SOIL_MODELS.add(entry, replace=replace)
 
 
 def soil_model_names() -> tuple[str, ...]:
     """The registered names, in registration order."""
-    return tuple(SOIL_MODELS)
+    return SOIL_MODELS.names()
 
 
 def soil_model_entry(name: str, *, where: str = "soil.model") -> SoilModelEntry:
     """The entry of ``name``; an :class:`InputError` naming ``where`` and the choices."""
-    if not isinstance(name, str) or name not in SOIL_MODELS:
-        raise InputError(
-            f"{where} = {name!r} is invalid: choose one of {', '.join(map(repr, SOIL_MODELS))}"
-        )
-    return SOIL_MODELS[name]
+    return SOIL_MODELS.entry(name, where=where)
 
 
 def build_soil_model(
@@ -195,6 +217,7 @@ def _register_builtin() -> None:
         ParabolicVH,
         _build_vh_parabolic,
         description="parabolic V–H force-resultant test model (two-DOF contract)",
+        example={"bearing_capacity": 2.0e4},
     )
 
 
