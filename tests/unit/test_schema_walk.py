@@ -238,6 +238,12 @@ def _storm_base() -> dict:
     return _toml(EXAMPLES / "storm_case.toml")
 
 
+def _storm_soil() -> dict:
+    doc = _storm_base()
+    doc["soil"] = {"model": "verley_sotberg_silica"}
+    return doc
+
+
 def _storm_buildup() -> dict:
     d = _storm_base()
     d["pipe"] = {
@@ -298,6 +304,7 @@ STORM = Kind(
     schema=__import__("onbottom.cases.storm", fromlist=["StormCase"]).StormCase,
     bases=[
         _storm_base,
+        _storm_soil,
         _storm_buildup,
         _storm_regular,
         *(
@@ -319,6 +326,10 @@ STORM = Kind(
         "solver.newmark_gamma": [0.6],
     },
     metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
         "pipe.marine_growth.name": "the growth layer's label",
         "pipeline": "the pipeline FE's table (onbottom storm with [pipeline]: cases/pipeline)",
         "combinations": _SHARED,
@@ -371,6 +382,10 @@ STABILITY = Kind(
         "design.layer": ["corrosion"],
     },
     metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
         "storm": _SHARED,
         "solver": _SHARED,
         "run": _SHARED,
@@ -381,6 +396,12 @@ STABILITY = Kind(
 
 def _route_base() -> dict:
     return _toml(EXAMPLES / "assess_route.toml")
+
+
+def _route_soil() -> dict:
+    doc = _route_base()
+    doc["soil"] = {"model": "coulomb"}
+    return doc
 
 
 def _route_growth() -> dict:
@@ -397,7 +418,7 @@ def _route_build(path: Path) -> Any:
 
 ROUTE = Kind(
     schema=__import__("onbottom.cases.assess", fromlist=["RouteCase"]).RouteCase,
-    bases=[_route_base, _route_growth],
+    bases=[_route_base, _route_soil, _route_growth],
     build=_route_build,
     special={
         "route.sections.0.name": ["landfall"],
@@ -418,6 +439,10 @@ ROUTE = Kind(
         "hydro.fourier": {"hydro.model": "fourier"},
     },
     metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
         "levels.generalized_curves": "reworked with the generalized level (another branch)",
         "metocean": "named metocean tables: the same tables as a section's own, walked there",
     },
@@ -450,7 +475,12 @@ RELIABILITY = Kind(
         "reliability.climate.hindcast": ["other.csv"],
         "reliability.inputs": [{"friction_coefficient": 0.5}],
     },
-    metadata={},
+    metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
+    },
 )
 
 
@@ -481,6 +511,10 @@ CURVES = Kind(
     },
     pairs={"hydro.fourier": {"hydro.model": "fourier"}},
     metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
         **{
             k: _SHARED
             for k in (
@@ -541,7 +575,12 @@ PIPELINE = Kind(
         "pipeline.end_springs": {"pipeline.end_conditions": "spring"},
         "pipeline.sections.0.end": {"pipeline.sections.1.start": 100.0},
     },
-    metadata={},
+    metadata={
+        "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+        " tests/unit/test_recipes_end_to_end.py (options change the result)",
+        "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
+        " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
+    },
 )
 
 KINDS = {
