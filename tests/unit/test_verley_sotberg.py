@@ -125,7 +125,8 @@ def test_elastic_region_no_work_and_linear_passive(calc_model):
 
 
 def test_monotonic_breakout_follows_backbone(calc_model):
-    m = calc_model
+    # the first reading of Eq 6 (every region-2 increment counts): a one-way push grows z
+    m = dataclasses.replace(calc_model, work_counting="any_region2")
     v = 10.52 * KN
     u = np.linspace(0.0, 1.2 * m.outer_diameter, 2401)[1:]
     h, state = _drive(m, u, v)
@@ -250,7 +251,7 @@ def _silica_model(**kw):
 
 
 def test_kernel_penetration_equals_eq6_eq8_with_its_own_work():
-    m = _silica_model()
+    m = _silica_model(work_counting="any_region2")
     v = 2.0 * KN
     u = np.linspace(0.0, 0.9 * m.y2, 4001)[1:]
     h, _ = _drive(m, u, v)
