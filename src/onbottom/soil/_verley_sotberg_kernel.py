@@ -95,7 +95,9 @@ S_GATE = N_COMMON_STATE + 12  # 1 once the load has reversed in the current trou
 S_TP_POS = N_COMMON_STATE + 13  # largest s = u - y0 > 0 at a turning point in the trough [m]
 S_TP_NEG = N_COMMON_STATE + 14  # largest -s at a turning point on the side s < 0 [m]
 S_TURNED2 = N_COMMON_STATE + 15  # 1 once the pipe has turned in region 2 of the trough, else 0
-N_STATE = N_COMMON_STATE + 16
+S_TP_LAST = N_COMMON_STATE + 16  # s of the last turning point in the trough (0: its start) [m]
+S_HALF = N_COMMON_STATE + 17  # longest half-cycle |Δs| between turns in the trough [m]
+N_STATE = N_COMMON_STATE + 18
 
 # ---- codes -----------------------------------------------------------------------------------
 # phases (onbottom.soil._trough): PHASE_TROUGH regions 1-2, y2 not yet passed;
@@ -120,8 +122,9 @@ ZMAX_BASE_TROUGH = 1  # Eq 8 about the current trough's z_i (= z3 of the last br
 COUNT_ANY_REGION2 = 0  # every region-2 increment (the first reading; one-way pushes dig in)
 COUNT_SWEPT_GROUND = 1  # only |s| within the largest turning-point excursion (bound)
 COUNT_TWO_SIDED = 2  # only |s| within the smaller of the two sides' turning excursions (bound)
-COUNT_LOAD_REVERSAL = 3  # after a load reversal in the trough; then drift beyond the turns not
+COUNT_LOAD_REVERSAL = 3  # after a load reversal; drift beyond turns + longest swing does not
 COUNT_LOAD_REVERSAL_OPEN = 4  # after a load reversal in the trough, every increment (no drift rule)
+COUNT_LOAD_REVERSAL_SWEPT = 5  # after a load reversal; drift beyond the turns does not (strict)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -230,7 +233,9 @@ def counted_length(params, state, s_old, s_new, y1, y2):
     Region 2 is y1 <= |s| <= y2 (both sides). ``P_WORK_COUNTING`` limits it: to ground inside
     the amplitude of the trough's turning points (swept ground), inside the smaller of the two
     sides' turning excursions (two-sided), or to a trough whose load has reversed (gate) and,
-    once the pipe has turned in region 2, to ground inside its turning amplitude (drift rule).
+    once the pipe has turned in region 2, to ground inside its turning amplitude plus the
+    longest half-cycle it has made in the trough (drift rule; without the allowance: the
+    strict variant).
     """
     mode = params[P_WORK_COUNTING]
     hi = y2
@@ -243,8 +248,11 @@ def counted_length(params, state, s_old, s_new, y1, y2):
     else:
         if state[S_GATE] <= 0.0:
             return 0.0
-        if mode == COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
-            hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
+        if mode != COUNT_LOAD_REVERSAL_OPEN and state[S_TURNED2] > 0.0:
+            reach = max(state[S_TP_POS], state[S_TP_NEG])
+            if mode == COUNT_LOAD_REVERSAL:
+                reach = reach + state[S_HALF]
+            hi = min(y2, reach)
     if hi <= y1:
         return 0.0
     return overlap(s_old, s_new, y1, hi) + overlap(s_old, s_new, -hi, -y1)
@@ -293,6 +301,8 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         state_new[S_TP_POS] = 0.0
         state_new[S_TP_NEG] = 0.0
         state_new[S_TURNED2] = 0.0
+        state_new[S_TP_LAST] = 0.0
+        state_new[S_HALF] = 0.0
         if not legacy:
             # the pipe leaves the berm it pushed: its force is released at the turning
             # point (a jump at zero displacement; the stored energy is dissipated)
@@ -311,6 +321,8 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
                 state_new[S_TP_NEG] = -s_old
             if abs(s_old) > y1:
                 state_new[S_TURNED2] = 1.0
+            state_new[S_HALF] = max(state_new[S_HALF], abs(s_old - state_new[S_TP_LAST]))
+            state_new[S_TP_LAST] = s_old
         # work and penetration growth over the part of the increment inside region 2 that
         # counts (P_WORK_COUNTING)
         du2 = counted_length(params, state_new, s_old, s_new, y1, y2)
