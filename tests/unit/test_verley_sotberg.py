@@ -22,6 +22,7 @@ from onbottom.soil.base import (
     S_Z,
 )
 from onbottom.soil.verley_sotberg import (
+    WORK_COUNTINGS,
     VerleySotberg,
     initial_penetration,
     max_cyclic_penetration,
@@ -182,8 +183,18 @@ def test_trial_evaluation_has_no_side_effects(calc_model):
 
 @pytest.mark.parametrize(
     "options",
-    [{}, {"passive_rule": "legacy_elastic"}, {"b_placement": "inside"}],
-    ids=["default", "legacy_elastic", "b_inside"],
+    [
+        {},
+        {"passive_rule": "legacy_elastic"},
+        {"b_placement": "inside"},
+        *({"work_counting": c} for c in WORK_COUNTINGS if c != "load_reversal"),
+    ],
+    ids=[
+        "default",
+        "legacy_elastic",
+        "b_inside",
+        *(c for c in WORK_COUNTINGS if c != "load_reversal"),
+    ],
 )
 def test_numba_kernel_equals_python_twin_on_random_path(calc_model, options):
     rng = np.random.default_rng(11)
