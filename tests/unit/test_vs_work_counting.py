@@ -46,7 +46,7 @@ def test_default_is_load_reversal_and_names_are_validated():
     assert m.reversal_fraction == 0.5
     assert set(WORK_COUNTINGS) == {
         "load_reversal",
-        "load_reversal_open",
+        "load_reversal_drift",
         "load_reversal_swept",
         "any_region2",
         "swept_ground",
@@ -77,7 +77,7 @@ def test_reversal_in_region_1_opens_the_gate_then_first_excursion_counts():
     y1 = 0.01
     u = np.concatenate([_seg(0.0, 0.5 * y1), _seg(0.5 * y1, -0.5 * y1), _seg(-0.5 * y1, 0.2)])
     h_any, _ = _drive(_model(work_counting="any_region2"), u)
-    for c in ("load_reversal", "load_reversal_open", "load_reversal_swept"):
+    for c in ("load_reversal", "load_reversal_drift", "load_reversal_swept"):
         h, s = _drive(_model(work_counting=c), u)
         assert s[k.S_GATE] == 1.0
         assert h[-1, OUT_WORK] == pytest.approx(h_any[-1, OUT_WORK], rel=1e-12)
@@ -103,15 +103,15 @@ def test_berm_pushing_back_is_not_a_load_reversal():
 
 def test_drift_rule_counts_ground_within_the_turns_plus_the_longest_swing():
     """After a turn in region 2, an advance onto new ground counts only up to the turning
-    amplitude plus the longest half-cycle (load_reversal), up to the turning amplitude
-    (load_reversal_swept), or all of it (load_reversal_open)."""
+    amplitude plus the longest half-cycle (load_reversal_drift), up to the turning amplitude
+    (load_reversal_swept), or all of it (load_reversal, the default)."""
     y1, y2 = 0.01, 0.25
     a, b = 0.06, 0.04  # turn in region 2 at s = a, back to b, then push on to 0.95·y2
     opening = np.concatenate([_seg(0.0, 0.5 * y1), _seg(0.5 * y1, -0.5 * y1)])
     u = np.concatenate([opening, _seg(-0.5 * y1, a), _seg(a, b), _seg(b, 0.95 * y2, 4000)])
     n_push = 4000
     longest = a + 0.5 * y1  # the swing from -y1/2 up to a
-    reach = {"load_reversal": a + longest, "load_reversal_swept": a, "load_reversal_open": y2}
+    reach = {"load_reversal_drift": a + longest, "load_reversal_swept": a, "load_reversal": y2}
     for c, r in reach.items():
         h, s = _drive(_model(work_counting=c), u)
         assert s[k.S_TURNED2] == 1.0

@@ -122,9 +122,9 @@ ZMAX_BASE_TROUGH = 1  # Eq 8 about the current trough's z_i (= z3 of the last br
 COUNT_ANY_REGION2 = 0  # every region-2 increment (the first reading; one-way pushes dig in)
 COUNT_SWEPT_GROUND = 1  # only |s| within the largest turning-point excursion (bound)
 COUNT_TWO_SIDED = 2  # only |s| within the smaller of the two sides' turning excursions (bound)
-COUNT_LOAD_REVERSAL = 3  # after a load reversal; drift beyond turns + longest swing does not
-COUNT_LOAD_REVERSAL_OPEN = 4  # after a load reversal in the trough, every increment (no drift rule)
-COUNT_LOAD_REVERSAL_SWEPT = 5  # after a load reversal; drift beyond the turns does not (strict)
+COUNT_LOAD_REVERSAL = 3  # every region-2 increment of a trough in which the load has reversed
+COUNT_LOAD_REVERSAL_DRIFT = 4  # the same; after a turn in region 2 not beyond turns + longest swing
+COUNT_LOAD_REVERSAL_SWEPT = 5  # the same; after a turn in region 2 not beyond the turns (strict)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -232,10 +232,10 @@ def counted_length(params, state, s_old, s_new, y1, y2):
 
     Region 2 is y1 <= |s| <= y2 (both sides). ``P_WORK_COUNTING`` limits it: to ground inside
     the amplitude of the trough's turning points (swept ground), inside the smaller of the two
-    sides' turning excursions (two-sided), or to a trough whose load has reversed (gate) and,
-    once the pipe has turned in region 2, to ground inside its turning amplitude plus the
-    longest half-cycle it has made in the trough (drift rule; without the allowance: the
-    strict variant).
+    sides' turning excursions (two-sided), or to a trough whose load has reversed (gate);
+    the drift variants further limit it, once the pipe has turned in region 2, to ground
+    inside its turning amplitude plus the longest half-cycle it has made in the trough
+    (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance (``COUNT_LOAD_REVERSAL_SWEPT``).
     """
     mode = params[P_WORK_COUNTING]
     hi = y2
@@ -248,9 +248,9 @@ def counted_length(params, state, s_old, s_new, y1, y2):
     else:
         if state[S_GATE] <= 0.0:
             return 0.0
-        if mode != COUNT_LOAD_REVERSAL_OPEN and state[S_TURNED2] > 0.0:
+        if mode != COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
             reach = max(state[S_TP_POS], state[S_TP_NEG])
-            if mode == COUNT_LOAD_REVERSAL:
+            if mode == COUNT_LOAD_REVERSAL_DRIFT:
                 reach = reach + state[S_HALF]
             hi = min(y2, reach)
     if hi <= y1:

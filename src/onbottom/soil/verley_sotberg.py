@@ -78,7 +78,7 @@ PENETRATION_LAWS: dict[str, int] = {
 
 WORK_COUNTINGS: dict[str, int] = {
     "load_reversal": _k.COUNT_LOAD_REVERSAL,
-    "load_reversal_open": _k.COUNT_LOAD_REVERSAL_OPEN,
+    "load_reversal_drift": _k.COUNT_LOAD_REVERSAL_DRIFT,
     "load_reversal_swept": _k.COUNT_LOAD_REVERSAL_SWEPT,
     "any_region2": _k.COUNT_ANY_REGION2,
     "swept_ground": _k.COUNT_SWEPT_GROUND,
@@ -87,14 +87,16 @@ WORK_COUNTINGS: dict[str, int] = {
 """Which region-2 displacement increments add to the work E of Eq 6 [I]
 (``docs/theory/verley_sotberg.md``, "Which increments count"); s = u − y0 about the trough:
 
-* ``"load_reversal"`` (default): only in a trough where the load has reversed (the soil
+* ``"load_reversal"`` (default): only in a trough where the load has reversed: the soil
   reaction R = F_f + F_r, which equilibrates the applied load while the pipe is at rest,
-  changed sign beyond ±θ·μV), and once the pipe has turned in region 2, only over ground
+  changed sign beyond ±θ·μV (θ = ``reversal_fraction``, hysteresis). A one-way push never
+  opens the gate.
+* ``"load_reversal_drift"``: the gate, and once the pipe has turned in region 2, only ground
   within the amplitude of its turning points plus the longest half-cycle (swing between two
-  turning points) it has made in the trough — ground its rocking keeps sweeping; a monotonic
-  advance beyond that is drift and does not count.
-* ``"load_reversal_open"``: the same gate without the drift rule.
-* ``"load_reversal_swept"``: the gate with the strict drift rule (no half-cycle allowance).
+  turning points) it has made in the trough; a monotonic advance beyond that is taken as
+  drift and does not count. It also cuts cyclic motion whose amplitude grows fast (a wave
+  ramp): kept by name, not the default.
+* ``"load_reversal_swept"``: the gate with the strict drift rule (no swing allowance).
 * ``"any_region2"``: every region-2 increment (the first reading: a one-way push digs in).
 * ``"swept_ground"``: only |s| within the largest turning-point excursion (bound, no gate).
 * ``"two_sided"``: only |s| within the smaller of the two sides' turning excursions (bound).
@@ -378,7 +380,7 @@ class VerleySotberg(LateralResistanceModel):
         "as_laid" (default: Eq 8's cap about the z_i of Eq 7) or "trough" (about the current
         trough's z_i); see :data:`MAX_PENETRATION_BASES`.
     work_counting : str
-        Which region-2 increments add to E: "load_reversal" (default), "load_reversal_open",
+        Which region-2 increments add to E: "load_reversal" (default), "load_reversal_drift",
         "load_reversal_swept", "any_region2", "swept_ground" or "two_sided"; see :data:`WORK_COUNTINGS`.
     reversal_fraction : float
         θ [-], in (0, 1]: the load counts as reversed when the soil reaction R changes sign
