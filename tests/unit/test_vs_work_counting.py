@@ -145,7 +145,7 @@ def test_swept_ground_and_two_sided_bounds():
     u = np.concatenate([_seg(0.0, 0.1), _seg(0.1, -0.05), _seg(-0.05, 0.2, 2000)])
     n_push = 2000
     for c, r in (("swept_ground", 0.1), ("two_sided", 0.05)):
-        h, s = _drive(_model(work_counting=c), u)
+        h, _ = _drive(_model(work_counting=c), u)
         uu = u[-n_push:]
         grows = np.diff(h[-n_push:, OUT_WORK]) > 0.0
         assert grows[(uu[1:] > 0.011) & (uu[1:] < r - 1e-3)].all(), c

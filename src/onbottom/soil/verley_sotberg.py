@@ -46,9 +46,9 @@ __all__ = [
     "PASSIVE_LAWS",
     "PASSIVE_RULES",
     "PENETRATION_LAWS",
+    "WORK_COUNTINGS",
     "WORK_INTEGRANDS",
     "WORK_LAWS",
-    "WORK_COUNTINGS",
     "VerleySotberg",
     "initial_penetration",
     "max_cyclic_penetration",
@@ -380,8 +380,9 @@ class VerleySotberg(LateralResistanceModel):
         "as_laid" (default: Eq 8's cap about the z_i of Eq 7) or "trough" (about the current
         trough's z_i); see :data:`MAX_PENETRATION_BASES`.
     work_counting : str
-        Which region-2 increments add to E: "load_reversal" (default), "load_reversal_drift",
-        "load_reversal_swept", "any_region2", "swept_ground" or "two_sided"; see :data:`WORK_COUNTINGS`.
+        Which region-2 increments add to E: "load_reversal" (default),
+        "load_reversal_drift", "load_reversal_swept", "any_region2", "swept_ground" or
+        "two_sided"; see :data:`WORK_COUNTINGS`.
     reversal_fraction : float
         θ [-], in (0, 1]: the load counts as reversed when the soil reaction R changes sign
         beyond ±θ·μV (hysteresis band of the load direction; default 0.5).
@@ -459,9 +460,7 @@ class VerleySotberg(LateralResistanceModel):
         one_of(f"{cls}.b_placement", self.b_placement, B_PLACEMENTS)
         one_of(f"{cls}.max_penetration_base", self.max_penetration_base, MAX_PENETRATION_BASES)
         one_of(f"{cls}.work_counting", self.work_counting, WORK_COUNTINGS)
-        in_range(
-            f"{cls}.reversal_fraction", self.reversal_fraction, 0.0, 1.0, low_inclusive=False
-        )
+        in_range(f"{cls}.reversal_fraction", self.reversal_fraction, 0.0, 1.0, low_inclusive=False)
         if self.mobilisation_displacement is not None:
             in_range(
                 f"{cls}.mobilisation_displacement",
