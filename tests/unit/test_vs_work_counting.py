@@ -48,6 +48,7 @@ def test_default_is_load_reversal_and_names_are_validated():
         "load_reversal",
         "load_reversal_drift",
         "load_reversal_swept",
+        "load_reversal_side",
         "any_region2",
         "swept_ground",
         "two_sided",
@@ -77,7 +78,7 @@ def test_reversal_in_region_1_opens_the_gate_then_first_excursion_counts():
     y1 = 0.01
     u = np.concatenate([_seg(0.0, 0.5 * y1), _seg(0.5 * y1, -0.5 * y1), _seg(-0.5 * y1, 0.2)])
     h_any, _ = _drive(_model(work_counting="any_region2"), u)
-    for c in ("load_reversal", "load_reversal_drift", "load_reversal_swept"):
+    for c in ("load_reversal", "load_reversal_drift", "load_reversal_swept", "load_reversal_side"):
         h, s = _drive(_model(work_counting=c), u)
         assert s[k.S_GATE] == 1.0
         assert h[-1, OUT_WORK] == pytest.approx(h_any[-1, OUT_WORK], rel=1e-12)
@@ -122,6 +123,26 @@ def test_drift_rule_counts_ground_within_the_turns_plus_the_longest_swing():
         # the work grows while the push is inside the counted reach, and not beyond it
         assert grows[(uu[1:] > b + 1e-3) & (uu[1:] < r - 1e-3)].all(), c
         assert not grows[uu[1:] > r + 1e-3].any(), c
+
+
+def test_side_rule_tells_walking_from_a_swing_through_the_centre():
+    """load_reversal_side: after a turn on the same side (walking) new ground does not count;
+    after a swing from the other side (cyclic, growing amplitude) it does."""
+    y1 = 0.01
+    opening = np.concatenate([_seg(0.0, 0.5 * y1), _seg(0.5 * y1, -0.5 * y1)])
+    n = 4000
+    walk = np.concatenate([opening, _seg(-0.5 * y1, 0.06), _seg(0.06, 0.04), _seg(0.04, 0.2, n)])
+    swing = np.concatenate([opening, _seg(-0.5 * y1, 0.06), _seg(0.06, -0.2, n)])
+    m = _model(work_counting="load_reversal_side")
+    h, s = _drive(m, walk)
+    uu, grows = walk[-n:], np.diff(h[-n:, OUT_WORK]) > 0.0
+    assert s[k.S_TP_LAST] == pytest.approx(0.04)
+    assert grows[(uu[1:] > 0.041) & (uu[1:] < 0.059)].all()
+    assert not grows[uu[1:] > 0.061].any()
+    h, s = _drive(m, swing)
+    uu, grows = swing[-n:], np.diff(h[-n:, OUT_WORK]) > 0.0
+    assert s[k.S_TP_LAST] == pytest.approx(0.06)  # last turn on the other side
+    assert grows[(uu[1:] < -0.011) & (uu[1:] > -0.199)].all()
 
 
 def test_new_trough_closes_the_gate():

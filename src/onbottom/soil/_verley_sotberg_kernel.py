@@ -125,6 +125,7 @@ COUNT_TWO_SIDED = 2  # only |s| within the smaller of the two sides' turning exc
 COUNT_LOAD_REVERSAL = 3  # every region-2 increment of a trough in which the load has reversed
 COUNT_LOAD_REVERSAL_DRIFT = 4  # the same; after a turn in region 2 not beyond turns + longest swing
 COUNT_LOAD_REVERSAL_SWEPT = 5  # the same; after a turn in region 2 not beyond the turns (strict)
+COUNT_LOAD_REVERSAL_SIDE = 6  # the same; new ground not after a turn on the same side (walking)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -235,7 +236,10 @@ def counted_length(params, state, s_old, s_new, y1, y2):
     sides' turning excursions (two-sided), or to a trough whose load has reversed (gate);
     the drift variants further limit it, once the pipe has turned in region 2, to ground
     inside its turning amplitude plus the longest half-cycle it has made in the trough
-    (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance (``COUNT_LOAD_REVERSAL_SWEPT``).
+    (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance (``COUNT_LOAD_REVERSAL_SWEPT``),
+    or to that amplitude only when the pipe last turned on the same side of the trough centre
+    (``COUNT_LOAD_REVERSAL_SIDE``: a pipe that turns back and goes on is walking; a swing
+    from the other side is cyclic motion, however fast its amplitude grows).
     """
     mode = params[P_WORK_COUNTING]
     hi = y2
@@ -248,7 +252,11 @@ def counted_length(params, state, s_old, s_new, y1, y2):
     else:
         if state[S_GATE] <= 0.0:
             return 0.0
-        if mode != COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
+        if mode == COUNT_LOAD_REVERSAL_SIDE:
+            # beyond the turning amplitude only on a swing from the other side of the centre
+            if state[S_TURNED2] > 0.0 and sign(s_new) * sign(state[S_TP_LAST]) > 0.0:
+                hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
+        elif mode != COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
             reach = max(state[S_TP_POS], state[S_TP_NEG])
             if mode == COUNT_LOAD_REVERSAL_DRIFT:
                 reach = reach + state[S_HALF]

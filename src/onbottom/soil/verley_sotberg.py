@@ -80,6 +80,7 @@ WORK_COUNTINGS: dict[str, int] = {
     "load_reversal": _k.COUNT_LOAD_REVERSAL,
     "load_reversal_drift": _k.COUNT_LOAD_REVERSAL_DRIFT,
     "load_reversal_swept": _k.COUNT_LOAD_REVERSAL_SWEPT,
+    "load_reversal_side": _k.COUNT_LOAD_REVERSAL_SIDE,
     "any_region2": _k.COUNT_ANY_REGION2,
     "swept_ground": _k.COUNT_SWEPT_GROUND,
     "two_sided": _k.COUNT_TWO_SIDED,
@@ -97,6 +98,9 @@ WORK_COUNTINGS: dict[str, int] = {
   drift and does not count. It also cuts cyclic motion whose amplitude grows fast (a wave
   ramp): kept by name, not the default.
 * ``"load_reversal_swept"``: the gate with the strict drift rule (no swing allowance).
+* ``"load_reversal_side"``: the gate; once the pipe has turned in region 2, ground beyond its
+  turning amplitude counts only on a swing that comes from the other side of the trough
+  centre (a pipe that turns back and goes on, on the same side, is walking: drift).
 * ``"any_region2"``: every region-2 increment (the first reading: a one-way push digs in).
 * ``"swept_ground"``: only |s| within the largest turning-point excursion (bound, no gate).
 * ``"two_sided"``: only |s| within the smaller of the two sides' turning excursions (bound).
@@ -381,8 +385,8 @@ class VerleySotberg(LateralResistanceModel):
         trough's z_i); see :data:`MAX_PENETRATION_BASES`.
     work_counting : str
         Which region-2 increments add to E: "load_reversal" (default),
-        "load_reversal_drift", "load_reversal_swept", "any_region2", "swept_ground" or
-        "two_sided"; see :data:`WORK_COUNTINGS`.
+        "load_reversal_drift", "load_reversal_swept", "load_reversal_side", "any_region2",
+        "swept_ground" or "two_sided"; see :data:`WORK_COUNTINGS`.
     reversal_fraction : float
         θ [-], in (0, 1]: the load counts as reversed when the soil reaction R changes sign
         beyond ±θ·μV (hysteresis band of the load direction; default 0.5).
