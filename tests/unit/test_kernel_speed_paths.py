@@ -55,7 +55,7 @@ def test_vs_memo_holds_the_power_of_the_penetration_it_was_used_at(calc_model):
         z = state[key]
         assert state[val] == pytest.approx(0.0 if z <= 0.0 else (z / d) ** 1.25, rel=1e-14)
     wiped = state.copy()
-    wiped[VK.S_MEMO_Z :] = 0.0
+    wiped[VK.S_MEMO_Z : VK.S_MEMO_P3 + 1] = 0.0
     a, b = np.zeros_like(state), np.zeros_like(state)
     oa, ob = np.zeros(OUT_SIZE), np.zeros(OUT_SIZE)
     for du in (0.01, -0.2, 0.4):
@@ -63,6 +63,7 @@ def test_vs_memo_holds_the_power_of_the_penetration_it_was_used_at(calc_model):
         m.kernel(p, wiped, u[-1] + du, 10.5e3, b, ob)
         np.testing.assert_array_equal(oa, ob)
         np.testing.assert_array_equal(a[: VK.S_MEMO_Z], b[: VK.S_MEMO_Z])
+        np.testing.assert_array_equal(a[VK.S_MEMO_P3 + 1 :], b[VK.S_MEMO_P3 + 1 :])
 
 
 @njit

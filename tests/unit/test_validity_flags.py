@@ -175,9 +175,11 @@ def test_seeds_count_flagged_runs_and_say_so():
     from onbottom.study.storm_seeds import run_storm_seeds
 
     storm = Storm.standard(SeaState(hs=2.5, tp=10.0), build_up_hours=0.003, peak_hours=0.02)
+    # a soil that buries fast under this current: every region-2 increment counting in Eq 6
+    # (the default counts none under a load that does not reverse)
     study = run_storm_seeds(
         PIPE,
-        _fast_sand(),
+        dataclasses.replace(_fast_sand(), work_counting="any_region2"),
         storm,
         seeds=2,
         n_workers=0,

@@ -22,6 +22,7 @@ from onbottom.soil.base import (
     S_Z,
 )
 from onbottom.soil.verley_sotberg import (
+    WORK_COUNTINGS,
     VerleySotberg,
     initial_penetration,
     max_cyclic_penetration,
@@ -125,7 +126,8 @@ def test_elastic_region_no_work_and_linear_passive(calc_model):
 
 
 def test_monotonic_breakout_follows_backbone(calc_model):
-    m = calc_model
+    # the first reading of Eq 6 (every region-2 increment counts): a one-way push grows z
+    m = dataclasses.replace(calc_model, work_counting="any_region2")
     v = 10.52 * KN
     u = np.linspace(0.0, 1.2 * m.outer_diameter, 2401)[1:]
     h, state = _drive(m, u, v)
@@ -181,8 +183,18 @@ def test_trial_evaluation_has_no_side_effects(calc_model):
 
 @pytest.mark.parametrize(
     "options",
-    [{}, {"passive_rule": "legacy_elastic"}, {"b_placement": "inside"}],
-    ids=["default", "legacy_elastic", "b_inside"],
+    [
+        {},
+        {"passive_rule": "legacy_elastic"},
+        {"b_placement": "inside"},
+        *({"work_counting": c} for c in WORK_COUNTINGS if c != "load_reversal"),
+    ],
+    ids=[
+        "default",
+        "legacy_elastic",
+        "b_inside",
+        *(c for c in WORK_COUNTINGS if c != "load_reversal"),
+    ],
 )
 def test_numba_kernel_equals_python_twin_on_random_path(calc_model, options):
     rng = np.random.default_rng(11)
@@ -250,7 +262,7 @@ def _silica_model(**kw):
 
 
 def test_kernel_penetration_equals_eq6_eq8_with_its_own_work():
-    m = _silica_model()
+    m = _silica_model(work_counting="any_region2")
     v = 2.0 * KN
     u = np.linspace(0.0, 0.9 * m.y2, 4001)[1:]
     h, _ = _drive(m, u, v)

@@ -77,13 +77,13 @@ def test_committed_band_matches_the_full_recomputed_grid(committed, name):
 
 _OUTSIDE_REASON = {
     "Regular": (
-        "band 20.19–22.55 groups against 46.22: with 'cycle n = n × first' and a first-cycle"
+        "band 19.20–21.71 groups against 46.22: with 'cycle n = n × first' and a first-cycle"
         " F_V of 0.3 kN/m the vertical load would reach zero (lift-off) at n = 37 < 46, so the"
         " paper's counting unit (sub-cycles?) or first-cycle loads differ from the stated"
         " protocol; our Morison stand-ins for the UWAHYDRO histories are also uncertain"
     ),
     "Irregular": (
-        "band 11.43–15.16 groups against 31.25: lift-off at n ≈ 30 < 31.25 under the stated"
+        "band 11.43–14.18 groups against 31.25: lift-off at n ≈ 30 < 31.25 under the stated"
         " 10 %-per-group growth with the first-cycle F_V read from Fig. 8; counting unit and"
         " load histories uncertain (see docs/validation/youssef_cassidy_2014.md)"
     ),

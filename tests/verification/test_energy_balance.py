@@ -61,7 +61,11 @@ def _cycles(amplitude, n_cycles=1, n=4000):
 
 
 def _vs(rule):
-    return build_soil(INCLINED_1, parameters="table2", passive_rule=rule)
+    # the closed-cycle figures were stated with every region-2 increment counting in Eq 6
+    # (work_counting="any_region2"); they concern the passive rule, not which work counts
+    return build_soil(
+        INCLINED_1, parameters="table2", passive_rule=rule, work_counting="any_region2"
+    )
 
 
 def _clay(rule="elastoplastic"):

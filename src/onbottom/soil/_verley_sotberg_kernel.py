@@ -69,7 +69,9 @@ P_ZI = 13  # initial penetration of the first trough z_i [m] (Eq 7/15)
 P_PASSIVE_RULE = 14  # RULE_* code of onbottom.soil._trough (elastoplastic / legacy_elastic)
 P_B_PLACEMENT = 15  # B_* code: factor B outside or inside the bracket of Eqs 13-14
 P_ZMAX_BASE = 16  # ZMAX_BASE_* code: the z_i of Eq 8's cap (as-laid Eq 7, or the trough's)
-N_PARAMS = 17
+P_WORK_COUNTING = 17  # COUNT_* code: which region-2 increments add to the work E of Eq 6
+P_REVERSAL = 18  # load-reversal threshold θ [-]: |R| >= θ·μV sets the load direction
+N_PARAMS = 19
 
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # origin (centre) of the current trough y0 [m]
@@ -87,7 +89,15 @@ S_MEMO_Z = N_COMMON_STATE + 7  # penetration of the memo [m]
 S_MEMO_P = N_COMMON_STATE + 8  # its (z/D)^1.25 [-]
 S_MEMO_Z3 = N_COMMON_STATE + 9  # residual penetration z3 of the second memo [m]
 S_MEMO_P3 = N_COMMON_STATE + 10  # its (z3/D)^1.25 [-]
-N_STATE = N_COMMON_STATE + 11
+# which increments count (P_WORK_COUNTING): load direction, gate and turning points
+S_LOAD_DIR = N_COMMON_STATE + 11  # load direction from the soil reaction (+1, -1, 0 unknown)
+S_GATE = N_COMMON_STATE + 12  # 1 once the load has reversed in the current trough, else 0
+S_TP_POS = N_COMMON_STATE + 13  # largest s = u - y0 > 0 at a turning point in the trough [m]
+S_TP_NEG = N_COMMON_STATE + 14  # largest -s at a turning point on the side s < 0 [m]
+S_TURNED2 = N_COMMON_STATE + 15  # 1 once the pipe has turned in region 2 of the trough, else 0
+S_TP_LAST = N_COMMON_STATE + 16  # s of the last turning point in the trough (0: its start) [m]
+S_HALF = N_COMMON_STATE + 17  # longest half-cycle |Δs| between turns in the trough [m]
+N_STATE = N_COMMON_STATE + 18
 
 # ---- codes -----------------------------------------------------------------------------------
 # phases (onbottom.soil._trough): PHASE_TROUGH regions 1-2, y2 not yet passed;
@@ -107,6 +117,15 @@ B_INSIDE = 1  # B inside the powers: factor B^0.5 (0.23·[B·E/(γ'D³)]^0.5, 0.
 
 ZMAX_BASE_AS_LAID = 0  # Eq 8 about the as-laid z_i of Eq 7 (P_ZI): no ratchet over troughs
 ZMAX_BASE_TROUGH = 1  # Eq 8 about the current trough's z_i (= z3 of the last breakout)
+
+# which region-2 increments add to E (docs/theory/verley_sotberg.md, "Which increments count")
+COUNT_ANY_REGION2 = 0  # every region-2 increment (the first reading; one-way pushes dig in)
+COUNT_SWEPT_GROUND = 1  # only |s| within the largest turning-point excursion (bound)
+COUNT_TWO_SIDED = 2  # only |s| within the smaller of the two sides' turning excursions (bound)
+COUNT_LOAD_REVERSAL = 3  # every region-2 increment of a trough in which the load has reversed
+COUNT_LOAD_REVERSAL_DRIFT = 4  # the same; after a turn in region 2 not beyond turns + longest swing
+COUNT_LOAD_REVERSAL_SWEPT = 5  # the same; after a turn in region 2 not beyond the turns (strict)
+COUNT_LOAD_REVERSAL_SIDE = 6  # the same; new ground not after a turn on the same side (walking)
 
 INTEGRAND_TOTAL = 0  # E += |F_h Δy| with F_h = friction + passive
 INTEGRAND_PASSIVE = 1  # E += |F_r Δy|
@@ -209,6 +228,45 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
 
 
 @njit(cache=True)
+def counted_length(params, state, s_old, s_new, y1, y2):
+    """Length [m] of the increment s_old -> s_new that adds to the work E of Eq 6 [I].
+
+    Region 2 is y1 <= |s| <= y2 (both sides). ``P_WORK_COUNTING`` limits it: to ground inside
+    the amplitude of the trough's turning points (swept ground), inside the smaller of the two
+    sides' turning excursions (two-sided), or to a trough whose load has reversed (gate);
+    the drift variants further limit it, once the pipe has turned in region 2, to ground
+    inside its turning amplitude plus the longest half-cycle it has made in the trough
+    (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance (``COUNT_LOAD_REVERSAL_SWEPT``),
+    or to that amplitude only when the pipe last turned on the same side of the trough centre
+    (``COUNT_LOAD_REVERSAL_SIDE``: a pipe that turns back and goes on is walking; a swing
+    from the other side is cyclic motion, however fast its amplitude grows).
+    """
+    mode = params[P_WORK_COUNTING]
+    hi = y2
+    if mode == COUNT_ANY_REGION2:
+        hi = y2
+    elif mode == COUNT_SWEPT_GROUND:
+        hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
+    elif mode == COUNT_TWO_SIDED:
+        hi = min(y2, min(state[S_TP_POS], state[S_TP_NEG]))
+    else:
+        if state[S_GATE] <= 0.0:
+            return 0.0
+        if mode == COUNT_LOAD_REVERSAL_SIDE:
+            # beyond the turning amplitude only on a swing from the other side of the centre
+            if state[S_TURNED2] > 0.0 and sign(s_new) * sign(state[S_TP_LAST]) > 0.0:
+                hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
+        elif mode != COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
+            reach = max(state[S_TP_POS], state[S_TP_NEG])
+            if mode == COUNT_LOAD_REVERSAL_DRIFT:
+                reach = reach + state[S_HALF]
+            hi = min(y2, reach)
+    if hi <= y1:
+        return 0.0
+    return overlap(s_old, s_new, y1, hi) + overlap(s_old, s_new, -hi, -y1)
+
+
+@njit(cache=True)
 def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`)."""
     y1 = params[P_Y1]
@@ -246,6 +304,13 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         z2 = 0.0
         work = 0.0
         phase = PHASE_TROUGH
+        # the new trough has no turning points yet and its load has not reversed in it
+        state_new[S_GATE] = 0.0
+        state_new[S_TP_POS] = 0.0
+        state_new[S_TP_NEG] = 0.0
+        state_new[S_TURNED2] = 0.0
+        state_new[S_TP_LAST] = 0.0
+        state_new[S_HALF] = 0.0
         if not legacy:
             # the pipe leaves the berm it pushed: its force is released at the turning
             # point (a jump at zero displacement; the stored energy is dissipated)
@@ -256,8 +321,19 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     a_new = abs(s_new)
 
     if phase == PHASE_TROUGH:
-        # work and penetration growth over the part of the increment inside region 2
-        du2 = overlap(s_old, s_new, y1, y2) + overlap(s_old, s_new, -y2, -y1)
+        # a turning point of the pipe in the trough: s_old, where the motion reversed
+        if direction != 0.0 and state_old[S_DIR] != 0.0 and direction != state_old[S_DIR]:
+            if s_old > state_new[S_TP_POS]:
+                state_new[S_TP_POS] = s_old
+            if -s_old > state_new[S_TP_NEG]:
+                state_new[S_TP_NEG] = -s_old
+            if abs(s_old) > y1:
+                state_new[S_TURNED2] = 1.0
+            state_new[S_HALF] = max(state_new[S_HALF], abs(s_old - state_new[S_TP_LAST]))
+            state_new[S_TP_LAST] = s_old
+        # work and penetration growth over the part of the increment inside region 2 that
+        # counts (P_WORK_COUNTING)
+        du2 = counted_length(params, state_new, s_old, s_new, y1, y2)
         smax_c = min(max(smax, a_new), y2)
         if du2 > 0.0 and v_load > 0.0:
             memo_p = memo_power(params, z, memo_z, memo_p)
@@ -333,6 +409,22 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
             f_old, f, p_old, passive, s_new, mag, k_u, du, v_load, params[P_MU], params[P_DELTA]
         )
     stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
+
+    # load direction from the soil reaction: at rest or sliding slowly the reaction R
+    # equilibrates the applied load, so a change of its sign beyond θ·μV (hysteresis) is a
+    # reversal of the load; the berm pushing back under a one-way load cannot make R < 0
+    if v_load > 0.0:
+        thr = params[P_REVERSAL] * params[P_MU] * v_load
+        new_dir = 0.0
+        if r_new >= thr:
+            new_dir = 1.0
+        elif r_new <= -thr:
+            new_dir = -1.0
+        if new_dir != 0.0:
+            if state_old[S_LOAD_DIR] != 0.0 and new_dir != state_old[S_LOAD_DIR]:
+                if phase == PHASE_TROUGH:
+                    state_new[S_GATE] = 1.0
+            state_new[S_LOAD_DIR] = new_dir
 
     region = region_of(a_new, y1, y2, y3)
     state_new[S_U] = u_new

@@ -46,6 +46,7 @@ __all__ = [
     "PASSIVE_LAWS",
     "PASSIVE_RULES",
     "PENETRATION_LAWS",
+    "WORK_COUNTINGS",
     "WORK_INTEGRANDS",
     "WORK_LAWS",
     "VerleySotberg",
@@ -74,6 +75,36 @@ PENETRATION_LAWS: dict[str, int] = {
     "reconstruction_no_half": _k.ZMAX_LAW_NO_HALF,
 }
 """Maximum cyclic penetration laws (Eq 8): with the factor 0.5, or the reading without it."""
+
+WORK_COUNTINGS: dict[str, int] = {
+    "load_reversal": _k.COUNT_LOAD_REVERSAL,
+    "load_reversal_drift": _k.COUNT_LOAD_REVERSAL_DRIFT,
+    "load_reversal_swept": _k.COUNT_LOAD_REVERSAL_SWEPT,
+    "load_reversal_side": _k.COUNT_LOAD_REVERSAL_SIDE,
+    "any_region2": _k.COUNT_ANY_REGION2,
+    "swept_ground": _k.COUNT_SWEPT_GROUND,
+    "two_sided": _k.COUNT_TWO_SIDED,
+}
+"""Which region-2 displacement increments add to the work E of Eq 6 [I]
+(``docs/theory/verley_sotberg.md``, "Which increments count"); s = u − y0 about the trough:
+
+* ``"load_reversal"`` (default): only in a trough where the load has reversed: the soil
+  reaction R = F_f + F_r, which equilibrates the applied load while the pipe is at rest,
+  changed sign beyond ±θ·μV (θ = ``reversal_fraction``, hysteresis). A one-way push never
+  opens the gate.
+* ``"load_reversal_drift"``: the gate, and once the pipe has turned in region 2, only ground
+  within the amplitude of its turning points plus the longest half-cycle (swing between two
+  turning points) it has made in the trough; a monotonic advance beyond that is taken as
+  drift and does not count. It also cuts cyclic motion whose amplitude grows fast (a wave
+  ramp): kept by name, not the default.
+* ``"load_reversal_swept"``: the gate with the strict drift rule (no swing allowance).
+* ``"load_reversal_side"``: the gate; once the pipe has turned in region 2, ground beyond its
+  turning amplitude counts only on a swing that comes from the other side of the trough
+  centre (a pipe that turns back and goes on, on the same side, is walking: drift).
+* ``"any_region2"``: every region-2 increment (the first reading: a one-way push digs in).
+* ``"swept_ground"``: only |s| within the largest turning-point excursion (bound, no gate).
+* ``"two_sided"``: only |s| within the smaller of the two sides' turning excursions (bound).
+"""
 
 WORK_INTEGRANDS: dict[str, int] = {
     "total": _k.INTEGRAND_TOTAL,
@@ -352,6 +383,13 @@ class VerleySotberg(LateralResistanceModel):
     max_penetration_base : str
         "as_laid" (default: Eq 8's cap about the z_i of Eq 7) or "trough" (about the current
         trough's z_i); see :data:`MAX_PENETRATION_BASES`.
+    work_counting : str
+        Which region-2 increments add to E: "load_reversal" (default),
+        "load_reversal_drift", "load_reversal_swept", "load_reversal_side", "any_region2",
+        "swept_ground" or "two_sided"; see :data:`WORK_COUNTINGS`.
+    reversal_fraction : float
+        θ [-], in (0, 1]: the load counts as reversed when the soil reaction R changes sign
+        beyond ±θ·μV (hysteresis band of the load direction; default 0.5).
     variant : str
         Label stored in results ("silica", "calcareous", "f109", "custom").
     """
@@ -380,6 +418,8 @@ class VerleySotberg(LateralResistanceModel):
     passive_rule: str = "elastoplastic"
     b_placement: str = "outside"
     max_penetration_base: str = "as_laid"
+    work_counting: str = "load_reversal"
+    reversal_fraction: float = 0.5
     variant: str = "custom"
 
     def __post_init__(self) -> None:
@@ -423,6 +463,8 @@ class VerleySotberg(LateralResistanceModel):
         one_of(f"{cls}.passive_rule", self.passive_rule, PASSIVE_RULES)
         one_of(f"{cls}.b_placement", self.b_placement, B_PLACEMENTS)
         one_of(f"{cls}.max_penetration_base", self.max_penetration_base, MAX_PENETRATION_BASES)
+        one_of(f"{cls}.work_counting", self.work_counting, WORK_COUNTINGS)
+        in_range(f"{cls}.reversal_fraction", self.reversal_fraction, 0.0, 1.0, low_inclusive=False)
         if self.mobilisation_displacement is not None:
             in_range(
                 f"{cls}.mobilisation_displacement",
@@ -627,6 +669,8 @@ class VerleySotberg(LateralResistanceModel):
         p[_k.P_PASSIVE_RULE] = PASSIVE_RULES[self.passive_rule]
         p[_k.P_B_PLACEMENT] = B_PLACEMENTS[self.b_placement]
         p[_k.P_ZMAX_BASE] = MAX_PENETRATION_BASES[self.max_penetration_base]
+        p[_k.P_WORK_COUNTING] = WORK_COUNTINGS[self.work_counting]
+        p[_k.P_REVERSAL] = self.reversal_fraction
         return p
 
     def initial_state(self) -> np.ndarray:
@@ -658,4 +702,6 @@ class VerleySotberg(LateralResistanceModel):
             "passive_rule": self.passive_rule,
             "b_placement": self.b_placement,
             "max_penetration_base": self.max_penetration_base,
+            "work_counting": self.work_counting,
+            "reversal_fraction": self.reversal_fraction,
         }

@@ -763,7 +763,8 @@ def simulate_pipeline(
         n_st = arr["sstate"].shape[1]
         if sstate.shape[1] < n_st:
             # checkpoints written before the V&S memo slots (issue 33): zero slots are an
-            # empty memo (the memo's key is then 0, whose power 0 is right)
+            # empty memo (the memo's key is then 0, whose power 0 is right); before the V&S
+            # load-reversal slots: zero is a shut gate, an unknown load direction, no turns
             pad = np.zeros((sstate.shape[0], n_st - sstate.shape[1]))
             sstate = np.ascontiguousarray(np.hstack([sstate, pad]))
         # checkpoints written before the force state existed: Morison only, no state
