@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from onbottom._version import __version__
+from onbottom._version import __version__, content_hash, git_commit
 from onbottom.errors import InputError, ResultFileError
 
 __all__ = [
@@ -45,6 +45,7 @@ __all__ = [
     "annotate",
     "atomic_write",
     "check_result_file",
+    "checksum_json",
     "clean_stale_temporaries",
     "identity_hash",
     "load_dataset",
@@ -53,6 +54,7 @@ __all__ = [
     "save_dataset",
     "save_figure",
     "upgrade_names",
+    "verify_json_checksum",
     "write_csv_atomic",
     "write_text_atomic",
 ]
@@ -163,12 +165,21 @@ def provenance(model: str, parameters: Mapping[str, Any] | None = None, **extra:
     **extra
         Any further attributes (``seed``, ``standard_edition``, ...). Values that are not
         str/int/float are JSON-encoded so that the attributes survive NetCDF.
+
+    Besides the version, the attributes hold ``onbottom_content_hash`` (the SHA-256 of the
+    package's source and data files, :func:`onbottom._version.content_hash`: the version
+    string alone does not change between commits) and, from a git checkout,
+    ``onbottom_git_commit``.
     """
     attrs: dict[str, Any] = {
         "onbottom_version": __version__,
+        "onbottom_content_hash": content_hash(),
         "model": model,
         "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
     }
+    commit = git_commit()
+    if commit:
+        attrs["onbottom_git_commit"] = commit
     if parameters is not None:
         attrs["parameters"] = json.dumps(dict(parameters), sort_keys=True, default=float)
     for k, v in extra.items():
@@ -441,10 +452,47 @@ def run_identity(fields: Mapping[str, Any], *arrays: Any) -> RunIdentity:
 
     ``fields``: the inputs (model, settings, versions, …) as a JSON-able mapping; ``arrays``:
     large numeric inputs hashed by their bytes (kinematics). One function, one format:
-    :class:`RunIdentity` (fields + sha256 digest).
+    :class:`RunIdentity` (fields + sha256 digest). The fields get ``onbottom_content``, the
+    package's content hash (:func:`onbottom._version.content_hash`), unless they hold it:
+    a checkpoint or result of other code is another run.
     """
     meta = dict(fields)
+    meta.setdefault("onbottom_content", content_hash())
     return RunIdentity(fields=meta, digest=identity_hash(meta, *arrays))
+
+
+CHECKSUM_KEY = "checksum"
+"""Key of the SHA-256 that seals a JSON result file (:func:`checksum_json`)."""
+
+
+def _canonical_digest(doc: Mapping[str, Any]) -> str:
+    body = {k: v for k, v in doc.items() if k != CHECKSUM_KEY}
+    text = json.dumps(body, sort_keys=True, allow_nan=True)
+    return "sha256:" + hashlib.sha256(text.encode()).hexdigest()
+
+
+def checksum_json(doc: Mapping[str, Any], *, default: Any = None, indent: int | None = 1) -> str:
+    """The JSON text of ``doc`` sealed with a checksum (key ``"checksum"``).
+
+    The checksum is the SHA-256 of the document's canonical JSON (sorted keys) as it reads
+    back; :func:`verify_json_checksum` recomputes it, so a file edited by hand (a result
+    changed, a key removed) is told apart from one onbottom wrote. ``default``: as
+    :func:`json.dumps` (objects JSON cannot encode).
+    """
+    obj = json.loads(json.dumps(dict(doc), default=default, allow_nan=True))
+    obj.pop(CHECKSUM_KEY, None)
+    obj[CHECKSUM_KEY] = _canonical_digest(obj)
+    return json.dumps(obj, indent=indent, allow_nan=True)
+
+
+def verify_json_checksum(doc: Mapping[str, Any]) -> bool | None:
+    """True when the checksum of a JSON document read back (``json.loads`` of
+    :func:`checksum_json`'s text) matches its content, False when it does not (the file was
+    edited), None when the document carries none (written before checksums existed)."""
+    got = doc.get(CHECKSUM_KEY)
+    if got is None:
+        return None
+    return got == _canonical_digest(doc)
 
 
 def _task_name(key: Any) -> str:
@@ -480,7 +528,9 @@ class TaskStore:
         self, folder: str | os.PathLike, identity: Any, *, restart: bool = False, what="task"
     ):
         self.folder = Path(folder)
-        self.identity = identity_hash({"onbottom_version": __version__, "run": identity})
+        self.identity = identity_hash(
+            {"onbottom_version": __version__, "onbottom_content": content_hash(), "run": identity}
+        )
         self.what = what
         if self.folder.exists() and not self.folder.is_dir():
             raise ResultFileError(
@@ -513,6 +563,12 @@ class TaskStore:
                     f" {RESTART_ADVICE}",
                     field="output",
                 ) from None
+            if verify_json_checksum(doc) is False:
+                raise ResultFileError(
+                    f"{self.what} file {str(f)!r} was changed after onbottom wrote it (its"
+                    f" checksum does not match its content); {RESTART_ADVICE}",
+                    field="output",
+                )
             if ident != self._task_identity(key):
                 raise ResultFileError(
                     f"{self.what} file {str(f)!r} belongs to another run (its run identity"
@@ -526,7 +582,7 @@ class TaskStore:
     def put(self, key: Any, result: Any) -> Path:
         """Record the finished task ``key`` (atomic write of one small file)."""
         doc = {"identity": self._task_identity(key), "key": key, "result": result}
-        text = json.dumps(doc, default=_json_default, allow_nan=True)
+        text = checksum_json(doc, default=_json_default, indent=None)
         return write_text_atomic(self.folder / _task_name(key), text)
 
     def clear(self) -> None:
