@@ -16,6 +16,7 @@ task) so an interrupted run resumes without repeating them.
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
 import hashlib
 import json
@@ -35,11 +36,13 @@ from onbottom._version import __version__, content_hash, git_commit
 from onbottom.errors import InputError, ResultFileError
 
 __all__ = [
+    "IN_MEMORY_MAX_BYTES",
     "LEGACY_NAMES",
     "RESTART_ADVICE",
     "RUN_STATUS_COMPLETE",
     "RUN_STATUS_PARTIAL",
     "VARIABLES",
+    "OutputSet",
     "RunIdentity",
     "TaskStore",
     "annotate",
@@ -230,34 +233,97 @@ def glob_escape(name: str) -> str:
     return "".join(f"[{c}]" if c in "*?[]" else c for c in name)
 
 
-def _atomic_write(path: Path, write: Any) -> Path:
+def _named_os_error(exc: OSError, path: Path) -> OSError:
+    """``exc`` as an ``OSError`` naming ``path`` (the final name, not the temporary one) and
+    the system's short reason (``No space left on device``), for a one-line message."""
+    errno_ = exc.errno if isinstance(exc.errno, int) else None
+    reason = os.strerror(errno_) if errno_ else (str(exc).splitlines()[0] or type(exc).__name__)
+    err = OSError(errno_, f"cannot write it: {reason}; nothing was written under that name")
+    err.filename = str(path)
+    return err
+
+
+class OutputSet:
+    """Result files written together: each under a temporary name, all renamed at the end.
+
+    A writer given ``group=`` (:func:`write_text_atomic`, :func:`save_dataset`, …) writes its
+    temporary file and leaves it; :meth:`commit` renames them all (``with OutputSet() as g:``
+    commits on success). If any write fails (a full disk), :meth:`discard` removes every
+    temporary file: no file of the set appears under its final name, so a half-written set
+    never looks complete.
+    """
+
+    def __init__(self) -> None:
+        self._pending: list[tuple[str, Path]] = []
+
+    def add(self, tmp: str, path: Path) -> None:
+        self._pending.append((tmp, path))
+
+    def commit(self) -> list[Path]:
+        """Rename every temporary file to its final name; returns the final names."""
+        done = []
+        for tmp, path in self._pending:
+            os.replace(tmp, path)
+            done.append(path)
+        self._pending = []
+        return done
+
+    def discard(self) -> None:
+        """Remove every temporary file not yet renamed."""
+        for tmp, _ in self._pending:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        self._pending = []
+
+    def __enter__(self) -> OutputSet:
+        return self
+
+    def __exit__(self, exc_type: Any, *exc: Any) -> None:
+        if exc_type is None:
+            self.commit()
+        else:
+            self.discard()
+
+
+def _atomic_write(path: Path, write: Any, group: OutputSet | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
 
     The file gets the permissions of a normally created file (0666 less the umask, 0644 with
     the usual umask 022), not the 0600 of a temporary file; the folder is created if needed.
+    With ``group`` the rename waits for ``group.commit()``. A write that fails (a full disk)
+    removes the temporary file and raises ``OSError`` naming ``path``.
     """
     path.parent.mkdir(parents=True, exist_ok=True)
     clean_stale_temporaries(path)
     fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
     os.close(fd)
+    keep = False
     try:
-        write(tmp)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
+        try:
+            write(tmp)
+            os.chmod(tmp, 0o666 & ~_umask())
+            if group is None:
+                os.replace(tmp, path)
+            else:
+                group.add(tmp, path)
+                keep = True
+        except OSError as exc:
+            raise _named_os_error(exc, path) from None
     finally:
-        if os.path.exists(tmp):
+        if not keep and os.path.exists(tmp):
             os.unlink(tmp)
     return path
 
 
-def atomic_write(path: str | os.PathLike, write: Any) -> Path:
+def atomic_write(path: str | os.PathLike, write: Any, *, group: OutputSet | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
 
     For writers the helpers below do not cover (a GIF, a binary format); ``tmp`` ends in
     ``.tmp``. The folder is created if needed; a temporary file left by a killed writer is
-    removed the next time the same file is written.
+    removed the next time the same file is written. ``group``: an :class:`OutputSet` that
+    renames it with the others.
     """
-    return _atomic_write(Path(path), write)
+    return _atomic_write(Path(path), write, group)
 
 
 def save_dataset(
@@ -266,6 +332,7 @@ def save_dataset(
     *,
     run_status: str = RUN_STATUS_COMPLETE,
     compression_level: int = 0,
+    group: OutputSet | None = None,
 ) -> Path:
     """Write ``ds`` to NetCDF atomically (temporary file in the same folder, then rename).
 
@@ -280,24 +347,46 @@ def save_dataset(
     without the write lock: ``Dataset.to_netcdf`` asks dask for its scheduler on every call,
     which imports ``distributed`` on the first (0.3 s of CPU, three times the integration of a
     3.5-h storm; issue 33). The file is the same.
+
+    A dataset under :data:`IN_MEMORY_MAX_BYTES` is built in memory and written to disk by
+    Python: HDF5 failing to write (a full disk) can crash the interpreter when the broken
+    file is closed (exit 139); here it is an ``OSError`` naming the file. ``group``: an
+    :class:`OutputSet` that renames it with the others.
     """
     out = ds.assign_attrs(run_status=run_status)
     encoding = netcdf_encoding(out, compression_level)
     if out.chunks:
         return _atomic_write(
-            Path(path), lambda tmp: out.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+            Path(path),
+            lambda tmp: out.to_netcdf(tmp, engine="h5netcdf", encoding=encoding),
+            group,
         )
 
-    def write(tmp: str) -> None:
+    def dump(target: Any) -> None:
         from xarray.backends import H5NetCDFStore
 
-        store = H5NetCDFStore.open(tmp, mode="w", lock=False)
+        store = H5NetCDFStore.open(target, mode="w", lock=False)
         try:
             out.dump_to_store(store, encoding=encoding)
         finally:
             store.close()
 
-    return _atomic_write(Path(path), write)
+    if out.nbytes > IN_MEMORY_MAX_BYTES:
+        return _atomic_write(Path(path), dump, group)
+
+    def write(tmp: str) -> None:
+        import io
+
+        buf = io.BytesIO()
+        dump(buf)
+        with open(tmp, "wb") as fh:
+            fh.write(buf.getbuffer())
+
+    return _atomic_write(Path(path), write, group)
+
+
+IN_MEMORY_MAX_BYTES = 256 * 2**20
+"""Datasets up to this size [bytes] are encoded in memory before the file is written."""
 
 
 def netcdf_encoding(ds: xr.Dataset, compression_level: int) -> dict[str, dict[str, Any]]:
@@ -320,13 +409,21 @@ def netcdf_encoding(ds: xr.Dataset, compression_level: int) -> dict[str, dict[st
     }
 
 
-def write_text_atomic(path: str | os.PathLike, text: str) -> Path:
+def write_text_atomic(
+    path: str | os.PathLike, text: str, *, group: OutputSet | None = None
+) -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically, as :func:`save_dataset`."""
-    return _atomic_write(Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    return _atomic_write(
+        Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"), group
+    )
 
 
 def write_csv_atomic(
-    path: str | os.PathLike, rows: Sequence[Mapping[str, Any]], fieldnames: Sequence[str]
+    path: str | os.PathLike,
+    rows: Sequence[Mapping[str, Any]],
+    fieldnames: Sequence[str],
+    *,
+    group: OutputSet | None = None,
 ) -> Path:
     """Write ``rows`` as a CSV table (header ``fieldnames``) atomically."""
     import csv
@@ -337,14 +434,16 @@ def write_csv_atomic(
             w.writeheader()
             w.writerows(rows)
 
-    return _atomic_write(Path(path), write)
+    return _atomic_write(Path(path), write, group)
 
 
-def save_figure(fig: Any, path: str | os.PathLike, **savefig_kw: Any) -> Path:
+def save_figure(
+    fig: Any, path: str | os.PathLike, *, group: OutputSet | None = None, **savefig_kw: Any
+) -> Path:
     """``fig.savefig(path, **savefig_kw)`` atomically (the format follows the suffix)."""
     p = Path(path)
     fmt = savefig_kw.pop("format", None) or (p.suffix[1:].lower() or None)
-    return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw))
+    return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw), group)
 
 
 def _unreadable(
