@@ -20,8 +20,9 @@ imported when this module is, i.e. only with a kernel module.
 the kernel it loads (its time stamp and size): an edited kernel called from another file, or
 an upgraded package, would be served stale. :func:`njit` (and :func:`numba_njit`, numba's own
 defaults, for the few modules that keep them) therefore put the cache of ``cache=True``
-kernels in a folder named by the package's content hash
-(:func:`onbottom._version.content_hash`): any edit of the package gives a new, empty folder.
+kernels in a folder named by the hash of the package's Python sources
+(:func:`onbottom._version.code_hash`, part of the content hash): any edit of a module gives a
+new, empty folder (a kernel may call, or freeze as a constant, anything of any module).
 The folder is :func:`cache_dir`: ``$NUMBA_CACHE_DIR/onbottom-<hash>`` when the user set
 ``NUMBA_CACHE_DIR``, else ``<user cache>/onbottom/numba/<hash>`` (``$XDG_CACHE_HOME`` or
 ``~/.cache``); when that is not writable (a read-only install, a read-only home) the
@@ -105,9 +106,9 @@ def cache_dir() -> str | None:
     global _CACHE_DIR
     if _CACHE_DIR is not _UNSET:
         return _CACHE_DIR
-    from onbottom._version import short_hash
+    from onbottom._version import code_hash
 
-    key = short_hash()
+    key = code_hash()[:16]
     user = os.environ.get("NUMBA_CACHE_DIR", "")
     home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
     if user:

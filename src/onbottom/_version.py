@@ -21,7 +21,15 @@ try:
 except PackageNotFoundError:  # running from a source tree without installation
     __version__ = "0.1.0+unknown"
 
-__all__ = ["__version__", "content_hash", "file_hash", "git_commit", "package_files"]
+__all__ = [
+    "__version__",
+    "code_hash",
+    "content_hash",
+    "file_hash",
+    "git_commit",
+    "package_files",
+    "short_hash",
+]
 
 PACKAGE_ROOT = Path(__file__).resolve().parent
 """The folder of the imported ``onbottom`` package (``src/onbottom`` or site-packages)."""
@@ -48,17 +56,23 @@ def package_files(root: str | os.PathLike | None = None) -> list[str]:
     return sorted(out)
 
 
-def _tree_hash(root: Path) -> str:
-    h = hashlib.sha256()
+def _tree_hashes(root: Path) -> tuple[str, str]:
+    """(all files, Python sources only) SHA-256 of :func:`package_files` under ``root``."""
+    every, code = hashlib.sha256(), hashlib.sha256()
     for rel in package_files(root):
         data = (root / rel).read_bytes()
-        h.update(rel.encode())
-        h.update(b"\0%d\0" % len(data))
-        h.update(data)
-    return h.hexdigest()
+        head = rel.encode() + b"\0%d\0" % len(data)
+        for h in (every, code) if rel.endswith(".py") else (every,):
+            h.update(head)
+            h.update(data)
+    return every.hexdigest(), code.hexdigest()
 
 
 @cache
+def _hashes() -> tuple[str, str]:
+    return _tree_hashes(PACKAGE_ROOT)
+
+
 def content_hash() -> str:
     """SHA-256 (hex) of the installed package's source and data files (computed once).
 
@@ -66,7 +80,14 @@ def content_hash() -> str:
     template or a package data file changes it; a wheel built from a checkout has the
     checkout's hash. About 10–20 ms, once per process, when first asked for.
     """
-    return _tree_hash(PACKAGE_ROOT)
+    return _hashes()[0]
+
+
+def code_hash() -> str:
+    """SHA-256 (hex) of the package's Python sources only (computed with
+    :func:`content_hash`): the key of numba's cache folder (``onbottom._jit``), which a
+    change of package data (curve sweeps, templates) does not touch."""
+    return _hashes()[1]
 
 
 def short_hash() -> str:
