@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 import onbottom
-from onbottom._version import content_hash
+from onbottom._version import content_hash, package_files
 
 pytestmark = pytest.mark.long
 
@@ -50,6 +50,7 @@ def _comparable(doc: dict) -> dict:
 
 
 def test_wheel_in_a_fresh_venv_gives_the_checkouts_results(tmp_path):
+    checkout_hash = content_hash()  # of the tree copied below
     tree = tmp_path / "tree"
     tree.mkdir()
     for name in ("pyproject.toml", "README.md", "LICENSE"):
@@ -86,7 +87,9 @@ def test_wheel_in_a_fresh_venv_gives_the_checkouts_results(tmp_path):
     assert venv.resolve() in installed.parents, installed  # not the checkout's src
     assert REPO not in installed.parents
     # every file of the checkout's package (sources, data, templates) is in the wheel
-    assert installed_hash == content_hash()
+    missing = sorted(set(package_files(SRC)) - set(package_files(installed.parent)))
+    assert not missing, f"not in the wheel: {missing}"
+    assert installed_hash == checkout_hash
 
     wheel_out, edit_out = tmp_path / "wheel_out", tmp_path / "edit_out"
     _run([str(py), "-m", "onbottom", *ASSESS, "--out", str(wheel_out)], env=env, cwd=tmp_path)
