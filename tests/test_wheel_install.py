@@ -36,17 +36,34 @@ def _run(cmd: list[str], *, env: dict[str, str], cwd: Path, timeout: float = 120
     return out
 
 
-def _comparable(doc: dict) -> dict:
+def _comparable(doc: dict, places: dict[str, str]) -> dict:
     """What a run computed (not when, where or how long): summary, sections' checks, levels
-    and dynamic results, the comparison, the pipeline."""
+    and dynamic results, the comparison, the pipeline; the run's own folders and the
+    package's folder (in file names) replaced by ``places``' names."""
     drop = {"wall_time_s", "cpu_time_s", "identity", "identity_parts", "checksum"}
-    sections = [{k: v for k, v in s.items() if k not in drop} for s in doc["sections"]]
-    return {
-        "summary": doc["summary"],
-        "sections": sections,
-        "comparison": doc["comparison"],
-        "pipeline": doc.get("pipeline"),
-    }
+    text = json.dumps(
+        {
+            "summary": doc["summary"],
+            "sections": [{k: v for k, v in s.items() if k not in drop} for s in doc["sections"]],
+            "comparison": doc["comparison"],
+            "pipeline": {k: v for k, v in (doc.get("pipeline") or {}).items() if k not in drop},
+        }
+    )
+    for path, name in sorted(places.items(), key=lambda kv: -len(kv[0])):
+        text = text.replace(path, name)
+    return json.loads(text)
+
+
+def _differences(a, b, path: str = "") -> list[str]:
+    if isinstance(a, dict) and isinstance(b, dict):
+        out = [f"{path}/{k}: in one only" for k in sorted(set(a) ^ set(b))]
+        for k in sorted(set(a) & set(b)):
+            out += _differences(a[k], b[k], f"{path}/{k}")
+        return out
+    if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
+        return [d for i, (x, y) in enumerate(zip(a, b, strict=True)) for d in
+                _differences(x, y, f"{path}[{i}]")]  # fmt: skip
+    return [] if a == b else [f"{path}: {str(a)[:120]} != {str(b)[:120]}"]
 
 
 def test_wheel_in_a_fresh_venv_gives_the_checkouts_results(tmp_path):
@@ -102,5 +119,8 @@ def test_wheel_in_a_fresh_venv_gives_the_checkouts_results(tmp_path):
     a = json.loads((wheel_out / "results.json").read_text(encoding="utf-8"))
     b = json.loads((edit_out / "results.json").read_text(encoding="utf-8"))
     assert a["provenance"]["onbottom_content_hash"] == b["provenance"]["onbottom_content_hash"]
-    assert _comparable(a)["summary"] == _comparable(b)["summary"]
-    assert _comparable(a) == _comparable(b)
+    assert a["summary"] == b["summary"]
+    ca = _comparable(a, {str(wheel_out): "<out>", str(installed.parent): "<package>"})
+    cb = _comparable(b, {str(edit_out): "<out>", str(SRC): "<package>"})
+    diffs = _differences(ca, cb)
+    assert not diffs, "\n".join(diffs[:20])
