@@ -27,8 +27,8 @@ The folder is :func:`cache_dir`: ``$NUMBA_CACHE_DIR/onbottom-<hash>`` when the u
 ``NUMBA_CACHE_DIR``, else ``<user cache>/onbottom/numba/<hash>`` (``$XDG_CACHE_HOME`` or
 ``~/.cache``); when that is not writable (a read-only install, a read-only home) the
 temporary folder, with a one-line note; when nothing is writable, kernels are compiled in each
-process without caching, with a one-line note. Older hash folders beyond the most recent few
-are removed.
+process without caching, with a one-line note. Hash folders beyond the most recent few that
+have not been used for a week are removed.
 
 :func:`pure_python` builds a kernel's plain-Python twin from the kernel's own source; it lives
 here, in a base module, so that the kernels of every package (soil, hydro, dynamics) share it.
@@ -68,7 +68,10 @@ __all__ = [
 logger = logging.getLogger(__name__)
 
 KEEP_CACHE_FOLDERS = 4
-"""Hash folders kept beside the current one (the most recently used); older ones are removed."""
+"""Hash folders always kept beside the current one (the most recently used)."""
+PRUNE_AFTER_S = 7 * 86400.0
+"""A hash folder beyond :data:`KEEP_CACHE_FOLDERS` is removed once unused for this long [s]
+(a process touches its folder when it starts: a folder in use is never removed under it)."""
 
 _UNSET = object()
 _CACHE_DIR: Any = _UNSET
@@ -86,15 +89,20 @@ def _writable(folder: str) -> bool:
 
 
 def _prune(parent: str, keep: str) -> None:
-    """Remove hash folders of ``parent`` other than ``keep`` beyond the most recent few."""
+    """Touch ``keep`` (in use); remove the other hash folders of ``parent`` beyond the most
+    recent few that have not been used for :data:`PRUNE_AFTER_S`."""
+    import time
+
     try:
+        os.utime(keep)
         entries = [
             e for e in os.scandir(parent) if e.is_dir() and e.path != keep and e.name[:1] != "."
         ]
         entries.sort(key=lambda e: e.stat().st_mtime, reverse=True)
+        old = time.time() - PRUNE_AFTER_S
         for e in entries[KEEP_CACHE_FOLDERS:]:
-            shutil.rmtree(e.path, ignore_errors=True)
-        os.utime(keep)  # the folder in use is the most recent
+            if e.stat().st_mtime < old:
+                shutil.rmtree(e.path, ignore_errors=True)
     except OSError:
         pass
 

@@ -128,3 +128,22 @@ def test_no_writable_folder_disables_caching_with_a_note(tmp_path, monkeypatch, 
         return x + 1.0
 
     assert plus_one(1.0) == 2.0
+
+
+def test_prune_removes_only_old_unused_hash_folders(tmp_path):
+    import time
+
+    now = time.time()
+    ages = {"a": 0, "b": 1, "c": 2, "d": 3, "e": 5, "f": 8, "g": 10}  # days since last use
+    for name, days in ages.items():
+        (tmp_path / name).mkdir()
+        os.utime(tmp_path / name, (now - days * 86400, now - days * 86400))
+    keep = tmp_path / "current"
+    keep.mkdir()
+    os.utime(keep, (now - 30 * 86400, now - 30 * 86400))
+    _jit._prune(str(tmp_path), str(keep))
+    left = {p.name for p in tmp_path.iterdir()}
+    # the folder in use (touched now), the 4 most recent, and e (beyond them, but used 5 days
+    # ago: within the week); f and g, unused for over a week, are gone
+    assert left == {"current", "a", "b", "c", "d", "e"}
+    assert keep.stat().st_mtime > now - 60
