@@ -93,3 +93,21 @@ def test_stale_reason_names_every_part():
     assert "x.nc changed" in why and "y.nc added" in why and "z.nc no longer read" in why
     assert "earlier onbottom" in assess_core.stale_reason(None, new)
     assert assess_core.stale_reason(dict(new), new) == ""
+
+
+def test_provenance_identities_and_task_files_carry_the_package_hash(tmp_path):
+    from onbottom._version import content_hash, package_files
+    from onbottom.results import TaskStore, provenance, run_identity
+
+    assert provenance("x")["onbottom_content_hash"] == content_hash()
+    assert run_identity({"a": 1}).fields["onbottom_content"] == content_hash()
+    assert "_version.py" in package_files() and not any(
+        "__pycache__" in f or f.endswith(".pyc") for f in package_files()
+    )
+    store = TaskStore(tmp_path / "tasks", {"case": 1}, what="seed")
+    store.put({"seed": 1}, {"y": 0.25})
+    assert store.load([{"seed": 1}]) == {0: {"y": 0.25}}
+    (f,) = (tmp_path / "tasks").glob("*.json")
+    f.write_text(f.read_text(encoding="utf-8").replace("0.25", "0.5"), encoding="utf-8")
+    with pytest.raises(ResultFileError, match=r"seed file .* changed after onbottom wrote it"):
+        store.load([{"seed": 1}])
