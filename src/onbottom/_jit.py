@@ -16,6 +16,20 @@ first run's compiling (issue 33 item 2: the storm kernel's 5.2 → 4.7 CPU-s, pa
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
 
+**Cache folder per package content.** numba's on-disk cache checks only the source file of
+the kernel it loads (its time stamp and size): an edited kernel called from another file, or
+an upgraded package, would be served stale. :func:`njit` (and :func:`numba_njit`, numba's own
+defaults, for the few modules that keep them) therefore put the cache of ``cache=True``
+kernels in a folder named by the hash of the package's Python sources
+(:func:`onbottom._version.code_hash`, part of the content hash): any edit of a module gives a
+new, empty folder (a kernel may call, or freeze as a constant, anything of any module).
+The folder is :func:`cache_dir`: ``$NUMBA_CACHE_DIR/onbottom-<hash>`` when the user set
+``NUMBA_CACHE_DIR``, else ``<user cache>/onbottom/numba/<hash>`` (``$XDG_CACHE_HOME`` or
+``~/.cache``); when that is not writable (a read-only install, a read-only home) the
+temporary folder, with a one-line note; when nothing is writable, kernels are compiled in each
+process without caching, with a one-line note. Hash folders beyond the most recent few that
+have not been used for a week are removed.
+
 :func:`pure_python` builds a kernel's plain-Python twin from the kernel's own source; it lives
 here, in a base module, so that the kernels of every package (soil, hydro, dynamics) share it.
 """
@@ -24,11 +38,14 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import logging
 import operator
 import os
+import shutil
 import tempfile
 import types
 from collections.abc import Callable, Iterator
+from typing import Any
 
 import numba
 from numba import types as nbtypes
@@ -37,14 +54,133 @@ from numba.core.dispatcher import Dispatcher
 from numba.extending import intrinsic, overload
 from numba.np.arrayobj import make_array
 
-__all__ = ["borrow", "call_literal", "literal_dispatch", "njit", "pure_python", "row_view"]
+__all__ = [
+    "borrow",
+    "cache_dir",
+    "call_literal",
+    "literal_dispatch",
+    "njit",
+    "numba_njit",
+    "pure_python",
+    "row_view",
+]
+
+logger = logging.getLogger(__name__)
+
+KEEP_CACHE_FOLDERS = 4
+"""Hash folders always kept beside the current one (the most recently used)."""
+PRUNE_AFTER_S = 7 * 86400.0
+"""A hash folder beyond :data:`KEEP_CACHE_FOLDERS` is removed once unused for this long [s]
+(a process touches its folder when it starts: a folder in use is never removed under it)."""
+
+_UNSET = object()
+_CACHE_DIR: Any = _UNSET
+
+
+def _writable(folder: str) -> bool:
+    try:
+        os.makedirs(folder, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".probe-", dir=folder)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError:
+        return False
+    return True
+
+
+def _prune(parent: str, keep: str) -> None:
+    """Touch ``keep`` (in use); remove the other hash folders of ``parent`` beyond the most
+    recent few that have not been used for :data:`PRUNE_AFTER_S`."""
+    import time
+
+    try:
+        os.utime(keep)
+        entries = [
+            e for e in os.scandir(parent) if e.is_dir() and e.path != keep and e.name[:1] != "."
+        ]
+        entries.sort(key=lambda e: e.stat().st_mtime, reverse=True)
+        old = time.time() - PRUNE_AFTER_S
+        for e in entries[KEEP_CACHE_FOLDERS:]:
+            if e.stat().st_mtime < old:
+                shutil.rmtree(e.path, ignore_errors=True)
+    except OSError:
+        pass
+
+
+def cache_dir() -> str | None:
+    """numba's cache folder of the onbottom kernels, one per package content hash (resolved
+    once per process; see the module docstring); None when no folder is writable (kernels
+    are then not cached)."""
+    global _CACHE_DIR
+    if _CACHE_DIR is not _UNSET:
+        return _CACHE_DIR
+    from onbottom._version import code_hash
+
+    key = code_hash()[:16]
+    user = os.environ.get("NUMBA_CACHE_DIR", "")
+    home = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    if user:
+        candidates = [(user, f"onbottom-{key}")]
+    else:
+        candidates = [(os.path.join(home, "onbottom", "numba"), key)]
+    uid = getattr(os, "getuid", lambda: 0)()
+    tmp = os.path.join(tempfile.gettempdir(), f"onbottom-numba-{uid}")
+    candidates.append((tmp, key))
+    chosen = None
+    for parent, name in candidates:
+        folder = os.path.join(parent, name)
+        if _writable(folder):
+            chosen = folder
+            if name == key:
+                _prune(parent, folder)
+            break
+    first = os.path.join(*candidates[0])
+    if chosen is None:
+        logger.warning(
+            "note: numba's cache folder %s is not writable (nor %s): compiled kernels are not"
+            " cached (each run compiles them)",
+            first,
+            os.path.join(*candidates[-1]),
+        )
+    elif chosen != first:
+        logger.warning(
+            "note: numba's cache folder %s is not writable: compiled kernels are cached in %s",
+            first,
+            chosen,
+        )
+    _CACHE_DIR = chosen
+    return chosen
+
+
+def _cached(decorate: Callable, kwargs: dict) -> Any:
+    """Apply ``decorate`` with numba's cache folder set to :func:`cache_dir` (caching off
+    when there is none); numba fixes a kernel's cache folder when it is decorated."""
+    if not kwargs.get("cache"):
+        return decorate(kwargs)
+    folder = cache_dir()
+    if folder is None:
+        return decorate({**kwargs, "cache": False})
+    old = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = folder
+    try:
+        return decorate(kwargs)
+    finally:
+        numba.config.CACHE_DIR = old
+
+
+def numba_njit(*args, **kwargs):
+    """:func:`numba.njit` with numba's own defaults, its cache in :func:`cache_dir`."""
+    if args and callable(args[0]):
+        return _cached(lambda kw: numba.njit(*args, **kw), kwargs)
+    return lambda fn: _cached(lambda kw: numba.njit(*args, **kw)(fn), kwargs)
 
 
 def njit(*args, **kwargs):
-    """:func:`numba.njit` with ``error_model="numpy"`` by default (same call forms)."""
+    """:func:`numba.njit` with ``error_model="numpy"`` by default (same call forms), its
+    cache (``cache=True``) in :func:`cache_dir`."""
     kwargs.setdefault("error_model", "numpy")
     kwargs.setdefault("no_cfunc_wrapper", True)
-    return numba.njit(*args, **kwargs)
+    return numba_njit(*args, **kwargs)
 
 
 def literal_dispatch(pyfunc, kernels, general):
@@ -166,7 +302,7 @@ def compile_lock_path(kernel, sig) -> str:
     py = kernel.py_func
     text = "|".join(
         (py.__module__, py.__qualname__, py.__code__.co_filename, repr(sig),
-         os.environ.get("NUMBA_CACHE_DIR", ""))
+         cache_dir() or "")
     )  # fmt: skip
     key = hashlib.sha256(text.encode()).hexdigest()[:20]
     return os.path.join(tempfile.gettempdir(), f"onbottom-compile-{key}.lock")

@@ -16,6 +16,7 @@ task) so an interrupted run resumes without repeating them.
 
 from __future__ import annotations
 
+import contextlib
 import datetime as _dt
 import hashlib
 import json
@@ -31,20 +32,23 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from onbottom._version import __version__
+from onbottom._version import __version__, content_hash, git_commit
 from onbottom.errors import InputError, ResultFileError
 
 __all__ = [
+    "IN_MEMORY_MAX_BYTES",
     "LEGACY_NAMES",
     "RESTART_ADVICE",
     "RUN_STATUS_COMPLETE",
     "RUN_STATUS_PARTIAL",
     "VARIABLES",
+    "OutputSet",
     "RunIdentity",
     "TaskStore",
     "annotate",
     "atomic_write",
     "check_result_file",
+    "checksum_json",
     "clean_stale_temporaries",
     "identity_hash",
     "load_dataset",
@@ -53,6 +57,7 @@ __all__ = [
     "save_dataset",
     "save_figure",
     "upgrade_names",
+    "verify_json_checksum",
     "write_csv_atomic",
     "write_text_atomic",
 ]
@@ -163,12 +168,21 @@ def provenance(model: str, parameters: Mapping[str, Any] | None = None, **extra:
     **extra
         Any further attributes (``seed``, ``standard_edition``, ...). Values that are not
         str/int/float are JSON-encoded so that the attributes survive NetCDF.
+
+    Besides the version, the attributes hold ``onbottom_content_hash`` (the SHA-256 of the
+    package's source and data files, :func:`onbottom._version.content_hash`: the version
+    string alone does not change between commits) and, from a git checkout,
+    ``onbottom_git_commit``.
     """
     attrs: dict[str, Any] = {
         "onbottom_version": __version__,
+        "onbottom_content_hash": content_hash(),
         "model": model,
         "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
     }
+    commit = git_commit()
+    if commit:
+        attrs["onbottom_git_commit"] = commit
     if parameters is not None:
         attrs["parameters"] = json.dumps(dict(parameters), sort_keys=True, default=float)
     for k, v in extra.items():
@@ -219,34 +233,97 @@ def glob_escape(name: str) -> str:
     return "".join(f"[{c}]" if c in "*?[]" else c for c in name)
 
 
-def _atomic_write(path: Path, write: Any) -> Path:
+def _named_os_error(exc: OSError, path: Path) -> OSError:
+    """``exc`` as an ``OSError`` naming ``path`` (the final name, not the temporary one) and
+    the system's short reason (``No space left on device``), for a one-line message."""
+    errno_ = exc.errno if isinstance(exc.errno, int) else None
+    reason = os.strerror(errno_) if errno_ else (str(exc).splitlines()[0] or type(exc).__name__)
+    err = OSError(errno_, f"cannot write it: {reason}; nothing was written under that name")
+    err.filename = str(path)
+    return err
+
+
+class OutputSet:
+    """Result files written together: each under a temporary name, all renamed at the end.
+
+    A writer given ``group=`` (:func:`write_text_atomic`, :func:`save_dataset`, …) writes its
+    temporary file and leaves it; :meth:`commit` renames them all (``with OutputSet() as g:``
+    commits on success). If any write fails (a full disk), :meth:`discard` removes every
+    temporary file: no file of the set appears under its final name, so a half-written set
+    never looks complete.
+    """
+
+    def __init__(self) -> None:
+        self._pending: list[tuple[str, Path]] = []
+
+    def add(self, tmp: str, path: Path) -> None:
+        self._pending.append((tmp, path))
+
+    def commit(self) -> list[Path]:
+        """Rename every temporary file to its final name; returns the final names."""
+        done = []
+        for tmp, path in self._pending:
+            os.replace(tmp, path)
+            done.append(path)
+        self._pending = []
+        return done
+
+    def discard(self) -> None:
+        """Remove every temporary file not yet renamed."""
+        for tmp, _ in self._pending:
+            with contextlib.suppress(OSError):
+                os.unlink(tmp)
+        self._pending = []
+
+    def __enter__(self) -> OutputSet:
+        return self
+
+    def __exit__(self, exc_type: Any, *exc: Any) -> None:
+        if exc_type is None:
+            self.commit()
+        else:
+            self.discard()
+
+
+def _atomic_write(path: Path, write: Any, group: OutputSet | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
 
     The file gets the permissions of a normally created file (0666 less the umask, 0644 with
     the usual umask 022), not the 0600 of a temporary file; the folder is created if needed.
+    With ``group`` the rename waits for ``group.commit()``. A write that fails (a full disk)
+    removes the temporary file and raises ``OSError`` naming ``path``.
     """
     path.parent.mkdir(parents=True, exist_ok=True)
     clean_stale_temporaries(path)
     fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
     os.close(fd)
+    keep = False
     try:
-        write(tmp)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
+        try:
+            write(tmp)
+            os.chmod(tmp, 0o666 & ~_umask())
+            if group is None:
+                os.replace(tmp, path)
+            else:
+                group.add(tmp, path)
+                keep = True
+        except OSError as exc:
+            raise _named_os_error(exc, path) from None
     finally:
-        if os.path.exists(tmp):
+        if not keep and os.path.exists(tmp):
             os.unlink(tmp)
     return path
 
 
-def atomic_write(path: str | os.PathLike, write: Any) -> Path:
+def atomic_write(path: str | os.PathLike, write: Any, *, group: OutputSet | None = None) -> Path:
     """Call ``write(tmp)`` on a temporary file beside ``path``, then rename it to ``path``.
 
     For writers the helpers below do not cover (a GIF, a binary format); ``tmp`` ends in
     ``.tmp``. The folder is created if needed; a temporary file left by a killed writer is
-    removed the next time the same file is written.
+    removed the next time the same file is written. ``group``: an :class:`OutputSet` that
+    renames it with the others.
     """
-    return _atomic_write(Path(path), write)
+    return _atomic_write(Path(path), write, group)
 
 
 def save_dataset(
@@ -255,6 +332,7 @@ def save_dataset(
     *,
     run_status: str = RUN_STATUS_COMPLETE,
     compression_level: int = 0,
+    group: OutputSet | None = None,
 ) -> Path:
     """Write ``ds`` to NetCDF atomically (temporary file in the same folder, then rename).
 
@@ -269,24 +347,46 @@ def save_dataset(
     without the write lock: ``Dataset.to_netcdf`` asks dask for its scheduler on every call,
     which imports ``distributed`` on the first (0.3 s of CPU, three times the integration of a
     3.5-h storm; issue 33). The file is the same.
+
+    A dataset under :data:`IN_MEMORY_MAX_BYTES` is built in memory and written to disk by
+    Python: HDF5 failing to write (a full disk) can crash the interpreter when the broken
+    file is closed (exit 139); here it is an ``OSError`` naming the file. ``group``: an
+    :class:`OutputSet` that renames it with the others.
     """
     out = ds.assign_attrs(run_status=run_status)
     encoding = netcdf_encoding(out, compression_level)
     if out.chunks:
         return _atomic_write(
-            Path(path), lambda tmp: out.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+            Path(path),
+            lambda tmp: out.to_netcdf(tmp, engine="h5netcdf", encoding=encoding),
+            group,
         )
 
-    def write(tmp: str) -> None:
+    def dump(target: Any) -> None:
         from xarray.backends import H5NetCDFStore
 
-        store = H5NetCDFStore.open(tmp, mode="w", lock=False)
+        store = H5NetCDFStore.open(target, mode="w", lock=False)
         try:
             out.dump_to_store(store, encoding=encoding)
         finally:
             store.close()
 
-    return _atomic_write(Path(path), write)
+    if out.nbytes > IN_MEMORY_MAX_BYTES:
+        return _atomic_write(Path(path), dump, group)
+
+    def write(tmp: str) -> None:
+        import io
+
+        buf = io.BytesIO()
+        dump(buf)
+        with open(tmp, "wb") as fh:
+            fh.write(buf.getbuffer())
+
+    return _atomic_write(Path(path), write, group)
+
+
+IN_MEMORY_MAX_BYTES = 256 * 2**20
+"""Datasets up to this size [bytes] are encoded in memory before the file is written."""
 
 
 def netcdf_encoding(ds: xr.Dataset, compression_level: int) -> dict[str, dict[str, Any]]:
@@ -309,13 +409,21 @@ def netcdf_encoding(ds: xr.Dataset, compression_level: int) -> dict[str, dict[st
     }
 
 
-def write_text_atomic(path: str | os.PathLike, text: str) -> Path:
+def write_text_atomic(
+    path: str | os.PathLike, text: str, *, group: OutputSet | None = None
+) -> Path:
     """Write ``text`` (UTF-8) to ``path`` atomically, as :func:`save_dataset`."""
-    return _atomic_write(Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    return _atomic_write(
+        Path(path), lambda tmp: Path(tmp).write_text(text, encoding="utf-8"), group
+    )
 
 
 def write_csv_atomic(
-    path: str | os.PathLike, rows: Sequence[Mapping[str, Any]], fieldnames: Sequence[str]
+    path: str | os.PathLike,
+    rows: Sequence[Mapping[str, Any]],
+    fieldnames: Sequence[str],
+    *,
+    group: OutputSet | None = None,
 ) -> Path:
     """Write ``rows`` as a CSV table (header ``fieldnames``) atomically."""
     import csv
@@ -326,14 +434,16 @@ def write_csv_atomic(
             w.writeheader()
             w.writerows(rows)
 
-    return _atomic_write(Path(path), write)
+    return _atomic_write(Path(path), write, group)
 
 
-def save_figure(fig: Any, path: str | os.PathLike, **savefig_kw: Any) -> Path:
+def save_figure(
+    fig: Any, path: str | os.PathLike, *, group: OutputSet | None = None, **savefig_kw: Any
+) -> Path:
     """``fig.savefig(path, **savefig_kw)`` atomically (the format follows the suffix)."""
     p = Path(path)
     fmt = savefig_kw.pop("format", None) or (p.suffix[1:].lower() or None)
-    return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw))
+    return _atomic_write(p, lambda tmp: fig.savefig(tmp, format=fmt, **savefig_kw), group)
 
 
 def _unreadable(
@@ -441,10 +551,47 @@ def run_identity(fields: Mapping[str, Any], *arrays: Any) -> RunIdentity:
 
     ``fields``: the inputs (model, settings, versions, …) as a JSON-able mapping; ``arrays``:
     large numeric inputs hashed by their bytes (kinematics). One function, one format:
-    :class:`RunIdentity` (fields + sha256 digest).
+    :class:`RunIdentity` (fields + sha256 digest). The fields get ``onbottom_content``, the
+    package's content hash (:func:`onbottom._version.content_hash`), unless they hold it:
+    a checkpoint or result of other code is another run.
     """
     meta = dict(fields)
+    meta.setdefault("onbottom_content", content_hash())
     return RunIdentity(fields=meta, digest=identity_hash(meta, *arrays))
+
+
+CHECKSUM_KEY = "checksum"
+"""Key of the SHA-256 that seals a JSON result file (:func:`checksum_json`)."""
+
+
+def _canonical_digest(doc: Mapping[str, Any]) -> str:
+    body = {k: v for k, v in doc.items() if k != CHECKSUM_KEY}
+    text = json.dumps(body, sort_keys=True, allow_nan=True)
+    return "sha256:" + hashlib.sha256(text.encode()).hexdigest()
+
+
+def checksum_json(doc: Mapping[str, Any], *, default: Any = None, indent: int | None = 1) -> str:
+    """The JSON text of ``doc`` sealed with a checksum (key ``"checksum"``).
+
+    The checksum is the SHA-256 of the document's canonical JSON (sorted keys) as it reads
+    back; :func:`verify_json_checksum` recomputes it, so a file edited by hand (a result
+    changed, a key removed) is told apart from one onbottom wrote. ``default``: as
+    :func:`json.dumps` (objects JSON cannot encode).
+    """
+    obj = json.loads(json.dumps(dict(doc), default=default, allow_nan=True))
+    obj.pop(CHECKSUM_KEY, None)
+    obj[CHECKSUM_KEY] = _canonical_digest(obj)
+    return json.dumps(obj, indent=indent, allow_nan=True)
+
+
+def verify_json_checksum(doc: Mapping[str, Any]) -> bool | None:
+    """True when the checksum of a JSON document read back (``json.loads`` of
+    :func:`checksum_json`'s text) matches its content, False when it does not (the file was
+    edited), None when the document carries none (written before checksums existed)."""
+    got = doc.get(CHECKSUM_KEY)
+    if got is None:
+        return None
+    return got == _canonical_digest(doc)
 
 
 def _task_name(key: Any) -> str:
@@ -480,7 +627,9 @@ class TaskStore:
         self, folder: str | os.PathLike, identity: Any, *, restart: bool = False, what="task"
     ):
         self.folder = Path(folder)
-        self.identity = identity_hash({"onbottom_version": __version__, "run": identity})
+        self.identity = identity_hash(
+            {"onbottom_version": __version__, "onbottom_content": content_hash(), "run": identity}
+        )
         self.what = what
         if self.folder.exists() and not self.folder.is_dir():
             raise ResultFileError(
@@ -513,6 +662,12 @@ class TaskStore:
                     f" {RESTART_ADVICE}",
                     field="output",
                 ) from None
+            if verify_json_checksum(doc) is False:
+                raise ResultFileError(
+                    f"{self.what} file {str(f)!r} was changed after onbottom wrote it (its"
+                    f" checksum does not match its content); {RESTART_ADVICE}",
+                    field="output",
+                )
             if ident != self._task_identity(key):
                 raise ResultFileError(
                     f"{self.what} file {str(f)!r} belongs to another run (its run identity"
@@ -526,7 +681,7 @@ class TaskStore:
     def put(self, key: Any, result: Any) -> Path:
         """Record the finished task ``key`` (atomic write of one small file)."""
         doc = {"identity": self._task_identity(key), "key": key, "result": result}
-        text = json.dumps(doc, default=_json_default, allow_nan=True)
+        text = checksum_json(doc, default=_json_default, indent=None)
         return write_text_atomic(self.folder / _task_name(key), text)
 
     def clear(self) -> None:

@@ -21,7 +21,7 @@ ALLOWED: dict[str, set[str]] = {
     "_version": set(),
     "_lazy": set(),
     "_roots": set(),
-    "_jit": set(),
+    "_jit": {"_version"},
     "errors": set(),
     "constants": set(),
     "_validate": {"errors"},

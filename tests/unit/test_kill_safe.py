@@ -125,7 +125,10 @@ def test_identity_hash_is_stable_and_the_pipeline_identity_is_unchanged():
     assert a != identity_hash({"s": "a", "x": 1.0 + 1e-15}, np.arange(3.0))
     assert a != identity_hash({"s": "a", "x": 1.0}, np.arange(4.0))
     assert identity_hash(f"<obj at {hex(id(a))}>") == identity_hash("<obj at 0xdeadbeef>")
-    # the formula of the checkpoints written before issue 31: they still resume
+    # the formula of the checkpoints since issue 31, with the package's content hash (issue
+    # 41): a checkpoint written by other code is another run
+    from onbottom._version import content_hash
+
     m, kin = _pipeline()
     h = hashlib.sha256()
     meta = {
@@ -135,6 +138,7 @@ def test_identity_hash_is_stable_and_the_pipeline_identity_is_unchanged():
         "settings": {k: v for k, v in S.asdict(ST).items() if k != "compression_level"},
         "kinematics": [kin.t0, kin.dt, list(kin.velocity.shape)],
         "extra": None,
+        "onbottom_content": content_hash(),
     }
     h.update(json.dumps(meta, sort_keys=True, default=str).encode())
     h.update(np.ascontiguousarray(kin.velocity).tobytes())

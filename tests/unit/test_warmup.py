@@ -127,3 +127,33 @@ def test_cli_quiet_prints_the_totals_only(capsys):
     captured = capsys.readouterr()
     assert code == 0 and captured.err == ""
     assert "warm-up done: 1 kernel group in" in captured.out
+
+
+@pytest.mark.parametrize("processes", ["1", "2"])
+def test_ctrl_c_during_warmup_exits_130_with_one_line(tmp_path, processes):
+    """Ctrl-C after the first progress line, while numba compiles (in this process, where LLVM's
+    ctypes callbacks would swallow it, or in pool workers): exit 130, one line, no traceback."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}  # nothing cached: compiles
+    cmd = [sys.executable, "-m", "onbottom", "warmup", "--only", "pipeline",
+           "--only", "storm-sand", "--processes", processes]  # fmt: skip
+    p = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        first = p.stderr.readline()
+        assert first.startswith("onbottom warmup: compiling")
+        time.sleep(1.5)  # inside the compile
+        p.send_signal(signal.SIGINT)
+        _, err = p.communicate(timeout=120)
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == 130, err
+    assert "Traceback" not in err and "Exception ignored" not in err
+    lines = [x for x in err.splitlines() if x.strip()]
+    assert lines[-1].startswith("interrupted") and "warmup again" in lines[-1]
+    assert not [x for x in lines if not x.startswith(("onbottom warmup: compiling", "interrupted"))]

@@ -30,9 +30,14 @@ submerged-weight ratio. The dynamic and generalized values are raised to the flo
 The report states the weight the dynamic level saves against the absolute one.
 
 Resumable: each finished section writes ``sections/NN-<slug>.json`` in the output folder
-(atomic rename) holding the run identity (SHA-256 of the section's inputs, the levels and
-options, and the onbottom version: :attr:`Section.identity <onbottom.assess.route.Section>`);
-a rerun reuses a section whose identity matches and runs the others.
+(atomic rename) holding the run identity: the section's inputs, the levels and options
+(:attr:`Section.identity <onbottom.assess.route.Section>`), the package's content hash
+(:func:`onbottom._version.content_hash`) and the content hash of every data file the section
+reads (the curve sweeps of the generalized level), and a checksum of the whole file. A rerun
+reuses a section whose identity matches; a section whose identity differs is run again, and
+:attr:`Assessment.recomputed` says why (inputs, package or which data file changed); a file
+whose checksum does not match its content (edited by hand) is refused by name
+(:class:`~onbottom.errors.ResultFileError`).
 """
 
 from __future__ import annotations
@@ -52,9 +57,16 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from onbottom._version import __version__
+from onbottom._version import __version__, content_hash, file_hash
 from onbottom.assess.route import Route, Section
-from onbottom.results import annotate, provenance, write_text_atomic
+from onbottom.errors import ResultFileError
+from onbottom.results import (
+    annotate,
+    checksum_json,
+    provenance,
+    verify_json_checksum,
+    write_text_atomic,
+)
 
 __all__ = ["Assessment", "assess"]
 
@@ -79,17 +91,84 @@ class _SectionJob:
     index: int
     out: str | None
     curve_files: tuple[str, ...] = ()
+    identity: dict[str, Any] = field(default_factory=dict)
 
     def __call__(self, _: Any = None) -> dict[str, Any]:
         t0, c0 = time.perf_counter(), time.process_time()
         result = _run_section(self.route, self.section, self.index, self.curve_files)
         result["wall_time_s"] = time.perf_counter() - t0
         result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
-        result["identity"] = self.section.identity
+        result["identity"] = _digest(self.identity) if self.identity else self.section.identity
+        result["identity_parts"] = self.identity
         if self.out is not None:
             path = section_file(Path(self.out), self.index, self.section.name)
-            write_text_atomic(path, json.dumps(result, indent=1, default=_jsonable))
+            write_text_atomic(path, checksum_json(result, default=_jsonable))
         return result
+
+
+def _digest(parts: dict[str, Any]) -> str:
+    return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()
+
+
+def data_hashes(route: Route, files: tuple[str, ...]) -> dict[str, str]:
+    """Content hashes (SHA-256) of the data files a section's results depend on, by path:
+    the curve sweeps when the generalized level runs. A file that cannot be read counts as
+    ``"unreadable"`` (the level reports it)."""
+    if not route.levels.generalized:
+        return {}
+    out = {}
+    for f in files:
+        try:
+            out[str(f)] = file_hash(f)
+        except OSError:
+            out[str(f)] = "unreadable"
+    return out
+
+
+def section_identity_parts(section: Section, data: dict[str, str]) -> dict[str, Any]:
+    """What a section's saved result is keyed on: its inputs (:attr:`Section.identity`), the
+    package's content hash and the data files' hashes (:func:`data_hashes`)."""
+    return {"inputs": section.identity, "package": content_hash(), "data": dict(data)}
+
+
+def stale_reason(old: dict[str, Any] | None, new: dict[str, Any]) -> str:
+    """Why a saved result keyed on ``old`` (its ``identity_parts``) is not the result of
+    ``new``: which inputs, package or data file differ ("" when none)."""
+    if not old:
+        return "written by an earlier onbottom without a package or data hash"
+    why = []
+    if old.get("inputs") != new["inputs"]:
+        why.append("the section's inputs changed")
+    if old.get("package") != new["package"]:
+        why.append(
+            f"the onbottom package changed (content {str(old.get('package'))[:12]}… →"
+            f" {new['package'][:12]}…)"
+        )
+    od, nd = old.get("data") or {}, new["data"]
+    for f in sorted(set(od) | set(nd)):
+        if od.get(f) != nd.get(f):
+            what = "added" if f not in od else "no longer read" if f not in nd else "changed"
+            why.append(f"data file {f} {what}")
+    return "; ".join(why)
+
+
+def read_saved(path: Path, what: str) -> dict[str, Any] | None:
+    """The saved JSON result ``path`` (None when unreadable: it is recomputed); a file whose
+    checksum does not match its content is refused by name."""
+    try:
+        old = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(old, dict):
+        return None
+    if verify_json_checksum(old) is False:
+        raise ResultFileError(
+            f"{what} {str(path)!r} was changed after onbottom wrote it (its checksum does"
+            " not match its content): a result edited by hand is not reused; delete the"
+            " file to recompute it, or give another --out folder",
+            field="--out",
+        )
+    return old
 
 
 def _jsonable(x: Any) -> Any:
@@ -534,7 +613,8 @@ class Assessment:
         The route's identity (:attr:`Route.identity <onbottom.assess.route.Route>`: the
         SHA-256 of the validated case file).
     wall_time_s : float
-        Wall time of the study [s]; ``reused`` lists the sections taken from a previous run.
+        Wall time of the study [s]; ``reused`` lists the sections taken from a previous run,
+        ``recomputed`` the saved sections run again, as (name, reason).
     pipeline : dict or None
         The pipeline FE run of the governing section (``[levels] pipeline_fe``; keys of
         :func:`onbottom.assess.pipeline.run_governing_pipeline`), None when not run.
@@ -547,6 +627,7 @@ class Assessment:
     reused: list[str] = field(default_factory=list)
     source: str = ""
     pipeline: dict[str, Any] | None = None
+    recomputed: list[tuple[str, str]] = field(default_factory=list)
 
     @property
     def summary(self) -> pd.DataFrame:
@@ -667,20 +748,22 @@ def assess(
     results: dict[int, dict[str, Any]] = {}
     jobs = []
     reused = []
+    recomputed = []
+    data = data_hashes(route, files)
     for i, s in enumerate(route.sections):
-        ident = s.identity
-        if outp is not None and ident:  # a section without an identity is always run
+        parts = section_identity_parts(s, data) if s.identity else {}
+        if outp is not None and parts:  # a section without an identity is always run
             f = section_file(outp, i, s.name)
             if f.is_file():
-                try:
-                    old = json.loads(f.read_text(encoding="utf-8"))
-                except (OSError, ValueError):
-                    old = None
-                if old and old.get("identity") == ident:
+                old = read_saved(f, "saved section result")
+                if old and old.get("identity") == _digest(parts):
                     results[i] = old
                     reused.append(s.name)
                     continue
-        jobs.append(_SectionJob(settings, s, i, None if outp is None else str(outp), files))
+                why = stale_reason(old.get("identity_parts"), parts) if old else "unreadable"
+                recomputed.append((s.name, why or "its run identity differs"))
+        out_s = None if outp is None else str(outp)
+        jobs.append(_SectionJob(settings, s, i, out_s, files, parts))
     if jobs:
         if n_workers == 0 and scheduler is None:
             from tqdm.auto import tqdm
@@ -700,7 +783,7 @@ def assess(
         sections = _apply_pipeline(route, sections, pipe)
     return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
-                      source=source, pipeline=pipe)  # fmt: skip
+                      source=source, pipeline=pipe, recomputed=recomputed)  # fmt: skip
 
 
 def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) -> dict | None:
@@ -715,22 +798,19 @@ def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) ->
         json.dumps(
             {"governing": gov, "pipeline": dataclasses.asdict(route.pipeline), "design": 2,
              "section": next(s["identity"] for s in sections if s["index"] == gov["index"]),
-             "version": __version__},
+             "version": __version__, "package": content_hash()},
             sort_keys=True,
         ).encode()
     ).hexdigest()  # fmt: skip
     f = None if out is None else out / SECTION_FOLDER / "pipeline.json"
     if f is not None and f.is_file():
-        try:
-            old = json.loads(f.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            old = None
+        old = read_saved(f, "saved pipeline result")
         if old and old.get("identity") == ident:
             return old | {"reused": True}
     res = run_governing_pipeline(route, sections, out)
     res = _clean(res | {"identity": ident})
     if f is not None:
-        write_text_atomic(f, json.dumps(res, indent=1))
+        write_text_atomic(f, checksum_json(res))
     return res
 
 

@@ -38,7 +38,7 @@ import subprocess
 from pathlib import Path
 from typing import Any
 
-from onbottom._version import __version__
+from onbottom._version import __version__, content_hash
 from onbottom.assess.core import Assessment
 from onbottom.errors import InputError
 from onbottom.results import atomic_write, save_dataset, write_text_atomic
@@ -162,8 +162,10 @@ def provenance_block(a: Assessment, case_text: str | None) -> dict[str, Any]:
         if case_text is None
         else hashlib.sha256(case_text.encode("utf-8")).hexdigest(),
         "run_identity": a.identity,
+        "onbottom_content_hash": content_hash(),
         "wall_time_s": a.wall_time_s,
         "sections_reused": a.reused,
+        "sections_recomputed": [{"section": n, "reason": r} for n, r in a.recomputed],
     }
 
 

@@ -216,6 +216,8 @@ def _print(a: Any, out: Path, written: dict[str, Any], raised: list[str] = ()) -
         click.echo(written["pdf"])
     if a.reused:
         click.echo(f"resumed: {len(a.reused)} section(s) reused from {out / 'sections'}")
+    for name, why in a.recomputed:
+        click.echo(f"recomputed: section {name!r} (its saved result is stale: {why})")
 
 
 def _table(a: Any) -> str:

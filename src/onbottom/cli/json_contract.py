@@ -186,7 +186,8 @@ CONTRACT: dict[str, Output] = {
         {
             "schema": "document schema of results.json (onbottom.assess/1)",
             "provenance": "version, git commit, date, machine, case source and SHA-256, run"
-            " identity, wall time, sections reused from a previous run",
+            " identity, the package's content hash, wall time, sections reused from a previous"
+            " run and sections recomputed (with the reason)",
             "route": "{name, sections, variable, allowable}",
             "summary": "one item per KP section",
             "sections": "everything per section: checks with details, levels, per-seed dynamic"

@@ -97,6 +97,7 @@ def run_metocean(
     from onbottom.metocean.analysis import MetoceanOptions
     from onbottom.metocean.hindcast import read_hindcast
     from onbottom.metocean.run import run_metocean_analysis, write_metocean_outputs
+    from onbottom.results import OutputSet, save_figure
 
     if out.exists() and not out.is_dir():
         err = InputError(f"--out = {str(out)!r} is invalid: it is a file, expected a folder")
@@ -130,21 +131,24 @@ def run_metocean(
     )
     if chosen:
         run.notes[:0] = chosen
-    files = [str(f) for f in write_metocean_outputs(run, out)]
     figs: dict[str, str] = {}
-    if figures:
-        import matplotlib.pyplot as plt
+    with OutputSet() as group:  # renamed together: a full disk leaves no complete-looking file
+        files = [str(f) for f in write_metocean_outputs(run, out, group=group)]
+        if figures:
+            import matplotlib.pyplot as plt
 
-        from onbottom.plotting.metocean import plot_contours, plot_return_levels
+            from onbottom.plotting.metocean import plot_contours, plot_return_levels
 
-        for name, fig in (
-            ("return_levels.png", plot_return_levels(run.result, title=hindcast_path.name)),
-            ("contours.png", plot_contours(run.result)),
-        ):
-            fig.savefig(out / name, dpi=110)
-            plt.close(fig)
-            files.append(str(out / name))
-            figs[name.removesuffix(".png")] = name
+            for name, fig in (
+                ("return_levels.png", plot_return_levels(run.result, title=hindcast_path.name)),
+                ("contours.png", plot_contours(run.result)),
+            ):
+                try:
+                    save_figure(fig, out / name, group=group, dpi=110)
+                finally:
+                    plt.close(fig)
+                files.append(str(out / name))
+                figs[name.removesuffix(".png")] = name
     if report:
         from onbottom.report.pages import metocean_sections, write_page
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import click
 
 from onbottom.cli._common import emit_json, handle_errors, json_option
+from onbottom.errors import RunInterrupted
 from onbottom.study.warmup import TARGETS
 
 __all__ = ["command"]
@@ -49,7 +50,13 @@ def command(only: tuple[str, ...], processes: int | None, quiet: bool, as_json: 
         if not quiet:
             click.echo(f"onbottom warmup: compiling {target.title} ({k}/{n}) ...", err=True)
 
-    report = warm_kernels(only or None, processes=processes, progress=progress)
+    try:
+        report = warm_kernels(only or None, processes=processes, progress=progress)
+    except KeyboardInterrupt:
+        raise RunInterrupted(
+            "interrupted: the kernels compiled so far stay in numba's cache; run onbottom"
+            " warmup again to compile the rest"
+        ) from None
     if as_json:
         emit_json(
             {

@@ -8,7 +8,8 @@ small inputs (same algorithm, same random numbers, same result).
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from onbottom._jit import numba_njit as njit
 
 
 @njit(cache=True)

@@ -30,7 +30,9 @@ rolling histories are per particle: ``fsw[i, w]``, ``mrw[i, w]``, w = 0..3, 4 = 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, prange
+from numba import prange
+
+from onbottom._jit import numba_njit as njit
 
 # indices into the parameter vector ``prm``
 P_DT = 0

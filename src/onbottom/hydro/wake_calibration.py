@@ -29,10 +29,10 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import least_squares
 
+from onbottom._jit import numba_njit as njit
 from onbottom._validate import integer, non_negative, positive
 from onbottom.constants import GRAVITY
 from onbottom.errors import InputError

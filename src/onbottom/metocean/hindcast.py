@@ -344,6 +344,12 @@ def _read_csv(path: Path) -> Hindcast:
                 f" {' or '.join(map(repr, UNITS[c]))} (convert the column to SI)",
             )
     n = len(lines) - 2
+    if n < 1:
+        _fail(
+            "time",
+            f"{path}: no data rows after the header and the units row (line {units_row}): a"
+            " hindcast needs at least 3 time steps",
+        )
     time = np.empty(n, dtype="datetime64[s]")
     data = np.empty((n, len(cols) - 1))
     for k, (lineno, ln) in enumerate(lines[2:]):

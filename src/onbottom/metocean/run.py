@@ -212,16 +212,31 @@ def run_metocean_analysis(
     return MetoceanRun(result=result, rows=rows, notes=notes, fragments=fragments, source=src)
 
 
-def write_metocean_outputs(run: MetoceanRun, out: str | Path) -> list[Path]:
+def write_metocean_outputs(run: MetoceanRun, out: str | Path, *, group: Any = None) -> list[Path]:
     """Write ``design_table.csv``, the ``case_<sector>.toml`` fragments and ``metocean.nc``
-    into the folder ``out`` (created if missing; each file written atomically). Returns the
-    paths in that order."""
-    from onbottom.results import save_dataset, write_text_atomic
+    into the folder ``out`` (created if missing). Returns the paths in that order.
+
+    The files are one set (:class:`onbottom.results.OutputSet`): each is written under a
+    temporary name and they are renamed together once all are written, so a failure (a full
+    disk) leaves none of them under its final name. ``group``: an open
+    :class:`~onbottom.results.OutputSet` of the caller (more files to come: the caller
+    commits); None: this call commits its own.
+    """
+    from onbottom.results import OutputSet, save_dataset, write_text_atomic
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    files = [write_text_atomic(out / "design_table.csv", design_table_csv(run.rows))]
-    for sector, text in run.fragments.items():
-        files.append(write_text_atomic(out / f"case_{sector}.toml", text))
-    files.append(save_dataset(run.result.to_dataset(), out / "metocean.nc"))
+    own = group is None
+    g = OutputSet() if own else group
+    try:
+        files = [write_text_atomic(out / "design_table.csv", design_table_csv(run.rows), group=g)]
+        for sector, text in run.fragments.items():
+            files.append(write_text_atomic(out / f"case_{sector}.toml", text, group=g))
+        files.append(save_dataset(run.result.to_dataset(), out / "metocean.nc", group=g))
+    except BaseException:
+        if own:
+            g.discard()
+        raise
+    if own:
+        g.commit()
     return [Path(f) for f in files]

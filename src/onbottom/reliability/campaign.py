@@ -228,7 +228,20 @@ class ResultStore:
             arr.resize((cap, *arr.shape[1:]))
 
     def append(self, batch: Sequence[tuple[tuple[int, int], np.ndarray, np.ndarray, dict]]) -> None:
-        """Write finished tasks (key, inputs, seeds, run_task result): rows, tasks, commit."""
+        """Write finished tasks (key, inputs, seeds, run_task result): rows, tasks, commit.
+
+        A write that fails (a full disk) raises ``OSError`` naming the store; the rows of
+        this batch are not committed (a rerun computes them again)."""
+        try:
+            self._append(batch)
+        except OSError as exc:
+            errno_ = exc.errno if isinstance(exc.errno, int) else None
+            reason = os.strerror(errno_) if errno_ else str(exc).splitlines()[0]
+            raise OSError(
+                errno_, f"cannot write the campaign store: {reason}", str(self.path)
+            ) from None
+
+    def _append(self, batch: Sequence[tuple[tuple[int, int], np.ndarray, np.ndarray, dict]]):
         if not batch:
             return
         g = self.group

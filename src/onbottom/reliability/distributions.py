@@ -20,7 +20,13 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from onbottom._validate import finite, one_of, positive
+from onbottom._validate import (
+    FRICTION_COEFFICIENT,
+    SOIL_UNIT_WEIGHT_N_M3,
+    finite,
+    one_of,
+    positive,
+)
 from onbottom.errors import InputError
 
 __all__ = ["DISTRIBUTIONS", "UncertainParameter", "parameter_from_table"]
@@ -34,6 +40,13 @@ DISTRIBUTIONS: dict[str, tuple[str, ...]] = {
     "fixed": ("value",),
 }
 """Supported distributions and the names of their parameters."""
+
+PLAUSIBLE_RANGES: dict[str, tuple[tuple[float, float], str]] = {
+    "submerged_unit_weight": (SOIL_UNIT_WEIGHT_N_M3[0], "N/m³"),
+    "friction_coefficient": (FRICTION_COEFFICIENT[0], "-"),
+}
+"""Inputs whose mean must lie in the engineering plausibility range of the deterministic input
+(:mod:`onbottom._validate`): a γ' typed in kN/m³ (10 for 10 000 N/m³) is refused by name."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,6 +96,15 @@ class UncertainParameter:
             positive(f"{self.name}.scale", given["scale"])
             positive(f"{self.name}.shape", given["shape"])
         object.__setattr__(self, "parameters", {k: float(v) for k, v in given.items()})
+        if self.name in PLAUSIBLE_RANGES:
+            (lo, hi), unit = PLAUSIBLE_RANGES[self.name]
+            m = self.mean()
+            if not lo <= m <= hi:
+                key = "value" if d == "fixed" else "mean"
+                raise InputError(
+                    f"{self.name} {key} = {m:g} {unit} is invalid: must lie in the plausible"
+                    f" range [{lo:g}, {hi:g}] {unit} (check the unit: the inputs are in SI)"
+                )
 
     @property
     def is_random(self) -> bool:

@@ -176,6 +176,8 @@ def rank_importance(x: np.ndarray, y: np.ndarray, names: Sequence[str]) -> dict[
     y = np.asarray(y, dtype=float)
     ok = np.isfinite(y) & np.all(np.isfinite(x), axis=1)
     x, y = x[ok], y[ok]
+    if x.shape[0] == 0:  # no finite storm result: nothing to rank
+        return {}
     keep = [j for j in range(x.shape[1]) if np.ptp(x[:, j]) > 0.0]
     if x.shape[0] < len(keep) + 3 or np.ptp(y) == 0.0:
         return {}
@@ -208,14 +210,23 @@ class _LimitState:
         self.computed0 = campaign.stats.computed
         self.failed = 0
         self.first: tuple[np.ndarray, np.ndarray] | None = None
+        self.error: OSError | None = None
 
     def __call__(self, x: np.ndarray) -> np.ndarray:
         a = np.atleast_2d(np.asarray(x, dtype=float))
+        if self.error is not None:  # the store cannot be written: end openturns' run quickly
+            return np.full(a.shape[0], -1.0)
         if self.frozen is None:
             xs, seeds = a[:, :-1], seeds_from_uniform(a[:, -1])
         else:
             xs, seeds = a, np.full(a.shape[0], self.frozen, dtype=np.int64)
-        out, status = self.campaign.evaluate(xs, seeds)
+        try:
+            out, status = self.campaign.evaluate(xs, seeds)
+        except OSError as exc:
+            # raised into openturns it would be printed with a traceback and come back as
+            # an InternalException: kept, and raised by check() after openturns returns
+            self.error = exc
+            return np.full(a.shape[0], -1.0)
         y = out[:, self.k].copy()
         bad = ~np.isfinite(y) | ((status < 0) & (status != -3))
         self.failed += int(np.count_nonzero(bad))
@@ -225,6 +236,11 @@ class _LimitState:
             self.first = (xs.copy(), y.copy())
         g = 1.0 - y / self.limit
         return np.where(np.isfinite(g), g, -1.0)
+
+    def check(self) -> None:
+        """Raise the ``OSError`` (a store that cannot be written) met during a run, if any."""
+        if self.error is not None:
+            raise self.error
 
 
 def _pilot_centre(ls: _LimitState, cont, n: int, seed: int) -> tuple[list[float], int]:
@@ -237,6 +253,7 @@ def _pilot_centre(ls: _LimitState, cont, n: int, seed: int) -> tuple[list[float]
     x = np.asarray(cont.getInverseIsoProbabilisticTransformation()(u))
     s = rng.uniform(size=(n, 1))
     g = ls(np.hstack([x, s]))
+    ls.check()
     fail = np.flatnonzero(g <= 0.0)
     if not fail.size:
         return [0.0] * d, n
@@ -337,6 +354,7 @@ def estimate_exceedance(
             )
         except RuntimeError:  # the optimiser's point is off g = 0: a pilot sample instead
             form = None
+        frozen.check()
         form_calls = frozen.calls
         if form is not None:
             importance, design = form.importance, form.design_point
@@ -377,9 +395,11 @@ def estimate_exceedance(
     try:
         algo.run()
     except RuntimeError as exc:  # subset: the levels reached the minimum probability
+        ls.check()
         if method != "subset" or "too small" not in str(exc):
             raise
         bound = True
+    ls.check()
     if bound:
         probs = list(algo.getProbabilityEstimatePerStep())
         p = float(probs[-1])

@@ -36,7 +36,7 @@ from typing import Any
 
 import numpy as np
 
-from onbottom._version import __version__
+from onbottom._version import __version__, short_hash
 from onbottom.errors import InputError
 from onbottom.reliability.climate import StormClimate
 
@@ -147,7 +147,8 @@ class StormModel:
         return float(self.setup.pipe.outer_diameter)
 
     def identity(self) -> str:
-        """onbottom's version, the input names and a hash of the pickled case objects."""
+        """onbottom's version and content hash, the input names and a hash of the pickled
+        case objects (the climate fitted to the hindcast included)."""
         s = self.setup
         blob = pickle.dumps(
             (
@@ -168,7 +169,10 @@ class StormModel:
             )
         )
         digest = hashlib.blake2b(blob, digest_size=16).hexdigest()
-        return f"onbottom {__version__}; StormModel {self.input_names}; case {digest}"
+        return (
+            f"onbottom {__version__} (content {short_hash()}); StormModel {self.input_names};"
+            f" case {digest}"
+        )
 
     def sea_state(self, x: np.ndarray) -> dict[str, float]:
         """hs [m], tp [s], direction_deg [deg] of a row, and ``current_velocity`` [m/s] and

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from onbottom._jit import numba_njit as njit
 from onbottom.soil.base import OUT2_DH_DV, OUT2_DZ_DV, OUT2_DZ_DY, OUT_TANGENT
 
 

@@ -22,8 +22,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from onbottom._jit import numba_njit as njit
 from onbottom.soil._trough import spring_work
 from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (

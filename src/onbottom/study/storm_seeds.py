@@ -292,7 +292,7 @@ def run_storm_seeds(
     ts = None
     done: dict[int, dict[str, Any]] = {}
     if store is not None:
-        ident = identity if identity is not None else repr((pipe, soil, storm, kwargs))
+        ident = identity if identity is not None else _inputs_digest((pipe, soil, storm, kwargs))
         ts = TaskStore(
             store, {"study": "storm_seeds", "inputs": ident}, restart=restart, what="seed"
         )
@@ -343,3 +343,17 @@ def _interrupted(kept: int, total: int, store: Any) -> str:
     if kept == 0:
         return head + "; run the same command again to start"
     return head + f"; they are kept in {store}: run the same command again to resume"
+
+
+def _inputs_digest(inputs: Any) -> str:
+    """SHA-256 of the pickled inputs: every number of every array counts (a storm series or a
+    coefficient table read from a file enters by its content; ``repr`` would elide the middle
+    of a long array). ``repr`` for inputs that cannot be pickled."""
+    import hashlib
+    import pickle
+
+    try:
+        blob = pickle.dumps(inputs, protocol=5)
+    except Exception:  # not picklable: the text form
+        return repr(inputs)
+    return "sha256:" + hashlib.sha256(blob).hexdigest()

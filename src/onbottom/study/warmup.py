@@ -36,9 +36,10 @@ parabolic V–H model, mixed soils along a line) compiles on its first use, as b
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from functools import partial
 
@@ -223,19 +224,69 @@ def _run_target(name: str) -> tuple[str, float, float, int]:
 
     count = [0]
 
-    class Counter(event.Listener):
-        def on_start(self, ev) -> None:
-            count[0] += 1
+    with _interruptible() as check:
 
-        def on_end(self, ev) -> None:
-            pass
+        class Counter(event.Listener):
+            def on_start(self, ev) -> None:
+                check()
+                count[0] += 1
 
-    t0, c0 = time.perf_counter(), time.process_time()
-    with event.install_listener("numba:compile", Counter()), warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # the tiny problems' out-of-range notes mean nothing
-        warnings.simplefilter("default", NumbaWarning)  # e.g. a cache that cannot be written
-        _RUNS[name]()
+            def on_end(self, ev) -> None:
+                check()
+
+        t0, c0 = time.perf_counter(), time.process_time()
+        with event.install_listener("numba:compile", Counter()), warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the tiny problems' out-of-range notes mean nothing
+            warnings.simplefilter("default", NumbaWarning)  # e.g. a cache that cannot be written
+            _RUNS[name]()
+        check()
     return name, time.perf_counter() - t0, time.process_time() - c0, count[0]
+
+
+@contextlib.contextmanager
+def _interruptible() -> Iterator[Callable[[], None]]:
+    """Ctrl-C during numba's compile in this process stops the run (KeyboardInterrupt).
+
+    LLVM calls back into Python through ctypes while it compiles; a KeyboardInterrupt raised
+    there is printed with a traceback ("Exception ignored …") and swallowed, and the compile
+    goes on. Here Ctrl-C is remembered, that print is suppressed, and the interrupt is raised
+    again by the yielded ``check()`` (called at every compile event and after the target).
+    Only in the main thread with Python's default SIGINT handler (a pool worker ignores
+    Ctrl-C: the parent handles it).
+    """
+    import signal
+    import sys
+    import threading
+
+    if (
+        threading.current_thread() is not threading.main_thread()
+        or signal.getsignal(signal.SIGINT) is not signal.default_int_handler
+    ):
+        yield lambda: None
+        return
+    hit = [False]
+
+    def handler(signum, frame) -> None:
+        hit[0] = True
+        raise KeyboardInterrupt
+
+    def check() -> None:
+        if hit[0]:
+            raise KeyboardInterrupt
+
+    old_hook = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        if not isinstance(unraisable.exc_value, KeyboardInterrupt):
+            old_hook(unraisable)
+
+    signal.signal(signal.SIGINT, handler)
+    sys.unraisablehook = hook
+    try:
+        yield check
+    finally:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        sys.unraisablehook = old_hook
 
 
 def available_cores() -> int:

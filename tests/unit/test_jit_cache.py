@@ -1,0 +1,149 @@
+"""numba's kernel cache is tied to the package's content hash (issue 41 items 1 and 6).
+
+* an edited **callee** kernel (another file than its caller) gives the new result in a fresh
+  process without deleting any cache (numba alone checks only the caller's source file);
+* with no writable cache folder the kernels still run: cached elsewhere, or not cached, with a
+  one-line note, never an internal error (exit 70).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import onbottom
+from onbottom import _jit
+
+SRC = Path(onbottom.__file__).resolve().parent
+REPO = SRC.parent.parent
+
+CALLEE = """
+from onbottom._jit import njit
+
+
+@njit(cache=True)
+def bump(x):
+    return x + {value}
+"""
+
+CALLER = """
+from onbottom._jit import njit
+from onbottom._probe_callee import bump
+
+
+@njit(cache=True)
+def twice(x):
+    return 2.0 * bump(x)
+"""
+
+RUN = textwrap.dedent("""
+    import onbottom, onbottom._jit as j
+    from onbottom._probe_caller import twice
+    assert onbottom.__file__.startswith({root!r}), onbottom.__file__
+    print(twice(1.0), j.cache_dir())
+""")
+
+
+def _scratch_package(tmp_path: Path) -> Path:
+    root = tmp_path / "src"
+    shutil.copytree(SRC, root / "onbottom", ignore=shutil.ignore_patterns("__pycache__"))
+    (root / "onbottom" / "_probe_caller.py").write_text(CALLER, encoding="utf-8")
+    return root
+
+
+def _run(root: Path, cache: Path) -> tuple[float, str]:
+    env = {**os.environ, "PYTHONPATH": str(root), "NUMBA_CACHE_DIR": str(cache)}
+    out = subprocess.run(
+        [sys.executable, "-c", RUN.format(root=str(root))],
+        env=env,
+        cwd=root,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert out.returncode == 0, out.stderr
+    value, folder = out.stdout.split()
+    return float(value), folder
+
+
+def test_edited_callee_kernel_is_never_served_stale(tmp_path):
+    root = _scratch_package(tmp_path)
+    cache = tmp_path / "numba-cache"
+    callee = root / "onbottom" / "_probe_callee.py"
+    callee.write_text(CALLEE.format(value="1.0"), encoding="utf-8")
+    value, folder = _run(root, cache)
+    assert value == 4.0
+    assert Path(folder).parent == cache and list(Path(folder).rglob("*.nbi"))
+    assert _run(root, cache) == (4.0, folder)  # unchanged package: the same cache folder
+    callee.write_text(CALLEE.format(value="2.0"), encoding="utf-8")  # the caller untouched
+    value2, folder2 = _run(root, cache)
+    assert value2 == 6.0 and folder2 != folder
+    assert Path(folder).is_dir()  # nothing deleted: the old code's cache is just not used
+
+
+def test_cli_runs_when_the_cache_folder_is_not_writable(tmp_path):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("not a folder", encoding="utf-8")
+    env = {
+        **os.environ,
+        "NUMBA_CACHE_DIR": str(blocker / "numba"),
+        "XDG_CACHE_HOME": str(blocker / "xdg"),
+    }
+    out = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "onbottom",
+            "stability",
+            str(REPO / "examples" / "stability_case.toml"),
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert out.returncode == 0, out.stderr
+    assert "Traceback" not in out.stderr
+    notes = [x for x in out.stderr.splitlines() if "not writable" in x]
+    assert len(notes) == 1 and str(blocker / "numba") in notes[0]
+
+
+def test_no_writable_folder_disables_caching_with_a_note(tmp_path, monkeypatch, caplog):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x", encoding="utf-8")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(blocker / "numba"))
+    monkeypatch.setattr(_jit.tempfile, "gettempdir", lambda: str(blocker / "tmp"))
+    monkeypatch.setattr(_jit, "_CACHE_DIR", _jit._UNSET)
+    with caplog.at_level(logging.WARNING, logger="onbottom._jit"):
+        assert _jit.cache_dir() is None
+    assert "are not cached" in caplog.text
+
+    @_jit.njit(cache=True)
+    def plus_one(x):
+        return x + 1.0
+
+    assert plus_one(1.0) == 2.0
+
+
+def test_prune_removes_only_old_unused_hash_folders(tmp_path):
+    import time
+
+    now = time.time()
+    ages = {"a": 0, "b": 1, "c": 2, "d": 3, "e": 5, "f": 8, "g": 10}  # days since last use
+    for name, days in ages.items():
+        (tmp_path / name).mkdir()
+        os.utime(tmp_path / name, (now - days * 86400, now - days * 86400))
+    keep = tmp_path / "current"
+    keep.mkdir()
+    os.utime(keep, (now - 30 * 86400, now - 30 * 86400))
+    _jit._prune(str(tmp_path), str(keep))
+    left = {p.name for p in tmp_path.iterdir()}
+    # the folder in use (touched now), the 4 most recent, and e (beyond them, but used 5 days
+    # ago: within the week); f and g, unused for over a week, are gone
+    assert left == {"current", "a", "b", "c", "d", "e"}
+    assert keep.stat().st_mtime > now - 60
