@@ -234,6 +234,20 @@ def test_design_floor_rules():
     assert f["rule"] == "not_checked"
 
 
+def test_design_floor_holds_with_the_generalized_level_off():
+    """[levels] generalized = false is no unnamed way below the standard: F109's requirement,
+    computed for the floor alone, still raises a lighter dynamic design."""
+    from onbottom.assess.core import _design_floor
+
+    route = build_route(parse_route_case(route_document()))
+    sec = route.sections[0]
+    levels = _levels(dyn=0.01)
+    requirement = {"success": True, "value": 0.05}
+    f = _design_floor(route, sec, levels, [{"covered": True}], "dynamic", 0.01, requirement)
+    assert f["rule"] == "generalized_floor" and f["generalized_value"] == 0.05
+    assert 0.0 < f["dynamic_over_generalized_weight"] < 1.0
+
+
 def test_coulomb_trial_swaps_the_soil_only():
     from onbottom.assess.core import _coulomb_trial
     from onbottom.soil.coulomb import CoulombFriction

@@ -327,13 +327,21 @@ def _run_section(
 
     # -- generalized (F109 §3.5 tables) and dynamic curves (the tool's own sweeps) ------------
     gen: list[dict[str, Any]] = []
-    if route.levels.generalized:
+    floor_requirement: dict[str, Any] | None = None
+    if route.levels.generalized or route.levels.dynamic:
+        # F109's requirement is the dynamic level's floor even where the generalized level is
+        # not run as a level of its own: turning it off is no way below the standard
         gen = generalized_rows(rows, route.dynamic.allowable, seabed_model=sec.seabed_model,
                                water_density=env.water_density)  # fmt: skip
+    if route.levels.generalized:
         checks += [_clean(g) for g in gen]
         levels["generalized"] = _table_level(gen, "F109's generalized tables")
         if gen and all(g["covered"] for g in gen) and variable != "none":
             levels["generalized"] |= _generalized_design(variable, sec, (), route, levels)
+    elif gen and all(g["covered"] for g in gen) and variable != "none":
+        floor_requirement = _table_level(gen, "F109's generalized tables") | _generalized_design(
+            variable, sec, (), route, levels
+        )
     if curve_files:
         dcr = dynamic_curve_rows(rows, list(curve_files), route.dynamic.allowable,
                                  seabed_model=sec.seabed_model,
@@ -464,9 +472,9 @@ def _run_section(
     }
     gov_level = min(candidates, key=candidates.get) if candidates else None
     design_value = candidates.get(gov_level) if gov_level else None
-    floor = _design_floor(route, sec, levels, gen, gov_level, design_value)
+    floor = _design_floor(route, sec, levels, gen, gov_level, design_value, floor_requirement)
     if floor["rule"] == "generalized_floor":
-        gov_level, design_value = "generalized", candidates["generalized"]
+        gov_level, design_value = "generalized", floor["generalized_value"]
     worst = max(
         (c for c in checks if c.get("utilisation") is not None), key=lambda c: c["utilisation"]
     )
@@ -533,8 +541,8 @@ FLOOR_RULES: dict[str, str] = {
     " allow_below_coulomb",
     "not_covered": "F109's tables do not cover every combination and no point is"
     " current-dominated (M < 0.8): no floor applies",
-    "not_checked": "the generalized level is not run ([levels] generalized = false) or there is"
-    " no design variable: no floor checked",
+    "not_checked": "neither the generalized nor the dynamic level is run, or there is no design"
+    " variable: no floor checked",
 }
 """Design-floor rules of a section, in words (``design_floor.rule`` of each section)."""
 
@@ -546,10 +554,12 @@ def _design_floor(
     gen: list[dict[str, Any]],
     gov_level: str | None,
     design_value: float | None,
+    requirement: dict[str, Any] | None = None,
 ) -> dict[str, Any]:
     """Which rule set the design against F109's generalized requirement, and the
-    dynamic/generalized submerged-weight ratio (see :data:`FLOOR_RULES`)."""
-    g = levels.get("generalized") or {}
+    dynamic/generalized submerged-weight ratio (see :data:`FLOOR_RULES`). ``requirement``: F109's
+    generalized minimum computed for the floor alone, where the generalized level is not run."""
+    g = levels.get("generalized") or requirement or {}
     dyn = levels.get("dynamic") or {}
     out: dict[str, Any] = {"generalized_value": g.get("value"), "dynamic_value": dyn.get("value")}
     gv = g.get("value") if g.get("success") else None
