@@ -105,7 +105,10 @@ def main() -> None:
     ap.add_argument("--peak-hours", type=float, default=0.1)
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--envelopes", default=None, help="save the last mesh's envelopes (npz)")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     a = ap.parse_args()
+    if a.smoke:
+        a.elements, a.build_up_hours, a.peak_hours = [20], 0.0, 0.01
     print(f"load average: {os.getloadavg()}")
     print(
         f"{'elem':>5} {'nodes':>5} {'sim[s]':>7} {'kin[s]':>6} {'kinMB':>6} {'run[s]':>7}"

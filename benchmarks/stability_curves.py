@@ -159,7 +159,11 @@ def main() -> None:
     ap.add_argument("--soils", nargs="+", default=["sand", "clay"])
     ap.add_argument("--tolerance", type=float, default=0.05)
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.seeds, args.peak_hours, args.build_up_hours = 1, 0.02, 0.0
+        args.K, args.M, args.soils, args.workers = [10.0], [0.2], ["sand"], [1]
     s = CurveSettings(
         seeds=args.seeds,
         peak_hours=args.peak_hours,

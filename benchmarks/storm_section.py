@@ -39,7 +39,10 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--dt", type=float, default=0.1, help="largest solver step [s]")
     ap.add_argument("--record-interval", type=float, default=0.5, help="output rows [s]")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.repeat = 1
     pipe = Pipe(outer_diameter=0.3951, submerged_weight=1500.0)
     soil = VerleySotberg.silica(pipe, Sand(submerged_unit_weight=10e3))
     storm = Storm.standard(SeaState(hs=4.68, tp=10.8, gamma=1.009, spreading_s=8.0))
