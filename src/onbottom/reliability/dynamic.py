@@ -120,6 +120,10 @@ class ExceedanceEstimate:
     upper_bound : bool
         Subset simulation stopped at ``max_storms`` before its levels reached the limit:
         ``probability`` is then an upper bound (the last level's), with no CV.
+    stopped_early : int
+        Storms of the estimate that stopped early at the campaign model's ``stop_at`` (above
+        every limit asked: their verdict is that of the whole storm, their displacement a lower
+        bound of it) [-]; 0 without an early stop.
     """
 
     label: str
@@ -139,6 +143,7 @@ class ExceedanceEstimate:
     importance_kind: str = ""
     design_point: dict[str, float] = field(default_factory=dict)
     upper_bound: bool = False
+    stopped_early: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """Plain numbers (JSON)."""
@@ -164,6 +169,7 @@ class ExceedanceEstimate:
             "importance_kind": self.importance_kind,
             "design_point": self.design_point,
             "upper_bound": self.upper_bound,
+            "stopped_early": self.stopped_early,
         }
 
 
@@ -197,6 +203,9 @@ class _LimitState:
         self.limit = limit
         self.frozen = frozen_seed
         self.k = campaign.model.output_names.index("max_displacement")
+        names = campaign.model.output_names
+        self.k_stop = names.index("stopped_early") if "stopped_early" in names else None
+        self.stopped = 0
         self.calls = 0
         self.computed0 = campaign.stats.computed
         self.failed = 0
@@ -210,6 +219,8 @@ class _LimitState:
             xs, seeds = a, np.full(a.shape[0], self.frozen, dtype=np.int64)
         out, status = self.campaign.evaluate(xs, seeds)
         y = out[:, self.k].copy()
+        if self.k_stop is not None:
+            self.stopped += int(np.count_nonzero(out[:, self.k_stop] == 1.0))
         bad = ~np.isfinite(y) | ((status < 0) & (status != -3))
         self.failed += int(np.count_nonzero(bad))
         y[bad] = np.inf
@@ -421,4 +432,5 @@ def estimate_exceedance(
         importance_kind=kind,
         design_point=design,
         upper_bound=bound,
+        stopped_early=ls.stopped,
     )
