@@ -18,9 +18,10 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``probability`` (per storm), ``cv``, ``method``, ``storms``, ``computed``, ``failed_runs``,
 ``annual``, ``lifetime``, ``reliability_index``, ``history`` ([storms, probability, cv]),
 ``curve`` ([displacement m, probability]), ``importance``, ``importance_kind``,
-``design_point``, ``upper_bound``, ``stopped_early``), ``design`` (``return_period``, ``fractile``, ``points``,
-``governing``, ``design_displacement`` [m], ``f109``) or null, ``campaign`` (``requested``,
-``computed``, ``reused``, ``failed``, ``seconds_per_storm``), ``files``, ``notes``.
+``design_point``, ``upper_bound``, ``stopped_early``), ``design`` (``return_period``,
+``fractile``, ``points``, ``governing``, ``design_displacement`` [m], ``f109``) or null,
+``campaign`` (``requested``, ``computed``, ``reused``, ``failed``, ``seconds_per_storm``),
+``files``, ``notes``.
 """
 
 from __future__ import annotations
