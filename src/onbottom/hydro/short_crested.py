@@ -184,12 +184,19 @@ class WindowedNodeKinematics:
         n_t, n = self.shape
         if not 0 <= k0 < k1 <= n_t:
             raise InputError(f"window [{k0}, {k1}) is invalid: samples 0 … {n_t} exist")
-        mm = np.memmap(self.path, dtype=np.float32, mode="r", shape=(2, n, n_t))
-        try:
-            u = np.ascontiguousarray(mm[0, :, k0:k1].T)
-            a = np.ascontiguousarray(mm[1, :, k0:k1].T)
-        finally:
-            del mm  # unmapped: the pages read do not stay in this process's memory
+        m = k1 - k0
+        out = []
+        with open(self.path, "rb", buffering=0) as f:
+            fd = f.fileno()
+            for part in (0, 1):  # velocity, acceleration
+                buf = np.empty((n, m), dtype=np.float32)
+                for i in range(n):  # each node's samples k0 … k1 − 1: one read, no mapping
+                    off = ((part * n + i) * n_t + k0) * 4
+                    if os.preadv(fd, [buf[i]], off) != 4 * m:
+                        raise OSError(f"{self.path}: short read (the file was changed)")
+                out.append(np.ascontiguousarray(buf.T))
+                del buf
+        u, a = out
         return u, a
 
     def close(self) -> None:
