@@ -122,6 +122,11 @@ def _output_figures(pipe, soil, storm, current, args, integration_cpu: float) ->
                 f" {path.stat().st_size / 1e6:.2f} MB; target <= the integration"
                 f" ({run_cpu:.3f} CPU-s): {verdict}"
             )
+            ratio = w / run_cpu
+            print(
+                f"    write / integration = {ratio:.2f}; aim <= 0.5:"
+                f" {'met' if ratio <= 0.5 else 'NOT met'}"
+            )
     print(f"  (integration without recording: {integration_cpu:.3f} CPU-s, median)")
 
 

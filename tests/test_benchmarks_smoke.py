@@ -63,6 +63,7 @@ FIGURES: dict[str, tuple[str, ...]] = {
     "storm_section.py": (
         rf"one storm, CPU time +best {NUM} s",
         rf"NetCDF write, compression level 4: {NUM} CPU-s",
+        rf"write / integration = {NUM}; aim <= 0.5",
     ),
     "wake_kernel.py": (rf"ratio: {NUM}",),
 }
