@@ -145,7 +145,10 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--scheduler", default=None, help="a Dask address, or auto (start one)")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.route, args.seeds, args.workers = "1", 1, 1
     built = route(args.route, args.seeds)  # read and built before the clock starts
     ncomb = sum(len(s.storms) for s in built.sections)
     load0 = os.getloadavg()

@@ -85,8 +85,13 @@ def main() -> None:
         action="store_true",
         help="measure the specimen renumbered in cell order too (Numerics.sort_disks)",
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.steps, args.repeat = 5, 1
     sample = Sample.load(args.sample) if args.sample else lattice_bed()
+    if args.smoke and not args.sample:
+        sample = lattice_bed(width=0.02, height=0.01)
     if args.cell_order:
         for label, s in (("as numbered", sample), ("cell order", None)):
             s = s if s is not None else sample.permuted(sample.cell_order())

@@ -28,11 +28,21 @@ from onbottom.dem.sample import Sample
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--sample", required=True)
+    ap.add_argument("--sample")
     ap.add_argument("--preset", default="SM-Dr48", choices=sorted(PRESETS))
     ap.add_argument("--steps", type=int, default=3000)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        import tempfile
+
+        from _smoke import tiny_lattice_sample
+
+        args.steps, args.repeat = 5, 1
+        args.sample = args.sample or tiny_lattice_sample(tempfile.mkdtemp())
+    elif args.sample is None:
+        ap.error("--sample is required")
     cfg = PRESETS[args.preset]
     s0 = Sample.load(args.sample)
     soil = cfg.contacts.soil

@@ -86,7 +86,7 @@ def _run(src: Path, args: dict) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--other-src", required=True, type=Path, help="src/ of the other version")
+    ap.add_argument("--other-src", type=Path, help="src/ of the other version (required)")
     ap.add_argument("--preset", default="SM-Dr48")
     ap.add_argument("--sample", type=Path, help="compacted specimen (.nc): compaction state")
     ap.add_argument("--checkpoint", type=Path, help="penetration checkpoint: penetration state")
@@ -94,8 +94,20 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--threads", default="2,1", help="comma-separated thread counts")
     ap.add_argument("--tmp", type=Path, default=Path("/tmp/bench_dem_kernel_versions"))
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
     here = Path(__file__).resolve().parents[1] / "src"
+    if args.smoke:  # this checkout against itself on a small lattice bed
+        import tempfile
+
+        from _smoke import tiny_lattice_sample
+
+        args.tmp = Path(tempfile.mkdtemp(prefix="bench_dem_kernel_versions_"))
+        args.other_src = args.other_src or here
+        args.sample = args.sample or tiny_lattice_sample(args.tmp)
+        args.steps, args.repeat, args.threads = 5, 2, "1"
+    elif args.other_src is None:
+        ap.error("--other-src is required")
     states = [("compaction", args.sample), ("penetration", args.checkpoint)]
     states = [(s, p) for s, p in states if p is not None]
     if not states:

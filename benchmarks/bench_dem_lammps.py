@@ -92,9 +92,18 @@ def main() -> None:
     ap.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     ap.add_argument("--settle", type=int, default=None, help="settling steps before timing")
     ap.add_argument("--steps", type=int, default=2000, help="timed steps")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        import sys
 
-    if args.sample:
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        from bench_dem import lattice_bed
+
+        args.ranks, args.steps, args.settle = [1], 20, 0
+        args.sample = None
+        sample = lattice_bed(width=0.02, height=0.01)
+    elif args.sample:
         sample = Sample.load(args.sample)
     elif args.polydisperse:
         sample = graded_bed(args.disks)

@@ -31,15 +31,45 @@ from onbottom.dem.engine import step_sizes
 from onbottom.dem.experiment import _load_checkpoint
 
 
+def tiny_checkpoint(cfg) -> Path:
+    """A penetration checkpoint of ``cfg`` (prepared and penetrated here; the smoke run)."""
+    import shutil
+    import tempfile
+
+    from onbottom.dem.experiment import penetrate
+    from onbottom.dem.preparation import prepare_sample
+
+    tmp = Path(tempfile.mkdtemp(prefix="bench_dem_penetration_step_"))
+    ck, kept = tmp / "run.checkpoint.nc", tmp / "kept.nc"
+
+    def keep(frac: float) -> None:
+        if ck.exists():
+            shutil.copy2(ck, kept)
+
+    penetrate(cfg, prepare_sample(cfg), checkpoint=ck, checkpoint_every=200, progress=keep)
+    if not kept.exists():
+        raise SystemExit("the tiny penetration wrote no checkpoint")
+    return kept
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--preset", default="SD", choices=sorted(PRESETS))
-    ap.add_argument("--checkpoint", required=True, type=Path)
+    ap.add_argument("--checkpoint", type=Path, help="a penetration checkpoint (required)")
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--threads", type=int, default=numba.config.NUMBA_NUM_THREADS)
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
     base = PRESETS[args.preset]
+    if args.smoke:
+        from _smoke import tiny_dem_config
+
+        base = tiny_dem_config()
+        args.steps, args.repeat = 5, 1
+        args.checkpoint = args.checkpoint or tiny_checkpoint(base)
+    elif args.checkpoint is None:
+        ap.error("--checkpoint is required")
     sub = dataclasses.replace(base.numerics, subcycle=True)
     modes = {"plain": dataclasses.replace(base.numerics, subcycle=False), "sub-cycled": sub}
     best: dict[str, tuple[float, float]] = {}

@@ -10,6 +10,7 @@ Dataset), accepted steps, simulated load cycles per second, and the time of all 
 from __future__ import annotations
 
 import os
+import sys
 import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
@@ -26,6 +27,9 @@ from onbottom.dynamics.centrifuge import (
     run_centrifuge_test,
 )
 from onbottom.dynamics.section import section_mass
+
+SMOKE = "--smoke" in sys.argv[1:]
+"""Tiny size (CI: the script finishes and prints its figures)."""
 
 
 def _best(fn, repeat: int) -> tuple[float, float]:
@@ -64,14 +68,14 @@ def main() -> None:
     t0 = time.perf_counter()
     res = run_centrifuge_test("Inclined 1")
     print(f"first call (includes numba compile or cache load): {time.perf_counter() - t0:.2f} s")
-    best, med = _best(lambda: run_centrifuge_test("Inclined 1"), 30)
+    best, med = _best(lambda: run_centrifuge_test("Inclined 1"), 2 if SMOKE else 30)
     cycles = res.cycles_to_limit
     print(f"Inclined 1 run_centrifuge_test: best {best * 1e3:.1f} ms, median {med * 1e3:.1f} ms")
     print(
         f"  steps {res.n_steps}, cycles simulated {cycles:.2f},"
         f" {cycles / best:.0f} load cycles/s, {res.n_steps / best:.3g} steps/s"
     )
-    kbest, kmed = _best(kernel_only, 30)
+    kbest, kmed = _best(kernel_only, 2 if SMOKE else 30)
     steps, _ = kernel_only()
     print(
         f"Inclined 1 numba loop only: best {kbest * 1e3:.2f} ms, median {kmed * 1e3:.2f} ms,"
@@ -79,12 +83,15 @@ def main() -> None:
     )
     t0 = time.perf_counter()
     total_cycles = 0.0
-    for ps in ("table2", "recommended"):
-        for name in TESTS:
+    for ps in ("table2",) if SMOKE else ("table2", "recommended"):
+        for name in list(TESTS)[:1] if SMOKE else TESTS:
             r = run_centrifuge_test(name, parameters=ps, after_limit="runaway_end")
             total_cycles += r.cycles_to_limit or 0.0
     wall = time.perf_counter() - t0
-    print(f"all 14 reproduction runs (no plots): {wall:.2f} s, {total_cycles / wall:.0f} cycles/s")
+    print(
+        f"{'1' if SMOKE else 'all 14'} reproduction runs (no plots): {wall:.2f} s,"
+        f" {total_cycles / wall:.0f} cycles/s"
+    )
 
 
 if __name__ == "__main__":

@@ -198,7 +198,10 @@ def main() -> None:
     ap.add_argument("--no-bytecode", action="store_true", help="no .pyc cache (as this machine)")
     ap.add_argument("--skip-startup", action="store_true", help="only --first-run")
     ap.add_argument("--only", help="--first-run: the commands whose name contains this")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.runs = 1
     bytecode = not args.no_bytecode
     print(
         f"python {sys.version.split()[0]}, {os.cpu_count()} cores, load average"

@@ -42,7 +42,10 @@ def _grid(n_points: int) -> dict[str, np.ndarray]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--points", type=int, default=256, help="grid points per sweep")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.points = 4
     grid = _grid(args.points)
     n = grid["A"].size * grid["mu"].size
     fixed = {"test": "Inclined 1"}

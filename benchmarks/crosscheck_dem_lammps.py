@@ -34,9 +34,14 @@ def main() -> None:
     ap.add_argument("--sample", type=Path, help="prepared specimen (Sample.save)")
     ap.add_argument("--save-sample", type=Path, help="save the prepared specimen here")
     ap.add_argument("--np", dest="n_procs", type=int, default=1, help="LAMMPS MPI ranks")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
 
     config = get_preset(args.preset)
+    if args.smoke:
+        from _smoke import tiny_dem_config
+
+        config = tiny_dem_config()
     t0 = time.perf_counter()
     sample = Sample.load(args.sample) if args.sample else preparation.prepare_sample(config)
     t_prep = time.perf_counter() - t0

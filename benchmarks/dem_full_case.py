@@ -101,7 +101,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--preset", default="SM-Dr48", choices=sorted(PRESETS))
     ap.add_argument("--seed", type=int, default=None)
-    ap.add_argument("--out", required=True, help="folder for the specimen, run and figures")
+    ap.add_argument("--out", help="folder for the specimen, run and figures (required)")
     ap.add_argument("--checkpoint-every", type=int, default=100_000)
     ap.add_argument(
         "--keep-checkpoints", action="store_true", help="copy every penetration checkpoint"
@@ -147,8 +147,21 @@ def main() -> None:
         default=None,
         help="start from another run's compacted specimen (see the module docstring)",
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
     cfg = PRESETS[args.preset]
+    if args.smoke:
+        import functools
+        import tempfile
+
+        from _smoke import tiny_dem_config
+
+        cfg = tiny_dem_config()
+        args.out = args.out or tempfile.mkdtemp(prefix="dem_full_case_smoke_")
+        args.checkpoint_every = min(args.checkpoint_every, 2000)
+        machine_rate.reference = functools.partial(machine_rate.reference, steps=20, repeat=1)
+    elif args.out is None:
+        ap.error("--out is required")
     if args.relaxation is not None:
         cfg = cfg.replace(
             preparation=dataclasses.replace(cfg.preparation, relaxation=args.relaxation)

@@ -148,7 +148,10 @@ def main() -> None:
     ap.add_argument(
         "--cache", default=None, help="folder keeping the specimens and plain curves between calls"
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.seeds = args.seeds[:1]
     if args.merge is not None:
         rows = [r for f in args.merge for r in json.loads(Path(f).read_text())]
         report(rows, args.lever, args.preset, args.json)
@@ -160,6 +163,10 @@ def main() -> None:
         cache.mkdir(parents=True, exist_ok=True)
     # the baseline is the plain engine (one time step for all, Numerics.subcycle = False)
     preset = PRESETS[args.preset]
+    if args.smoke:
+        from _smoke import tiny_dem_config
+
+        preset = tiny_dem_config()
     base = preset.replace(numerics=dataclasses.replace(preset.numerics, subcycle=False))
     if args.lever == "random":  # the whole case as run before the random layers
         base = preset.replace(

@@ -173,8 +173,13 @@ def main() -> None:
     ap.add_argument("--sort", action="store_true")
     ap.add_argument("--compare", action="store_true", help="also run with the levers off")
     ap.add_argument("--json", default=None, help="write the figures to this JSON file")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
     cfg = PRESETS[args.preset]
+    if args.smoke:
+        from _smoke import tiny_dem_config
+
+        cfg = tiny_dem_config()
     if args.seed is not None:
         cfg = cfg.replace(seed=args.seed)
     print(

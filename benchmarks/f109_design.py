@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import statistics
+import sys
 import time
 
 import numpy as np
@@ -28,10 +29,13 @@ from onbottom.inputs.environment import Environment, f109_combinations
 from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
 from onbottom.inputs.storm import Current, SeaState
 
+SMOKE = "--smoke" in sys.argv[1:]
+"""Tiny size (CI: the script finishes and prints its figures)."""
+
 
 def _median(fn, repeats: int = 3) -> float:
     times = []
-    for _ in range(repeats):
+    for _ in range(1 if SMOKE else repeats):
         t0 = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t0)

@@ -209,7 +209,10 @@ def main() -> None:
         action="store_true",
         help="also: onbottom warmup from an empty cache, then each command's first run after it",
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.only, args.warmup = args.only or "stability", False
     print(
         f"python {sys.version.split()[0]}, {os.cpu_count()} cores, load average"
         f" {os.getloadavg()[0]:.2f}; src {args.src}"

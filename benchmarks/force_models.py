@@ -123,7 +123,10 @@ def main() -> None:
     ap.add_argument(
         "--pipeline-elements", type=int, default=0, help="also a pipeline of N elements"
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.repeat = 1
     _report("section, one 3.5-h storm (integration CPU time):", section(args.repeat))
     if args.pipeline_elements > 0:
         _report(

@@ -16,6 +16,7 @@ quasi-steady law); half-cycles clamped to the grid / all half-cycles.
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -25,6 +26,10 @@ from onbottom.hydro.fourier_fit import synthetic_morison_table
 
 D, RHO = 0.5, 1025.0
 CD, CM, CL = 0.7, 3.29, 0.9
+
+
+SMOKE = "--smoke" in sys.argv[1:]
+"""Tiny size (CI: the script finishes and prints its figures)."""
 
 
 def record(seed: int = 2, duration: float = 3600.0, dt: float = 0.05):
@@ -55,7 +60,7 @@ def main() -> None:
     k_grid = [float(x) for x in np.round(2.0 * 1.15 ** np.arange(34), 4)]
     m_grid = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8]
     table = synthetic_morison_table(k_grid, m_grid, cd=CD, cm=CM, cl=CL, harmonics=5)
-    t, u, dudt = record()
+    t, u, dudt = record(duration=150.0) if SMOKE else record()
     print("V [m/s]  phase  w     rms F_Y  rms F_Z  jumps>20%  series  clamped")
     for v in (0.0, 0.3):
         w_tot = u + v

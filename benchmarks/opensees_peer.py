@@ -44,7 +44,10 @@ def main() -> None:
         "--opensees-tolerance", type=float, default=1e-10, help="NormDispIncr [m] (default 1e-10)"
     )
     ap.add_argument("--save", help="write x and both envelopes of the last pair to this .npz")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.elements, args.length, args.duration, args.pairs = 10, 20.0, 5.0, 1
     import_opensees()
     model = peer_model(args.elements, length=args.length)
     print(

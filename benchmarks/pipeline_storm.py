@@ -38,7 +38,15 @@ from onbottom.inputs.storm import SeaState, Storm
 from onbottom.soil.verley_sotberg import VerleySotberg
 
 
-def run(n_el: int, build_up_h: float, peak_h: float, dt: float, length: float = 1000.0) -> dict:
+def run(
+    n_el: int,
+    build_up_h: float,
+    peak_h: float,
+    dt: float,
+    length: float = 1000.0,
+    kin_limit: int | None = None,
+    simulate_s: float | None = None,
+) -> dict:
     pipe = PipeBuildUp(
         steel_outer_diameter=0.2191,
         wall_thickness=0.0127,
@@ -58,14 +66,14 @@ def run(n_el: int, build_up_h: float, peak_h: float, dt: float, length: float = 
     sea = SeaState(hs=4.5, tp=10.0, direction_deg=80.0, spreading_s=8.0)
     storm = Storm.standard(sea, build_up_hours=build_up_h, peak_hours=peak_h, seed=0)
     t0 = time.perf_counter()
-    kin = pipeline_kinematics(storm, 13.0, model.x)
+    kin = pipeline_kinematics(storm, 13.0, model.x, memory_limit=kin_limit)
     t_kin = time.perf_counter() - t0
     st = PipelineSettings(dt_max=dt, record_interval=None)
     # compile / warm the cache on a short slice first
     simulate_pipeline(model, kin, duration=2.0, settings=st)
     t0 = time.perf_counter()
     c0 = time.process_time()
-    r = simulate_pipeline(model, kin, settings=st)
+    r = simulate_pipeline(model, kin, settings=st, duration=simulate_s)
     t_wall = time.perf_counter() - t0
     t_run = time.process_time() - c0
     s = r.summary
@@ -95,6 +103,7 @@ def run(n_el: int, build_up_h: float, peak_h: float, dt: float, length: float = 
 FLOOR_S = 30.0  # issue 33: the 3.5-h storm in <= 30 s of CPU on one core
 AIM_S = 13.0  # ... aim: 1000x real time
 MEMORY_MB = 1024.0  # ... peak memory <= 1 GB
+KIN_MEMORY_MB = 256.0  # storm_run.KINEMATICS_MEMORY_LIMIT: windowed above
 STORM_S = 3.5 * 3600.0
 
 
@@ -105,7 +114,22 @@ def main() -> None:
     ap.add_argument("--peak-hours", type=float, default=0.1)
     ap.add_argument("--dt", type=float, default=0.1)
     ap.add_argument("--envelopes", default=None, help="save the last mesh's envelopes (npz)")
+    ap.add_argument(
+        "--kin-memory-mb",
+        type=float,
+        default=KIN_MEMORY_MB,
+        help="kinematics above this are windowed from a temporary file (<= 0: never)",
+    )
+    ap.add_argument(
+        "--simulate-s",
+        type=float,
+        default=None,
+        help="simulate only this long [s] of the storm (its kinematics drawn whole)",
+    )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     a = ap.parse_args()
+    if a.smoke:
+        a.elements, a.build_up_hours, a.peak_hours = [20], 0.0, 0.01
     print(f"load average: {os.getloadavg()}")
     print(
         f"{'elem':>5} {'nodes':>5} {'sim[s]':>7} {'kin[s]':>6} {'kinMB':>6} {'run[s]':>7}"
@@ -115,7 +139,8 @@ def main() -> None:
     )
     rows = []
     for n in a.elements:
-        r = run(n, a.build_up_hours, a.peak_hours, a.dt)
+        limit = None if a.kin_memory_mb <= 0 else int(a.kin_memory_mb * 2**20)
+        r = run(n, a.build_up_hours, a.peak_hours, a.dt, kin_limit=limit, simulate_s=a.simulate_s)
         rows.append(r)
         print(
             f"{r['elements']:5d} {r['nodes']:5d} {r['sim_s']:7.0f} {r['kin_s']:6.2f}"

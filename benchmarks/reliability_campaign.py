@@ -50,6 +50,16 @@ def rows(model: StormModel, params, n: int, seed: int) -> tuple[np.ndarray, np.n
     return np.column_stack(cols), seeds_from_uniform(rng.uniform(size=n))
 
 
+def smoke_setup(setup):
+    """The case with a 0.05-h peak and no build-up (the smoke run's tiny size)."""
+    from dataclasses import replace
+
+    st = setup.storm
+    peak = replace(st.storm.stages[0], duration_s=180.0)
+    storm = replace(st.storm, stages=(peak,), build_up_s=0.0)
+    return replace(setup, storm=replace(st, storm=storm))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--storms", type=int, default=100_000)
@@ -61,17 +71,28 @@ def main() -> None:
         default=[1, 2],
         help="worker counts to run (default 1 2; the efficiency needs both 1 and 2)",
     )
+    ap.add_argument(
+        "--smoke", action="store_true", help="tiny run (CI): 4 storms of 0.05 h on 1 worker"
+    )
     a = ap.parse_args()
+    if a.smoke:
+        a.storms, a.workers = 4, [1]
     from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
 
     setup = load_reliability_case(CASE)
-    res = analyse_hindcast(read_hindcast(setup.hindcast_path()), MetoceanOptions(sectors=1))
-    climate = StormClimate.from_result(res, current=setup.table.climate.current)
-    user = setup.inputs()
+    if a.smoke:
+        setup = smoke_setup(setup)
+    res = analyse_hindcast(
+        read_hindcast(setup.climate.hindcast),
+        MetoceanOptions(sectors=setup.climate.sectors, storm_rate=setup.climate.storm_rate),
+    )
+    climate = StormClimate.from_result(res, current=setup.climate.current)
+    user = list(setup.inputs)
     model = StormModel(
         setup.storm,
         inputs=tuple(p.name for p in user),
         climate=climate,
+        pipe_heading_deg=setup.climate.pipe_heading_deg,
         soil_kind=setup.seabed_model,
     )
     params = climate.parameters() + user

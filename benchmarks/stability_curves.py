@@ -221,7 +221,11 @@ def main() -> None:
         action="store_true",
         help="only the paired early-stop figures, in this process (module docstring)",
     )
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.seeds, args.peak_hours, args.build_up_hours = 1, 0.02, 0.0
+        args.K, args.M, args.soils, args.workers = [10.0], [0.2], ["sand"], [1]
     s = CurveSettings(
         seeds=args.seeds,
         peak_hours=args.peak_hours,

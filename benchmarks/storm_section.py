@@ -39,7 +39,10 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--dt", type=float, default=0.1, help="largest solver step [s]")
     ap.add_argument("--record-interval", type=float, default=0.5, help="output rows [s]")
+    ap.add_argument("--smoke", action="store_true", help="tiny size (CI: finishes, prints)")
     args = ap.parse_args()
+    if args.smoke:
+        args.repeat = 1
     pipe = Pipe(outer_diameter=0.3951, submerged_weight=1500.0)
     soil = VerleySotberg.silica(pipe, Sand(submerged_unit_weight=10e3))
     storm = Storm.standard(SeaState(hs=4.68, tp=10.8, gamma=1.009, spreading_s=8.0))
@@ -118,6 +121,11 @@ def _output_figures(pipe, soil, storm, current, args, integration_cpu: float) ->
                 f"  NetCDF write, compression level {level}: {w:.3f} CPU-s (best of 3),"
                 f" {path.stat().st_size / 1e6:.2f} MB; target <= the integration"
                 f" ({run_cpu:.3f} CPU-s): {verdict}"
+            )
+            ratio = w / run_cpu
+            print(
+                f"    write / integration = {ratio:.2f}; aim <= 0.5:"
+                f" {'met' if ratio <= 0.5 else 'NOT met'}"
             )
     print(f"  (integration without recording: {integration_cpu:.3f} CPU-s, median)")
 

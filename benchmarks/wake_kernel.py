@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import statistics
+import sys
 import time
 
 import numpy as np
@@ -22,6 +23,9 @@ from onbottom.hydro._morison_kernel import morison_kernel
 from onbottom.hydro._wake_kernel import wake_kernel
 from onbottom.hydro.wake import WakeModel
 from onbottom.hydro.wake_calibration import jonswap_record
+
+SMOKE = "--smoke" in sys.argv[1:]
+"""Tiny size (CI: the script finishes and prints its figures)."""
 
 
 @njit(cache=True)
@@ -52,7 +56,7 @@ def _morison_loop(params, t, u, dudt, vc, d, rho):
 
 def _median(fn, repeats: int = 5) -> float:
     times = []
-    for _ in range(repeats):
+    for _ in range(1 if SMOKE else repeats):
         t0 = time.perf_counter()
         fn()
         times.append(time.perf_counter() - t0)

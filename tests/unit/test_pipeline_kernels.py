@@ -185,11 +185,19 @@ def test_kinematics_interpolation():
     ku = np.array([[0.0, 1.0], [2.0, 3.0], [4.0, 5.0]], dtype=np.float32)
     ka = -ku
     uk, ak = np.zeros(2), np.zeros(2)
-    K.kinematics_at(0.75, ku, ka, 0.0, 0.5, uk, ak)
+    K.kinematics_at(0.75, ku, ka, 0.0, 0.5, 0, 0, uk, ak)  # nt <= 0: the whole storm
     np.testing.assert_allclose(uk, [3.0, 4.0])
     np.testing.assert_allclose(ak, [-3.0, -4.0])
-    K.kinematics_at(10.0, ku, ka, 0.0, 0.5, uk, ak)
+    K.kinematics_at(10.0, ku, ka, 0.0, 0.5, 0, 3, uk, ak)
     np.testing.assert_allclose(uk, [4.0, 5.0])
+    # a window: samples 1 and 2 of a 3-sample storm give the whole array's values
+    K.kinematics_at(0.75, ku[1:], ka[1:], 0.0, 0.5, 1, 3, uk, ak)
+    np.testing.assert_allclose(uk, [3.0, 4.0])
+    K.kinematics_at(10.0, ku[1:], ka[1:], 0.0, 0.5, 1, 3, uk, ak)
+    np.testing.assert_allclose(uk, [4.0, 5.0])
+    # a time outside the window gives NaN (never another sample's value)
+    K.kinematics_at(0.25, ku[1:], ka[1:], 0.0, 0.5, 1, 3, uk, ak)
+    assert np.isnan(uk).all() and np.isnan(ak).all()
 
 
 def test_assemble_tangent_equals_the_full_evaluation():

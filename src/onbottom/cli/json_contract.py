@@ -480,6 +480,10 @@ CONTRACT: dict[str, Output] = {
                 "importance_kind": "which measure (FORM alpha^2, SRRC^2, pilot centre)",
                 "design_point": "FORM design point (importance sampling), else empty",
                 "upper_bound": "true when probability is only an upper bound (no CV)",
+                "stopped_early": (
+                    "storms stopped just above the largest limit (verdict known; their"
+                    " displacement a lower bound)"
+                ),
             },
             "campaign": {
                 "requested": "storm runs asked for",

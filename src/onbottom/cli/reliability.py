@@ -18,9 +18,10 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``probability`` (per storm), ``cv``, ``method``, ``storms``, ``computed``, ``failed_runs``,
 ``annual``, ``lifetime``, ``reliability_index``, ``history`` ([storms, probability, cv]),
 ``curve`` ([displacement m, probability]), ``importance``, ``importance_kind``,
-``design_point``, ``upper_bound``), ``design`` (``return_period``, ``fractile``, ``points``,
-``governing``, ``design_displacement`` [m], ``f109``) or null, ``campaign`` (``requested``,
-``computed``, ``reused``, ``failed``, ``seconds_per_storm``), ``files``, ``notes``.
+``design_point``, ``upper_bound``, ``stopped_early``), ``design`` (``return_period``,
+``fractile``, ``points``, ``governing``, ``design_displacement`` [m], ``f109``) or null,
+``campaign`` (``requested``, ``computed``, ``reused``, ``failed``, ``seconds_per_storm``),
+``files``, ``notes``.
 """
 
 from __future__ import annotations
@@ -259,6 +260,11 @@ def command(
                 f"  P[Y > {e['label']}] per storm {e['probability']:.3g} ({cv}, {e['method']},"
                 f" {e['storms']} storms); per year {e['annual']:.3g}; life {e['lifetime']:.3g}"
             )
+            if e["stopped_early"]:
+                click.echo(
+                    f"    {e['stopped_early']} storms stopped early, beyond the largest limit"
+                    " (their verdict is the whole storm's)"
+                )
             imp = ", ".join(f"{k} {v:.2f}" for k, v in e["importance"].items())
             click.echo(f"    importance ({e['importance_kind']}): {imp}")
         d = payload["design"]

@@ -21,15 +21,23 @@ shared/spec/on-bottom-stability.md, "Sea states and storms")::
 The frequencies are the harmonics ω_j = jΔω of a record ≥ the storm duration (the series does
 not repeat within the storm), summed by one inverse real FFT per node and stage; nodes are
 processed in blocks and the result is kept in float32 (velocity and acceleration: 8 bytes per
-node and sample — 500 nodes × 3.5 h at 0.2 s ≈ 0.25 GB). Stage weights (build-up, blends,
+node and sample — 500 nodes × 3.5 h at 0.2 s ≈ 0.25 GB; with ``memory_limit`` a larger
+storm is written node by node to a temporary file, :class:`WindowedNodeKinematics`, and the
+solver reads the time windows it reaches: the same float32 values, a window in memory).
+Stage weights (build-up, blends,
 decay) are those of the section storm (:mod:`onbottom.hydro.storm_kinematics`):
 U = Σ_k w_k U_k, U̇ = Σ_k (w_k U̇_k + ẇ_k U_k).
 """
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
+import tempfile
+import weakref
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -46,6 +54,7 @@ from onbottom.inputs.storm import Storm
 
 __all__ = [
     "NodeKinematics",
+    "WindowedNodeKinematics",
     "directions_cos_s",
     "long_crested_node_kinematics",
     "pipeline_kinematics",
@@ -108,6 +117,98 @@ class NodeKinematics:
         """Memory held [bytes]."""
         return int(self.velocity.nbytes + self.acceleration.nbytes)
 
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(n_times, n_nodes)."""
+        return (int(self.velocity.shape[0]), int(self.velocity.shape[1]))
+
+
+def _unlink(path: str) -> None:
+    try:
+        os.unlink(path)
+    except OSError:
+        pass
+
+
+class WindowedNodeKinematics:
+    """:class:`NodeKinematics` kept in a temporary file, read back in time windows.
+
+    The file holds the float32 velocity then acceleration of each node over the whole storm
+    (node-major: the order the synthesis makes them); :meth:`window` returns samples
+    k0 … k1 − 1 of every node as time-major arrays, the values a :class:`NodeKinematics`
+    would hold. The file is removed by :meth:`close` or when the object is collected.
+
+    Attributes
+    ----------
+    t0, dt : float
+        Time of the first sample and sample interval [s].
+    shape : tuple of int
+        (n_times, n_nodes).
+    weights, stage_parameters
+        As :class:`NodeKinematics`.
+    digest : str
+        blake2b hash of the velocity and acceleration (node by node): the run identity's.
+    """
+
+    def __init__(
+        self,
+        path: str | os.PathLike,
+        t0: float,
+        dt: float,
+        shape: tuple[int, int],
+        digest: str,
+        weights: np.ndarray | None = None,
+        stage_parameters: tuple[dict[str, float], ...] = (),
+    ) -> None:
+        self.path = Path(path)
+        self.t0 = float(t0)
+        self.dt = positive("WindowedNodeKinematics.dt", dt)
+        self.shape = (int(shape[0]), int(shape[1]))
+        self.digest = digest
+        self.weights = weights
+        self.stage_parameters = tuple(stage_parameters)
+        self._finalizer = weakref.finalize(self, _unlink, str(self.path))
+
+    @property
+    def t_end(self) -> float:
+        """Time of the last sample [s]."""
+        return self.t0 + self.dt * (self.shape[0] - 1)
+
+    @property
+    def nbytes(self) -> int:
+        """Memory a whole :class:`NodeKinematics` would hold (the file's size) [bytes]."""
+        return 8 * self.shape[0] * self.shape[1]
+
+    def window(self, k0: int, k1: int) -> tuple[np.ndarray, np.ndarray]:
+        """(velocity, acceleration) of samples k0 … k1 − 1, float32 (k1 − k0, n_nodes)."""
+        n_t, n = self.shape
+        if not 0 <= k0 < k1 <= n_t:
+            raise InputError(f"window [{k0}, {k1}) is invalid: samples 0 … {n_t} exist")
+        m = k1 - k0
+        out = []
+        with open(self.path, "rb", buffering=0) as f:
+            fd = f.fileno()
+            for part in (0, 1):  # velocity, acceleration
+                buf = np.empty((n, m), dtype=np.float32)
+                for i in range(n):  # each node's samples k0 … k1 − 1: one read, no mapping
+                    off = ((part * n + i) * n_t + k0) * 4
+                    if os.preadv(fd, [buf[i]], off) != 4 * m:
+                        raise OSError(f"{self.path}: short read (the file was changed)")
+                out.append(np.ascontiguousarray(buf.T))
+                del buf
+        u, a = out
+        return u, a
+
+    def close(self) -> None:
+        """Remove the file."""
+        self._finalizer()
+
+    def __enter__(self) -> WindowedNodeKinematics:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
 
 def directions_cos_s(uniform: np.ndarray, mean_deg: float, spreading_s: float) -> np.ndarray:
     """Directions [rad] θ = θ_m + δ with δ from D_w(δ) ∝ cos^s δ, |δ| < π/2 (F109 Eq 3.8).
@@ -134,7 +235,8 @@ def pipeline_kinematics(
     sample_interval: float | None = None,
     omega_max_factor: float = 5.0,
     block_nodes: int = 64,
-) -> NodeKinematics:
+    memory_limit: int | None = None,
+) -> NodeKinematics | WindowedNodeKinematics:
     """Near-bed velocity and acceleration normal to the pipe at positions ``x`` through a storm.
 
     Parameters
@@ -151,6 +253,10 @@ def pipeline_kinematics(
         Highest frequency as a multiple of the highest ω_p [-], > 1.
     block_nodes : int
         Nodes per FFT block (size of the complex work array).
+    memory_limit : int or None
+        Kinematics larger than this [bytes] (8 per node and sample) are written to a
+        temporary file and returned as :class:`WindowedNodeKinematics` (the same values, read
+        in windows by the solver); None: always held whole.
     """
     if not isinstance(storm, Storm):
         raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
@@ -180,26 +286,62 @@ def pipeline_kinematics(
         a = np.sqrt(2.0 * jonswap(w, sea.hs, sea.tp, sea.peak_enhancement) * dw)
         stage_amp.append(a * g * np.sin(theta))
         stage_kx.append(k * np.cos(theta))
-    vel = np.empty((n_t, xx.size), dtype=np.float32)
-    acc = np.empty((n_t, xx.size), dtype=np.float32)
+    spill = memory_limit is not None and 8 * n_t * xx.size > memory_limit
+    if spill:
+        fd, path = tempfile.mkstemp(prefix="onbottom-kinematics-", suffix=".f32")
+        f = os.fdopen(fd, "wb")
+        hu, ha = hashlib.blake2b(digest_size=16), hashlib.blake2b(digest_size=16)
+        row = n_t * 4  # bytes of one node's series
+    else:
+        vel = np.empty((n_t, xx.size), dtype=np.float32)
+        acc = np.empty((n_t, xx.size), dtype=np.float32)
     half = nfft // 2 + 1
     spec = np.zeros((min(block_nodes, max(xx.size, 1)), half), dtype=complex)
-    for b0 in range(0, xx.size, block_nodes):
-        xb = xx[b0 : b0 + block_nodes]
-        nb = xb.size
-        ub = np.zeros((nb, n_t))
-        ab = np.zeros((nb, n_t))
-        for kk in range(len(storm.stages)):
-            c = stage_amp[kk][None, :] * np.exp(1j * (phase[None, :] - np.outer(xb, stage_kx[kk])))
-            spec[:nb] = 0.0
-            spec[:nb, 1 : n_c + 1] = 0.5 * nfft * c
-            uk = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
-            spec[:nb, 1 : n_c + 1] *= 1j * w[None, :]
-            ak = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
-            ub += weights[kk][None, :] * uk
-            ab += weights[kk][None, :] * ak + dweights[kk][None, :] * uk
-        vel[:, b0 : b0 + nb] = ub.T
-        acc[:, b0 : b0 + nb] = ab.T
+    try:
+        for b0 in range(0, xx.size, block_nodes):
+            xb = xx[b0 : b0 + block_nodes]
+            nb = xb.size
+            ub = np.zeros((nb, n_t))
+            ab = np.zeros((nb, n_t))
+            for kk in range(len(storm.stages)):
+                c = stage_amp[kk][None, :] * np.exp(
+                    1j * (phase[None, :] - np.outer(xb, stage_kx[kk]))
+                )
+                spec[:nb] = 0.0
+                spec[:nb, 1 : n_c + 1] = 0.5 * nfft * c
+                uk = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
+                spec[:nb, 1 : n_c + 1] *= 1j * w[None, :]
+                ak = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
+                ub += weights[kk][None, :] * uk
+                ab += weights[kk][None, :] * ak + dweights[kk][None, :] * uk
+            if spill:
+                bu = ub.astype(np.float32).tobytes()
+                ba = ab.astype(np.float32).tobytes()
+                hu.update(bu)
+                ha.update(ba)
+                f.seek(b0 * row)
+                f.write(bu)
+                f.seek((xx.size + b0) * row)
+                f.write(ba)
+            else:
+                vel[:, b0 : b0 + nb] = ub.T
+                acc[:, b0 : b0 + nb] = ab.T
+    except BaseException:
+        if spill:
+            f.close()
+            _unlink(path)
+        raise
+    if spill:
+        f.close()
+        return WindowedNodeKinematics(
+            path,
+            0.0,
+            dts,
+            (n_t, xx.size),
+            hu.hexdigest() + ha.hexdigest(),
+            weights=weights,
+            stage_parameters=tuple(seabed_velocity_parameters(s, depth) for s in storm.stages),
+        )
     return NodeKinematics(
         t0=0.0,
         dt=dts,

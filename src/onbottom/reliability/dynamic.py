@@ -121,6 +121,10 @@ class ExceedanceEstimate:
     upper_bound : bool
         Subset simulation stopped at ``max_storms`` before its levels reached the limit:
         ``probability`` is then an upper bound (the last level's), with no CV.
+    stopped_early : int
+        Storms of the estimate that stopped early at the campaign model's ``stop_at`` (above
+        every limit asked: their verdict is that of the whole storm, their displacement a lower
+        bound of it) [-]; 0 without an early stop.
     """
 
     label: str
@@ -140,6 +144,7 @@ class ExceedanceEstimate:
     importance_kind: str = ""
     design_point: dict[str, float] = field(default_factory=dict)
     upper_bound: bool = False
+    stopped_early: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         """Plain numbers (JSON)."""
@@ -165,6 +170,7 @@ class ExceedanceEstimate:
             "importance_kind": self.importance_kind,
             "design_point": self.design_point,
             "upper_bound": self.upper_bound,
+            "stopped_early": self.stopped_early,
         }
 
 
@@ -206,6 +212,9 @@ class _LimitState:
         self.limit = limit
         self.frozen = frozen_seed
         self.k = campaign.model.output_names.index("max_displacement")
+        names = campaign.model.output_names
+        self.k_stop = names.index("stopped_early") if "stopped_early" in names else None
+        self.stopped = 0
         self.calls = 0
         self.computed0 = campaign.stats.computed
         self.failed = 0
@@ -228,6 +237,8 @@ class _LimitState:
             self.error = exc
             return np.full(a.shape[0], -1.0)
         y = out[:, self.k].copy()
+        if self.k_stop is not None:
+            self.stopped += int(np.count_nonzero(out[:, self.k_stop] == 1.0))
         bad = ~np.isfinite(y) | ((status < 0) & (status != -3))
         self.failed += int(np.count_nonzero(bad))
         y[bad] = np.inf
@@ -450,4 +461,5 @@ def estimate_exceedance(
         importance_kind=kind,
         design_point=design,
         upper_bound=bound,
+        stopped_early=ls.stopped,
     )

@@ -94,6 +94,7 @@ def run_reliability(
         climate=climate,
         pipe_heading_deg=setup.climate.pipe_heading_deg if setup.climate else 0.0,
         soil_kind=setup.seabed_model,
+        stop_at=stop_displacement(setup),
     )
     params = (climate.parameters() if climate is not None else []) + user
     out.mkdir(parents=True, exist_ok=True)
@@ -190,6 +191,21 @@ def run_reliability(
         climate=info,
         notes=notes,
     )
+
+
+EARLY_STOP_MARGIN = 1e-6
+"""Relative margin of the early stop above the largest limit [-]: a stopped storm's
+displacement is strictly beyond every limit."""
+
+
+def stop_displacement(setup: ReliabilitySetup) -> float | None:
+    """Where the campaign's storms stop [m]: just above the largest limit asked (every
+    exceedance verdict is known there, :mod:`onbottom.reliability.storm_model`); None with
+    ``method = "importance"``, whose FORM search reads the displacement itself, not only the
+    verdict, beyond the limits."""
+    if setup.method == "importance":
+        return None
+    return max(v for _, v in setup.limits) * (1.0 + EARLY_STOP_MARGIN)
 
 
 def planned_storms(setup: ReliabilitySetup) -> int:

@@ -23,7 +23,15 @@ decay durations, spectrum, γ, spreading). The peak sea state is the drawn one.
 
 Outputs: ``max_displacement``, ``final_displacement`` [m], the sea state used (``hs`` [m],
 ``tp`` [s], ``direction_deg`` [deg], ``current_velocity`` [m/s]), ``max_penetration`` [m],
-``n_steps``; status as the solver's (1 end, 2 runaway stop, 3 lift-off stop, < 0 numerical).
+``n_steps``, ``stopped_early`` (1 when the storm stopped at :attr:`StormModel.stop_at`, before
+the case's own runaway stop; its ``max_displacement`` is then the displacement at the stop, a
+lower bound of the whole storm's); status as the solver's (1 end, 2 runaway stop, 3 lift-off
+stop, < 0 numerical).
+
+Early stop: a campaign that only asks whether a storm exceeds some limits sets ``stop_at``
+just above the largest of them. A storm that reaches it exceeds every limit whatever it does
+afterwards, and a storm that does not runs exactly as without the stop (the solver checks the
+stop after each committed step), so every exceedance verdict equals the full run's.
 """
 
 from __future__ import annotations
@@ -62,6 +70,7 @@ OUTPUTS = (
     "current_velocity",
     "max_penetration",
     "n_steps",
+    "stopped_early",
 )
 
 
@@ -83,6 +92,9 @@ class StormModel:
         ``[seabed].model`` of the case (sand, calcareous, clay, rock, coulomb) to rebuild the
         soil model with drawn soil inputs; None: sand for Verley & Sotberg, clay for Verley &
         Lund, else Coulomb.
+    stop_at : float or None
+        Lateral displacement [m] at which a storm stops (module docstring, early stop), > 0;
+        None: only the case's own runaway stop (``max_displacement_over_d``).
     """
 
     setup: Any
@@ -90,9 +102,13 @@ class StormModel:
     climate: StormClimate | None = None
     pipe_heading_deg: float = 0.0
     soil_kind: str | None = None
+    stop_at: float | None = None
 
     def __post_init__(self) -> None:
         from onbottom.inputs.storm import Storm
+
+        if self.stop_at is not None and not (math.isfinite(self.stop_at) and self.stop_at > 0):
+            raise InputError(f"StormModel.stop_at = {self.stop_at!r} is invalid: give a > 0 [m]")
 
         if not isinstance(self.setup.storm, Storm):
             raise InputError(
@@ -166,6 +182,7 @@ class StormModel:
                 self.climate,
                 self.pipe_heading_deg,
                 self.soil_kind,
+                self.stop_at,
             )
         )
         digest = hashlib.blake2b(blob, digest_size=16).hexdigest()
@@ -244,7 +261,12 @@ class StormModel:
         soil, storm, current = self.build(x, seed)
         kw = s.kwargs()
         kw["current"] = current
-        kw["settings"] = replace(s.settings, record_interval=None)
+        settings = replace(s.settings, record_interval=None)
+        own = settings.stop_displacement_over_d
+        early = self.stop_at is not None and self.stop_at / self.diameter < own
+        if early:
+            settings = replace(settings, stop_displacement_over_d=self.stop_at / self.diameter)
+        kw["settings"] = settings
         r = simulate_storm_section(s.pipe, soil, storm, **kw)
         peak = storm.stages[0]
         return {
@@ -256,6 +278,7 @@ class StormModel:
             "current_velocity": current.velocity,
             "max_penetration": r.summary.get("max_penetration", math.nan),
             "n_steps": r.summary.get("n_steps", math.nan),
+            "stopped_early": float(early and r.max_displacement >= self.stop_at),
             "status": r.status,
             "message": r.message,
         }

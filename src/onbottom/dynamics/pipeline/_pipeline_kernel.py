@@ -88,17 +88,19 @@ ST_EI = 21  # reference EI for strain [N·m²]
 ST_PREDICTOR = 22  # weight of Δt²·a_n in the Newton start d₁ = d_n + Δt v_n + w Δt² a_n
 ST_CTOL = 23  # Newton correction [m] below which a step is accepted (displacement resolution)
 ST_Z_LIMIT = 24  # penetration beyond the soil models' range [m] (inf: none)
+ST_KIN_K0 = 25  # global index of the first sample held in kin_u/kin_a (a window of the storm)
+ST_KIN_NT = 26  # samples of the whole storm's kinematics (<= 0: those held, from index 0)
 # user load q(x, t) (user_load.py; add_user_load)
-ST_UL_KIND = 25  # UL_NONE, UL_SINE, UL_TABLE
-ST_UL_AMP_Y = 26  # sine: lateral amplitude [N/m]
-ST_UL_AMP_X = 27  # sine: axial amplitude [N/m]
-ST_UL_WAVENUMBER = 28  # sine: 2π/λ [rad/m]
-ST_UL_OMEGA = 29  # sine: 2π/T [rad/s]
-ST_UL_RAMP = 30  # sine: half-cosine ramp duration [s]
-ST_UL_START = 31  # sine: switch-on time [s]
-ST_UL_T0 = 32  # table: time of the first row [s]
-ST_UL_DT = 33  # table: row interval [s]
-N_SETTINGS = 34
+ST_UL_KIND = 27  # UL_NONE, UL_SINE, UL_TABLE
+ST_UL_AMP_Y = 28  # sine: lateral amplitude [N/m]
+ST_UL_AMP_X = 29  # sine: axial amplitude [N/m]
+ST_UL_WAVENUMBER = 30  # sine: 2π/λ [rad/m]
+ST_UL_OMEGA = 31  # sine: 2π/T [rad/s]
+ST_UL_RAMP = 32  # sine: half-cosine ramp duration [s]
+ST_UL_START = 33  # sine: switch-on time [s]
+ST_UL_T0 = 34  # table: time of the first row [s]
+ST_UL_DT = 35  # table: row interval [s]
+N_SETTINGS = 36
 
 # ---- Newton controls (docs/theory/pipeline_fe.md, "Newton and step control") ---------------
 REFACTOR_ITERS = 2.0  # refactor when modified Newton would need more iterations than this
@@ -183,9 +185,16 @@ STATUS_SINGULAR = int(Status.SINGULAR)
 
 
 @njit(cache=True)
-def kinematics_at(t, kin_u, kin_a, t0, dtk, uk, ak):
-    """Linear interpolation of the near-bed velocity and acceleration of every node at t."""
-    nt = kin_u.shape[0]
+def kinematics_at(t, kin_u, kin_a, t0, dtk, k0, nt, uk, ak):
+    """Linear interpolation of the near-bed velocity and acceleration of every node at t.
+
+    ``kin_u``/``kin_a`` hold samples k0 ... k0 + rows − 1 of a storm of ``nt`` samples (the
+    driver keeps the window over every time a call of :func:`integrate` reaches); the sample
+    index and the weight are those of the whole storm, so a window gives the whole array's
+    values bit for bit. ``nt`` <= 0: the arrays are the whole storm (k0 = 0)."""
+    if nt <= 0:
+        nt = kin_u.shape[0]
+        k0 = 0
     s = (t - t0) / dtk
     if s <= 0.0:
         i0 = 0
@@ -202,9 +211,15 @@ def kinematics_at(t, kin_u, kin_a, t0, dtk, uk, ak):
             ak[i] = kin_a[0, i]
         return
     g = 1.0 - f
+    j = i0 - k0
+    if j < 0 or j + 1 >= kin_u.shape[0]:  # outside the window: the driver's error, never silent
+        for i in range(uk.shape[0]):
+            uk[i] = math.nan
+            ak[i] = math.nan
+        return
     for i in range(uk.shape[0]):
-        uk[i] = g * kin_u[i0, i] + f * kin_u[i0 + 1, i]
-        ak[i] = g * kin_a[i0, i] + f * kin_a[i0 + 1, i]
+        uk[i] = g * kin_u[j, i] + f * kin_u[j + 1, i]
+        ak[i] = g * kin_a[j, i] + f * kin_a[j + 1, i]
 
 
 @njit(cache=True)
@@ -490,6 +505,8 @@ def integrate(
     growth = settings[ST_GROWTH]
     t0k = settings[ST_T_KIN0]
     dtk = settings[ST_DT_KIN]
+    k0k = int(settings[ST_KIN_K0])
+    ntk = int(settings[ST_KIN_NT])
     pred = settings[ST_PREDICTOR]
     ctol = settings[ST_CTOL]
     mass = np.empty(ndof)
@@ -532,7 +549,7 @@ def integrate(
     n_rec = np.int64(0)  # not the literal 0: one specialisation of _record, not two
     if init:
         t = scal[SC_T]
-        kinematics_at(t, kin_u, kin_a, t0k, dtk, uk, ak)
+        kinematics_at(t, kin_u, kin_a, t0k, dtk, k0k, ntk, uk, ak)
         node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry,
                    fscr, fout)  # fmt: skip
         ok = evaluate(
@@ -552,7 +569,7 @@ def integrate(
     cap = rec.shape[0]
     n_out = t_out.shape[0]
     # initial record when the first output time is the current time
-    kinematics_at(scal[SC_T], kin_u, kin_a, t0k, dtk, uk, ak)
+    kinematics_at(scal[SC_T], kin_u, kin_a, t0k, dtk, k0k, ntk, uk, ak)
     node_loads(force_id, settings, nodes, sstate, fparams, fstate, scal[SC_T], uk, ak, v0, vcont,
                ry, fscr, fout)  # fmt: skip
     while True:
@@ -582,7 +599,7 @@ def integrate(
             dt = limit_t - t
             clipped = True
         t1 = t + dt
-        kinematics_at(t1, kin_u, kin_a, t0k, dtk, uk, ak)
+        kinematics_at(t1, kin_u, kin_a, t0k, dtk, k0k, ntk, uk, ak)
         node_loads(force_id, settings, nodes, sstate, fparams, fstate, t1, uk, ak, v0, vcont, ry,
                    fscr, fout)  # fmt: skip
         c_a = 1.0 / (beta * dt * dt)

@@ -52,7 +52,7 @@ from onbottom.dynamics.result import (
 from onbottom.dynamics.status import Status
 from onbottom.errors import InputError, ResultFileError
 from onbottom.hydro.force_model import N_FORCE_STATE, parameter_rows
-from onbottom.hydro.short_crested import NodeKinematics
+from onbottom.hydro.short_crested import NodeKinematics, WindowedNodeKinematics
 from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
@@ -259,7 +259,7 @@ class PipelineResult(SolverResult):
 
 def run_identity(
     model: PipelineModel,
-    kinematics: NodeKinematics,
+    kinematics: NodeKinematics | WindowedNodeKinematics,
     settings: PipelineSettings,
     extra: Any = None,
     force_parameters: np.ndarray | None = None,
@@ -269,21 +269,31 @@ def run_identity(
 
     ``force_parameters``: the force model's parameter rows; folded in only when they change
     along the storm (per sea state), so a constant model keeps the identity of earlier runs.
+    Windowed kinematics enter through their digest (node by node, not the arrays' bytes).
     """
     meta = {
         "model": model.describe(),
         # the output's compression is not part of the run (a run may resume with another)
         "settings": {k: v for k, v in asdict(settings).items() if k != "compression_level"},
-        "kinematics": [kinematics.t0, kinematics.dt, list(kinematics.velocity.shape)],
+        "kinematics": [kinematics.t0, kinematics.dt, list(kinematics.shape)],
         "extra": extra,
     }
-    arrays = [kinematics.velocity, kinematics.acceleration]
+    if isinstance(kinematics, WindowedNodeKinematics):
+        meta["kinematics_digest"] = kinematics.digest
+        arrays = []
+    else:
+        arrays = [kinematics.velocity, kinematics.acceleration]
     if force_parameters is not None and force_parameters.shape[0] > 1:
         arrays.append(force_parameters)
     return results_run_identity(meta, *arrays).digest
 
 
-def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSettings, r_perm_z):
+def _kernel_settings(
+    model: PipelineModel,
+    kin: NodeKinematics | WindowedNodeKinematics,
+    s: PipelineSettings,
+    r_perm_z: float,
+):
     d = model.pipe.outer_diameter
     fm = model.force_model
     st = np.zeros(K.N_SETTINGS)
@@ -308,6 +318,8 @@ def _kernel_settings(model: PipelineModel, kin: NodeKinematics, s: PipelineSetti
     st[K.ST_FIBRE] = model.fibre_distance
     st[K.ST_T_KIN0] = kin.t0
     st[K.ST_DT_KIN] = kin.dt
+    st[K.ST_KIN_K0] = 0.0
+    st[K.ST_KIN_NT] = kin.shape[0]
     st[K.ST_PEN_RED] = 1.0 if model.reductions.penetration else 0.0
     st[K.ST_EA] = model.ea
     st[K.ST_EI] = model.ei
@@ -559,9 +571,47 @@ def _finished_output(path: Path, run_id: str) -> dict[str, Any] | None:
     return None
 
 
+class _KinematicsWindow:
+    """The kinematics arrays the kernel reads: the whole storm's, or a window of windowed
+    kinematics that covers each call (settings[ST_KIN_K0] follows the window)."""
+
+    WINDOW_BYTES = 64 * 2**20
+    """Largest window [bytes] beyond the span of one call."""
+
+    def __init__(self, kin: NodeKinematics | WindowedNodeKinematics, st: np.ndarray, span: float):
+        self.kin = kin
+        self.st = st
+        self.k0 = self.k1 = 0
+        if isinstance(kin, WindowedNodeKinematics):
+            self.u = self.a = None
+            n_t, n = kin.shape
+            self.rows = max(min(n_t, self.WINDOW_BYTES // (8 * max(n, 1))), 4)
+            self.rows = max(self.rows, min(n_t, math.ceil(span / kin.dt) + 4))
+        else:
+            self.u = np.ascontiguousarray(kin.velocity, dtype=np.float32)
+            self.a = np.ascontiguousarray(kin.acceleration, dtype=np.float32)
+
+    def cover(self, t_a: float, t_b: float) -> tuple[np.ndarray, np.ndarray]:
+        """(velocity, acceleration) arrays holding every sample a call from t_a to t_b reads."""
+        kin = self.kin
+        if not isinstance(kin, WindowedNodeKinematics):
+            return self.u, self.a
+        n_t = kin.shape[0]
+        i_a = max(math.floor((t_a - kin.t0) / kin.dt) - 1, 0)
+        i_b = min(math.floor((t_b - kin.t0) / kin.dt) + 3, n_t)
+        if self.u is None or i_a < self.k0 or i_b > self.k1:
+            k1 = min(max(i_a + self.rows, i_b), n_t)
+            k0 = max(min(i_a, k1 - self.rows), 0)
+            self.u = self.a = None  # the old window goes before the new one is read
+            self.u, self.a = kin.window(k0, k1)
+            self.k0, self.k1 = k0, k1
+            self.st[K.ST_KIN_K0] = k0
+        return self.u, self.a
+
+
 def simulate_pipeline(
     model: PipelineModel,
-    kinematics: NodeKinematics,
+    kinematics: NodeKinematics | WindowedNodeKinematics,
     *,
     duration: float | None = None,
     settings: PipelineSettings | None = None,
@@ -577,8 +627,9 @@ def simulate_pipeline(
     Parameters
     ----------
     model : PipelineModel
-    kinematics : NodeKinematics
-        Near-bed velocity/acceleration normal to the pipe at every node (n_nodes columns).
+    kinematics : NodeKinematics or WindowedNodeKinematics
+        Near-bed velocity/acceleration normal to the pipe at every node (n_nodes columns);
+        windowed kinematics are read in windows as the run advances (the same results).
     duration : float or None
         Simulated time [s], > 0; None → the end of the kinematics.
     settings : PipelineSettings or None
@@ -617,7 +668,7 @@ def simulate_pipeline(
     """
     if not isinstance(model, PipelineModel):
         raise InputError(f"model = {type(model).__name__} is invalid: expected PipelineModel")
-    if not isinstance(kinematics, NodeKinematics):
+    if not isinstance(kinematics, NodeKinematics | WindowedNodeKinematics):
         raise InputError(
             f"kinematics = {type(kinematics).__name__} is invalid: expected NodeKinematics"
         )
@@ -625,9 +676,9 @@ def simulate_pipeline(
     one_of("resume", resume, ("auto", "never", "require"))
     x = model.x
     n = x.size
-    if kinematics.velocity.shape[1] != n:
+    if kinematics.shape[1] != n:
         raise InputError(
-            f"kinematics has {kinematics.velocity.shape[1]} node columns, the model"
+            f"kinematics has {kinematics.shape[1]} node columns, the model"
             f" {n} nodes: generate the kinematics at model.x"
         )
     t_end = kinematics.t_end if duration is None else positive("duration", duration)
@@ -649,8 +700,7 @@ def simulate_pipeline(
         model.current,
         model.pipe.outer_diameter,
     )
-    ku = np.ascontiguousarray(kinematics.velocity, dtype=np.float32)
-    ka = np.ascontiguousarray(kinematics.acceleration, dtype=np.float32)
+    kin = _KinematicsWindow(kinematics, st, s.chunk_duration)
     ndof = B.NDOF_NODE * n
     run_id = run_identity(model, kinematics, s, [t_end, identity_extra], fparams)
     d = model.pipe.outer_diameter
@@ -748,8 +798,8 @@ def simulate_pipeline(
         ok = K.initial_acceleration(
             soil_id, force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
-            arr["sparams"], sstate, axst, fparams, fstate, ku, ka, arr["uload"], vec, scal, nodal,
-            t_out, t_end, rec, rec_t, env,
+            arr["sparams"], sstate, axst, fparams, fstate, *kin.cover(scal[K.SC_T], scal[K.SC_T]),
+            arr["uload"], vec, scal, nodal, t_out, t_end, rec, rec_t, env,
         )  # fmt: skip
         if not ok:
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
@@ -790,7 +840,8 @@ def simulate_pipeline(
         m, status = call_literal(
             K.integrate, 2, soil_id, force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-            arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate, ku, ka,
+            arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate,
+            *kin.cover(scal[K.SC_T], t_stop),
             arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env, False,
         )  # fmt: skip
         # a full buffer returns STATUS_CHUNK before t_stop

@@ -22,11 +22,12 @@ from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.hydro.storm_kinematics import StormKinematics
 
 if TYPE_CHECKING:
-    from onbottom.hydro.short_crested import NodeKinematics
+    from onbottom.hydro.short_crested import NodeKinematics, WindowedNodeKinematics
     from onbottom.inputs.storm import Storm
 
 __all__ = [
     "BYTES_PER_NODE_HOUR",
+    "KINEMATICS_MEMORY_LIMIT",
     "SECONDS_PER_NODE_STEP",
     "PipelineStormRun",
     "RunCost",
@@ -43,6 +44,10 @@ __all__ = [
 #: working copies on top).
 SECONDS_PER_NODE_STEP = 1.0e-6
 BYTES_PER_NODE_HOUR = 0.5e6
+KINEMATICS_MEMORY_LIMIT = 256 * 2**20
+"""Storm kinematics larger than this [bytes] are kept in a temporary file and read in time
+windows as the run advances (:class:`~onbottom.hydro.short_crested.WindowedNodeKinematics`:
+the same values, the same results)."""
 
 
 def storm_duration(storm: Storm | StormKinematics) -> float:
@@ -134,12 +139,13 @@ class PipelineStormRun:
         )
 
 
-def node_kinematics(run: PipelineStormRun, seed: int) -> NodeKinematics:
+def node_kinematics(run: PipelineStormRun, seed: int) -> NodeKinematics | WindowedNodeKinematics:
     """Near-bed kinematics at the nodes of ``run`` for storm ``seed``.
 
     A spectral storm is drawn short-crested with seed ``seed``; a regular wave (travelling
     along the line at its angle) or a measured record (in phase along the line) is
-    long-crested and has no seed.
+    long-crested and has no seed. Kinematics above :data:`KINEMATICS_MEMORY_LIMIT` are
+    windowed (read from a temporary file as the run advances).
     """
     from onbottom.hydro.short_crested import long_crested_node_kinematics, pipeline_kinematics
 
@@ -147,7 +153,13 @@ def node_kinematics(run: PipelineStormRun, seed: int) -> NodeKinematics:
     if isinstance(setup.storm, StormKinematics):
         return long_crested_node_kinematics(setup.storm, model.x.size, model.x)
     storm = setup.storm.with_seed(int(seed))
-    return pipeline_kinematics(storm, setup.depth, model.x, sample_interval=setup.sample_interval)
+    return pipeline_kinematics(
+        storm,
+        setup.depth,
+        model.x,
+        sample_interval=setup.sample_interval,
+        memory_limit=KINEMATICS_MEMORY_LIMIT,
+    )
 
 
 def simulate_pipeline_storm(
@@ -174,9 +186,19 @@ def simulate_pipeline_storm(
     restart : bool
         Discard checkpoints and partial files of an earlier run and start afresh.
     """
+    kin = node_kinematics(run, seed)
+    try:
+        return _simulate(run, seed, kin, output, progress, restart)
+    finally:
+        close = getattr(kin, "close", None)
+        if close is not None:
+            close()  # a windowed storm's temporary file
+
+
+def _simulate(run, seed, kin, output, progress, restart) -> PipelineResult:
     return simulate_pipeline(
         run.model,
-        node_kinematics(run, seed),
+        kin,
         duration=run.duration,
         settings=run.settings,
         output=output,
