@@ -5,8 +5,10 @@ table (``examples/reliability_case.toml``).
 
 * ``limits``: displacement limits, each ``"0.5D"``-style (a multiple of the pipe's outer
   diameter) or a number of metres (default ``["0.5D", "10D"]``);
-* ``method``: ``"subset"`` (default), ``"importance"`` or ``"monte_carlo"``; ``target_cv``,
-  ``max_storms`` (per limit), ``block_size`` (storms per block / per subset level),
+* ``method``: ``"importance"`` (default: chosen by a coverage test), ``"subset"`` or
+  ``"monte_carlo"``; ``form_storms`` (storms per iteration of importance sampling's pilot);
+  ``target_cv`` (default 0.1), ``max_storms`` (per limit), ``block_size`` (storms per block /
+  per subset level),
   ``task_size`` (storms per Dask task), ``seed`` (openturns' generator);
 * ``storms_per_year`` (λ; required without a climate), ``design_life_years``;
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
@@ -65,15 +67,15 @@ class DesignTable(StrictModel):
 
 class ReliabilityTable(StrictModel):
     limits: list[str | float] = Field(default_factory=lambda: ["0.5D", "10D"])
-    method: Literal["subset", "importance", "monte_carlo"] = "subset"
-    target_cv: float = Field(0.2, gt=0.0, le=1.0)
+    method: Literal["subset", "importance", "monte_carlo"] = "importance"
+    target_cv: float = Field(0.1, gt=0.0, le=1.0)
     max_storms: int = Field(5000, ge=10, le=10**9, description="storms per limit [-]")
     block_size: int = Field(200, ge=10, le=10**6, description="storms per block / level")
     task_size: int = Field(4, ge=1, le=10**4, description="storms per Dask task")
     seed: int = Field(0, ge=0, le=2**32 - 1)
     storms_per_year: float | None = Field(None, gt=0.0, le=1.0e4, description="[1/year]")
     design_life_years: float = Field(25.0, gt=0.0, le=1.0e4, description="[years]")
-    form_storms: int = Field(150, ge=10, le=10**5, description="FORM search runs")
+    form_storms: int = Field(150, ge=10, le=10**5, description="pilot storms per iteration")
     climate: ClimateTable | None = None
     inputs: dict[str, float | dict[str, Any]] = Field(default_factory=dict)
     design: DesignTable | None = None

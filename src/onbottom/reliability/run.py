@@ -117,7 +117,7 @@ def run_reliability(
                     seed=setup.seed,
                     storms_per_year=rate,
                     design_life_years=setup.design_life_years,
-                    form_storms=setup.form_storms,
+                    pilot_storms=setup.form_storms,
                 )
             )
         stats = camp.stats
@@ -125,10 +125,20 @@ def run_reliability(
     if fails:
         notes.append(f"{len(fails)} storm runs raised (counted as exceedances); see the store")
     for e in estimates:
+        notes.extend(f"{e.label}: {n}" for n in e.notes)
         if e.method != "subset" and e.cv > setup.target_cv:
             notes.append(
                 f"{e.label}: CV {e.cv:.2f} above the target {setup.target_cv:g} at max_storms"
             )
+        if e.upper_bound:
+            notes.append(
+                f"{e.label}: the probability is an upper bound ({e.interval_kind}), not an estimate"
+            )
+    if setup.method == "subset" and setup.block_size < 500:
+        notes.append(
+            f"subset simulation with {setup.block_size} storms a level: biased upward and its"
+            " interval too narrow below about 500 (docs/theory/reliability.md)"
+        )
     design = None
     dstats = None
     if setup.design is not None and result is not None:

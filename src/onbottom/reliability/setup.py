@@ -127,7 +127,8 @@ class ReliabilitySetup:
     design_life_years : float
         Design life [years].
     form_storms : int
-        Storm runs of the FORM search (``method = "importance"``) [-].
+        Storms per iteration of importance sampling's cross-entropy pilot [-] (at most 4
+        iterations).
     climate : ClimateSettings or None
         The sea state drawn from a hindcast's storm climate; None: from ``inputs``.
     design : ContourDesign or None
@@ -138,8 +139,8 @@ class ReliabilitySetup:
     limits: tuple[tuple[str, float], ...]
     seabed_model: str
     inputs: tuple[UncertainParameter, ...] = ()
-    method: str = "subset"
-    target_cv: float = 0.2
+    method: str = "importance"
+    target_cv: float = 0.1
     max_storms: int = 5000
     block_size: int = 200
     task_size: int = 4

@@ -392,10 +392,14 @@ def reliability_sections(
     est = payload["estimates"]
     erows = []
     for e in est:
-        le = "≤ " if e["upper_bound"] else ""  # an upper bound: the subset levels stopped short
+        le = "≤ " if e["upper_bound"] else ""  # an upper bound (no failure, or levels short)
 
         def g(v, le=le):
             return None if v is None else f"{le}{v:.3g}"
+
+        def iv(pair):
+            lo, hi = pair
+            return "–" if lo is None or hi is None else f"[{lo:.2g}, {hi:.2g}]"
 
         erows.append(
             [
@@ -403,9 +407,13 @@ def reliability_sections(
                 e["limit"],
                 e["method"],
                 g(e["probability"]),
+                iv(e["interval"]),
                 "upper bound" if e["upper_bound"] else e["cv"],
                 g(e["annual"]),
+                iv(e["annual_interval"]),
                 g(e["lifetime"]),
+                iv(e["lifetime_interval"]),
+                e["interval_kind"],
                 e["reliability_index"],
                 e["storms"],
                 e["computed"],
@@ -421,8 +429,11 @@ def reliability_sections(
         if k in figures
     ]
     estimates = SectionContent(
-        summary="P[Y > limit] per storm by the estimator of the case, its coefficient of"
-        " variation, and per year (1 − exp(−λ p)) and design life.",
+        summary="P[Y > limit] per storm by the estimator of the case with its 95 % interval"
+        " (Monte Carlo: Clopper–Pearson, a flagged one-sided bound when no storm fails;"
+        " importance sampling: the weights' standard error; subset simulation: Au & Beck's CV"
+        " with the chains' correlation), its coefficient of variation, and per year"
+        " (1 − exp(−λ p)) and design life, the intervals mapped through the same formulas.",
         tables=[
             Table(
                 caption="Exceedance probabilities",
@@ -431,9 +442,13 @@ def reliability_sections(
                     "limit [m]",
                     "method",
                     "P per storm",
+                    "95 % interval",
                     "CV",
                     "P per year",
+                    "95 % interval (year)",
                     "P in the design life",
+                    "95 % interval (life)",
+                    "interval",
                     "β",
                     "storms",
                     "computed",
@@ -448,17 +463,30 @@ def reliability_sections(
     names = sorted({k for e in est for k in e["importance"]})
     irows = [[e["label"], e["importance_kind"]] + [e["importance"].get(n) for n in names]
              for e in est]  # fmt: skip
+    fnames = list(dict.fromkeys(k for e in est for k in e.get("failure_mean", {})))
+    frows = [[e["label"]] + [e["failure_mean"].get(n) for n in fnames] for e in est]
     importance = SectionContent(
-        summary="Sensitivity of the result to each input: FORM α² (importance sampling, seed"
-        " frozen) or squared standardised rank regression coefficients (Monte Carlo, subset"
-        " simulation; the rest, 1 − R², is the storm seed and interactions).",
+        summary="What drives failure, two measures that answer different questions."
+        " Mean standardized input given failure, E[u | failure]: how many standard deviations"
+        " from its median each input stood in the storms that failed (the failing storms of"
+        " Monte Carlo or of subset simulation's last level, the weighted failing storms of"
+        " importance sampling) — the inputs that make a storm fail. SRRC², squared"
+        " standardised rank regression coefficients of Y over an unbiased block of storms: the"
+        " share of the variance of Y over all storms each input explains (the bulk of the"
+        " response, not its tail; the rest, 1 − R², is the storm seed and interactions).",
         tables=[
             Table(
-                caption="Importance of the inputs",
+                caption="Mean standardized input given failure, E[u | failure] [SD]",
+                columns=["limit", *fnames],
+                rows=frows,
+                digits=3,
+            ),
+            Table(
+                caption="SRRC² over all storms (the bulk of the response)",
                 columns=["limit", "measure", *names],
                 rows=irows,
                 digits=3,
-            )
+            ),
         ],
         figures=[FigureRef(figures["importance"], "Importance of the inputs per limit.")]
         if "importance" in figures
