@@ -380,6 +380,8 @@ CONTRACT: dict[str, Output] = {
             "current_model": "current speed given H_s (Weibull, Gaussian copula), or null"
             " without current",
             "contour_max_hs": "highest H_s of each IFORM contour, per return period [m]",
+            "tail": "omni H_s tail guard: warnings, exponential (xi = 0) values, censored"
+            " storms and the censored fit; null without a fit",
             "files": "files written in --out (report.html among them)",
             "notes": "extrapolation, sectors without values and why",
         },

@@ -23,7 +23,10 @@ status 3), ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
 ``current_with_hs_p90`` (median and 90 % current given the row's H_s, from the joint model),
 each a list over ``return_periods``; SI), ``joint_model`` (parameters), ``current_model``
 (Weibull ``scale`` [m/s], ``shape``, copula ``rho``, ``spearman``, …; null without current),
-``contour_max_hs`` (per return period, m), ``files`` (paths written), ``notes`` (sectors
+``contour_max_hs`` (per return period, m), ``tail`` (the omnidirectional H_s fit's tail guard:
+``warnings``, ``endpoint``, the exponential (ξ = 0) fit's values and intervals, the storms
+censored by a data gap and the fit that treats them as censored; null without a fit),
+``files`` (paths written), ``notes`` (sectors
 without values and why).
 """
 
@@ -298,6 +301,21 @@ def command(
         if has_cur:
             line += "".join(f" {g(u, 3):>8}" for u in r["current"])
         click.echo(f"{r['sector']:<7}{line}")
+    t = payload.get("tail")
+    if t:
+        ex = t["exponential"]
+        vals = ", ".join(
+            f"{r:g}y {g(v, 2)} [{g(a, 2)}, {g(b, 2)}]"
+            for r, v, a, b in zip(rps, ex["value"], ex["lower"], ex["upper"], strict=True)
+        )
+        click.echo(f"omni H_s, exponential tail (xi = 0) beside the GPD: {vals}")
+        c = t["censored_fit"]
+        if c:
+            vals = ", ".join(
+                f"{r:g}y {g(v, 2)} [{g(a, 2)}, {g(b, 2)}]"
+                for r, v, a, b in zip(rps, c["value"], c["lower"], c["upper"], strict=True)
+            )
+            click.echo(f"omni H_s, censored storms as censored (xi = {c['shape']:.2f}): {vals}")
     for n in payload["notes"]:
         click.echo(f"note: {n}", err=True)
     click.echo(f"written to {out}: {len(payload['files'])} files")

@@ -123,6 +123,7 @@ class MetoceanRun:
                 None if result.current_model is None else result.current_model.as_dict()
             ),
             "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
+            "tail": None if result.tail is None else result.tail.to_dict(),
             "files": list(files or []),
             "notes": list(self.notes),
         }
@@ -196,6 +197,15 @@ def run_metocean_analysis(
             )
         except InputError as exc:
             notes.append(f"no case_{row.sector}.toml: {exc}")
+    if result.tail is not None:  # the tail guard and the censored storms
+        notes.extend(f"H_s omni: {w}" for w in result.tail.warnings)
+        if result.tail.censored_peaks:
+            notes.append(
+                f"H_s omni: {len(result.tail.censored_peaks)} storm(s) end at a data gap of"
+                " 12 h or more (peak censored: "
+                + ", ".join(f"{v:.2f} at {t}" for t, v in result.tail.censored_peaks)
+                + "); the censored fit is in the JSON key tail.censored_fit"
+            )
     return MetoceanRun(result=result, rows=rows, notes=notes, fragments=fragments, source=src)
 
 

@@ -363,6 +363,7 @@ def estimate_exceedance(
     else:
         free = np.r_[np.ones(d, dtype=bool), False]  # the seed keeps its own distribution
         m = min(n_pilot, n_max)
+        iters = min(iters, max(1, (n_max // 2) // m))  # the pilot takes half the cap at most
         centre, pilot_calls, first, reached = _sampling.ce_centre(g, d + 1, rng, m, iters, free)
         origin_fails = float(np.mean(first[1] <= 0.0)) >= 0.1
         if origin_fails:  # failure is not rare: Monte Carlo, the pilot's first block included
@@ -383,7 +384,7 @@ def estimate_exceedance(
                 )
             design = dict(zip(names, (float(v) for v in to_x(list(centre[:d]))), strict=True))
             r = _sampling.importance(
-                g, d + 1, rng, centre, block, max(10, n_max - pilot_calls), target_cv, confidence
+                g, d + 1, rng, centre, block, max(1, n_max - pilot_calls), target_cv, confidence
             )
     p = r.probability
     annual = _annual(p, storms_per_year)
