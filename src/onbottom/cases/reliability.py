@@ -10,7 +10,9 @@ table (``examples/reliability_case.toml``).
   ``target_cv`` (default 0.1), ``max_storms`` (per limit), ``block_size`` (storms per block /
   per subset level),
   ``task_size`` (storms per Dask task), ``seed`` (openturns' generator);
-* ``storms_per_year`` (λ; required without a climate), ``design_life_years``;
+* ``storms_per_year`` (λ; required without a climate), ``design_life_years``,
+  ``safety_class`` (``"low"``, ``"medium"`` (default) or ``"high"``: the DNV-OS-F101 target
+  annual failure probability the estimates are compared with);
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
   ``sectors`` (1: omnidirectional, waves from the case's direction), ``pipe_heading_deg``,
   ``storm_rate`` (the POT threshold's target storms per year), ``current`` (true: the current
@@ -75,6 +77,7 @@ class ReliabilityTable(StrictModel):
     seed: int = Field(0, ge=0, le=2**32 - 1)
     storms_per_year: float | None = Field(None, gt=0.0, le=1.0e4, description="[1/year]")
     design_life_years: float = Field(25.0, gt=0.0, le=1.0e4, description="[years]")
+    safety_class: Literal["low", "medium", "high"] = "medium"
     form_storms: int = Field(150, ge=10, le=10**5, description="pilot storms per iteration")
     climate: ClimateTable | None = None
     inputs: dict[str, float | dict[str, Any]] = Field(default_factory=dict)
@@ -168,6 +171,7 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
         seed=t.seed,
         storms_per_year=t.storms_per_year,
         design_life_years=t.design_life_years,
+        safety_class=t.safety_class,
         form_storms=t.form_storms,
         climate=climate,
         design=design,

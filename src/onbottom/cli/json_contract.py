@@ -430,6 +430,9 @@ CONTRACT: dict[str, Output] = {
             "design": "response-based design on the IFORM contour (return_period, fractile,"
             " points, governing, design_displacement [m], f109), or null",
             "campaign": "counters of the storm runs",
+            "target": "annual probability per limit against DNV-OS-F101's target for the"
+            " safety class: source, safety_class, annual_target, limits [{label, annual, upper,"
+            " verdict pass|fail|undecided}]",
             "files": "files written in --out (stores, figures, reliability.json, report.html)",
             "notes": "CV above target, failed runs",
         },

@@ -23,7 +23,8 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``failure_mean_kind``, ``pilot_storms``, ``notes``), ``design`` (``return_period``,
 ``fractile``, ``points``, ``governing``, ``design_displacement`` [m], ``f109``) or null,
 ``campaign`` (``requested``, ``computed``, ``reused``, ``failed``, ``seconds_per_storm``),
-``files``, ``notes``.
+``target`` (the annual probabilities against DNV-OS-F101's target for the safety class: pass,
+fail or undecided by the 95 % interval), ``files``, ``notes``.
 """
 
 from __future__ import annotations
@@ -227,6 +228,13 @@ def command(
         click.echo(f"{payload['case']}: {payload['storms_per_year']:.3g} storms/year")
         for e in payload["estimates"]:
             click.echo(_estimate_lines(e))
+        t = payload["target"]
+        for row in t["limits"]:
+            click.echo(
+                f"  {row['label']}: annual {row['annual']:.3g} (95 % upper {row['upper']:.3g})"
+                f" against {t['annual_target']:.0e} ({t['safety_class']} safety class,"
+                f" {t['source']}): {row['verdict']}"
+            )
         d = payload["design"]
         if d is not None:
             g, f = d["governing"], d["f109"]

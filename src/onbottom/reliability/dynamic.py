@@ -362,7 +362,7 @@ def estimate_exceedance(
         r = _sampling.subset(g, d + 1, rng, block, n_max, confidence)
     else:
         free = np.r_[np.ones(d, dtype=bool), False]  # the seed keeps its own distribution
-        m = min(n_pilot, n_max)
+        m = min(n_pilot, max(10, n_max // 2))
         iters = min(iters, max(1, (n_max // 2) // m))  # the pilot takes half the cap at most
         centre, pilot_calls, first, reached = _sampling.ce_centre(g, d + 1, rng, m, iters, free)
         origin_fails = float(np.mean(first[1] <= 0.0)) >= 0.1
@@ -386,6 +386,12 @@ def estimate_exceedance(
             r = _sampling.importance(
                 g, d + 1, rng, centre, block, max(1, n_max - pilot_calls), target_cv, confidence
             )
+            if r.failures == 0:  # no estimate: the pilot's unbiased block bounds p
+                hi = _sampling.clopper_pearson(0, first[0].shape[0], confidence)[1]
+                r.probability, r.low, r.high, r.upper_bound = hi, 0.0, hi, True
+                r.interval_kind = (
+                    "one-sided upper bound from the pilot's unbiased block (no failing storm)"
+                )
     p = r.probability
     annual = _annual(p, storms_per_year)
     lo_a, hi_a = _annual(r.low, storms_per_year), _annual(r.high, storms_per_year)

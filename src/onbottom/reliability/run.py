@@ -20,12 +20,41 @@ from onbottom.reliability.setup import ReliabilitySetup
 from onbottom.reliability.storm_model import StormModel
 
 __all__ = [
+    "F101_TARGETS",
     "ReliabilityRun",
     "planned_storms",
     "require_packages",
     "run_payload",
     "run_reliability",
+    "target_comparison",
 ]
+
+
+F101_TARGETS = {"low": 1.0e-3, "medium": 1.0e-4, "high": 1.0e-5}
+"""Nominal target annual failure probabilities per pipeline of DNV-OS-F101 (2013), Sec. 2,
+Table 2-5, for the ultimate limit state (ULS), per safety class (the SLS row is 1e-2, 1e-3,
+1e-3). F109's stability criteria are compared with the ULS row here."""
+
+F101_SOURCE = "DNV-OS-F101 (2013) Sec. 2 Table 2-5, ULS, annual per pipeline"
+
+
+def target_comparison(estimates: list[ExceedanceEstimate], safety_class: str) -> dict[str, Any]:
+    """Each estimate's annual probability against the F101 target of ``safety_class``:
+    ``pass`` when the 95 % interval's upper end is below the target, ``fail`` when its lower end
+    is above it, ``undecided`` otherwise (the estimate cannot tell)."""
+    target = F101_TARGETS[safety_class]
+    rows = []
+    for e in estimates:
+        lo, hi = e.annual_interval
+        hi = e.annual if not math.isfinite(hi) else hi
+        verdict = "pass" if hi <= target else "fail" if lo > target else "undecided"
+        rows.append({"label": e.label, "annual": e.annual, "upper": hi, "verdict": verdict})
+    return {
+        "source": F101_SOURCE,
+        "safety_class": safety_class,
+        "annual_target": target,
+        "limits": rows,
+    }
 
 
 @dataclass
@@ -41,6 +70,7 @@ class ReliabilityRun:
     design_stats: CampaignStats | None
     climate: dict[str, Any] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    target: dict[str, Any] = field(default_factory=dict)
 
 
 def run_reliability(
@@ -190,6 +220,7 @@ def run_reliability(
         design_stats=dstats,
         climate=info,
         notes=notes,
+        target=target_comparison(estimates, setup.safety_class),
     )
 
 
@@ -224,7 +255,8 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
     ``case``, ``out`` and ``files``): ``success`` (false when a storm run failed numerically),
     ``diameter`` [m], ``storms_per_year`` [1/year], ``inputs`` (the random inputs, the storm
     seed last), ``climate``, ``estimates``, ``design``, ``campaign`` (requested, computed,
-    reused, failed, seconds_per_storm [s]) and ``notes``."""
+    reused, failed, seconds_per_storm [s]), ``target`` (:func:`target_comparison`) and
+    ``notes``."""
     stats = [s for s in (r.stats, r.design_stats) if s is not None]
     computed = sum(s.computed for s in stats)
     failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
@@ -245,6 +277,7 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
                 sum(s.compute_seconds for s in stats) / computed if computed else math.nan
             ),
         },
+        "target": r.target,
         "notes": r.notes,
     }
 

@@ -129,6 +129,10 @@ class ReliabilitySetup:
     form_storms : int
         Storms per iteration of importance sampling's cross-entropy pilot [-] (at most 4
         iterations).
+    safety_class : str
+        ``"low"``, ``"medium"`` or ``"high"``: the DNV-OS-F101 target annual failure
+        probability the estimates are compared with
+        (:data:`onbottom.reliability.run.F101_TARGETS`).
     climate : ClimateSettings or None
         The sea state drawn from a hindcast's storm climate; None: from ``inputs``.
     design : ContourDesign or None
@@ -148,6 +152,7 @@ class ReliabilitySetup:
     storms_per_year: float | None = None
     design_life_years: float = 25.0
     form_storms: int = 150
+    safety_class: str = "medium"
     climate: ClimateSettings | None = None
     design: ContourDesign | None = None
 
@@ -159,6 +164,7 @@ class ReliabilitySetup:
         for label, value in self.limits:
             positive(f"ReliabilitySetup.limits[{label!r}]", value)
         one_of("ReliabilitySetup.method", self.method, METHODS)
+        one_of("ReliabilitySetup.safety_class", self.safety_class, ("low", "medium", "high"))
         in_range("ReliabilitySetup.target_cv", self.target_cv, 0.0, 1.0, low_inclusive=False)
         for name in ("max_storms", "block_size", "task_size", "form_storms"):
             integer(f"ReliabilitySetup.{name}", getattr(self, name), 1)
