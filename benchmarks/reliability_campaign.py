@@ -65,9 +65,9 @@ def main() -> None:
     from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
 
     setup = load_reliability_case(CASE)
-    res = analyse_hindcast(read_hindcast(setup.hindcast_path()), MetoceanOptions(sectors=1))
-    climate = StormClimate.from_result(res, current=setup.table.climate.current)
-    user = setup.inputs()
+    res = analyse_hindcast(read_hindcast(setup.climate.hindcast), MetoceanOptions(sectors=1))
+    climate = StormClimate.from_result(res, current=setup.climate.current)
+    user = list(setup.inputs)
     model = StormModel(
         setup.storm,
         inputs=tuple(p.name for p in user),
