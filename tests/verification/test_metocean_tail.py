@@ -93,3 +93,18 @@ def test_synthetic_record_has_no_censored_storm():
     hc = read_hindcast(EXAMPLES / "hindcast_synthetic.csv")
     r = analyse_hindcast(hc, MetoceanOptions(sectors=1, contour_points=16))
     assert r.tail.censored_peaks == [] and r.tail.censored_fit == {}
+
+
+def test_ndbc_contour_check_shows_why_the_contour_exceeds_the_pot_value(ndbc):
+    from onbottom.metocean.joint import marginal_tail_check
+
+    hc, r = ndbc
+    pot = float(r.hs["omni"].value[-1])
+    c = marginal_tail_check(r.joint, hc.hs[hc.observed], 100.0, hc.step_hours, pot)
+    assert c["ratio"] == pytest.approx(10.89 / 7.44, rel=0.01)
+    # the moment fit follows the data to 1e-4 per sea state (within a factor 2) ...
+    for lv in c["levels"][:3]:
+        assert 0.5 < lv["fitted"] / lv["empirical"] < 2.0
+    # ... the maximum-likelihood Weibull does not (the bulk governs it), and its contour is low
+    assert c["levels"][1]["mle"] < 0.01 * c["levels"][1]["empirical"]
+    assert c["mle_contour_max_hs"] < pot < c["contour_max_hs"]

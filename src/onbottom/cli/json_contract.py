@@ -382,6 +382,9 @@ CONTRACT: dict[str, Output] = {
             "contour_max_hs": "highest H_s of each IFORM contour, per return period [m]",
             "tail": "omni H_s tail guard: warnings, exponential (xi = 0) values, censored"
             " storms and the censored fit; null without a fit",
+            "contour_check": "H_s marginal's tail against the data at the longest return period:"
+            " levels [{hs, empirical, fitted, mle}], contour_max_hs, pot_value, ratio, alpha,"
+            " mle_contour_max_hs, mle; null without a POT value",
             "files": "files written in --out (report.html among them)",
             "notes": "extrapolation, sectors without values and why",
         },

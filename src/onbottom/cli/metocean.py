@@ -26,8 +26,10 @@ each a list over ``return_periods``; SI), ``joint_model`` (parameters), ``curren
 ``contour_max_hs`` (per return period, m), ``tail`` (the omnidirectional H_s fit's tail guard:
 ``warnings``, ``endpoint``, the exponential (ξ = 0) fit's values and intervals, the storms
 censored by a data gap and the fit that treats them as censored; null without a fit),
-``files`` (paths written), ``notes`` (sectors
-without values and why).
+``contour_check`` (the H_s marginal's tail against the data: empirical and fitted exceedance at
+the top levels, the longest return period's contour maximum against the POT value and their
+ratio, and the contour with a maximum-likelihood Weibull), ``files`` (paths written),
+``notes`` (sectors without values and why).
 """
 
 from __future__ import annotations
@@ -316,6 +318,17 @@ def command(
                 for r, v, a, b in zip(rps, c["value"], c["lower"], c["upper"], strict=True)
             )
             click.echo(f"omni H_s, censored storms as censored (xi = {c['shape']:.2f}): {vals}")
+    cc = payload.get("contour_check")
+    if cc:
+        lv = ", ".join(
+            f"{r['hs']:.2f} m {r['empirical']:.1e}/{r['fitted']:.1e}" for r in cc["levels"]
+        )
+        click.echo(
+            f"{cc['return_period']:g}-year contour max H_s {cc['contour_max_hs']:.2f} m ="
+            f" {cc['ratio']:.2f} x POT {cc['pot_value']:.2f} m (alpha {cc['alpha']:.1e} per"
+            f" state; MLE Weibull: {cc['mle_contour_max_hs']:.2f} m); H_s exceedance"
+            f" empirical/fitted: {lv}"
+        )
     for n in payload["notes"]:
         click.echo(f"note: {n}", err=True)
     click.echo(f"written to {out}: {len(payload['files'])} files")

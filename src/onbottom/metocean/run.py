@@ -93,6 +93,19 @@ class MetoceanRun:
         """True when the omnidirectional H_s has a finite value at every return period."""
         return bool(np.all(np.isfinite(self.result.hs["omni"].value)))
 
+    def contour_check(self) -> dict[str, Any] | None:
+        """:func:`~onbottom.metocean.joint.marginal_tail_check` at the longest return period
+        (None when the omnidirectional H_s has no value there)."""
+        from onbottom.metocean.joint import marginal_tail_check
+
+        lv = self.result.hs["omni"]
+        rp = float(max(self.options.return_periods))
+        v = float(lv.value[list(lv.return_periods).index(rp)])
+        if not math.isfinite(v):
+            return None
+        hc = self.hindcast
+        return marginal_tail_check(self.result.joint, hc.hs[hc.observed], rp, hc.step_hours, v)
+
     def as_dict(self, files: list[str] | None = None) -> dict[str, Any]:
         """The ``onbottom metocean --json`` summary (SI; NaN written as None); ``files``: the
         paths written (see the command's documentation for the keys)."""
@@ -124,6 +137,7 @@ class MetoceanRun:
             ),
             "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
             "tail": None if result.tail is None else result.tail.to_dict(),
+            "contour_check": self.contour_check(),
             "files": list(files or []),
             "notes": list(self.notes),
         }
