@@ -10,7 +10,8 @@ Writes into ``--out``:
   tables of a ``stability`` / ``storm`` case file;
 * ``metocean.nc`` — return values, intervals, thresholds, storm counts, GPD parameters,
   IFORM contours, with provenance attributes;
-* ``return_levels.png``, ``contours.png`` — the figures;
+* ``return_levels.png``, ``contours.png``, ``threshold.png`` (mean residual life and threshold
+  stability of the omnidirectional H_s) — the figures;
 * ``report.html`` (+ ``tables/*.csv``) — the report page: the record, storms and return values,
   joint model and contours, the design table, assumptions and provenance
   (:mod:`onbottom.report.pages`).
@@ -128,11 +129,16 @@ def run_metocean(
     if figures:
         import matplotlib.pyplot as plt
 
-        from onbottom.plotting.metocean import plot_contours, plot_return_levels
+        from onbottom.plotting.metocean import (
+            plot_contours,
+            plot_return_levels,
+            plot_threshold_choice,
+        )
 
         for name, fig in (
             ("return_levels.png", plot_return_levels(run.result, title=hindcast_path.name)),
             ("contours.png", plot_contours(run.result)),
+            ("threshold.png", plot_threshold_choice(run.result)),
         ):
             fig.savefig(out / name, dpi=110)
             plt.close(fig)
