@@ -108,3 +108,20 @@ def test_ndbc_contour_check_shows_why_the_contour_exceeds_the_pot_value(ndbc):
     # ... the maximum-likelihood Weibull does not (the bulk governs it), and its contour is low
     assert c["levels"][1]["mle"] < 0.01 * c["levels"][1]["empirical"]
     assert c["mle_contour_max_hs"] < pot < c["contour_max_hs"]
+
+
+def test_tp_given_hs_checked_on_the_storm_peaks(ndbc):
+    from onbottom.metocean.joint import tp_at_peaks_check
+
+    hc, r = ndbc
+    idx = r.hs["omni"].storms.index
+    c = tp_at_peaks_check(r.joint, hc.hs[idx], hc.tp[idx])
+    # NDBC: the model's T_p is too long at the peaks by 0.79 SD; KS rejects it
+    assert c["n"] == 28 and c["mean_z"] == pytest.approx(-0.79, abs=0.01)
+    assert c["ks_p"] < 0.01
+    # by construction: peaks drawn from the model itself pass
+    rng = np.random.default_rng(3)
+    h = rng.uniform(4.0, 7.0, 400)
+    t = r.joint.tp_quantile(h, rng.uniform(size=400))
+    c0 = tp_at_peaks_check(r.joint, h, t)
+    assert abs(c0["mean_z"]) < 0.2 and c0["ks_p"] > 0.001

@@ -384,7 +384,8 @@ CONTRACT: dict[str, Output] = {
             " storms and the censored fit; null without a fit",
             "contour_check": "H_s marginal's tail against the data at the longest return period:"
             " levels [{hs, empirical, fitted, mle}], contour_max_hs, pot_value, ratio, alpha,"
-            " mle_contour_max_hs, mle; null without a POT value",
+            " mle_contour_max_hs, mle, tp_at_peaks {n, mean_z, std_z, ks, ks_p} (T_p | H_s"
+            " checked on the storm peaks); null without a POT value",
             "files": "files written in --out (report.html among them)",
             "notes": "extrapolation, sectors without values and why",
         },

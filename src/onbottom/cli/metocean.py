@@ -335,6 +335,11 @@ def command(
             f" state; MLE Weibull: {cc['mle_contour_max_hs']:.2f} m); H_s exceedance"
             f" empirical/fitted: {lv}"
         )
+        tz = cc["tp_at_peaks"]
+        click.echo(
+            f"T_p | H_s at the {tz['n']} storm peaks: mean z {tz['mean_z']:+.2f} SD (< 0: the"
+            f" model's T_p too long), KS {tz['ks']:.2f} (p = {tz['ks_p']:.2g})"
+        )
     for n in payload["notes"]:
         click.echo(f"note: {n}", err=True)
     click.echo(f"written to {out}: {len(payload['files'])} files")

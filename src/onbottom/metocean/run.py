@@ -96,7 +96,7 @@ class MetoceanRun:
     def contour_check(self) -> dict[str, Any] | None:
         """:func:`~onbottom.metocean.joint.marginal_tail_check` at the longest return period
         (None when the omnidirectional H_s has no value there)."""
-        from onbottom.metocean.joint import marginal_tail_check
+        from onbottom.metocean.joint import marginal_tail_check, tp_at_peaks_check
 
         lv = self.result.hs["omni"]
         rp = float(max(self.options.return_periods))
@@ -104,7 +104,10 @@ class MetoceanRun:
         if not math.isfinite(v):
             return None
         hc = self.hindcast
-        return marginal_tail_check(self.result.joint, hc.hs[hc.observed], rp, hc.step_hours, v)
+        out = marginal_tail_check(self.result.joint, hc.hs[hc.observed], rp, hc.step_hours, v)
+        idx = lv.storms.index
+        out["tp_at_peaks"] = tp_at_peaks_check(self.result.joint, hc.hs[idx], hc.tp[idx])
+        return out
 
     def as_dict(self, files: list[str] | None = None) -> dict[str, Any]:
         """The ``onbottom metocean --json`` summary (SI; NaN written as None); ``files``: the
