@@ -164,6 +164,12 @@ def run_reliability(
             notes.append(
                 f"{e.label}: the probability is an upper bound ({e.interval_kind}), not an estimate"
             )
+    peak_h = max(st.duration_s for st in setup.storm.storm.stages) / 3600.0
+    if peak_h < 3.0 - 1e-9:
+        notes.append(
+            f"storm peak {peak_h:g} h: shorter than DNV-RP-F109's 3-h design sea state;"
+            " the probabilities are for that shorter storm (peak_hours in the case)"
+        )
     if setup.method == "subset" and setup.block_size < 500:
         notes.append(
             f"subset simulation with {setup.block_size} storms a level: biased upward and its"
