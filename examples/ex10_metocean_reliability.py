@@ -107,7 +107,8 @@ imp = estimate_failure_probability(limit_state, inputs, method="importance", tar
 annual = climate.annual_probability(imp.probability)
 print(
     f"importance sampling: p per storm = {imp.probability:.3g} (CV {imp.cv:.3f},"
-    f" {imp.evaluations} checks); annual = {annual:.3g}; 50 years ="
+    f" {imp.evaluations} checks, 95 % interval [{imp.low:.3g}, {imp.high:.3g}]);"
+    f" annual = {annual:.3g}; 50 years ="
     f" {lifetime_probability(annual, 50.0):.3g}"
 )
 

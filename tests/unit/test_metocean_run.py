@@ -75,7 +75,9 @@ def test_no_fragments_without_current_or_the_f109_periods():
     hc = _hindcast(current=False)
     r = run_metocean_analysis(hc, MetoceanOptions(sectors=1, return_periods=(1.0, 10.0)))
     assert r.fragments == {}
-    assert r.notes == [
+    # ξ̂ = −0.38 from 29 storms of 10 years: the tail guard's two notes come after
+    assert all(n.startswith("H_s omni: ") for n in r.notes[1:]) and len(r.notes) == 3
+    assert r.notes[:1] == [
         "no case_*.toml: the F109 combinations need the 10- and 100-year values and a"
         " current in the hindcast"
     ]  # 10 years from 10 years: no extrapolation note
@@ -116,7 +118,7 @@ def test_sector_without_storms_gets_notes_not_a_fragment():
         "H_s E: 0 storms above u = inf (< 10)",
         "no case_E.toml: sector E: too few storms for 10- and 100-year values (NaN in the table)",
     ]
-    assert [n.split(":")[0] for n in r.notes[3:]] == [
+    assert [n.split(":")[0] for n in r.notes[3:] if not n.startswith("H_s omni")] == [
         "H_s S",
         "no case_S.toml",
         "H_s W",

@@ -146,6 +146,12 @@ def test_joint_fit_recovers_the_generating_model():
     for h in (1.0, 2.0, 3.0, 4.0):
         for q in (0.05, 0.5, 0.95):
             assert fit.tp_quantile(h, q) == pytest.approx(float(true.tp_quantile(h, q)), rel=0.015)
+    # storm-peak H_s, beyond most of the data (64, 4 and 1 sea states above 4.5, 5.5, 6.5 m):
+    # within 3 % at 5 m; at 6-7 m the fit drifts long (median +1.8 %, +2.7 %; 95 % up to +4.9 %,
+    # docs/theory/metocean.md) — checked against the 5-9 % scale found on the buoy record
+    for h, tol in ((5.0, 0.03), (6.0, 0.1), (7.0, 0.1)):
+        for q in (0.05, 0.5, 0.95):
+            assert fit.tp_quantile(h, q) == pytest.approx(float(true.tp_quantile(h, q)), rel=tol)
 
 
 @pytest.mark.slow

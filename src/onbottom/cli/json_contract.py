@@ -410,6 +410,12 @@ CONTRACT: dict[str, Output] = {
             "current_model": "current speed given H_s (Weibull, Gaussian copula), or null"
             " without current",
             "contour_max_hs": "highest H_s of each IFORM contour, per return period [m]",
+            "tail": "omni H_s tail guard: warnings, exponential (xi = 0) values, censored"
+            " storms and the censored fit; null without a fit",
+            "contour_check": "H_s marginal's tail against the data at the longest return period:"
+            " levels [{hs, empirical, fitted, mle}], contour_max_hs, pot_value, ratio, alpha,"
+            " mle_contour_max_hs, mle, tp_at_peaks {n, mean_z, std_z, ks, ks_p} (T_p | H_s"
+            " checked on the storm peaks); null without a POT value",
             "files": "files written in --out (report.html among them)",
             "notes": "extrapolation, sectors without values and why",
         },
@@ -458,6 +464,9 @@ CONTRACT: dict[str, Output] = {
             "design": "response-based design on the IFORM contour (return_period, fractile,"
             " points, governing, design_displacement [m], f109), or null",
             "campaign": "counters of the storm runs",
+            "target": "annual probability per limit against DNV-OS-F101's target for the"
+            " safety class: source, safety_class, annual_target, limits [{label, annual, upper,"
+            " verdict pass|fail|undecided}]",
             "files": "files written in --out (stores, figures, reliability.json, report.html)",
             "notes": "CV above target, failed runs",
         },
@@ -476,14 +485,24 @@ CONTRACT: dict[str, Output] = {
                 "reliability_index": "-Phi^-1(p), or null",
                 "history": "[storms, probability, cv] per block or subset level",
                 "curve": "[displacement m, probability per storm] of the subset levels",
-                "importance": "input -> sensitivity measure",
-                "importance_kind": "which measure (FORM alpha^2, SRRC^2, pilot centre)",
-                "design_point": "FORM design point (importance sampling), else empty",
+                "importance": "input -> SRRC^2 over all storms (the bulk of the response)",
+                "importance_kind": "which measure (SRRC^2 over the first unbiased block)",
+                "design_point": "importance sampling's centre [input units], else empty",
                 "upper_bound": "true when probability is only an upper bound (no CV)",
                 "stopped_early": (
                     "storms stopped just above the largest limit (verdict known; their"
                     " displacement a lower bound)"
                 ),
+                "interval": "[low, high] confidence interval of probability (per storm)",
+                "annual_interval": "[low, high] of annual",
+                "lifetime_interval": "[low, high] of lifetime",
+                "interval_kind": "how the interval was made (Clopper-Pearson, weights, bound)",
+                "confidence": "level of the intervals (0.95)",
+                "failures": "failing storms of the estimate",
+                "failure_mean": "input -> E[u | failure]: mean standardized input of failures",
+                "failure_mean_kind": "what failure_mean is (words)",
+                "pilot_storms": "storms of importance sampling's pilot (in storms)",
+                "notes": "fallbacks and warnings of this estimate",
             },
             "campaign": {
                 "requested": "storm runs asked for",

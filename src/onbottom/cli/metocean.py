@@ -10,7 +10,8 @@ Writes into ``--out``:
   tables of a ``stability`` / ``storm`` case file;
 * ``metocean.nc`` — return values, intervals, thresholds, storm counts, GPD parameters,
   IFORM contours, with provenance attributes;
-* ``return_levels.png``, ``contours.png`` — the figures;
+* ``return_levels.png``, ``contours.png``, ``threshold.png`` (mean residual life and threshold
+  stability of the omnidirectional H_s) — the figures;
 * ``report.html`` (+ ``tables/*.csv``) — the report page: the record, storms and return values,
   joint model and contours, the design table, assumptions and provenance
   (:mod:`onbottom.report.pages`).
@@ -23,8 +24,13 @@ status 3), ``hindcast`` (path), ``years``, ``step_hours``, ``sectors`` (labels),
 ``current_with_hs_p90`` (median and 90 % current given the row's H_s, from the joint model),
 each a list over ``return_periods``; SI), ``joint_model`` (parameters), ``current_model``
 (Weibull ``scale`` [m/s], ``shape``, copula ``rho``, ``spearman``, …; null without current),
-``contour_max_hs`` (per return period, m), ``files`` (paths written), ``notes`` (sectors
-without values and why).
+``contour_max_hs`` (per return period, m), ``tail`` (the omnidirectional H_s fit's tail guard:
+``warnings``, ``endpoint``, the exponential (ξ = 0) fit's values and intervals, the storms
+censored by a data gap and the fit that treats them as censored; null without a fit),
+``contour_check`` (the H_s marginal's tail against the data: empirical and fitted exceedance at
+the top levels, the longest return period's contour maximum against the POT value and their
+ratio, and the contour with a maximum-likelihood Weibull), ``files`` (paths written),
+``notes`` (sectors without values and why).
 """
 
 from __future__ import annotations
@@ -137,11 +143,16 @@ def run_metocean(
         if figures:
             import matplotlib.pyplot as plt
 
-            from onbottom.plotting.metocean import plot_contours, plot_return_levels
+            from onbottom.plotting.metocean import (
+                plot_contours,
+                plot_return_levels,
+                plot_threshold_choice,
+            )
 
             for name, fig in (
                 ("return_levels.png", plot_return_levels(run.result, title=hindcast_path.name)),
                 ("contours.png", plot_contours(run.result)),
+                ("threshold.png", plot_threshold_choice(run.result)),
             ):
                 try:
                     save_figure(fig, out / name, group=group, dpi=110)
@@ -314,6 +325,37 @@ def command(
         if has_cur:
             line += "".join(f" {g(u, 3):>8}" for u in r["current"])
         click.echo(f"{r['sector']:<7}{line}")
+    t = payload.get("tail")
+    if t:
+        ex = t["exponential"]
+        vals = ", ".join(
+            f"{r:g}y {g(v, 2)} [{g(a, 2)}, {g(b, 2)}]"
+            for r, v, a, b in zip(rps, ex["value"], ex["lower"], ex["upper"], strict=True)
+        )
+        click.echo(f"omni H_s, exponential tail (xi = 0) beside the GPD: {vals}")
+        c = t["censored_fit"]
+        if c:
+            vals = ", ".join(
+                f"{r:g}y {g(v, 2)} [{g(a, 2)}, {g(b, 2)}]"
+                for r, v, a, b in zip(rps, c["value"], c["lower"], c["upper"], strict=True)
+            )
+            click.echo(f"omni H_s, censored storms as censored (xi = {c['shape']:.2f}): {vals}")
+    cc = payload.get("contour_check")
+    if cc:
+        lv = ", ".join(
+            f"{r['hs']:.2f} m {r['empirical']:.1e}/{r['fitted']:.1e}" for r in cc["levels"]
+        )
+        click.echo(
+            f"{cc['return_period']:g}-year contour max H_s {cc['contour_max_hs']:.2f} m ="
+            f" {cc['ratio']:.2f} x POT {cc['pot_value']:.2f} m (alpha {cc['alpha']:.1e} per"
+            f" state; MLE Weibull: {cc['mle_contour_max_hs']:.2f} m); H_s exceedance"
+            f" empirical/fitted: {lv}"
+        )
+        tz = cc["tp_at_peaks"]
+        click.echo(
+            f"T_p | H_s at the {tz['n']} storm peaks: mean z {tz['mean_z']:+.2f} SD (< 0: the"
+            f" model's T_p too long), KS {tz['ks']:.2f} (p = {tz['ks_p']:.2g})"
+        )
     for n in payload["notes"]:
         click.echo(f"note: {n}", err=True)
     click.echo(f"written to {out}: {len(payload['files'])} files")

@@ -18,10 +18,14 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``probability`` (per storm), ``cv``, ``method``, ``storms``, ``computed``, ``failed_runs``,
 ``annual``, ``lifetime``, ``reliability_index``, ``history`` ([storms, probability, cv]),
 ``curve`` ([displacement m, probability]), ``importance``, ``importance_kind``,
-``design_point``, ``upper_bound``, ``stopped_early``), ``design`` (``return_period``,
-``fractile``, ``points``, ``governing``, ``design_displacement`` [m], ``f109``) or null,
+``design_point``, ``upper_bound``, ``interval``, ``annual_interval``, ``lifetime_interval``,
+``interval_kind``, ``confidence``, ``failures``, ``failure_mean`` (E[u | failure] per input),
+``failure_mean_kind``, ``pilot_storms``, ``stopped_early``, ``notes``), ``design``
+(``return_period``, ``fractile``, ``points``, ``governing``, ``design_displacement`` [m],
+``f109``) or null,
 ``campaign`` (``requested``, ``computed``, ``reused``, ``failed``, ``seconds_per_storm``),
-``files``, ``notes``.
+``target`` (the annual probabilities against DNV-OS-F101's target for the safety class: pass,
+fail or undecided by the 95 % interval), ``files``, ``notes``.
 """
 
 from __future__ import annotations
@@ -192,6 +196,38 @@ def _figures(r: Any, out: Path, title: str, files: list[str]) -> dict[str, str]:
     return names
 
 
+def _fmt_interval(iv: list) -> str:
+    lo, hi = (float("nan") if v is None else v for v in iv)
+    return f"[{lo:.2g}, {hi:.2g}]"
+
+
+def _estimate_lines(e: dict) -> str:
+    """The text lines of one estimate: probabilities with their intervals, what drives failure."""
+    pct = f"{100 * e['confidence']:g} %"
+    if e["upper_bound"]:
+        head = f"<= {e['probability']:.3g} (an upper bound: {e['interval_kind']})"
+    else:
+        cv = "-" if e["cv"] is None else f"{e['cv']:.2f}"
+        head = f"{e['probability']:.3g} {_fmt_interval(e['interval'])} (CV {cv})"
+    lines = [
+        f"  P[Y > {e['label']}] per storm {head}, {e['method']}, {e['storms']} storms,"
+        f" {e['failures']} failing",
+        f"    per year {e['annual']:.3g} {_fmt_interval(e['annual_interval'])};"
+        f" life {e['lifetime']:.3g} {_fmt_interval(e['lifetime_interval'])} ({pct} intervals)",
+    ]
+    if e.get("stopped_early"):
+        lines.append(
+            f"    {e['stopped_early']} storms stopped early, beyond the largest limit (their"
+            " verdict is the whole storm's)"
+        )
+    if e["failure_mean"]:
+        fm = ", ".join(f"{k} {v:+.2f}" for k, v in e["failure_mean"].items())
+        lines.append(f"    given failure, mean standardized input (SDs from median): {fm}")
+    imp = ", ".join(f"{k} {v:.2f}" for k, v in e["importance"].items())
+    lines.append(f"    SRRC^2 shares of R^2 over all storms (the bulk of the response): {imp}")
+    return "\n".join(lines)
+
+
 @click.command("reliability")
 @click.argument("case", type=click.Path(dir_okay=False, path_type=Path))
 @click.option(
@@ -255,18 +291,14 @@ def command(
     else:
         click.echo(f"{payload['case']}: {payload['storms_per_year']:.3g} storms/year")
         for e in payload["estimates"]:
-            cv = "bound" if e["upper_bound"] else f"CV {e['cv']:.2f}" if e["cv"] else "CV -"
+            click.echo(_estimate_lines(e))
+        t = payload["target"]
+        for row in t["limits"]:
             click.echo(
-                f"  P[Y > {e['label']}] per storm {e['probability']:.3g} ({cv}, {e['method']},"
-                f" {e['storms']} storms); per year {e['annual']:.3g}; life {e['lifetime']:.3g}"
+                f"  {row['label']}: annual {row['annual']:.3g} (95 % upper {row['upper']:.3g})"
+                f" against {t['annual_target']:.0e} ({t['safety_class']} safety class,"
+                f" {t['source']}): {row['verdict']}"
             )
-            if e["stopped_early"]:
-                click.echo(
-                    f"    {e['stopped_early']} storms stopped early, beyond the largest limit"
-                    " (their verdict is the whole storm's)"
-                )
-            imp = ", ".join(f"{k} {v:.2f}" for k, v in e["importance"].items())
-            click.echo(f"    importance ({e['importance_kind']}): {imp}")
         d = payload["design"]
         if d is not None:
             g, f = d["governing"], d["f109"]

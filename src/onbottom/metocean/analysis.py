@@ -19,6 +19,7 @@ from onbottom.metocean.extremes import CI_METHODS, ReturnLevels, fit_return_leve
 from onbottom.metocean.hindcast import Hindcast
 from onbottom.metocean.joint import JointModel, fit_joint_model, iform_contour
 from onbottom.metocean.storms import sector_edges, sector_mask, storm_peaks, threshold_for_rate
+from onbottom.metocean.tail import TailCheck, check_tail
 
 __all__ = [
     "MIN_TARGET_STORMS",
@@ -121,6 +122,9 @@ class MetoceanResult:
     joint: JointModel
     contours: dict[float, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     current_model: CurrentModel | None = None
+    tail: TailCheck | None = None
+    """The omnidirectional H_s fit's tail guard, exponential alternative and censored storms
+    (:mod:`onbottom.metocean.tail`); None when it has no fit."""
 
     def to_dataset(self):
         """Return levels, thresholds, storm counts and contours as an xarray Dataset (SI,
@@ -285,7 +289,14 @@ def analyse_hindcast(hindcast: Hindcast, options: MetoceanOptions | None = None)
         float(rp): iform_contour(joint, rp, hc.step_hours, o.contour_points)
         for rp in o.return_periods
     }
+    tail = None
+    omni = hs["omni"]
+    if np.isfinite(omni.shape):
+        tail = check_tail(
+            omni, hc.hs, hc.observed, hc.time, hc.step_hours, omni.storms.peak.size / hc.years
+        )
     return MetoceanResult(
+        tail=tail,
         hindcast=hc,
         options=o,
         sectors=names,

@@ -116,18 +116,29 @@ def gpd_return_level(
     return threshold + scale / shape * (np.power(m, shape) - 1.0)
 
 
-def _gpd_loglik(excess: np.ndarray, scale: np.ndarray, shape: np.ndarray) -> np.ndarray:
+def _gpd_loglik(
+    excess: np.ndarray,
+    scale: np.ndarray,
+    shape: np.ndarray,
+    censored: np.ndarray | None = None,
+) -> np.ndarray:
     """GPD log-likelihood of ``excess`` (n,) for arrays of (σ, ξ) (Coles 2001, Eq. 4.10/4.11);
-    −inf outside the support."""
+    −inf outside the support. ``censored`` (n,) bool: those excesses are right-censored (the
+    storm's true peak is at least the value), contributing log of the survival function,
+    −(1/ξ) log(1 + ξy/σ) (−y/σ at ξ = 0), instead of the density (Klein & Moeschberger 2003,
+    §3.5, the likelihood of right-censored data)."""
     sg = np.asarray(scale, dtype=float)[..., None]
     xi = np.asarray(shape, dtype=float)[..., None]
     y = excess[None, :] if sg.ndim > 1 else excess
+    cens = np.zeros(excess.size, dtype=bool) if censored is None else np.asarray(censored)
+    n_exact = int(excess.size - np.count_nonzero(cens))
     with np.errstate(divide="ignore", invalid="ignore"):
         t = 1.0 + xi * y / sg
         small = np.abs(xi) < 1e-8
         xi_safe = np.where(small, 1.0, xi)
-        terms = np.where(small, -y / sg, -(1.0 + 1.0 / xi_safe) * np.log(t))
-        ll = -excess.size * np.log(sg[..., 0]) + np.sum(terms, axis=-1)
+        power = np.where(cens, 1.0 / xi_safe, 1.0 + 1.0 / xi_safe)
+        terms = np.where(small, -y / sg, -power * np.log(t))
+        ll = -n_exact * np.log(sg[..., 0]) + np.sum(terms, axis=-1)
         bad = np.any(t <= 0.0, axis=-1) | ~(sg[..., 0] > 0.0)
     return np.where(bad, -np.inf, ll)
 
@@ -135,7 +146,7 @@ def _gpd_loglik(excess: np.ndarray, scale: np.ndarray, shape: np.ndarray) -> np.
 _XI_GRID = np.linspace(-1.0, 1.0, 201)
 
 
-def _profile(excess: np.ndarray, z: float, m: float) -> float:
+def _profile(excess: np.ndarray, z: float, m: float, censored: np.ndarray | None = None) -> float:
     """ℓ_p(x_R) with z = x_R − u > 0 and m = λR > 1: max over ξ of ℓ(σ(ξ), ξ)."""
     from scipy.optimize import minimize_scalar
 
@@ -145,14 +156,14 @@ def _profile(excess: np.ndarray, z: float, m: float) -> float:
             np.abs(xi) < 1e-8, np.log(m), np.expm1(xi * np.log(m)) / np.where(xi == 0, 1, xi)
         )
     sg = z / den
-    ll = _gpd_loglik(excess, sg, xi)
+    ll = _gpd_loglik(excess, sg, xi, censored)
     k = int(np.argmax(ll))
     if not np.isfinite(ll[k]):
         return -np.inf
 
     def neg(x: float) -> float:
         d = np.log(m) if abs(x) < 1e-8 else np.expm1(x * np.log(m)) / x
-        return -float(_gpd_loglik(excess, np.array([z / d]), np.array([x]))[0])
+        return -float(_gpd_loglik(excess, np.array([z / d]), np.array([x]), censored)[0])
 
     lo, hi = xi[max(k - 1, 0)], xi[min(k + 1, xi.size - 1)]
     r = minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-7})
@@ -160,7 +171,11 @@ def _profile(excess: np.ndarray, z: float, m: float) -> float:
 
 
 def profile_interval(
-    excess: np.ndarray, m: float, confidence: float, mle: tuple[float, float] | None = None
+    excess: np.ndarray,
+    m: float,
+    confidence: float,
+    mle: tuple[float, float] | None = None,
+    censored: np.ndarray | None = None,
 ) -> tuple[float, float, float]:
     """(x_R − u at the maximum, lower, upper) of the profile-likelihood interval.
 
@@ -174,6 +189,8 @@ def profile_interval(
         Level c of the interval: 2(ℓ_max − ℓ_p) ≤ χ²₁(c).
     mle : (σ, ξ) or None
         A maximum-likelihood fit to start from (saves the search for the maximum).
+    censored : ndarray of bool or None
+        Right-censored excesses (see :func:`_gpd_loglik`).
     """
     from scipy import stats
     from scipy.optimize import minimize_scalar
@@ -184,29 +201,35 @@ def profile_interval(
     if mle is not None:  # x_R of the fit; ℓ_p there is the maximum (to the fit's accuracy)
         sc, sh = mle
         zhat = float(gpd_return_level(1.0, 0.0, sc, sh, m))
-        lmax = _profile(y, zhat, m)
-        return _bounds(y, m, zhat, lmax, crit, ymax)
+        lmax = _profile(y, zhat, m, censored)
+        return _bounds(y, m, zhat, lmax, crit, ymax, censored)
     # the maximum: search z on a log scale around the largest excess
     zs = ymax * np.geomspace(0.05, 20.0, 61)
-    lp = np.array([_profile(y, z, m) for z in zs])
+    lp = np.array([_profile(y, z, m, censored) for z in zs])
     k = int(np.argmax(lp))
     r = minimize_scalar(
-        lambda lz: -_profile(y, float(np.exp(lz)), m),
+        lambda lz: -_profile(y, float(np.exp(lz)), m, censored),
         bounds=(np.log(zs[max(k - 1, 0)]), np.log(zs[min(k + 1, zs.size - 1)])),
         method="bounded",
         options={"xatol": 1e-9},
     )
     zhat, lmax = float(np.exp(r.x)), -float(r.fun)
-    return _bounds(y, m, zhat, lmax, crit, ymax)
+    return _bounds(y, m, zhat, lmax, crit, ymax, censored)
 
 
 def _bounds(
-    y: np.ndarray, m: float, zhat: float, lmax: float, crit: float, ymax: float
+    y: np.ndarray,
+    m: float,
+    zhat: float,
+    lmax: float,
+    crit: float,
+    ymax: float,
+    censored: np.ndarray | None = None,
 ) -> tuple[float, float, float]:
     from scipy.optimize import brentq
 
     def g(z: float) -> float:
-        return lmax - _profile(y, z, m) - crit
+        return lmax - _profile(y, z, m, censored) - crit
 
     lo_a = zhat
     lo_b = zhat * 0.5

@@ -108,6 +108,22 @@ class MetoceanRun:
         """True when the omnidirectional H_s has a finite value at every return period."""
         return bool(np.all(np.isfinite(self.result.hs["omni"].value)))
 
+    def contour_check(self) -> dict[str, Any] | None:
+        """:func:`~onbottom.metocean.joint.marginal_tail_check` at the longest return period
+        (None when the omnidirectional H_s has no value there)."""
+        from onbottom.metocean.joint import marginal_tail_check, tp_at_peaks_check
+
+        lv = self.result.hs["omni"]
+        rp = float(max(self.options.return_periods))
+        v = float(lv.value[list(lv.return_periods).index(rp)])
+        if not math.isfinite(v):
+            return None
+        hc = self.hindcast
+        out = marginal_tail_check(self.result.joint, hc.hs[hc.observed], rp, hc.step_hours, v)
+        idx = lv.storms.index
+        out["tp_at_peaks"] = tp_at_peaks_check(self.result.joint, hc.hs[idx], hc.tp[idx])
+        return out
+
     def as_dict(self, files: list[str] | None = None) -> dict[str, Any]:
         """The ``onbottom metocean --json`` summary (SI; NaN written as None); ``files``: the
         paths written (see the command's documentation for the keys)."""
@@ -138,6 +154,8 @@ class MetoceanRun:
                 None if result.current_model is None else result.current_model.as_dict()
             ),
             "contour_max_hs": {f"{rp:g}": float(h.max()) for rp, (h, _) in result.contours.items()},
+            "tail": None if result.tail is None else result.tail.to_dict(),
+            "contour_check": self.contour_check(),
             "files": list(files or []),
             "notes": list(self.notes),
         }
@@ -209,6 +227,15 @@ def run_metocean_analysis(
             )
         except InputError as exc:
             notes.append(f"no case_{row.sector}.toml: {exc}")
+    if result.tail is not None:  # the tail guard and the censored storms
+        notes.extend(f"H_s omni: {w}" for w in result.tail.warnings)
+        if result.tail.censored_peaks:
+            notes.append(
+                f"H_s omni: {len(result.tail.censored_peaks)} storm(s) end at a data gap of"
+                " 12 h or more (peak censored: "
+                + ", ".join(f"{v:.2f} at {t}" for t, v in result.tail.censored_peaks)
+                + "); the censored fit is in the JSON key tail.censored_fit"
+            )
     return MetoceanRun(result=result, rows=rows, notes=notes, fragments=fragments, source=src)
 
 

@@ -4,7 +4,7 @@
   exceeds y, against y/D (log–log): subset simulation's intermediate levels and each limit's
   estimate with its ±1.96 CV band (an upper bound drawn as a triangle).
 * :func:`plot_convergence` — each estimate against the storms run (per block or subset level).
-* :func:`plot_importance` — the sensitivity of each estimate to each input (FORM α² or SRRC²).
+* :func:`plot_importance` — the sensitivity of each estimate to each input (SRRC² over all storms).
 * :func:`plot_design` — response-based design: the contour points' maximum displacements
   (mean and fractile) against H_s, and F109's return-period storm.
 """
@@ -46,9 +46,10 @@ def plot_exceedance(estimates, diameter: float, *, title: str | None = None) -> 
             ms=8,
             label=f"P[Y > {e.label}] = {e.probability:.2g}" + (" (bound)" if e.upper_bound else ""),
         )
-        if math.isfinite(e.cv):
-            lo = max(e.probability * (1 - 1.96 * e.cv), e.probability * 1e-3)
-            ax.vlines(e.limit / diameter, lo, e.probability * (1 + 1.96 * e.cv), color="k")
+        lo, hi = e.interval
+        if math.isfinite(hi) and hi > 0.0:  # the 95 % interval (a bound: from 1e-3 of it)
+            lo = max(lo, hi * 1e-3) if math.isfinite(lo) else hi * 1e-3
+            ax.vlines(e.limit / diameter, lo, hi, color="k")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("maximum lateral displacement y / D [-]")

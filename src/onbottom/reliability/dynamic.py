@@ -7,28 +7,36 @@ Its inputs are the continuous uncertain inputs X (sea state from the long-term m
 soil) **and the storm seed**.
 
 The seed, treated honestly: the storm's random phases are an input like the others. It enters
-as S ~ U(0, 1) — openturns maps it, as every input, to a standard normal u_S — and the storm's
-integer seed is ⌊S·2³¹⌋. g is then a deterministic function of (X, S), and
+as S ~ U(0, 1), mapped to a standard normal u_S like every input (S = Φ(u_S)), and the storm's
+integer seed is ⌊S·2³¹⌋. g is then a deterministic function of (X, S). The estimators
+(:mod:`onbottom.reliability._sampling`) work in the standard normal space of (u_X, u_S):
 
-* Monte Carlo draws S with the rest: every run is an independent storm;
-* subset simulation (Au & Beck 2001) runs its Markov chains in (u_X, u_S): the component-wise
-  Metropolis step on u_S proposes a new storm, kept only when it stays beyond the level's
-  threshold — the chains sample the storm phases conditional on failure, exactly as they
-  sample the sea state. The estimate integrates over the seeds; the CV is openturns' (a lower
-  bound: it neglects the correlation between levels, docs/theory/reliability.md);
-* importance sampling centres a unit normal on (u*_X, 0): u_S keeps its own distribution, so its
-  weight factor is 1 and the estimator stays unbiased. The design point u*_X comes from FORM on
-  the continuous inputs with the seed **frozen** (common random numbers: one storm realisation,
-  which makes g continuous in X) or, when FORM fails, the failing storm nearest the origin of a
-  pilot Monte Carlo sample. A poor u*_X costs efficiency (a larger CV, reported), never bias;
-* FORM alone is not offered for the dynamic limit state: with the seed frozen it answers for
-  one realisation of the phases, not for the storm.
+* Monte Carlo draws S with the rest: every run is an independent storm; Clopper–Pearson
+  interval, a flagged one-sided bound when no storm fails, p = 1 when all do;
+* importance sampling (the default) centres a unit normal on (c_X, 0), c_X from a
+  cross-entropy pilot (blocks of ``pilot_storms`` storms moving the centre to the weighted
+  mean of the worst 10 %, then of the failing storms): u_S keeps its own distribution, so its
+  weight factor is 1 and the estimator stays unbiased; interval from the weights' standard
+  error. When 10 % or more of the pilot's first (unbiased) block fails, failure is not rare and
+  Monte Carlo runs instead (the first block reused);
+* subset simulation (Au & Beck 2001) runs its Markov chains in (u_X, u_S): a move of u_S is a
+  new storm, kept only when it stays beyond the level's threshold. ``max_storms`` is a hard
+  cap; the interval uses Au & Beck's CV with the chains' correlation (levels independent);
+  the estimator's O(1/N) bias is large at 100 storms a level (docs/theory/reliability.md).
 
-Sensitivity: FORM importance factors α² (importance sampling; seed frozen), and for Monte
-Carlo and subset simulation the squared standardised rank regression coefficients (SRRC²) of
-Y on each continuous input over the first block of runs (an unbiased sample of the inputs);
-1 − R² of that regression is the share of the variance that no monotone additive function of X
-explains — the storm seed and interactions.
+The default (importance sampling) was chosen by a coverage test on a closed-form limit state
+through this very code path (``tests/verification/test_reliability_coverage.py``).
+
+What drives failure, two measures, reported side by side:
+
+* ``failure_mean``: E[u_i | failure], the mean standardized input given failure (the failing
+  storms of Monte Carlo or subset simulation's last level; the weighted failing storms of
+  importance sampling): how many standard deviations from its median input i stood in the
+  storms that failed — the inputs that make a storm fail;
+* ``importance``: SRRC², the squared standardised rank regression coefficients of Y on each
+  continuous input over the first unbiased block (Saltelli et al. 2004 §1.2.5): the share of
+  the variance of Y **over all storms** (the bulk of the response) each input explains; 1 − R²
+  is the share no monotone additive function of X explains — the storm seed and interactions.
 
 Numerical failures (a run whose status is < 0 other than −3, or that raised) count as
 exceedances (conservative) and are counted in ``failed_runs``.
@@ -36,7 +44,6 @@ exceedances (conservative) and are counted in ``failed_runs``.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -47,9 +54,10 @@ from scipy import special, stats
 
 from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.errors import InputError
+from onbottom.reliability import _sampling
 from onbottom.reliability.campaign import Campaign
 from onbottom.reliability.distributions import UncertainParameter
-from onbottom.reliability.estimators import estimate_failure_probability, lifetime_probability
+from onbottom.reliability.estimators import lifetime_probability
 
 __all__ = [
     "DYNAMIC_METHODS",
@@ -113,18 +121,31 @@ class ExceedanceEstimate:
     importance : dict of str to float
         Sensitivity of the result to each input (see ``importance_kind``).
     importance_kind : str
-        ``"FORM alpha^2 (seed frozen)"``,
-        ``"SRRC^2 shares of R^2 (rank regression, first block)"`` or,
-        when FORM fails, ``"pilot centre u_i^2/|u|^2 (FORM did not converge)"``.
+        What ``importance`` is (SRRC² over the first unbiased block).
     design_point : dict of str to float
-        FORM design point (importance sampling only).
+        Importance sampling's centre in the inputs' units (empty otherwise).
     upper_bound : bool
-        Subset simulation stopped at ``max_storms`` before its levels reached the limit:
-        ``probability`` is then an upper bound (the last level's), with no CV.
+        ``probability`` is an upper bound, with no CV: Monte Carlo with no failing storm (the
+        one-sided bound), or subset simulation stopped at ``max_storms`` before its levels
+        reached the limit (the last level's probability).
+    interval, annual_interval, lifetime_interval : (float, float)
+        The ``confidence`` intervals of the per-storm, annual and lifetime probabilities.
+    interval_kind : str
+        How the interval was made (Clopper–Pearson, the weights' standard error, ...).
+    confidence : float
+        Level of the intervals.
+    failures : int
+        Failing storms of the estimate.
+    failure_mean : dict of str to float
+        E[u_i | failure] per input, the storm seed included (module docstring).
+    pilot_storms : int
+        Storms of importance sampling's pilot (included in ``storms``).
     stopped_early : int
         Storms of the estimate that stopped early at the campaign model's ``stop_at`` (above
         every limit asked: their verdict is that of the whole storm, their displacement a lower
         bound of it) [-]; 0 without an early stop.
+    notes : list of str
+        Fallbacks and warnings of the estimate.
     """
 
     label: str
@@ -144,7 +165,16 @@ class ExceedanceEstimate:
     importance_kind: str = ""
     design_point: dict[str, float] = field(default_factory=dict)
     upper_bound: bool = False
+    interval: tuple[float, float] = (math.nan, math.nan)
+    annual_interval: tuple[float, float] = (math.nan, math.nan)
+    lifetime_interval: tuple[float, float] = (math.nan, math.nan)
+    interval_kind: str = ""
+    confidence: float = 0.95
+    failures: int = 0
+    failure_mean: dict[str, float] = field(default_factory=dict)
+    pilot_storms: int = 0
     stopped_early: int = 0
+    notes: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain numbers (JSON)."""
@@ -170,7 +200,17 @@ class ExceedanceEstimate:
             "importance_kind": self.importance_kind,
             "design_point": self.design_point,
             "upper_bound": self.upper_bound,
+            "interval": [num(v) for v in self.interval],
+            "annual_interval": [num(v) for v in self.annual_interval],
+            "lifetime_interval": [num(v) for v in self.lifetime_interval],
+            "interval_kind": self.interval_kind,
+            "confidence": self.confidence,
+            "failures": self.failures,
+            "failure_mean": self.failure_mean,
+            "failure_mean_kind": "E[u | failure]: mean standardized input of the failing storms",
+            "pilot_storms": self.pilot_storms,
             "stopped_early": self.stopped_early,
+            "notes": list(self.notes),
         }
 
 
@@ -254,22 +294,12 @@ class _LimitState:
             raise self.error
 
 
-def _pilot_centre(ls: _LimitState, cont, n: int, seed: int) -> tuple[list[float], int]:
-    """Importance sampling's centre when FORM fails: of ``n`` Monte Carlo storms (seed free),
-    the failing one nearest the origin in the standard space of X (Melchers & Beck 2018 §5.4:
-    a design-point estimate from samples); the origin when none fails."""
-    rng = np.random.default_rng([seed, 7])
-    d = cont.getDimension()
-    u = rng.standard_normal((n, d))
-    x = np.asarray(cont.getInverseIsoProbabilisticTransformation()(u))
-    s = rng.uniform(size=(n, 1))
-    g = ls(np.hstack([x, s]))
-    ls.check()
-    fail = np.flatnonzero(g <= 0.0)
-    if not fail.size:
-        return [0.0] * d, n
-    k = fail[np.argmin(np.sum(u[fail] ** 2, axis=1))]
-    return [float(v) for v in u[k]], n
+def _annual(p: float, rate: float) -> float:
+    return float(-math.expm1(-rate * p)) if math.isfinite(p) else math.nan
+
+
+def _life(annual: float, years: float) -> float:
+    return lifetime_probability(annual, years) if math.isfinite(annual) else math.nan
 
 
 def estimate_exceedance(
@@ -278,16 +308,19 @@ def estimate_exceedance(
     limit: float,
     *,
     label: str | None = None,
-    method: str = "subset",
-    target_cv: float = 0.2,
+    method: str = "importance",
+    target_cv: float = 0.1,
     max_storms: int = 10_000,
     block_size: int = 500,
     seed: int = 0,
     storms_per_year: float = 1.0,
     design_life_years: float = 25.0,
-    form_storms: int = 150,
+    pilot_storms: int = 200,
+    pilot_iterations: int = 4,
+    confidence: float = 0.95,
 ) -> ExceedanceEstimate:
-    """Estimate P[Y > ``limit``] per storm (module docstring) and per year and design life.
+    """Estimate P[Y > ``limit``] per storm (module docstring) and per year and design life, each
+    with its ``confidence`` interval.
 
     Parameters
     ----------
@@ -304,19 +337,24 @@ def estimate_exceedance(
     target_cv : float
         Stop at this CV (Monte Carlo, importance sampling), in (0, 1].
     max_storms : int
-        Most storms of the estimate, in [10, 10⁹] (subset: max(2, max_storms // block_size)
-        levels of ``block_size`` storms; the last level's probability bounds the estimate).
+        Most storms of the estimate, pilot included, in [10, 10⁹]: a hard cap (subset
+        simulation does not start a level that would overrun it; its last level's probability
+        is then an upper bound).
     block_size : int
         Storms per block (per level for subset simulation), in [10, 10⁶].
     seed : int
-        Seed of openturns' generator (the same seed draws the same storms: a rerun reads them
-        back from the store).
+        Seed of the sampling (the same seed draws the same storms: a rerun reads them back
+        from the store).
     storms_per_year : float
         λ [1/year], > 0.
     design_life_years : float
         Design life [years], in [0, 10⁴].
-    form_storms : int
-        Most runs of the FORM search (importance sampling), in [10, 10⁵].
+    pilot_storms : int
+        Storms per iteration of importance sampling's cross-entropy pilot, in [10, 10⁵].
+    pilot_iterations : int
+        Most iterations of the pilot, in [1, 20].
+    confidence : float
+        Level of the intervals, in (0.5, 1).
     """
     import openturns as ot
 
@@ -326,6 +364,9 @@ def estimate_exceedance(
     n_max = integer("max_storms", max_storms, 10, 10**9)
     block = integer("block_size", block_size, 10, 10**6)
     seed = integer("seed", seed, 0, 2**32 - 1)
+    n_pilot = integer("pilot_storms", pilot_storms, 10, 10**5)
+    iters = integer("pilot_iterations", pilot_iterations, 1, 20)
+    in_range("confidence", confidence, 0.5, 1.0, low_inclusive=False, high_inclusive=False)
     positive("storms_per_year", storms_per_year)
     names = [p.name for p in parameters]
     if tuple(names) != tuple(campaign.model.input_names):
@@ -333,133 +374,96 @@ def estimate_exceedance(
             f"parameters = {names!r} is invalid: expected the model's inputs"
             f" {list(campaign.model.input_names)!r} in order"
         )
-    allp = [*parameters, seed_parameter()]
+    cont = ot.JointDistribution([p.openturns() for p in parameters])
+    to_x = cont.getInverseIsoProbabilisticTransformation()
+    d = len(parameters)
     ls = _LimitState(campaign, limit)
-    form_calls = 0
-    importance: dict[str, float] = {}
-    kind = "SRRC^2 shares of R^2 (rank regression, first block)"
+
+    def g(u: np.ndarray) -> np.ndarray:
+        x = np.asarray(to_x(np.ascontiguousarray(u[:, :d])))
+        s = special.ndtr(u[:, d : d + 1])
+        return ls(np.hstack([x, s]))
+
+    rng = np.random.default_rng([seed, 0x5EED])
+    notes: list[str] = []
     design: dict[str, float] = {}
-    history: list[tuple[int, float, float]] = []
-    curve: list[tuple[float, float]] = []
-    ot.RandomGenerator.SetSeed(seed)
-
-    def make_event(g, params):
-        f = ot.PythonFunction(len(params), 1, func_sample=lambda x: g(np.asarray(x)).reshape(-1, 1))
-        dist = ot.JointDistribution([p.openturns() for p in params])
-        y = ot.CompositeRandomVector(f, ot.RandomVector(dist))
-        return ot.ThresholdEvent(y, ot.LessOrEqual(), 0.0)
-
-    event = make_event(ls, allp)
-    if method == "importance":
-        cont = ot.JointDistribution([p.openturns() for p in parameters])
-        n_form = integer("form_storms", form_storms, 10, 10**5)
-        frozen = _LimitState(campaign, limit, frozen_seed=_SEED_SPAN // 2)
-        try:
-            form = estimate_failure_probability(
-                frozen,
-                list(parameters),
-                method="form",
-                form_max_calls=n_form,
-                form_tolerance=1e-3,
-                form_strict=False,
+    used = method
+    pilot_calls = 0
+    if method == "monte_carlo":
+        r = _sampling.monte_carlo(g, d + 1, rng, block, n_max, target_cv, confidence)
+    elif method == "subset":
+        r = _sampling.subset(g, d + 1, rng, block, n_max, confidence)
+    else:
+        free = np.r_[np.ones(d, dtype=bool), False]  # the seed keeps its own distribution
+        m = min(n_pilot, max(10, n_max // 2))
+        iters = min(iters, max(1, (n_max // 2) // m))  # the pilot takes half the cap at most
+        centre, pilot_calls, first, reached = _sampling.ce_centre(g, d + 1, rng, m, iters, free)
+        origin_fails = float(np.mean(first[1] <= 0.0)) >= 0.1
+        if origin_fails:  # failure is not rare: Monte Carlo, the pilot's first block included
+            used = "monte_carlo"
+            notes.append(
+                "importance sampling fell back to Monte Carlo: at least 10 % of the pilot's"
+                " unbiased storms failed (the failure domain holds the median storm)"
             )
-        except RuntimeError:  # the optimiser's point is off g = 0: a pilot sample instead
-            form = None
-        frozen.check()
-        form_calls = frozen.calls
-        if form is not None:
-            importance, design = form.importance, form.design_point
-            kind = "FORM alpha^2 (seed frozen)"
-            u_x = list(cont.getIsoProbabilisticTransformation()([design[n] for n in names]))
+            r = _sampling.monte_carlo(
+                g, d + 1, rng, block, n_max, target_cv, confidence, first=first
+            )
+            pilot_calls = ls.calls - r.evaluations
         else:
-            u_x, pilot = _pilot_centre(ls, cont, n_form, seed)
-            form_calls += pilot
-            norm2 = sum(v * v for v in u_x)
-            if norm2 > 0.0:
-                importance = {n: v * v / norm2 for n, v in zip(names, u_x, strict=True)}
-            kind = "pilot centre u_i^2/|u|^2 (FORM did not converge)"
-            design = dict(
-                zip(names, cont.getInverseIsoProbabilisticTransformation()(u_x), strict=True)
+            if not reached:
+                notes.append(
+                    f"the pilot's {iters} iterations did not reach the limit: importance"
+                    " sampling centred on its last level (unbiased, less efficient)"
+                )
+            design = dict(zip(names, (float(v) for v in to_x(list(centre[:d]))), strict=True))
+            r = _sampling.importance(
+                g, d + 1, rng, centre, block, max(1, n_max - pilot_calls), target_cv, confidence
             )
-        ot.RandomGenerator.SetSeed(seed)
-        inst = ot.Normal(ot.Point([*u_x, 0.0]), ot.CovarianceMatrix(len(allp)))
-        algo = ot.ProbabilitySimulationAlgorithm(
-            ot.StandardEvent(event), ot.ImportanceSamplingExperiment(inst)
-        )
-    elif method == "monte_carlo":
-        algo = ot.ProbabilitySimulationAlgorithm(event, ot.MonteCarloExperiment())
-    else:
-        algo = ot.SubsetSampling(event)
-        algo.setConditionalProbability(0.1)
-        # L = max_storms/block levels: openturns stops once the level probability 0.1^k falls
-        # below the minimum; half of 0.1^(L-1) stops after level L (away from round-off ties);
-        # L at most 300 (0.1^299 is still a positive double; beyond it P would underflow)
-        levels = min(max(2, n_max // block), 300)
-        algo.setMinimumProbability(0.5 * 0.1 ** (levels - 1))
-        algo.setMaximumOuterSampling(1)  # block_size storms per level
-    algo.setBlockSize(block)
-    if method != "subset":
-        algo.setMaximumOuterSampling(max(1, n_max // block))
-        algo.setMaximumCoefficientOfVariation(target_cv)
-        algo.setConvergenceStrategy(ot.Full())
-    bound = False
-    try:
-        algo.run()
-    except RuntimeError as exc:  # subset: the levels reached the minimum probability
-        ls.check()
-        if method != "subset" or "too small" not in str(exc):
-            raise
-        bound = True
+            if r.failures == 0:  # no estimate: the pilot's unbiased block bounds p
+                hi = _sampling.clopper_pearson(0, first[0].shape[0], confidence)[1]
+                r.probability, r.low, r.high, r.upper_bound = hi, 0.0, hi, True
+                r.interval_kind = (
+                    "one-sided upper bound from the pilot's unbiased block (no failing storm)"
+                )
+    p = r.probability
+    annual = _annual(p, storms_per_year)
+    lo_a, hi_a = _annual(r.low, storms_per_year), _annual(r.high, storms_per_year)
     ls.check()
-    if bound:
-        probs = list(algo.getProbabilityEstimatePerStep())
-        p = float(probs[-1])
-        if float(list(algo.getThresholdPerStep())[-1]) <= 0.0:
-            # the last level reached the limit (openturns stops on p < minimum even then):
-            # an estimate, with the CV of independent levels (Au & Beck 2001, Eq. 18, γ = 0)
-            bound = False
-            cond = [probs[0]] + [b / a for a, b in itertools.pairwise(probs)]
-            cv = math.sqrt(sum((1.0 - q) / (q * block) for q in cond if q > 0.0))
-        else:  # P < the last level's probability: an upper bound, no CV
-            cv = math.nan
-    else:
-        r = algo.getResult()
-        p = float(r.getProbabilityEstimate())
-        cv = float(r.getCoefficientOfVariation()) if p > 0.0 else math.inf
-    if method == "subset":
-        probs = list(algo.getProbabilityEstimatePerStep())
-        thr = list(algo.getThresholdPerStep())
-        for i, (pk, tk) in enumerate(zip(probs, thr, strict=True)):
-            history.append((block * (i + 1), float(pk), math.nan))
-            curve.append((float(limit * (1.0 - max(tk, 0.0))), float(pk)))
-        if history and not bound:
-            history[-1] = (history[-1][0], history[-1][1], cv)
-    else:
-        h = algo.getConvergenceStrategy().getSample()
-        for i in range(h.getSize()):
-            pk, var = float(h[i, 0]), float(h[i, 1])
-            cvk = math.sqrt(var) / pk if pk > 0.0 else math.inf
-            history.append((block * (i + 1), pk, cvk))
-    if method != "importance" and ls.first is not None:
-        importance = rank_importance(ls.first[0], ls.first[1], names)
-    annual = float(-math.expm1(-storms_per_year * p))
+    kind = (
+        "SRRC^2 shares of R^2 (rank regression on the first unbiased block: the bulk of the"
+        " response)"
+    )
+    importance = rank_importance(ls.first[0], ls.first[1], names) if ls.first else {}
+    fmean: dict[str, float] = {}
+    if r.failure_mean is not None:
+        fmean = {n: float(v) for n, v in zip([*names, SEED_INPUT], r.failure_mean, strict=True)}
+    curve = [(float(limit * (1.0 - max(b, 0.0))), float(pk)) for b, pk in r.levels]
     return ExceedanceEstimate(
         label=label or f"{limit:g} m",
         limit=float(limit),
         probability=p,
-        cv=cv,
-        method=method,
-        storms=ls.calls + form_calls,
+        cv=r.cv,
+        method=used,
+        storms=ls.calls,
         computed=campaign.stats.computed - ls.computed0,
         failed_runs=ls.failed,
         annual=annual,
-        lifetime=lifetime_probability(annual, design_life_years),
+        lifetime=_life(annual, design_life_years),
         reliability_index=float(-special.ndtri(p)) if 0.0 < p < 1.0 else math.nan,
-        history=history,
+        history=[(n + pilot_calls, pk, c) for n, pk, c in r.history],
         curve=curve,
         importance=importance,
         importance_kind=kind,
         design_point=design,
-        upper_bound=bound,
+        upper_bound=r.upper_bound,
+        interval=(r.low, r.high),
+        annual_interval=(lo_a, hi_a),
+        lifetime_interval=(_life(lo_a, design_life_years), _life(hi_a, design_life_years)),
+        interval_kind=r.interval_kind,
+        confidence=confidence,
+        failures=r.failures,
+        failure_mean=fmean,
+        pilot_storms=pilot_calls,
+        notes=notes,
         stopped_early=ls.stopped,
     )

@@ -5,23 +5,28 @@ The limit state ``g`` is a Python callable taking an (n, d) array of inputs (col
 order of ``parameters``, SI units) and returning n values; g ≤ 0 is failure. It is evaluated
 in blocks (vectorised), and every evaluation is counted.
 
-Estimators (openturns ≥ 1.27; Lemaire 2009, *Structural Reliability*, ch. 6–8):
+Estimators (Lemaire 2009, *Structural Reliability*, ch. 6–8; FORM and the probability
+transformation by openturns ≥ 1.27, the sampling by :mod:`onbottom.reliability._sampling`,
+every sampled probability with a 95 % interval):
 
 * ``"monte_carlo"``: crude sampling; CV = √((1 − p)/(n p)), so p = 1e-4 at CV 0.1 needs 10⁶
-  evaluations — the reference for cheap limit states only.
+  evaluations — the reference for cheap limit states only. Clopper–Pearson interval; no
+  failure: the one-sided 95 % bound 1 − 0.05^(1/n) ≈ 3/n, flagged (``upper_bound``); every
+  sample failing: p = 1.
 * ``"form"``: first-order reliability method (Hasofer–Lind index β, design point u*, p ≈ Φ(−β));
   exact for a limit state linear in the standard normal space; no CV (a point approximation).
   Gives the importance factors α_i² (share of each input in β², Σ = 1): the sensitivity of the
   result to each uncertain input.
 * ``"importance"``: FORM first, then importance sampling in the standard space with a unit
-  normal density centred on u* (Melchers & Beck 2018, §5.4); unbiased, CV from the weights.
+  normal density centred on u* (Melchers & Beck 2018, §5.4); unbiased, CV and interval from the
+  weights. When the median point (the origin of the standard space) fails, Monte Carlo runs
+  instead (``method`` says so): a centre away from such a domain misses most of it.
 * ``"subset"``: subset simulation (Au & Beck 2001) with conditional probability 0.1 and
-  ``block_size`` samples per level (the number of levels follows from p: about
-  log₁₀(1/p)); no gradient; openturns' CV estimate (which neglects the correlation between
-  the levels: read it as a lower bound). ``target_cv`` is only compared with it.
+  ``block_size`` samples per level; ``max_evaluations`` is a hard cap; CV with the chains'
+  correlation (the levels' neglected). ``target_cv`` is only compared with it.
 
-Sampling stops at ``target_cv`` or ``max_evaluations``. Seeds go to openturns' global
-generator (``ot.RandomGenerator.SetSeed``) before each run, so results are reproducible.
+Sampling stops at ``target_cv`` or ``max_evaluations``. ``seed`` seeds the sampling (numpy)
+and openturns' generator, so results are reproducible.
 """
 
 from __future__ import annotations
@@ -35,6 +40,7 @@ from scipy import special
 
 from onbottom._validate import in_range, integer, one_of
 from onbottom.errors import InputError
+from onbottom.reliability import _sampling
 from onbottom.reliability.distributions import UncertainParameter
 
 __all__ = ["METHODS", "FailureProbability", "estimate_failure_probability", "lifetime_probability"]
@@ -67,6 +73,15 @@ class FailureProbability:
         Whether ``target_cv`` was reached (FORM: whether the optimiser converged).
     seed : int
         Seed of the run.
+    low, high : float
+        95 % interval (:mod:`onbottom.reliability._sampling`; NaN for FORM).
+    interval_kind : str
+        How the interval was made.
+    upper_bound : bool
+        ``probability`` is a one-sided bound (Monte Carlo with no failure; subset simulation
+        stopped at ``max_evaluations`` short of the limit).
+    failures : int
+        Failing samples.
     """
 
     probability: float
@@ -78,15 +93,15 @@ class FailureProbability:
     design_point: dict[str, float] = field(default_factory=dict)
     converged: bool = True
     seed: int = 0
+    low: float = math.nan
+    high: float = math.nan
+    interval_kind: str = ""
+    upper_bound: bool = False
+    failures: int = 0
 
-    def interval(self, z: float = 1.96) -> tuple[float, float]:
-        """p(1 ∓ z·CV), clipped at 0 (a normal approximation of the estimator's spread)."""
-        if not math.isfinite(self.cv):
-            return (math.nan, math.nan)
-        return (
-            max(0.0, self.probability * (1.0 - z * self.cv)),
-            self.probability * (1.0 + z * self.cv),
-        )
+    def interval(self) -> tuple[float, float]:
+        """The 95 % interval of the estimate (``interval_kind``; NaN for FORM)."""
+        return (self.low, self.high)
 
 
 def lifetime_probability(annual: float, years: float) -> float:
@@ -189,7 +204,14 @@ def estimate_failure_probability(
 
     importance: dict[str, float] = {}
     design: dict[str, float] = {}
-    if method in ("form", "importance"):
+    to_x = dist.getInverseIsoProbabilisticTransformation()
+    d = len(parameters)
+    used = method
+    if method == "importance":  # the origin (median point) fails: failure is not rare
+        median = np.asarray(to_x([0.0] * d), dtype=float).reshape(1, d)
+        if float(counter(median)[0, 0]) <= 0.0:
+            used = "monte_carlo"
+    if used in ("form", "importance"):
         solver = ot.Cobyla() if form_strict else ot.AbdoRackwitz()
         solver.setMaximumCallsNumber(integer("form_max_calls", form_max_calls, 10, 10**6))
         in_range("form_tolerance", form_tolerance, 0.0, 0.1, low_inclusive=False)
@@ -236,34 +258,36 @@ def estimate_failure_probability(
                 converged=ok,
                 seed=seed,
             )
-        std_event = ot.StandardEvent(event)
-        u_star = res.getStandardSpaceDesignPoint()
-        inst = ot.Normal(u_star, ot.CovarianceMatrix(len(parameters)))
-        algo = ot.ProbabilitySimulationAlgorithm(std_event, ot.ImportanceSamplingExperiment(inst))
-    elif method == "monte_carlo":
-        algo = ot.ProbabilitySimulationAlgorithm(event, ot.MonteCarloExperiment())
+        centre = np.asarray(res.getStandardSpaceDesignPoint(), dtype=float)
+
+    def g_u(u: np.ndarray) -> np.ndarray:
+        out = []
+        for i in range(0, u.shape[0], block):
+            x = np.asarray(to_x(np.ascontiguousarray(u[i : i + block])))
+            out.append(counter(x).reshape(-1))
+        return np.concatenate(out)
+
+    rng = np.random.default_rng([seed, 0x5EED])
+    if used == "monte_carlo":
+        r = _sampling.monte_carlo(g_u, d, rng, block, n_max, target_cv)
+    elif used == "importance":
+        r = _sampling.importance(g_u, d, rng, centre, block, n_max, target_cv)
     else:
-        algo = ot.SubsetSampling(event)
-    if method == "subset":  # block_size samples per level; stops when a level fails
-        algo.setBlockSize(min(block, n_max))
-        algo.setConditionalProbability(0.1)
-        algo.setMaximumOuterSampling(1)
-    else:
-        algo.setBlockSize(block)
-        algo.setMaximumOuterSampling(max(1, n_max // block))
-        algo.setMaximumCoefficientOfVariation(target_cv)
-    algo.run()
-    r = algo.getResult()
-    p = float(r.getProbabilityEstimate())
-    cv = float(r.getCoefficientOfVariation()) if p > 0.0 else math.inf
+        r = _sampling.subset(g_u, d, rng, min(block, n_max), n_max)
+    p = r.probability
     return FailureProbability(
         probability=p,
-        cv=cv,
-        method=method,
+        cv=r.cv,
+        method=used,
         evaluations=counter.calls,
         reliability_index=_beta(p),
         importance=importance,
         design_point=design,
-        converged=bool(cv <= target_cv),
+        converged=r.converged,
         seed=seed,
+        low=r.low,
+        high=r.high,
+        interval_kind=r.interval_kind,
+        upper_bound=r.upper_bound,
+        failures=r.failures,
     )

@@ -20,12 +20,41 @@ from onbottom.reliability.setup import ReliabilitySetup
 from onbottom.reliability.storm_model import StormModel
 
 __all__ = [
+    "F101_TARGETS",
     "ReliabilityRun",
     "planned_storms",
     "require_packages",
     "run_payload",
     "run_reliability",
+    "target_comparison",
 ]
+
+
+F101_TARGETS = {"low": 1.0e-3, "medium": 1.0e-4, "high": 1.0e-5}
+"""Nominal target annual failure probabilities per pipeline of DNV-OS-F101 (2013), Sec. 2,
+Table 2-5, for the ultimate limit state (ULS), per safety class (the SLS row is 1e-2, 1e-3,
+1e-3). F109's stability criteria are compared with the ULS row here."""
+
+F101_SOURCE = "DNV-OS-F101 (2013) Sec. 2 Table 2-5, ULS, annual per pipeline"
+
+
+def target_comparison(estimates: list[ExceedanceEstimate], safety_class: str) -> dict[str, Any]:
+    """Each estimate's annual probability against the F101 target of ``safety_class``:
+    ``pass`` when the 95 % interval's upper end is below the target, ``fail`` when its lower end
+    is above it, ``undecided`` otherwise (the estimate cannot tell)."""
+    target = F101_TARGETS[safety_class]
+    rows = []
+    for e in estimates:
+        lo, hi = e.annual_interval
+        hi = e.annual if not math.isfinite(hi) else hi
+        verdict = "pass" if hi <= target else "fail" if lo > target else "undecided"
+        rows.append({"label": e.label, "annual": e.annual, "upper": hi, "verdict": verdict})
+    return {
+        "source": F101_SOURCE,
+        "safety_class": safety_class,
+        "annual_target": target,
+        "limits": rows,
+    }
 
 
 @dataclass
@@ -41,6 +70,7 @@ class ReliabilityRun:
     design_stats: CampaignStats | None
     climate: dict[str, Any] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    target: dict[str, Any] = field(default_factory=dict)
 
 
 def run_reliability(
@@ -122,7 +152,7 @@ def run_reliability(
                     seed=setup.seed,
                     storms_per_year=rate,
                     design_life_years=setup.design_life_years,
-                    form_storms=setup.form_storms,
+                    pilot_storms=setup.form_storms,
                 )
             )
         stats = camp.stats
@@ -130,10 +160,26 @@ def run_reliability(
     if fails:
         notes.append(f"{len(fails)} storm runs raised (counted as exceedances); see the store")
     for e in estimates:
+        notes.extend(f"{e.label}: {n}" for n in e.notes)
         if e.method != "subset" and e.cv > setup.target_cv:
             notes.append(
                 f"{e.label}: CV {e.cv:.2f} above the target {setup.target_cv:g} at max_storms"
             )
+        if e.upper_bound:
+            notes.append(
+                f"{e.label}: the probability is an upper bound ({e.interval_kind}), not an estimate"
+            )
+    peak_h = max(st.duration_s for st in setup.storm.storm.stages) / 3600.0
+    if peak_h < 3.0 - 1e-9:
+        notes.append(
+            f"storm peak {peak_h:g} h: shorter than DNV-RP-F109's 3-h design sea state;"
+            " the probabilities are for that shorter storm (peak_hours in the case)"
+        )
+    if setup.method == "subset" and setup.block_size < 500:
+        notes.append(
+            f"subset simulation with {setup.block_size} storms a level: biased upward and its"
+            " interval too narrow below about 500 (docs/theory/reliability.md)"
+        )
     design = None
     dstats = None
     if setup.design is not None and result is not None:
@@ -190,6 +236,7 @@ def run_reliability(
         design_stats=dstats,
         climate=info,
         notes=notes,
+        target=target_comparison(estimates, setup.safety_class),
     )
 
 
@@ -239,7 +286,8 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
     ``case``, ``out`` and ``files``): ``success`` (false when a storm run failed numerically),
     ``diameter`` [m], ``storms_per_year`` [1/year], ``inputs`` (the random inputs, the storm
     seed last), ``climate``, ``estimates``, ``design``, ``campaign`` (requested, computed,
-    reused, failed, seconds_per_storm [s]) and ``notes``."""
+    reused, failed, seconds_per_storm [s]), ``target`` (:func:`target_comparison`) and
+    ``notes``."""
     stats = [s for s in (r.stats, r.design_stats) if s is not None]
     computed = sum(s.computed for s in stats)
     failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
@@ -260,6 +308,7 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
                 sum(s.compute_seconds for s in stats) / computed if computed else math.nan
             ),
         },
+        "target": r.target,
         "notes": r.notes,
     }
 

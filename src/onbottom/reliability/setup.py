@@ -127,7 +127,12 @@ class ReliabilitySetup:
     design_life_years : float
         Design life [years].
     form_storms : int
-        Storm runs of the FORM search (``method = "importance"``) [-].
+        Storms per iteration of importance sampling's cross-entropy pilot [-] (at most 4
+        iterations).
+    safety_class : str
+        ``"low"``, ``"medium"`` or ``"high"``: the DNV-OS-F101 target annual failure
+        probability the estimates are compared with
+        (:data:`onbottom.reliability.run.F101_TARGETS`).
     climate : ClimateSettings or None
         The sea state drawn from a hindcast's storm climate; None: from ``inputs``.
     design : ContourDesign or None
@@ -138,8 +143,8 @@ class ReliabilitySetup:
     limits: tuple[tuple[str, float], ...]
     seabed_model: str
     inputs: tuple[UncertainParameter, ...] = ()
-    method: str = "subset"
-    target_cv: float = 0.2
+    method: str = "importance"
+    target_cv: float = 0.1
     max_storms: int = 5000
     block_size: int = 200
     task_size: int = 4
@@ -147,6 +152,7 @@ class ReliabilitySetup:
     storms_per_year: float | None = None
     design_life_years: float = 25.0
     form_storms: int = 150
+    safety_class: str = "medium"
     climate: ClimateSettings | None = None
     design: ContourDesign | None = None
 
@@ -158,6 +164,7 @@ class ReliabilitySetup:
         for label, value in self.limits:
             positive(f"ReliabilitySetup.limits[{label!r}]", value)
         one_of("ReliabilitySetup.method", self.method, METHODS)
+        one_of("ReliabilitySetup.safety_class", self.safety_class, ("low", "medium", "high"))
         in_range("ReliabilitySetup.target_cv", self.target_cv, 0.0, 1.0, low_inclusive=False)
         for name in ("max_storms", "block_size", "task_size", "form_storms"):
             integer(f"ReliabilitySetup.{name}", getattr(self, name), 1)

@@ -120,6 +120,69 @@ def _f(x: Any) -> Any:
 
 
 # ------------------------------------------------------------------------------ metocean
+def _tail_section(result, figures: dict[str, str] | None = None) -> SectionContent | None:
+    """The omnidirectional H_s fit's tail guard, exponential alternative and censored storms."""
+    t = getattr(result, "tail", None)
+    if t is None:
+        return None
+    rps = [float(r) for r in t.return_periods]
+    lv = result.hs["omni"]
+
+    def cells(v, lo, hi) -> list[str]:
+        return [f"{x:.2f} [{a:.2f}, {b:.2f}]" for x, a, b in zip(v, lo, hi, strict=True)]
+
+    rows = [
+        ["GPD (as fitted)", t.shape, *cells(lv.value, lv.lower, lv.upper)],
+        ["exponential (ξ = 0)", 0.0, *cells(*t.exponential)],
+    ]
+    c = t.censored_fit
+    if c:
+        rows.append(
+            [
+                "GPD, gap-ended storms censored",
+                c["shape"],
+                *cells(c["value"], c["lower"], c["upper"]),
+            ]
+        )
+    crow = [[tm, p] for tm, p in t.censored_peaks]
+    end = "none (ξ ≥ 0)" if not math.isfinite(t.endpoint) else f"{t.endpoint:.3g}"
+    tables = [
+        Table(
+            caption="Omnidirectional H_s return values [m] (95 % interval) by tail model",
+            columns=["fit", "ξ", *[f"{r:g} y" for r in rps]],
+            rows=rows,
+            digits=3,
+        )
+    ]
+    if crow:
+        tables.append(
+            Table(caption="Storms ending at a data gap of 12 h or more (censored peaks)",
+                  columns=["peak time (UTC)", "H_s peak [m]"], rows=crow, digits=3)
+        )  # fmt: skip
+    return SectionContent(
+        summary=f"{t.storms} storms, ξ̂ = {t.shape:.2f}, fitted end-point {end} against the"
+        f" record's largest storm {t.record_max:.3g}. "
+        + (
+            " ".join(f"WARNING: {w}." for w in t.warnings)
+            if t.warnings
+            else "No short-tail warning."
+        )
+        + " A storm whose cluster ends at a gap of 12 h or more (a buoy failing in the storm)"
+        " is a censored observation: its true peak is at least the recorded one.",
+        tables=tables,
+        figures=[
+            FigureRef(
+                figures["threshold"],
+                "Mean residual life and threshold stability of ξ̂ (storm peaks declustered at"
+                " each threshold); the red line is the threshold used.",
+            )
+        ]
+        if figures and "threshold" in figures
+        else [],
+        sources=["Coles (2001) §4.3.1, §4.4", "docs/theory/metocean.md"],
+    )
+
+
 def metocean_sections(
     result, rows, *, source: Path, figures: dict[str, str], notes: Sequence[str]
 ) -> tuple[list[tuple[str, str, SectionContent]], dict[str, Any]]:
@@ -299,8 +362,10 @@ def metocean_sections(
             " their intervals (Coles 2001 §4.4).",
             "T_p for a return-period H_s is the median of T_p | H_s; F109 §3.4.4 asks to scan"
             " the 5–95 % range given in the table's CSV.",
-            "The IFORM contour counts every sea state as independent: its highest H_s exceeds"
-            " the storm-based return value (Haver & Winterstein 2009 §3).",
+            "The IFORM contour's highest H_s reads the all-sea-state Weibull far beyond the"
+            " data (about 1e-6 per sea state at 100 years): it differs from the storm-based"
+            " value mainly through that extrapolation (JSON contour_check;"
+            " docs/theory/metocean.md).",
             "The current model is omnidirectional; its Gaussian copula has no tail"
             " dependence; a tidal current is not Weibull in detail.",
             *notes,
@@ -314,9 +379,15 @@ def metocean_sections(
             "docs/theory/metocean.md",
         ],
     )
+    tail_section = _tail_section(result, figures)
     sections = [
         ("data", "Hindcast", data),
         ("extremes", "Storms and return values", extremes),
+        *(
+            [("tail", "What the tail fit can be trusted with", tail_section)]
+            if tail_section
+            else []
+        ),
         ("joint", "Joint model and environmental contours", joint),
         ("design_table", "DNV-RP-F109 design table", table),
         ("assumptions", "Assumptions and limits", assumptions),
@@ -392,10 +463,14 @@ def reliability_sections(
     est = payload["estimates"]
     erows = []
     for e in est:
-        le = "≤ " if e["upper_bound"] else ""  # an upper bound: the subset levels stopped short
+        le = "≤ " if e["upper_bound"] else ""  # an upper bound (no failure, or levels short)
 
         def g(v, le=le):
             return None if v is None else f"{le}{v:.3g}"
+
+        def iv(pair):
+            lo, hi = pair
+            return "–" if lo is None or hi is None else f"[{lo:.2g}, {hi:.2g}]"
 
         erows.append(
             [
@@ -403,9 +478,13 @@ def reliability_sections(
                 e["limit"],
                 e["method"],
                 g(e["probability"]),
+                iv(e["interval"]),
                 "upper bound" if e["upper_bound"] else e["cv"],
                 g(e["annual"]),
+                iv(e["annual_interval"]),
                 g(e["lifetime"]),
+                iv(e["lifetime_interval"]),
+                e["interval_kind"],
                 e["reliability_index"],
                 e["storms"],
                 e["computed"],
@@ -421,8 +500,11 @@ def reliability_sections(
         if k in figures
     ]
     estimates = SectionContent(
-        summary="P[Y > limit] per storm by the estimator of the case, its coefficient of"
-        " variation, and per year (1 − exp(−λ p)) and design life.",
+        summary="P[Y > limit] per storm by the estimator of the case with its 95 % interval"
+        " (Monte Carlo: Clopper–Pearson, a flagged one-sided bound when no storm fails;"
+        " importance sampling: the weights' standard error; subset simulation: Au & Beck's CV"
+        " with the chains' correlation), its coefficient of variation, and per year"
+        " (1 − exp(−λ p)) and design life, the intervals mapped through the same formulas.",
         tables=[
             Table(
                 caption="Exceedance probabilities",
@@ -431,9 +513,13 @@ def reliability_sections(
                     "limit [m]",
                     "method",
                     "P per storm",
+                    "95 % interval",
                     "CV",
                     "P per year",
+                    "95 % interval (year)",
                     "P in the design life",
+                    "95 % interval (life)",
+                    "interval",
                     "β",
                     "storms",
                     "computed",
@@ -448,17 +534,30 @@ def reliability_sections(
     names = sorted({k for e in est for k in e["importance"]})
     irows = [[e["label"], e["importance_kind"]] + [e["importance"].get(n) for n in names]
              for e in est]  # fmt: skip
+    fnames = list(dict.fromkeys(k for e in est for k in e.get("failure_mean", {})))
+    frows = [[e["label"]] + [e["failure_mean"].get(n) for n in fnames] for e in est]
     importance = SectionContent(
-        summary="Sensitivity of the result to each input: FORM α² (importance sampling, seed"
-        " frozen) or squared standardised rank regression coefficients (Monte Carlo, subset"
-        " simulation; the rest, 1 − R², is the storm seed and interactions).",
+        summary="What drives failure, two measures that answer different questions."
+        " Mean standardized input given failure, E[u | failure]: how many standard deviations"
+        " from its median each input stood in the storms that failed (the failing storms of"
+        " Monte Carlo or of subset simulation's last level, the weighted failing storms of"
+        " importance sampling) — the inputs that make a storm fail. SRRC², squared"
+        " standardised rank regression coefficients of Y over an unbiased block of storms: the"
+        " share of the variance of Y over all storms each input explains (the bulk of the"
+        " response, not its tail; the rest, 1 − R², is the storm seed and interactions).",
         tables=[
             Table(
-                caption="Importance of the inputs",
+                caption="Mean standardized input given failure, E[u | failure] [SD]",
+                columns=["limit", *fnames],
+                rows=frows,
+                digits=3,
+            ),
+            Table(
+                caption="SRRC² over all storms (the bulk of the response)",
                 columns=["limit", "measure", *names],
                 rows=irows,
                 digits=3,
-            )
+            ),
         ],
         figures=[FigureRef(figures["importance"], "Importance of the inputs per limit.")]
         if "importance" in figures
@@ -505,7 +604,12 @@ def reliability_sections(
         notes=[
             "Storms arrive as a Poisson process; a year fails when any of its storms does.",
             "The storm seed is an input like the others (S ~ U(0, 1)); subset simulation's CV"
-            " neglects the correlation between levels (a lower bound).",
+            " includes the chains' correlation but not the levels' (a lower bound).",
+            "Lifetime assumptions: the soil (μ, γ') is drawn anew for every storm, not once per"
+            " route; the metocean fit's own uncertainty is not carried into the lifetime; the"
+            " storm peak lasts the case's peak_hours (F109's design storm is 3 h); the current"
+            " is drawn for the storm, not as the maximum over its window; one omnidirectional"
+            " severity for every sector.",
             "Numerical failures of a storm run count as exceedances (conservative).",
             "Only the storm peak's sea state is drawn; the build-up and decay follow the"
             " case's storm shape.",
@@ -515,6 +619,31 @@ def reliability_sections(
         ],
         sources=["docs/theory/reliability.md", "Au & Beck (2001)", "Melchers & Beck (2018)"],
     )
+    t = payload.get("target")
+    if t:
+        sections.append(
+            (
+                "target",
+                "Against the DNV-OS-F101 target",
+                SectionContent(
+                    summary=f"Annual probability per limit against the target"
+                    f" {t['annual_target']:.0e} per year of the {t['safety_class']} safety class"
+                    f" ({t['source']}): pass when the 95 % interval's upper end lies below it,"
+                    " fail when its lower end lies above it, undecided otherwise.",
+                    tables=[
+                        Table(
+                            caption="Annual probability against the target",
+                            columns=["limit", "P per year", "95 % upper", "verdict"],
+                            rows=[
+                                [r["label"], r["annual"], r["upper"], r["verdict"]]
+                                for r in t["limits"]
+                            ],
+                            digits=3,
+                        )
+                    ],
+                ),
+            )
+        )
     sections.append(("campaign", "Campaign, assumptions and limits", assumptions))
     prov = {
         "case": str(case),
