@@ -68,7 +68,7 @@ def test_stopped_storms_keep_the_whole_storms_verdicts_storm_by_storm(tmp_path):
     assert np.all(ye[stopped, k] >= early.stop_at)
 
 
-@pytest.mark.parametrize("method", ["subset", "monte_carlo"])
+@pytest.mark.parametrize("method", ["subset", "monte_carlo", "importance"])
 def test_an_early_stopped_estimate_equals_the_whole_storms_estimate(tmp_path, method):
     full, early, limit = _models()
     kw = {"method": method, "block_size": 40, "max_storms": 80, "target_cv": 0.01, "seed": 3}
@@ -86,7 +86,7 @@ def test_an_early_stopped_estimate_equals_the_whole_storms_estimate(tmp_path, me
     assert b.to_dict()["stopped_early"] == b.stopped_early
 
 
-def test_the_stop_is_just_above_the_largest_limit_and_off_for_importance_sampling():
+def test_the_stop_is_just_above_the_largest_limit_for_every_estimator():
     full, _, _ = _models()
     s = ReliabilitySetup(
         storm=full.setup,
@@ -96,4 +96,5 @@ def test_the_stop_is_just_above_the_largest_limit_and_off_for_importance_samplin
     )
     assert stop_displacement(s) == pytest.approx(0.4 * (1.0 + EARLY_STOP_MARGIN), rel=1e-15)
     assert stop_displacement(s) > 0.4
-    assert stop_displacement(replace(s, method="importance")) is None
+    for method in ("importance", "subset", "monte_carlo"):
+        assert stop_displacement(replace(s, method=method)) == stop_displacement(s)

@@ -247,11 +247,11 @@ displacement is strictly beyond every limit."""
 
 def stop_displacement(setup: ReliabilitySetup) -> float | None:
     """Where the campaign's storms stop [m]: just above the largest limit asked (every
-    exceedance verdict is known there, :mod:`onbottom.reliability.storm_model`); None with
-    ``method = "importance"``, whose FORM search reads the displacement itself, not only the
-    verdict, beyond the limits."""
-    if setup.method == "importance":
-        return None
+    exceedance verdict is known there, :mod:`onbottom.reliability.storm_model`). Every
+    estimator reads only the verdicts beyond the largest limit: Monte Carlo and importance
+    sampling count failures (the cross-entropy pilot's levels are quantiles of g that stop at
+    g = 0, and a stopped storm has g < 0 for every limit), subset simulation's levels lie
+    below the limit."""
     return max(v for _, v in setup.limits) * (1.0 + EARLY_STOP_MARGIN)
 
 
