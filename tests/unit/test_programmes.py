@@ -116,3 +116,54 @@ def test_from_arrays_and_toml_kinds(tmp_path):
         )
     with pytest.raises(InputError, match="missing"):
         programme_from_toml({"kind": "regular"})
+
+
+@pytest.mark.parametrize(
+    ("kind", "key", "value"),
+    [("irregular", "sub_cycles", 4), ("regular", "hs", 5.0), ("regular", "seed", 3)],
+)
+def test_wave_group_key_of_the_other_kind_is_a_named_error(tmp_path, kind, key, value):
+    """A key only the other wave-group kind takes is refused by name (it was a TypeError from
+    the builder), by the programme table and by the section case with its line."""
+    from onbottom.cases.section import load_case
+
+    table = {"kind": kind, "vertical_load_kn": 10.0, "n_groups": 2, key: value}
+    with pytest.raises(InputError, match=rf"programme\.{key} is invalid with kind = '{kind}'"):
+        programme_from_toml({"programme": table})
+    case = tmp_path / "case.toml"
+    case.write_text(
+        "[pipe]\nouter_diameter = 1.0\nsubmerged_weight_kn = 10.0\n"
+        '[soil]\nmodel = "coulomb"\nfriction_coefficient = 0.5\n'
+        f'[programme]\nkind = "{kind}"\nvertical_load_kn = 10.0\nn_groups = 2\n{key} = {value}\n',
+        encoding="utf-8",
+    )
+    with pytest.raises(InputError, match=rf"line 11: programme\.{key} is invalid") as err:
+        load_case(case)
+    assert err.value.field == f"programme.{key}"
+
+
+@pytest.mark.parametrize(
+    ("table", "key"),
+    [
+        ({"kind": "irregular", "n_groups": 100_000}, "n_groups"),  # 1e8 samples
+        ({"kind": "regular", "n_groups": 20_000}, "n_groups"),  # 20,000 x 6 x 100
+        (
+            {
+                "kind": "inclined_cyclic",
+                "n_cycles": 100_000,
+                "amplitude_step_kn": 0.1,
+                "period": 10.0,
+                "alpha_deg": 30.0,
+            },
+            "n_cycles",
+        ),
+    ],
+)
+def test_programme_over_the_sample_limit_is_a_named_error(table, key):
+    """A programme over MAX_SAMPLES is refused by the key that sized it, before the arrays are
+    allocated (the schema's 100,000 groups of an irregular programme were 1e8 samples, 7 GB)."""
+    from onbottom.dynamics.programmes import MAX_SAMPLES
+
+    with pytest.raises(InputError, match=rf"{key} = 100000|{key} = 20000") as err:
+        programme_from_toml({"programme": {"vertical_load_kn": 10.0} | table})
+    assert f"{MAX_SAMPLES:,}" in str(err.value)

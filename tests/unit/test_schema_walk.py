@@ -1,7 +1,12 @@
 """Every key of every case kind is used or refused.
 
-The test walks every field of the ``storm``, ``stability``, ``assess`` (route) and
-``reliability`` case schemas. For each field it changes the value (or sets it, where the base
+The test walks every field of the ``storm``, ``stability``, ``assess`` (route),
+``reliability``, ``curves`` and ``[pipeline]`` case schemas, of the ``simulate`` section case
+(one schema per programme kind), of the ``sweep`` grid file (its axes as tables) and of the
+``dem`` config file (JSON: the config is built and checked, no DEM is run); the case kinds
+without a schema of keys are named in ``NOT_WALKED`` with the reason, and
+``test_every_case_schema_is_walked`` fails on a schema of ``onbottom.cases`` no kind reaches.
+For each field it changes the value (or sets it, where the base
 case leaves it out) to other values the schema accepts and builds what the command computes
 from (the storm setup, the F109 inputs and notes, the route, the reliability setup). The field
 passes when a change reaches those objects ("used"), when every change is a named error
@@ -168,9 +173,36 @@ def _has_parent(doc: Any, path: tuple) -> bool:
     return isinstance(parent, dict)
 
 
+def _types(ann: Any) -> set[Any]:
+    """The types of an annotation, through unions and ``Annotated``."""
+    if typing.get_origin(ann) is typing.Annotated:
+        return _types(typing.get_args(ann)[0])
+    out = {ann}
+    if typing.get_origin(ann) in (typing.Union, types.UnionType):
+        for a in typing.get_args(ann):
+            out |= _types(a)
+    return out
+
+
+def _metadata(info: Any) -> list[Any]:
+    """The constraints of a field, its own and those of an ``Annotated`` in its union."""
+    out = list(info.metadata)
+
+    def visit(ann: Any) -> None:
+        if typing.get_origin(ann) is typing.Annotated:
+            for m in ann.__metadata__:  # a pydantic Field holds its constraints in .metadata
+                out.extend(getattr(m, "metadata", None) or [m])
+        elif typing.get_origin(ann) in (typing.Union, types.UnionType):
+            for a in typing.get_args(ann):
+                visit(a)
+
+    visit(info.annotation)
+    return out
+
+
 def _bounds(info: Any) -> tuple[float, float]:
     lo, hi = -1e300, 1e300
-    for m in info.metadata:
+    for m in _metadata(info):
         for attr in ("ge", "gt"):
             if getattr(m, attr, None) is not None:
                 lo = float(getattr(m, attr))
@@ -190,8 +222,7 @@ def _candidates(info: Any, current: Any) -> list[Any]:
             and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in current)
         )
         return [[x * 1.1 for x in current], current[:1]] if nums else []
-    ann = info.annotation
-    args = set(typing.get_args(ann)) | {ann}
+    args = _types(info.annotation)
     lits = [a for a in args if typing.get_origin(a) is typing.Literal]
     if lits:
         return [c for c in typing.get_args(lits[0]) if c != current]
@@ -228,6 +259,8 @@ class Kind:
     root: tuple = ()
     pairs: dict[str, dict[str, Any]] = dataclasses.field(default_factory=dict)
     prepare: Callable[[Path], None] | None = None
+    write: Callable[[dict], str] = dump_toml
+    filename: str = "case.toml"
 
 
 def _toml(path: Path) -> dict:
@@ -583,6 +616,243 @@ PIPELINE = Kind(
     },
 )
 
+
+# ---- onbottom simulate: the section case, one schema per programme kind --------------------------
+from onbottom.cases import section as _section  # noqa: E402
+
+
+class _SectionInclined(_section.SectionCase):
+    programme: _section.InclinedCyclicTable | None = None
+
+
+class _SectionWaves(_section.SectionCase):
+    programme: _section.WaveGroupsTable | None = None
+
+
+class _SectionArrays(_section.SectionCase):
+    programme: _section.ArraysTable | None = None
+
+
+class _SectionCsv(_section.SectionCase):
+    programme: _section.CsvTable | None = None
+
+
+def _section_base() -> dict:
+    return _toml(EXAMPLES / "section_case.toml")
+
+
+def _section_soil(model: str) -> dict:
+    d = _section_base()
+    for k in ("A", "B", "C"):
+        del d["soil"][k]
+    d["soil"]["model"] = model
+    if model == "coulomb":
+        del d["soil"]["submerged_unit_weight_kn"]
+        d["soil"]["mobilisation_displacement"] = 0.01
+    else:
+        d["soil"] |= {"passive_law": "verley_sotberg", "work_law": "reconstruction"}
+        d["soil"] |= {"max_penetration_law": "reconstruction", "work_integrand": "total"}
+    return d
+
+
+def _section_programme(programme: dict) -> Callable[[], dict]:
+    def make() -> dict:
+        d = _section_base()
+        d["programme"] = dict(programme)
+        return d
+
+    return make
+
+
+_WAVES = {"vertical_load_kn": 10.52, "n_groups": 2, "installation_load_kn": 42.98, "name": "w"}
+
+
+def _section_build(path: Path) -> Any:
+    from onbottom.cases.section import build_section_run
+
+    return build_section_run(path)
+
+
+def _section_prepare(folder: Path) -> None:
+    (folder / "loads.csv").write_text("t,H,V\n0,0,10\n10,1,9\n20,0,10\n", encoding="utf-8")
+    (folder / "other.csv").write_text("t,H,V\n0,0,10\n10,2,9\n20,0,10\n", encoding="utf-8")
+
+
+_SECTION_SPECIAL = {
+    "soil.model": ["verley_sotberg_silica", "verley_sotberg_calcareous"],
+    "soil.passive_law": ["dnv_f109"],
+    "soil.work_law": ["none"],
+    "soil.max_penetration_law": ["reconstruction_no_half"],
+    "soil.work_integrand": ["passive"],
+    "preset.test": ["Inclined 2", "Regular"],
+    "programme.file": ["other.csv"],
+    "pipe.mass": [1878.0, 2500.0],
+    "solver.dt_min": [1.0e-3],
+    "solver.force_tolerance": [1.0e-6],
+}
+_SECTION_METADATA = {
+    "soil.models": "the [soil.<name>] option tables of the soil models: each is walked by"
+    " tests/unit/test_recipes_end_to_end.py (options change the result)",
+}
+_KIND_BY_SCHEMA = (
+    "selects the programme's schema: each kind is walked as a case kind of its own here"
+    " (section, section-waves, section-arrays, section-csv)"
+)
+SECTION = Kind(
+    schema=_SectionInclined,
+    bases=[
+        _section_base,
+        functools.partial(_section_soil, "verley_sotberg_silica"),
+        functools.partial(_section_soil, "coulomb"),
+        lambda: _toml(EXAMPLES / "section_preset.toml"),
+    ],
+    build=_section_build,
+    special=_SECTION_SPECIAL,
+    metadata=_SECTION_METADATA | {"programme.kind": _KIND_BY_SCHEMA},
+)
+SECTION_WAVES = Kind(
+    schema=_SectionWaves,
+    bases=[
+        _section_programme(
+            _WAVES
+            | {
+                "kind": "regular",
+                "group_period": 60.0,
+                "sub_cycles": 6,
+                "h_peak_kn": 0.3,
+                "h_trough_kn": -0.2,
+                "v_peak_kn": 0.3,
+                "increment": 1.0,
+            }
+        ),
+        _section_programme(
+            _WAVES
+            | {
+                "kind": "irregular",
+                "group_period": 50.0,
+                "hs": 6.0,
+                "tp": 12.0,
+                "depth": 60.0,
+                "waves_per_group": 5.0,
+                "seed": 3,
+                "h_peak_kn": 3.0,
+                "h_trough_kn": -2.0,
+                "v_peak_kn": 3.0,
+                "increment": 0.1,
+            }
+        ),
+    ],
+    build=_section_build,
+    root=("programme",),
+    special=_SECTION_SPECIAL,
+    metadata=_SECTION_METADATA,
+)
+SECTION_ARRAYS = Kind(
+    schema=_SectionArrays,
+    bases=[
+        _section_programme(
+            {
+                "kind": "arrays",
+                "time": [0.0, 10.0, 20.0],
+                "horizontal_load_kn": [0.0, 1.0, 0.0],
+                "vertical_load_kn": [10.0, 9.0, 10.0],
+                "cycle_period": 20.0,
+                "installation_load_kn": 40.0,
+                "name": "a",
+            }
+        )
+    ],
+    build=_section_build,
+    root=("programme",),
+    special=_SECTION_SPECIAL,
+    metadata=_SECTION_METADATA | {"programme.kind": _KIND_BY_SCHEMA},
+)
+SECTION_CSV = Kind(
+    schema=_SectionCsv,
+    bases=[
+        _section_programme(
+            {
+                "kind": "csv",
+                "file": "loads.csv",
+                "cycle_period": 20.0,
+                "installation_load_kn": 40.0,
+                "name": "c",
+            }
+        )
+    ],
+    build=_section_build,
+    root=("programme",),
+    prepare=_section_prepare,
+    special=_SECTION_SPECIAL,
+    metadata=_SECTION_METADATA | {"programme.kind": _KIND_BY_SCHEMA},
+)
+
+
+# ---- onbottom sweep: the grid file (its [grid] axes as one table each) ---------------------------
+from onbottom.cases import sweep as _sweep  # noqa: E402
+
+
+class _GridAxes(StrictModel):
+    A: _sweep.LinspaceAxis
+    mu: _sweep.ValuesAxis
+
+
+class _GridWalk(_sweep.GridFile):
+    grid: _GridAxes  # type: ignore[assignment]
+    fixed: dict[str, Any]
+
+
+def _sweep_base() -> dict:
+    d = _toml(EXAMPLES / "sweep_grid.toml")
+    d["grid"]["mu"] = {"values": d["grid"]["mu"]}
+    return d
+
+
+def _sweep_build(path: Path) -> Any:
+    return _sweep.read_grid(path)
+
+
+SWEEP = Kind(
+    schema=_GridWalk,
+    bases=[_sweep_base],
+    build=_sweep_build,
+    special={
+        "sweep.function": ["misfit"],
+        "grid.mu.values": [[0.5, 0.6]],
+        "fixed": [{"test": "Inclined 2", "B": 0.35, "C": 0.79}],
+    },
+    metadata={},
+)
+
+
+# ---- onbottom dem: the config file (JSON; built and checked, never run) --------------------------
+def _dem_base(preset: str = "SM") -> dict:
+    from onbottom.dem import config
+
+    return json.loads(getattr(config, preset).to_json())
+
+
+def _dem_build(path: Path) -> Any:
+    from onbottom.cases.dem import load_dem_config
+
+    return load_dem_config(path)
+
+
+DEM = Kind(
+    schema=__import__("onbottom.cases.dem", fromlist=["x"]).dem_config_schema(),
+    bases=[_dem_base, functools.partial(_dem_base, "SD")],
+    build=_dem_build,
+    special={
+        "preparation.relaxation": ["fire", "damped"],
+        "preparation.layer_generation": ["random"],
+        "preparation.lid_pause": ["adaptive"],
+        "psd.basis": ["mass"],
+    },
+    metadata={},
+    write=lambda d: json.dumps(d, indent=1),
+    filename="config.json",
+)
+
 KINDS = {
     "storm": STORM,
     "stability": STABILITY,
@@ -590,6 +860,12 @@ KINDS = {
     "reliability": RELIABILITY,
     "curves": CURVES,
     "pipeline": PIPELINE,
+    "section": SECTION,
+    "section-waves": SECTION_WAVES,
+    "section-arrays": SECTION_ARRAYS,
+    "section-csv": SECTION_CSV,
+    "sweep": SWEEP,
+    "dem": DEM,
 }
 
 
@@ -600,11 +876,11 @@ def _walk(kind: Kind, tmp_path: Path) -> dict[str, list[str]]:
         "t [s],U [m/s]\n"
         + "\n".join(f"{0.2 * i:.1f},{0.5 * np.sin(i / 5):.6f}" for i in range(400))
     )
-    path = tmp_path / "case.toml"
+    path = tmp_path / kind.filename
     cache: dict[int, Any] = {}
 
     def build(doc: dict) -> Any:
-        path.write_text(dump_toml(doc), encoding="utf-8")
+        path.write_text(kind.write(doc), encoding="utf-8")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             return canon(kind.build(path))
@@ -667,12 +943,11 @@ def test_every_key_is_used_or_refused(name, tmp_path):
 
 def _extremes(info: Any) -> list[Any]:
     """The ends of a numeric field's range the schema accepts (finite ends only)."""
-    ann = info.annotation
-    args = set(typing.get_args(ann)) | {ann}
+    args = _types(info.annotation)
     if bool in args or not (int in args or float in args):
         return []
     out = []
-    for m in info.metadata:
+    for m in _metadata(info):
         for attr, step in (("ge", 0.0), ("gt", 1e-9), ("le", 0.0), ("lt", -1e-9)):
             v = getattr(m, attr, None)
             if v is not None and abs(float(v)) < 1e12:
@@ -689,7 +964,7 @@ def test_schema_extremes_are_built_or_named_errors(name, tmp_path):
     kind = KINDS[name]
     if kind.prepare is not None:
         kind.prepare(tmp_path)
-    path = tmp_path / "case.toml"
+    path = tmp_path / kind.filename
     bad = []
     for rel, info in leaves(kind.schema):
         key = ".".join(map(str, rel))
@@ -701,7 +976,7 @@ def test_schema_extremes_are_built_or_named_errors(name, tmp_path):
         for v in _extremes(info):
             changed = copy.deepcopy(doc)
             _get(changed, rel[:-1])[rel[-1]] = v
-            path.write_text(dump_toml(changed), encoding="utf-8")
+            path.write_text(kind.write(changed), encoding="utf-8")
             try:
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore")
@@ -711,3 +986,57 @@ def test_schema_extremes_are_built_or_named_errors(name, tmp_path):
             except Exception as exc:  # the failure under test
                 bad.append(f"{key} = {v!r}: {type(exc).__name__}: {exc}"[:200])
     assert not bad, "schema-accepted values the loader cannot take:\n" + "\n".join(bad)
+
+
+# ---- every case kind is walked, or named here with the reason ------------------------------------
+NOT_WALKED = {
+    "calibrate": "onbottom calibrate reads test records (CSV or NetCDF columns, no case schema):"
+    " its options are command-line options (tests/unit/test_cli_calibration.py)",
+    "dem specimen and run files": "onbottom dem's --sample and results inputs are NetCDF/NPZ"
+    " datasets onbottom wrote (cases.dem.load_sample, load_run): no keys a user types",
+    "programme TOML of its own": "cases.programme.programme_from_toml on a file reads its"
+    " [programme] table: the same tables as the section case's, walked there",
+    "hydrodynamic coefficient tables": "cases.force reads CSV tables named by [hydro] keys:"
+    " columns, not keys; the naming keys are walked with storm, stability and assess",
+}
+
+
+def _models_of(model: type, seen: set[type]) -> None:
+    for cls in model.__mro__:
+        if isinstance(cls, type) and issubclass(cls, StrictModel) and cls is not StrictModel:
+            seen.add(cls)
+    for info in model.model_fields.values():
+        stack = [info.annotation]
+        while stack:
+            a = stack.pop()
+            if isinstance(a, type) and issubclass(a, StrictModel) and a not in seen:
+                _models_of(a, seen)
+            stack.extend(typing.get_args(a))
+
+
+def test_every_case_schema_is_walked():
+    """Every strict schema under onbottom.cases is reached by a walked kind (the section's
+    programme tables, the sweep's axes included)."""
+    import importlib
+    import pkgutil
+
+    import onbottom.cases
+
+    for m in pkgutil.iter_modules(onbottom.cases.__path__):
+        importlib.import_module(f"onbottom.cases.{m.name}")
+    walked: set[type] = set()
+    for kind in KINDS.values():
+        _models_of(kind.schema, walked)
+    todo, schemas = [StrictModel], set()
+    while todo:
+        for sub in todo.pop().__subclasses__():
+            todo.append(sub)
+            if sub.__module__.startswith("onbottom.cases."):
+                schemas.add(sub)
+    missing = sorted(
+        f"{c.__module__}.{c.__qualname__}"
+        for c in schemas
+        if c not in walked and not c.__name__.startswith("_")
+    )
+    assert not missing, "case schemas no kind walks:\n" + "\n".join(missing)
+    assert all(reason for reason in NOT_WALKED.values())

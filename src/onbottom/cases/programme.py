@@ -32,6 +32,13 @@ __all__ = ["programme_from_toml", "read_programme_csv"]
 
 _KN = 1.0e3
 
+WAVE_GROUP_ONLY: dict[str, tuple[str, ...]] = {
+    "regular": ("sub_cycles",),
+    "irregular": ("hs", "tp", "depth", "seed", "waves_per_group"),
+}
+"""Keys of a wave-group programme that only one of its two kinds takes (the builders of
+:mod:`onbottom.dynamics.programmes`)."""
+
 
 def read_programme_csv(path: str) -> np.ndarray:
     """Columns time [s], H [kN/m], V [kN/m] of a programme CSV (one header line)."""
@@ -113,12 +120,19 @@ def programme_from_toml(source: str | os.PathLike | Mapping[str, Any]) -> LoadPr
             integer("programme.n_cycles", take("n_cycles"), 1),
             shape=str(take("shape", default="sine")),
             points_per_cycle=integer(
-                "programme.points_per_cycle", take("points_per_cycle", default=200), 4
+                "programme.points_per_cycle", take("points_per_cycle", default=200), 8
             ),
             installation_load=v_peak,
             name=name,
         )
     elif kind in ("regular", "irregular"):
+        other = WAVE_GROUP_ONLY["irregular" if kind == "regular" else "regular"]
+        wrong = sorted(k for k in other if k in table)
+        if wrong:
+            raise InputError(
+                f"programme.{wrong[0]} is invalid with kind = {kind!r}: it is a key of kind ="
+                f" {'irregular' if kind == 'regular' else 'regular'!r}"
+            )
         kwargs: dict[str, Any] = {}
         for key in ("h_peak_kn", "h_trough_kn", "v_peak_kn"):
             if key in table:

@@ -48,7 +48,7 @@ from onbottom._casefile import (
     resolve_path,
 )
 from onbottom.cases.models import check_model_names, collect_model_tables, soil_from_case
-from onbottom.cases.programme import programme_from_toml
+from onbottom.cases.programme import WAVE_GROUP_ONLY, programme_from_toml
 from onbottom.cases.stability import Checker
 from onbottom.dynamics import centrifuge
 from onbottom.dynamics.section import (
@@ -94,7 +94,7 @@ class PresetTable(StrictModel):
     mu: _Mu | None = None
     gamma_kn: _GammaKn | None = Field(None, description="submerged unit weight [kN/m³]")
     alpha_deg: Annotated[float, Field(ge=0.0, le=90.0)] | None = None
-    time_basis: str = "paper"
+    time_basis: Literal["paper", "prototype"] = "paper"
     shape: Literal["sine", "triangle"] = "sine"
     after_limit: _AfterLimit = "stop"
     dt: Annotated[float, Field(ge=1.0e-4, le=10.0)] | None = Field(
@@ -153,8 +153,10 @@ class SolverTable(StrictModel):
     max_displacement_increment: Annotated[float, Field(ge=1.0e-6, le=1.0)] | None = Field(
         None, description="largest displacement per step [m]"
     )
-    force_tolerance: _Pos | None = Field(None, description="[N/m]")
-    max_iterations: Annotated[int, Field(ge=1, le=10_000)] | None = None
+    force_tolerance: Annotated[float, Field(gt=0.0, le=1.0e-3)] | None = Field(
+        None, description="relative residual tolerance of the Newton iterations [-]"
+    )
+    max_iterations: Annotated[int, Field(ge=5, le=10_000)] | None = None
     chunks: Annotated[int, Field(ge=1, le=100_000)] | None = None
 
 
@@ -171,7 +173,7 @@ class InclinedCyclicTable(_ProgrammeBase):
     alpha_deg: Annotated[float, Field(ge=0.0, le=90.0)]
     n_cycles: Annotated[int, Field(ge=1, le=100_000)]
     shape: Literal["sine", "triangle"] = "sine"
-    points_per_cycle: Annotated[int, Field(ge=4, le=100_000)] = 200
+    points_per_cycle: Annotated[int, Field(ge=8, le=100_000)] = 200
 
 
 class WaveGroupsTable(_ProgrammeBase):
@@ -249,6 +251,15 @@ def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
         programme = parse_case(
             _PROGRAMMES[kind], case.programme, file=path, text=text, root="programme"
         )
+    if isinstance(programme, WaveGroupsTable):
+        other = "irregular" if programme.kind == "regular" else "regular"
+        wrong = [k for k in WAVE_GROUP_ONLY[other] if getattr(programme, k) is not None]
+        if wrong:
+            Checker(path or "<case>", text).fail(
+                f"programme.{wrong[0]}",
+                f"programme.{wrong[0]} is invalid with kind = {programme.kind!r}: it is a key"
+                f" of kind = {other!r}",
+            )
     if case.preset is not None:
         extra = [k for k in ("pipe", "soil", "programme") if k in doc]
         if extra:

@@ -36,7 +36,22 @@ from onbottom.hydro.timeseries import near_bed_velocity_series, regular_velocity
 
 _DEFAULT_COEFFICIENTS = MorisonCoefficients()
 
+MAX_SAMPLES = 10_000_000
+"""Largest number of samples a built programme may hold [-] (80 MB per load array; the
+section solver steps at least once per sample)."""
+
+
+def _check_samples(field: str, value: Any, samples: int) -> None:
+    """A named error, before anything is allocated, for a programme over :data:`MAX_SAMPLES`."""
+    if samples > MAX_SAMPLES:
+        raise InputError(
+            f"{field} = {value!r} is invalid: the programme would hold {samples:,} samples,"
+            f" more than the {MAX_SAMPLES:,} allowed"
+        )
+
+
 __all__ = [
+    "MAX_SAMPLES",
     "LoadProgramme",
     "from_arrays",
     "inclined_cyclic",
@@ -202,6 +217,7 @@ def inclined_cyclic(
             " need n_cycles >= 1 and points_per_cycle >= 8"
         )
     n = int(n_cycles)
+    _check_samples("n_cycles", n_cycles, n * int(points_per_cycle))
     tau, unit = _unit_cycle(shape, int(points_per_cycle))
     k = np.repeat(np.arange(1, n + 1), tau.size)
     t = (np.tile(tau, n) + k - 1) * T
@@ -352,6 +368,7 @@ def regular_wave_current_groups(
             f" {points_per_sub_cycle!r} are invalid: need >= 1, >= 1 and >= 16"
         )
     npts = int(sub_cycles) * int(points_per_sub_cycle)
+    _check_samples("n_groups", n_groups, int(n_groups) * npts)
     tau = np.arange(npts) / npts
     # shape in a reference flow: D = 1 m, U_w = 1 m/s, wave period = 10 s (only the shape and
     # the drag/inertia ratio matter after scaling)
@@ -458,6 +475,7 @@ def irregular_wave_current_groups(
             " need >= 1 and >= 64"
         )
     npts = int(points_per_group)
+    _check_samples("n_groups", n_groups, int(n_groups) * npts)
     tau = np.arange(npts) / npts
     t_rec = tau * waves_per_group * tp
     u, dudt = near_bed_velocity_series(t_rec, hs, tp, depth, seed=seed)
