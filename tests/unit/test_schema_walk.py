@@ -476,7 +476,6 @@ ROUTE = Kind(
         " tests/unit/test_recipes_end_to_end.py (options change the result)",
         "hydro.models": "the [hydro.<name>] option tables of registered force models: each is"
         " walked by tests/unit/test_recipes_end_to_end.py (options change the result)",
-        "levels.generalized_curves": "reworked with the generalized level (another branch)",
         "metocean": "named metocean tables: the same tables as a section's own, walked there",
     },
 )
