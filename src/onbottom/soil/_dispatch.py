@@ -10,14 +10,14 @@ Compile time: the storm, section and pipeline kernels take the model id as a
 numba literal (``numba.literally``; called from Python through
 :func:`onbottom._jit.call_literal`) and call :func:`lateral_step_of` /
 :func:`lateral_step_node`, which compile to a direct call of that one model's kernel, so a run
-compiles only the models it uses (examples/storm_case.toml: 11.0 → 5.4 CPU-s of compiling).
+compiles only the models it uses (about half the compiling of a storm case).
 
 Speed: the kernels use ``error_model="numpy"`` (a division by zero gives inf/NaN,
 which the solvers' finiteness checks catch, instead of a ZeroDivisionError test at every
 division and a status check after every call); :data:`lateral_step_inline`, the same function
 inlined into its caller (``inline="always"``), is for callers that loop over many nodes (the
-pipeline FE): the called dispatch cost about 40 ns per node call, more than the Coulomb
-kernel itself. The one-node solvers keep the called form (less to compile).
+pipeline FE): the called dispatch costs more per node call than the Coulomb kernel
+itself. The one-node solvers keep the called form (less to compile).
 """
 
 from __future__ import annotations
