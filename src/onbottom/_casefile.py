@@ -18,7 +18,7 @@ API takes the built objects, never a case file.
 
 pydantic (v2) is used rather than hand-written checks: it is well kept, validates nested
 tables with exact locations, and its strict mode refuses the silent coercions that made wrong
-results possible (see issue #10).
+results possible.
 """
 
 from __future__ import annotations

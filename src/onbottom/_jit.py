@@ -5,13 +5,13 @@ otherwise: a float division by zero gives ±inf or NaN (IEEE 754), as numpy does
 numba's default Python error model, which tests every divisor and raises ZeroDivisionError,
 and makes every call between kernels check an exception status. The kernels never rely on
 that exception (each solver checks its results for finiteness), and the tests and checks
-cost 30–45 % of a soil kernel call (issue 33: Coulomb kernel 70 → 38 ns, V&S 0.17 →
-0.12 µs per node call). Results are bit-identical wherever no division by zero occurs.
+cost a large part of a small soil kernel call. Results are bit-identical wherever no division
+by zero occurs.
 
 It also sets ``no_cfunc_wrapper=True``: numba otherwise builds, optimises and machine-compiles
 a C-callable wrapper for every jitted function, used only when a function is passed as a
 first-class function value (ctypes/cffi), which the project never does; about a tenth of a
-first run's compiling (issue 33 item 2: the storm kernel's 5.2 → 4.7 CPU-s, paired, loaded).
+first run's compiling.
 
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
@@ -195,8 +195,8 @@ def literal_dispatch(pyfunc, kernels, general):
     Why not ``numba.extending.overload``: an overload compiles its implementation as a
     function of its own, whose machine code holds (links, re-optimises and re-compiles) the
     whole kernel once more; here the call site calls the kernel's compiled function directly,
-    as a call of the kernel in the source would (issue 33 item 2: about 0.3 CPU-s of a storm
-    run's first compile for the soil and force models).
+    as a call of the kernel in the source would (part of a storm run's first compile for the
+    soil and force models).
     """
     from numba.core import types
     from numba.core.imputils import lower_builtin
@@ -244,7 +244,7 @@ def call_literal(kernel, n_literal, *args):
     """Call ``kernel(*args)`` with its first ``n_literal`` arguments (ints) as numba literals.
 
     For kernels that call ``numba.literally`` on those arguments (model ids: the kernel then
-    compiles only the models used, issue 33). Called from Python, such a kernel first types
+    compiles only the models used). Called from Python, such a kernel first types
     its arguments as plain ints, raises inside numba and is retyped with literals; numba does
     not remember that, and pays it again on every call (~0.05–0.3 s for a storm kernel). Here
     the literal signature is built directly: the specialisation is compiled (or loaded from
@@ -253,7 +253,7 @@ def call_literal(kernel, n_literal, *args):
 
     Processes started together (Dask workers of a first run) compile a specialisation one
     at a time (:func:`_compile_lock`): the first compiles and writes numba's cache, the
-    others wait and load it, instead of each paying the whole compile (issue 33 item 2).
+    others wait and load it, instead of each paying the whole compile.
     """
     overloads = getattr(kernel, "overloads", None)
     if overloads is None:
@@ -347,8 +347,8 @@ def row_view(a, i):
     In a kernel it is the same view as ``a[i]`` but without numba's reference count (the view
     borrows ``a``'s memory: its meminfo is null, so the increments and decrements of the count
     that numba emits when it creates the view and passes it on are no-ops). Those atomic
-    operations cost about half of a Verley & Sotberg kernel call in the pipeline FE's node loop
-    (issue 33: 105 → 52 ns per node call). The view must not outlive ``a``: a kernel uses it
+    operations cost about half of a Verley & Sotberg kernel call in the pipeline FE's node loop.
+    The view must not outlive ``a``: a kernel uses it
     within a call during which ``a`` is held and never returns or stores it. In plain Python (the
     twins): ``a[i]``. ``i`` in [0, n): not bounds-checked, as numba's own indexing.
     """
@@ -393,7 +393,7 @@ def borrow(a):
 
     numba increments an array argument's reference count when a called function starts and
     decrements it when it returns (atomic operations, about 4 ns each); for a call per node or
-    element with several arrays that is most of a small callee's cost (issue 33: a fifth of the
+    element with several arrays that is most of a small callee's cost (a large share of the
     pipeline FE's run time). ``callee(borrow(a))`` passes an alias of ``a`` whose meminfo is
     null, so those operations are no-ops. Only for an ``a`` that the calling function does not
     release before the call returns: its own argument (the caller's caller holds it) or an array

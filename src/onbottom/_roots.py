@@ -7,9 +7,9 @@ usually a few. Reference: R. P. Brent, *Algorithms for Minimization without Deri
 Prentice-Hall 1973, ch. 4 (procedure *zero*).
 
 It is here so that the DNV-RP-F109 design solve (``onbottom stability``) does not import
-``scipy.optimize`` (0.3–0.6 s of a 1 s command; issue 33). It stops on the same criterion as
-``scipy.optimize.brentq`` (a bracket narrower than ``xtol + rtol·|x|``) but takes its own
-steps, so the two may return different points of that bracket
+``scipy.optimize`` (whose import would be most of the command's start-up). It stops on the
+same criterion as ``scipy.optimize.brentq`` (a bracket narrower than ``xtol + rtol·|x|``)
+but takes its own steps, so the two may return different points of that bracket
 (``tests/unit/test_roots.py`` compares them).
 """
 

@@ -4,7 +4,7 @@ Every xarray Dataset that onbottom returns takes the ``long_name`` and ``units``
 variables from :data:`VARIABLES` (add an entry when you add a variable) and carries
 provenance attributes made by :func:`provenance`.
 
-Kill-safe files (issue 31): every result file is written under a temporary name and renamed
+Kill-safe files: every result file is written under a temporary name and renamed
 when complete (:func:`save_dataset`, :func:`write_text_atomic`, :func:`write_csv_atomic`,
 :func:`save_figure`), so a file under its final name is always whole; a NetCDF result carries
 ``run_status = "complete"`` (``"partial"`` in the growing file of a chunked writer, which never
@@ -102,7 +102,7 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "load_angle": ("load angle atan(H/V) from the V axis at the peak of a wave cycle", "degree"),
     "fraction_20_45": ("fraction of wave cycles with load angle in [20, 45] degrees", "1"),
     "w_s": ("submerged weight of the pipe per unit length", "N/m"),
-    # storm section (issue 12)
+    # storm section
     "F_hydro": ("horizontal hydrodynamic load on the pipe F_Y", "N/m"),
     "F_Z": ("hydrodynamic lift on the pipe", "N/m"),
     "U": ("wave-induced near-bed velocity normal to the pipe", "m/s"),
@@ -345,8 +345,8 @@ def save_dataset(
 
     A dataset held in memory (no dask arrays) is written through xarray's h5netcdf store
     without the write lock: ``Dataset.to_netcdf`` asks dask for its scheduler on every call,
-    which imports ``distributed`` on the first (0.3 s of CPU, three times the integration of a
-    3.5-h storm; issue 33). The file is the same.
+    which imports ``distributed`` on the first (more CPU than the integration of a 3.5-h storm).
+    The file is the same.
 
     A dataset under :data:`IN_MEMORY_MAX_BYTES` is built in memory and written to disk by
     Python: HDF5 failing to write (a full disk) can crash the interpreter when the broken

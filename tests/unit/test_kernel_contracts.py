@@ -13,10 +13,9 @@ import importlib
 
 import pytest
 
-from onbottom import _jit
 from onbottom.dynamics.pipeline import _pipeline_kernel, node_layout
 from onbottom.hydro import _force_contract, _force_dispatch, _load_kernels, kernel_contract
-from onbottom.soil import _coulomb_kernel, _dispatch, _twin
+from onbottom.soil import _coulomb_kernel, _dispatch
 from onbottom.soil import kernel_contract as soil_contract
 
 CONTRACTS = [
@@ -52,8 +51,7 @@ def test_every_id_and_slot_is_public(public, source, prefix):
     assert defined <= exported, f"add {sorted(defined - exported)} to {public}"
 
 
-def test_twin_decorator_is_the_base_one():
-    assert _twin.pure_python is _jit.pure_python
+def test_contract_modules_name_their_parts():
     assert soil_contract.lateral_step_of.__name__ == "lateral_step_of"
     assert node_layout.N_NODE_COLS == len([n for n in node_layout.__all__ if n.startswith("ND_")])
 

@@ -8,10 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from onbottom._jit import borrow, njit, row_view
+from onbottom._jit import borrow, njit, pure_python, row_view
 from onbottom.soil import _verley_sotberg_kernel as VK
 from onbottom.soil._path import drive_path
-from onbottom.soil._twin import pure_python
 from onbottom.soil.base import OUT_SIZE
 from onbottom.soil.verley_sotberg import VerleySotberg
 

@@ -9,7 +9,7 @@ from onbottom.dynamics import _section_kernel as SK
 from onbottom.dynamics import _storm_kernel as TK
 from onbottom.dynamics import status as S
 from onbottom.dynamics.pipeline import _pipeline_kernel as PK
-from onbottom.dynamics.status import Status, exit_code, read_status
+from onbottom.dynamics.status import Status, exit_code
 
 
 def test_numbers_kept_from_0_1_where_the_solvers_agreed():
@@ -34,13 +34,6 @@ def test_exit_codes():
         assert exit_code(st) == (0 if st in ok else 3), st
         assert st.success == (st in ok)
     assert exit_code(42) == 3  # an unknown number is not a valid result
-
-
-def test_files_of_0_1_read():
-    # the centrifuge section wrote 3 for "ran on until the pipe stopped" in 0.1
-    assert read_status({"status": 3, "after_limit": "runaway_end"}) is Status.RUNAWAY_END
-    assert read_status({"status": 3}) is Status.LIFTOFF  # a storm-section file
-    assert read_status({"status": -3, "after_limit": "stop"}) is Status.OUTSIDE_VALIDITY
 
 
 def test_one_message_per_status():

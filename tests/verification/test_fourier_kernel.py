@@ -16,11 +16,11 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from onbottom._jit import pure_python
 from onbottom.hydro import _fourier_kernel as FK
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ, N_FORCE_STATE
 from onbottom.hydro.fourier import FourierModel
 from onbottom.hydro.fourier_fit import synthetic_morison_table
-from onbottom.soil._twin import pure_python
 
 pytestmark = pytest.mark.verification
 

@@ -22,7 +22,7 @@ coat also adds diameter and load, and near a runaway one seed can move more at a
 weight, so g need not be monotone: each search finds a crossing, which :func:`scan_dynamic`
 (a dense scan) checks in the verification tests.
 
-Cost (issue 32 item 7). A failing trial stops at its first seed above the allowable, so it
+Cost. A failing trial stops at its first seed above the allowable, so it
 costs one storm when the seeds are tried worst first (:class:`DynamicTrials` orders the
 (combination, seed) pairs by their ratio at the previous trial); a passing trial costs every
 storm (combinations × seeds). :func:`search_dynamic` therefore starts from what is already
@@ -197,7 +197,7 @@ def scan_dynamic(
     return gs, (float(xs[ok[0]]) if ok.size else None)
 
 
-# ---- the cost-aware search (issue 32 item 7) --------------------------------------------------
+# ---- the cost-aware search -----------------------------------------------------------------------
 STOP_MARGIN = 1.0001
 """A trial storm of :class:`DynamicTrials` stops when |y| reaches this × the allowable: its
 ratio is then above 1 (a fail) without running the rest of a storm in which the moving pipe

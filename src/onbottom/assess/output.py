@@ -100,7 +100,7 @@ VALIDITY: list[str] = [
     " curves`): a reconstruction of Lambrakos et al. (1987) / Wake II calibrated only to F109's"
     " peak-load coefficients C*_Y, C*_Z (Tables 3-9/3-10), not to measured force histories.",
     "Morison + lift with constant coefficients ([hydro] model = 'morison'): its peak loads"
-    " are about 2.5 times below F109's C*_Y, C*_Z (issue 30), so a dynamic design weight from"
+    " are about 2.5 times below F109's C*_Y, C*_Z, so a dynamic design weight from"
     " it is unconservative; without wake effects it also misses the reduced drift under"
     " opposing wave and current (Chao, Lambrakos & Verley, OTC 6060, 1989).",
     "F109 tables (C*_Y, C*_Z, γ_SC) as in two agreeing public transcriptions"

@@ -27,7 +27,7 @@ max lateral displacement [m] and over D, the max strain and its check, the worst
 status, the envelopes along the line (x, max |y|, max strain, max |moment|) and the run time;
 the NetCDF (records off: envelopes only) is ``pipeline.nc`` in the output folder.
 
-Design (issue: one design that passes every level run). When the FE run fails at the section's
+Design (one design that passes every level run). When the FE run fails at the section's
 design (max |y| above the route's allowable, or the strain above its limit), the design of that
 section rises until the FE passes, by the dynamic level's search
 (:func:`onbottom.assess.dynamic.search_dynamic`: bracket [failing, passing], ascent from below in

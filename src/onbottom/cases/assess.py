@@ -81,17 +81,19 @@ from onbottom.assess.route import (
 )
 from onbottom.cases.models import SoilTable, check_model_names
 from onbottom.cases.stability import (
+    DesignTable,
+    StabilityCase,
+    _check_section,
+    check_options,
+)
+from onbottom.cases.tables import (
     Checker,
     CombinationTable,
     CurrentTable,
-    DesignTable,
     HydroTable,
     PipeTable,
     SeabedTable,
-    StabilityCase,
     WavesTable,
-    _check_section,
-    check_options,
     viscosity_not_used,
 )
 from onbottom.constants import KINEMATIC_VISCOSITY_SEAWATER
@@ -124,7 +126,7 @@ EXAMPLE = "assess_example.toml"
 
 DEFAULT_FORCE_MODEL = "wake"
 """Force model of the dynamic level when ``[hydro] model`` is unset: the wake model, as for
-the curves (``onbottom curves``; issue 30: constant Morison coefficients give peak loads about
+the curves (``onbottom curves``; constant Morison coefficients give peak loads about
 2.5 times below F109's C*_Y, C*_Z, so a design weight from them would be unconservative)."""
 
 

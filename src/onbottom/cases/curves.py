@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal
 from pydantic import Field, field_validator
 
 from onbottom._casefile import StrictModel, load_case_file, read_toml
-from onbottom.cases.stability import Checker, EnvironmentTable, HydroTable
+from onbottom.cases.tables import Checker, EnvironmentTable, HydroTable
 from onbottom.constants import GRAVITY
 from onbottom.errors import InputError
 from onbottom.inputs import consistency

@@ -85,7 +85,7 @@ def model_tables(hydro: Any) -> dict[str, dict[str, Any]]:
 def check_model_names(case: Any, chk: Any) -> None:
     """The ``[soil]`` and ``[hydro]`` model names and option tables of ``case`` against the
     registries; the first problem is a :class:`CaseFileError` through ``chk`` (a
-    :class:`~onbottom.cases.stability.Checker`: key, file, line)."""
+    :class:`~onbottom.cases.tables.Checker`: key, file, line)."""
     soil = getattr(case, "soil", None)
     if soil is not None:
         _check_table(chk, "soil", soil.model, soil.models, SOIL_MODELS)

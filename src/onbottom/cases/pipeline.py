@@ -72,7 +72,7 @@ class RouteSectionTable(StrictModel):
 
 
 class PipelineTable(StrictModel):
-    """``[pipeline]``: presence selects the pipeline FE (issue 13)."""
+    """``[pipeline]``: presence selects the pipeline FE."""
 
     length: float = Field(gt=0.0, le=1.0e5, description="pipeline length L [m]")
     element_length: float = Field(gt=0.0, description="element length [m]")
@@ -166,7 +166,7 @@ def _soil_for(
         base = sb.model_dump(exclude_defaults=True)
         if upd.get("model", sb.model) != sb.model:
             # another soil model: the [seabed] keys it does not read are not inherited
-            from onbottom.cases.stability import _SOIL_KEYS_NOT_USED
+            from onbottom.cases.tables import _SOIL_KEYS_NOT_USED
 
             for k in _SOIL_KEYS_NOT_USED[upd["model"]]:
                 base.pop(k, None)
@@ -196,7 +196,7 @@ MAX_RUN_SECONDS = 24 * 3600.0
 
 
 def _fail(p: Path, text: str | None, field: str, message: str) -> None:
-    from onbottom.cases.stability import Checker
+    from onbottom.cases.tables import Checker
 
     Checker(p, text).fail(field, message)
 
@@ -321,7 +321,7 @@ def _check_structure(p: Path, text: str | None, table: PipelineTable, model: Any
 
 def _check_free_nodes(p: Path, text: str | None, table: PipelineTable, ends: Any) -> None:
     """At least three nodes free to move laterally (fixed and pinned ends hold theirs)."""
-    from onbottom.cases.stability import Checker
+    from onbottom.cases.tables import Checker
     from onbottom.inputs import consistency
 
     nodes = round(table.length / table.element_length) + 1
@@ -366,7 +366,7 @@ def _check_animation(p: Path, text: str | None, table: PipelineTable) -> None:
     ap = Path(table.animation)
     if not ap.is_absolute():
         ap = p.parent / ap
-    try:  # a case file writes only inside its own folder (issue #31)
+    try:  # a case file writes only inside its own folder
         contained(table.animation, ap, folder=p.parent, field="pipeline.animation")
     except CaseFileError as exc:
         _fail(p, text, "pipeline.animation", str(exc))

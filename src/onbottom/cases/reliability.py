@@ -129,8 +129,8 @@ def parse_limit(value: str | float, diameter: float) -> tuple[str, float]:
 def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
     """Read a reliability case and build its :class:`ReliabilitySetup` (errors:
     :class:`CaseFileError` naming the key)."""
-    from onbottom.cases.stability import Checker
     from onbottom.cases.storm import StormCase, build_setup
+    from onbottom.cases.tables import Checker
     from onbottom.errors import InputError
 
     p = Path(path)

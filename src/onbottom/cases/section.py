@@ -49,7 +49,7 @@ from onbottom._casefile import (
 )
 from onbottom.cases.models import check_model_names, collect_model_tables, soil_from_case
 from onbottom.cases.programme import WAVE_GROUP_ONLY, programme_from_toml
-from onbottom.cases.stability import Checker
+from onbottom.cases.tables import Checker
 from onbottom.dynamics import centrifuge
 from onbottom.dynamics.section import (
     SectionResult,

@@ -3,8 +3,8 @@
 Common layout (see CASE_LAYOUT in the docs and ``examples/storm_case.toml``): ``[pipe]``,
 ``[seabed]``, ``[environment]``, ``[waves]`` (the peak sea state), ``[current]``, ``[hydro]``
 share the strict tables of :mod:`onbottom.cases.stability`; this module adds the strict
-``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE
-(issue 13); it is accepted here and validated by that command.
+``[storm]``, ``[solver]`` and ``[run]`` tables. A ``[pipeline]`` table selects the pipeline FE;
+it is accepted here and validated by that command.
 
 ``[storm] kind`` selects the flow: ``"spectral"`` (default: ``[waves]`` or ``[[storm.stages]]``,
 random phases), ``"regular"`` (``height`` [m], ``period`` [s], ``direction_deg``; linear Airy
@@ -33,16 +33,16 @@ from pydantic import Field, model_validator
 from onbottom._casefile import CaseFileError, StrictModel, contained, load_case_file
 from onbottom.cases.force import force_model_from_case
 from onbottom.cases.models import SoilTable, check_model_names, soil_from_case
-from onbottom.cases.stability import (
+from onbottom.cases.stability import check_common_tables, check_reference_height
+from onbottom.cases.tables import (
     Checker,
     CurrentTable,
     EnvironmentTable,
     HydroTable,
     PipeTable,
     SeabedTable,
+    StormTable,
     WavesTable,
-    check_common_tables,
-    check_reference_height,
 )
 from onbottom.checks.absolute import seabed_roughness
 from onbottom.dynamics.storm_section import StormSolverSettings
@@ -61,78 +61,6 @@ __all__ = [
     "case_relative",
     "load_storm_case",
 ]
-
-
-class StageTable(StrictModel):
-    hs: float = Field(gt=0.0, le=30.0, description="H_s [m]")
-    tp: float = Field(gt=0.0, le=40.0, description="T_p [s]")
-    duration_hours: float = Field(gt=0.0, le=100.0, description="stage duration [h]")
-    gamma: float | None = Field(None, ge=1.0, le=7.0, description="JONSWAP γ [-]")
-    spectrum: Literal["jonswap", "pierson-moskowitz"] | None = None
-    direction_deg: float | None = Field(None, ge=0.0, le=360.0, description="[deg]")
-    spreading_s: float | None = Field(None, ge=0.0, le=100.0, description="cos^s exponent [-]")
-
-
-class StormTable(StrictModel):
-    kind: Literal["spectral", "regular", "measured"] = Field(
-        "spectral",
-        description="spectral (random-phase JONSWAP storm), regular (Airy wave height/period)"
-        " or measured (velocity series CSV)",
-    )
-    height: float | None = Field(None, gt=0.0, le=40.0, description="regular wave H [m]")
-    period: float | None = Field(None, gt=0.0, le=40.0, description="regular wave T [s]")
-    direction_deg: float | None = Field(
-        None, ge=0.0, le=360.0, description="regular wave direction to the pipe axis [deg]"
-    )
-    series: str | None = Field(
-        None, min_length=1, description="measured: CSV t [s], U [m/s][, dU/dt [m/s^2]]"
-    )
-    sampling_tolerance: float | None = Field(
-        None, gt=0.0, le=0.5, description="measured: relative sampling-interval tolerance [-]"
-    )
-    seed: int = Field(0, ge=0, description="random-phase seed of the first storm [-]")
-    build_up_hours: float | None = Field(None, ge=0.0, le=100.0, description="[h]")
-    peak_hours: float | None = Field(None, gt=0.0, le=100.0, description="[h]")
-    decay_hours: float = Field(0.0, ge=0.0, le=100.0, description="[h]")
-    transition_s: float = Field(60.0, ge=0.0, description="blend between stages [s]")
-    time_step: float = Field(0.1, gt=0.0, le=5.0, description="initial/largest step [s]")
-    sample_interval: float | None = Field(
-        None, gt=0.0, le=5.0, description="flow sample interval [s] (default T_p/50)"
-    )
-    stages: list[StageTable] = Field(default_factory=list)
-
-    @model_validator(mode="after")
-    def _stages_or_peak(self) -> StormTable:
-        if self.stages and self.peak_hours is not None:
-            raise ValueError(
-                "give peak_hours (one peak from [waves]) or [[storm.stages]], not both"
-            )
-        own = {
-            "spectral": (),
-            "regular": ("height", "period", "direction_deg"),
-            "measured": ("series", "sampling_tolerance"),
-        }
-        for kind, keys in own.items():
-            if kind == self.kind:
-                continue
-            for key in keys:
-                if getattr(self, key) is not None:
-                    raise ValueError(f"{key} is for kind = {kind!r}, not {self.kind!r}")
-        if self.kind != "spectral" and self.stages:
-            raise ValueError(f"[[storm.stages]] are for kind = 'spectral', not {self.kind!r}")
-        if self.kind == "regular" and (self.height is None or self.period is None):
-            raise ValueError("kind = 'regular' needs height [m] and period [s]")
-        if self.kind == "measured":
-            if self.series is None:
-                raise ValueError("kind = 'measured' needs series (a CSV file)")
-            for key in ("build_up_hours", "peak_hours"):
-                if getattr(self, key) is not None:
-                    raise ValueError(
-                        f"{key} is not used with kind = 'measured': the record sets the time"
-                    )
-        if self.kind != "spectral" and self.decay_hours:
-            raise ValueError(f"decay_hours is for kind = 'spectral', not {self.kind!r}")
-        return self
 
 
 class SolverTable(StrictModel):

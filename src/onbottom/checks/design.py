@@ -9,7 +9,7 @@ column and a list of :class:`~onbottom.inputs.environment.LoadCombination`:
   combination, for the pipe in the combination's condition.
 
 The checks are the ones named in ``options.checks``, looked up in
-:mod:`onbottom.checks.registry` (these two register themselves below). Each row has a
+:mod:`onbottom.checks.registry` (these two: :mod:`onbottom.checks.builtin`). Each row has a
 utilisation (pass at <= 1). :func:`design_concrete_thickness` finds the
 smallest thickness of one coating layer in ``[t_min, t_max]`` for which every row passes;
 :func:`design_submerged_weight` does the same for the submerged weight of a simple pipe.
@@ -29,16 +29,15 @@ import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
-from typing import Any
 
 import numpy as np
 
 from onbottom import _roots
 from onbottom._validate import in_range, non_negative, one_of, positive
-from onbottom.checks.absolute import absolute_lateral_stability
+from onbottom.checks.builtin import CheckRow
 from onbottom.checks.f109_tables import REGIONS, SAFETY_CLASSES
-from onbottom.checks.registry import DesignCheck, get_check, register_check
-from onbottom.checks.vertical import VERTICAL_SAFETY_FACTOR, vertical_stability
+from onbottom.checks.registry import get_check
+from onbottom.checks.vertical import VERTICAL_SAFETY_FACTOR
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
@@ -128,31 +127,6 @@ class CheckOptions:
         in_range("trench_angle_deg", self.trench_angle_deg, 5.0, 45.0)
 
 
-@dataclass(frozen=True, slots=True)
-class CheckRow:
-    """One check: ``name``, ``combination`` (load combination, or the condition for the
-    flotation check), ``condition``, ``utilisation`` [-], ``passes``, ``details`` (dict of
-    intermediate values, SI)."""
-
-    name: str
-    combination: str
-    condition: str
-    utilisation: float
-    passes: bool
-    details: dict
-
-    def as_dict(self) -> dict:
-        """``{name, combination, condition, utilisation, pass, details}``."""
-        return {
-            "name": self.name,
-            "combination": self.combination,
-            "condition": self.condition,
-            "utilisation": self.utilisation,
-            "pass": self.passes,
-            "details": self.details,
-        }
-
-
 def _pipe_in(section: PipeBuildUp | Pipe, condition: str) -> tuple[Pipe | None, object]:
     if isinstance(section, Pipe):
         return section, section
@@ -203,96 +177,6 @@ def run_checks(
                 continue
             rows.extend(check.run(pipe, seabed, environment, combo, opts, cond))
     return rows
-
-
-def _vertical_rows(props: Any, opts: CheckOptions, cond: str) -> list[CheckRow]:
-    """The flotation check (F109 §3.3 Eq 3.1) in condition ``cond``: one row, none when the
-    pipe has no buoyancy."""
-    if not props.buoyancy > 0.0:
-        return []
-    v = vertical_stability(props, opts.vertical_safety_factor)
-    details = {"specific_gravity": v.specific_gravity, "gamma_w": v.safety_factor}
-    return [CheckRow("vertical_stability", cond, cond, v.utilisation, v.passes, details)]
-
-
-def _absolute_rows(
-    pipe: Pipe,
-    seabed: Sand | Clay | Rock,
-    environment: Environment,
-    combo: LoadCombination,
-    opts: CheckOptions,
-    cond: str,
-) -> list[CheckRow]:
-    """The absolute lateral and vertical checks (F109 §3.6 Eqs 3.38, 3.39) of one load
-    combination: two rows."""
-    ss, cur = combo.sea_state, combo.current
-    r = absolute_lateral_stability(
-        pipe,
-        seabed,
-        hs=ss.hs,
-        tp=ss.tp,
-        depth=environment.water_depth,
-        current_velocity=cur.velocity,
-        current_reference_height=cur.reference_height,
-        roughness=cur.z0,
-        gamma=ss.gamma,
-        spectrum=ss.spectrum,
-        wave_direction_deg=ss.direction_deg,
-        current_direction_deg=_to_half_turn(cur.direction_deg),
-        spreading_s=ss.spreading_s or None,
-        safety_class=opts.safety_class,
-        region=opts.region,
-        penetration=opts.penetration,
-        trench_depth=opts.trench_depth,
-        trench_angle_deg=opts.trench_angle_deg,
-        permeable=opts.permeable,
-        duration=ss.duration_s,
-    )
-    details = r.as_dict()
-    return [
-        CheckRow(
-            "absolute_lateral",
-            combo.name,
-            cond,
-            r.utilisation_lateral,
-            r.utilisation_lateral <= 1.0,
-            details,
-        ),
-        CheckRow(
-            "absolute_vertical",
-            combo.name,
-            cond,
-            r.utilisation_vertical,
-            r.utilisation_vertical <= 1.0,
-            details,
-        ),
-    ]
-
-
-register_check(
-    DesignCheck(
-        "vertical",
-        "condition",
-        _vertical_rows,
-        ("vertical_stability",),
-        "DNV-RP-F109 (2017) §3.3, Eq 3.1",
-    )
-)
-register_check(
-    DesignCheck(
-        "absolute",
-        "combination",
-        _absolute_rows,
-        ("absolute_lateral", "absolute_vertical"),
-        "DNV-RP-F109 (2017) §3.6, Eqs 3.38-3.41",
-    )
-)
-
-
-def _to_half_turn(angle_deg: float) -> float:
-    """Map a direction in [0, 360] to [0, 180] with the same |sin| (current normal part)."""
-    a = angle_deg % 360.0
-    return a if a <= 180.0 else 360.0 - a
 
 
 def penetration_outside_validity(rows: Sequence[CheckRow]) -> list[str]:

@@ -2,7 +2,7 @@
 
 * Peak load coefficients C*_Y and C*_Z against K* and M* (DNVGL-RP-F109 (2017) Tables 3-9
   and 3-10; 2010 edition Tables 3-9/3-10): two independent public transcriptions agree value
-  for value (``shared/spec/dnv-reference.md`` §2.5). Bilinear interpolation in K* and M*.
+  for value. Bilinear interpolation in K* and M*.
   K* < 2.5: C*_Y = C*_Y(2.5)·2.5/K* (for M* <= 10 only: beyond, steady current, C*_Y = 1),
   C*_Z = C*_Z(2.5). K* > 140 or M* > 10: the edge value
   (both tables tend to their steady-flow values there) with an OutOfRangeWarning.

@@ -58,12 +58,30 @@ class DesignCheck:
 
 
 def _register_builtin() -> None:
-    import onbottom.checks.design  # noqa: F401  (registers the F109 checks)
+    from onbottom.checks.builtin import _absolute_rows, _vertical_rows
+
+    for check in (
+        DesignCheck(
+            "vertical",
+            "condition",
+            _vertical_rows,
+            ("vertical_stability",),
+            "DNV-RP-F109 (2017) §3.3, Eq 3.1",
+        ),
+        DesignCheck(
+            "absolute",
+            "combination",
+            _absolute_rows,
+            ("absolute_lateral", "absolute_vertical"),
+            "DNV-RP-F109 (2017) §3.6, Eqs 3.38-3.41",
+        ),
+    ):
+        register_check(check)
 
 
 CHECKS: Registry[DesignCheck] = Registry("design check", "checks", loader=_register_builtin)
-"""Registered design checks by name (the F109 ones register on import of
-:mod:`onbottom.checks.design`, loaded on first look-up)."""
+"""Registered design checks by name (the F109 ones of :mod:`onbottom.checks.builtin`,
+registered on first look-up or registration)."""
 
 
 def register_check(check: DesignCheck, *, replace: bool = False) -> DesignCheck:
@@ -76,6 +94,7 @@ def register_check(check: DesignCheck, *, replace: bool = False) -> DesignCheck:
         )
     if not check.rows:
         raise InputError(f"DesignCheck.rows = () is invalid for {check.name!r}: name its rows")
+    CHECKS.load()  # the built-in checks first: a new check may replace one of them
     return CHECKS.add(check, replace=replace)
 
 

@@ -1,7 +1,7 @@
 """``onbottom storm``: dynamic on-bottom stability of a pipe section (or a pipeline) in a storm.
 
 A case file with a ``[pipeline]`` table is built by :mod:`onbottom.cases.pipeline` and run by
-the pipeline FE (:func:`onbottom.study.pipeline_seeds.run_pipeline_seeds`, issue 13); otherwise
+the pipeline FE (:func:`onbottom.study.pipeline_seeds.run_pipeline_seeds`); otherwise
 the rigid section is simulated (:func:`onbottom.dynamics.storm_section.simulate_storm_section`)
 for one seed, or for ``--seeds N`` seeds on Dask with statistics of the maximum displacement.
 """
@@ -50,23 +50,14 @@ def _run_pipeline(
     restart: bool,
     force: bool,
 ) -> dict[str, Any]:
-    """The pipeline FE (issue 13): build the case, check the seeds' budget, run, draw."""
-    try:
-        from onbottom.cases.pipeline import load_pipeline_run
-        from onbottom.study.pipeline_seeds import (
-            estimate_pipeline_seeds,
-            pipeline_seed_count,
-            run_pipeline_seeds,
-        )
-    except ImportError as exc:
-        err = InputError(
-            f"{case}: the case has a [pipeline] table but the pipeline FE"
-            " (onbottom.cases.pipeline, issue 13) is not available in this installation;"
-            " remove [pipeline] to run the pipe section"
-        )
-        err.field = "pipeline"  # type: ignore[attr-defined]
-        raise err from exc
+    """The pipeline FE: build the case, check the seeds' budget, run, draw."""
+    from onbottom.cases.pipeline import load_pipeline_run
     from onbottom.study import budget
+    from onbottom.study.pipeline_seeds import (
+        estimate_pipeline_seeds,
+        pipeline_seed_count,
+        run_pipeline_seeds,
+    )
 
     run = load_pipeline_run(case)
     if seeds is not None and seeds > 1 and not force:

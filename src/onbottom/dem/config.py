@@ -5,7 +5,7 @@ unit thickness (1 m), as in PFC2D, so contact stiffnesses are in N/m, contact fo
 metre of out-of-plane thickness) and the pipe resistance ``V`` in N/m.
 
 Source of the presets: the penetration paper, §4.1 and Table 3 (centrifuge at 25 g, 2D DEM,
-most likely Itasca PFC2D); decoded in ``shared/spec/dem-penetration.md``.
+most likely Itasca PFC2D).
 
 * :data:`SM` — medium-dense, D_r = 48 %, e = 0.227 (paper: 58,710 disks).
 * :data:`SD` — dense, D_r = 78 %, e = 0.197 (paper: 60,150 disks).

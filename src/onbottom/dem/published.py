@@ -1,8 +1,8 @@
 """Published results of the penetration paper that a full-size DEM run is compared with.
 
-Source: the penetration paper (centrifuge at 25 g and 2D DEM; ``shared/papers/
-pipe-penetration-sand-centrifuge-dem.txt``), §4.2–4.3, Fig. 5, Fig. 8 and Conclusions (1)–(2),
-as decoded in ``shared/spec/dem-penetration.md`` ("Results in the paper"). Values are read from
+Source: the penetration paper (centrifuge at 25 g and 2D DEM; "Penetration resistance
+evolution characteristics and mesoscopic mechanism of submarine pipeline in sandy seabed"),
+§4.2–4.3, Fig. 5, Fig. 8 and Conclusions (1)–(2). Values are read from
 the text (the figures are not available as data), prototype scale (D = 0.5 m), and are
 *approximate* ("about"). The resistances are the centrifuge curves the paper's DEM is validated
 against; the paper says its DEM reproduces their trends "with discrepancies", not the values.

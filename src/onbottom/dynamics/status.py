@@ -13,9 +13,7 @@ Every solver and the CLI word a run's end through one table, :data:`MESSAGES`, a
 :func:`status_message`: the line of the status, then the solver's detail (which limit, where
 and when) in parentheses — after a colon for :attr:`Status.OUTSIDE_VALIDITY`.
 
-Numbers kept from 0.1 where the solvers agreed (1, 2, −1, −2, −3, −4); 0.1's centrifuge
-section wrote 3 for "ran on until the pipe stopped" where the storm section wrote 3 for
-"lift-off": the section's code is 5 now; :func:`read_status` reads files of 0.1.
+"Ran on until the pipe stopped" (the centrifuge section) is 5, apart from 3, "lift-off".
 """
 
 from __future__ import annotations
@@ -23,7 +21,6 @@ from __future__ import annotations
 from collections.abc import Mapping
 from enum import IntEnum
 from types import MappingProxyType
-from typing import Any
 
 __all__ = [
     "EXIT_INVALID_RESULT",
@@ -31,7 +28,6 @@ __all__ = [
     "MESSAGES",
     "Status",
     "exit_code",
-    "read_status",
     "status_message",
 ]
 
@@ -55,7 +51,7 @@ class Status(IntEnum):
     3         LIFTOFF            storm section: lift-off, the run stopped (``liftoff="stop"``)
     4         BUFFER_FULL        internal: the record buffer is full, grow it and go on
     5         RUNAWAY_END        centrifuge section: reached the limit, ran on until the pipe
-                                 stopped (``after_limit="runaway_end"``; 3 in 0.1)
+                                 stopped (``after_limit="runaway_end"``)
     −1        STEP_FAILED        a time step did not converge at the smallest step
     −2        SOIL_NAN           a soil kernel returned NaN (unknown model id, invalid state)
     −3        OUTSIDE_VALIDITY   the run left its model's validity (penetration > D/2,
@@ -145,15 +141,3 @@ def exit_code(status: int) -> int:
         return Status(int(status)).exit_code
     except ValueError:
         return EXIT_INVALID_RESULT
-
-
-def read_status(attrs: Mapping[str, Any]) -> Status:
-    """The :class:`Status` recorded in a result file's attributes (files of 0.1 included).
-
-    A centrifuge-section file of 0.1 (``after_limit = "runaway_end"``, status 3) reads as
-    :attr:`Status.RUNAWAY_END`.
-    """
-    value = int(attrs["status"])
-    if value == 3 and attrs.get("after_limit") == "runaway_end":
-        return Status.RUNAWAY_END
-    return Status(value)

@@ -10,8 +10,8 @@ penetration. One numba loop (:mod:`onbottom.dynamics._storm_kernel`) integrates 
 implicit Newmark steps, the drag tangent inside the Newton iteration, step cut-back and growth,
 lift-off and runaway events. Theory: docs/theory/storm_section.md.
 
-F109 dynamic criteria (§3.5; ``shared/spec/on-bottom-stability.md``): lateral displacement
-<= 0.5D ("virtually stable") and <= 10D.
+F109 dynamic criteria (DNV-RP-F109 (2017) §3.5, dynamic lateral stability analysis): lateral
+displacement <= 0.5D ("virtually stable") and <= 10D.
 """
 
 from __future__ import annotations

@@ -73,8 +73,8 @@ from onbottom.hydro._morison_kernel import morison_kernel
 from onbottom.hydro._wake_kernel import wake_kernel
 
 FORCE_MORISON = 0
-FORCE_WAKE = 1  # hydro/_wake_kernel.py, hydro/wake.py (issue 30 item 1)
-FORCE_FOURIER = 2  # hydro/_fourier_kernel.py, hydro/fourier.py (issue 30 item 2)
+FORCE_WAKE = 1  # hydro/_wake_kernel.py, hydro/wake.py
+FORCE_FOURIER = 2  # hydro/_fourier_kernel.py, hydro/fourier.py
 
 
 @njit(cache=True)
@@ -94,15 +94,15 @@ def force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_
 
 force_step_inline = njit(cache=True, inline="always")(force_step.py_func)
 """:func:`force_step` inlined into its caller at numba-IR level (same source), for callers that
-loop over many nodes (the pipeline FE; a called dispatch costs about 40 ns per node call,
-issue 33). The one-node storm kernel keeps the called form (less to compile)."""
+loop over many nodes (the pipeline FE; a called dispatch costs a call per node,
+saved by inlining). The one-node storm kernel keeps the called form (less to compile)."""
 
 
 _KERNELS = {FORCE_MORISON: morison_kernel, FORCE_WAKE: wake_kernel, FORCE_FOURIER: fourier_kernel}
 
 
 def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-    """:func:`force_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
+    """:func:`force_step` that compiles only the kernel of a literal ``model_id``.
 
     In a kernel whose ``model_id`` is a numba literal (``numba.literally`` at the caller's entry
     point) this is a direct call of that model's kernel (:func:`onbottom._jit.literal_dispatch`),

@@ -3,7 +3,7 @@
 Contract: :mod:`onbottom.hydro._force_contract` (signature, ``out`` slots, 16 state slots).
 Theory and every choice made here: ``docs/theory/fourier_model.md``; the Python side is
 :class:`onbottom.hydro.fourier.FourierModel`. Plain-Python twin: built from this source with
-``onbottom.soil._twin.pure_python`` in the tests (same arithmetic, interpreted).
+``onbottom._jit.pure_python`` in the tests (same arithmetic, interpreted).
 
 Per half-cycle of the total ambient flow W = U + V_c (Sørensen, Bryndum & Jacobsen 1986;
 Bryndum, Jacobsen & Tsahalis 1992, JOMAE 114:231; structure only, see the theory page)

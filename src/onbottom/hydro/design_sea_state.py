@@ -3,7 +3,7 @@
 Every function takes arrays (or scalars) of sea states and broadcasts them, so a scatter
 diagram or a sweep needs no loop and no frequency grid from the user.
 
-Sources (decoded in ``shared/spec/dnv-reference.md`` §2.6–2.8; theory page
+Sources (DNV-RP-F109 (2017) §3.4.3, §3.5 and Eq 3.3; theory page
 ``docs/theory/dnv_rp_f109.md``):
 
 * JONSWAP / Pierson–Moskowitz spectrum and the γ rule: DNV-RP-C205 (2010) §3.5.5,

@@ -11,8 +11,7 @@ accepted steps). The kernel contract is written as numbered rules in
 :mod:`onbottom.hydro._force_dispatch`; docs/contributing.md has the recipe for a new model.
 
 :class:`MorisonLift` (``model_id`` 0, :mod:`onbottom.hydro._morison_kernel`) is the Morison form
-with relative velocity used by CORUS-3D (Youssef & Cassidy 2014) and written in
-``shared/spec/on-bottom-stability.md``:
+with relative velocity used by CORUS-3D (Youssef & Cassidy 2014):
 
     F_Y = r_y · [ ½ ρ_w D C_D (U + V − ẏ)|U + V − ẏ| + ρ_w (π D²/4) C_M U̇ ]
     F_Z = r_z · ½ ρ_w D C_L (U + V)²        (or (U + V − ẏ)² with ``lift_relative_velocity``)
@@ -24,7 +23,7 @@ Default coefficients: C_D = 0.7, C_L = 0.9, C_M = 3.29 (C_a = 2.29). C_M = 1 + C
 C_a = π²/3 − 1 is the potential-flow value for a cylinder on a plane wall (textbook, e.g.
 Sarpkaya & Isaacson 1981); C_D = 0.7 and C_L = 0.9 are the constant values of common practice
 for a pipe resting on the seabed (the former DNV RP-E305 (1988) simplified method) — they are
-**not** DNV-RP-F109 prescriptions (``shared/spec/dnv-reference.md`` §2.2, [B]). F109 recommends
+**not** DNV-RP-F109 prescriptions. F109 recommends
 coefficients depending on K, M, roughness and embedment, or a wake model, for dynamic analysis;
 supply them per sea state with :meth:`MorisonLift.per_sea_state`.
 """

@@ -2,7 +2,7 @@
 
 Structure from Sørensen, Bryndum & Jacobsen (1986), Bryndum, Jacobsen & Tsahalis (1992,
 J. Offshore Mech. Arct. Eng. 114:231) and the AGA/PRCI Level 3 approach
-(``shared/spec/on-bottom-stability.md``, "Flow-history force models"): in each half-cycle of
+(Level 3 of the AGA/PRCI on-bottom stability software): in each half-cycle of
 the flow the force is a Fourier series in the half-cycle's phase, scaled by ½ρD U_m², with
 coefficients interpolated over K and M from measured regular-wave tests. The measured
 coefficient databases are licensed, so the table is the user's (:class:`FourierTable`); the
@@ -59,7 +59,7 @@ class FourierModel:
     memory_weight : float
         w in [0, 1): weight of the previous estimate when a completed half-cycle updates the
         wave amplitude and period (Û ← (1 − w) a_k + w Û); default 0.25, the value used by
-        programs of this kind (``shared/spec/on-bottom-stability.md``).
+        programs of this kind (the AGA/PRCI Level 3 approach).
     phase : str
         How the phase θ and the scale of the current half-cycle are found: ``"time"`` (the
         elapsed time since its zero crossing, θ = π τ / T̂_h, scale Û from the completed

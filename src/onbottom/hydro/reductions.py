@@ -8,7 +8,7 @@ r_tr,y = 1 − 0.18 (θ − 5)^0.25 (z_t/D)^0.42                                
 r_tr,z = 1 − 0.14 (θ − 5)^0.43 (z_t/D)^0.46                                        (Eq 3.22)
 
 z_p penetration, z_t trench depth, θ trench wall angle [deg]. Validity: 5° ≤ θ ≤ 45°,
-z_t/D ≤ 1; r_pen for z_p/D ≤ 0.5 (source notes: shared/spec/dnv-reference.md §2.3).
+z_t/D ≤ 1; r_pen for z_p/D ≤ 0.5 (DNV-RP-F109 (2017) Eqs 3.17–3.22).
 The plain-numpy functions here are the twins of the numba kernels in
 :mod:`onbottom.hydro._load_kernels`. :class:`LoadReductions` is the time-domain choice of the
 storm-section and pipeline solvers, which apply r_y, r_z to the force model's output

@@ -1,8 +1,8 @@
 """Short-crested near-bed kinematics along a pipeline (single-summation synthesis, numpy FFT).
 
 Near-bed wave velocity normal to a straight pipe on the x axis (wave directions θ measured
-from the pipe axis, 90° = waves travelling normal to the pipe towards +y;
-shared/spec/on-bottom-stability.md, "Sea states and storms")::
+from the pipe axis, 90° = waves travelling normal to the pipe towards +y; linear wave theory,
+DNV-RP-F109 (2010) §3.2)::
 
     u_n(x, t) = Σ_j a_j G(ω_j) sin θ_j cos(ω_j t − k_j x cos θ_j + φ_j)
 
@@ -11,8 +11,8 @@ shared/spec/on-bottom-stability.md, "Sea states and storms")::
   the seabed (:mod:`onbottom.hydro.kinematics`, DNV-RP-F109 §3.4.3);
 * **single summation**: one direction θ_j = θ_m + δ_j per frequency component, δ_j drawn from
   the spreading density D_w(δ) ∝ cos^s δ on |δ| < π/2 by its inverse CDF (DNV-RP-F109 (2010)
-  Eq 3.8; the exponent is that of ``SeaState.spreading_s``, cos^s as in F109 — the spec's
-  "cos^2s" is the same family with s ↔ 2s). The sea is ergodic and no spreading factor R_D
+  Eq 3.8; the exponent is that of ``SeaState.spreading_s``, cos^s as in F109 — a
+  "cos^2s" form is the same family with s ↔ 2s). The sea is ergodic and no spreading factor R_D
   is applied: the variance of u_n over the components tends to R_D²·M_0 (checked by a test
   against :func:`onbottom.hydro.spreading.spreading_factor`). s = 0 gives a long-crested sea;
 * φ_j uniform on [0, 2π) from ``numpy.random.default_rng(storm.seed)``; phases and the

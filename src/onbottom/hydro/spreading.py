@@ -4,7 +4,7 @@ Wave energy spreading (F109 (2010/2017) Eq 3.8, the cos^s form of DNV-RP-C205 §
 
     D_w(θ) = Γ(1 + s/2) / (√π Γ(½ + s/2)) · cos^s(θ),   |θ| < π/2
 
-Reduction of the significant velocity normal to the pipe (F109 §3.4.3, spec §2.7):
+Reduction of the significant velocity normal to the pipe (F109 §3.4.3):
 
     R_D = √( ∫ D_w(θ) sin²(θ_w − θ) dθ ),   U_s ← R_D U_s
 

@@ -14,7 +14,7 @@ the O(n·N) direct sum). The phases φ_j are drawn once per storm from
 the same seed gives bitwise the same series on any machine with the same numpy.
 
 R_D is the F109 spreading reduction for a short-crested sea on a section
-(``shared/spec/dnv-reference.md`` §2.7): R_D² = ∫ D_w(θ) sin²(θ_w − θ) dθ,
+(DNV-RP-F109 (2017) §3.4.3): R_D² = ∫ D_w(θ) sin²(θ_w − θ) dθ,
 D_w(θ) = Γ(1 + s/2)/(√π Γ(½ + s/2)) cos^s θ for |θ| < π/2; for a long-crested sea R_D = |sin θ_w|.
 The sign of sin θ_w sets the direction of U (waves travelling towards −y give −U).
 
@@ -165,8 +165,8 @@ class StormKinematics:
     seed: int = 0
 
     def __post_init__(self) -> None:
-        # an empty or inconsistent flow is a named error, never a run (issue 30: an empty
-        # stage_parameters once ran with an empty coefficient array and forces ≈ 1e-320)
+        # an empty or inconsistent flow is a named error, never a run (an empty
+        # stage_parameters would run with an empty coefficient array and forces ≈ 1e-320)
         cls = "StormKinematics"
         dts = self.sample_interval
         if not (isinstance(dts, int | float) and math.isfinite(dts) and dts > 0.0):

@@ -1,4 +1,4 @@
-"""Physical consistency of inputs, shared by every command and the public API (issue #31).
+"""Physical consistency of inputs, shared by every command and the public API.
 
 One place for the rules that relate inputs to each other or to the physics, so that the case
 files (``stability``, ``loads``, ``storm`` section and pipeline, ``curves``) and the Python

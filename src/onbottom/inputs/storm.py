@@ -50,7 +50,7 @@ class SeaState:
         normal to the pipe in +y, 270 = normal in −y, 0/180 = along the pipe.
     spreading_s : float
         Exponent s of the cos^s directional spreading function [-], in [0, 100]; 0 = long-crested
-        (no spreading). F109 suggests s = 2–8 (``shared/spec/dnv-reference.md`` §2.7).
+        (no spreading). F109 suggests s = 2–8 (DNV-RP-F109 (2017) §3.4.3).
     """
 
     hs: float
@@ -182,7 +182,7 @@ class Storm:
         """The default design storm: linear build-up, then the peak sea state, then decay.
 
         Default 0.5 h build-up + 3 h at the peak (F109 generalized-method background and
-        PONDUS, Bai *Pipelines and Risers* §8.4; ``shared/spec/on-bottom-stability.md``).
+        PONDUS, Bai *Pipelines and Risers* §8.4).
 
         Parameters
         ----------

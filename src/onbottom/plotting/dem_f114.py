@@ -41,7 +41,7 @@ def f114_bounds_for_dem(
         Prototype (dry) unit weight of the sand γ_d [N/m³], > 0 (the tests were run dry).
     phi_lower_deg, phi_upper_deg : float
         Friction angles of the lower and upper estimates [deg]: φ_c = 33° of the test sand
-        and about 40°, the peak angle implied by the paper's upper bound (spec §3.3).
+        and about 40°, the peak angle implied by the paper's upper bound (F114 Eq 4.9).
     n_points : int
         Number of points on 0 <= w/D <= 0.5.
 

@@ -1,4 +1,4 @@
-"""onbottom.reliability — probability that a pipe exceeds a limit (issue 34, items 2–6).
+"""onbottom.reliability — probability that a pipe exceeds a limit.
 
 Uncertain inputs (:mod:`~onbottom.reliability.distributions`) and the estimators of a
 failure probability with openturns — Monte Carlo, FORM, importance sampling at the FORM design

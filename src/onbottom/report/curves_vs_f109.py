@@ -62,13 +62,10 @@ class F109Functions:
     l_10_clay: Callable[[float, float, float, float], Any]
 
 
-def default_functions() -> F109Functions | None:
-    """:mod:`onbottom.checks.f109_generalized`'s four functions, or None where that module is
-    not in this build."""
-    try:
-        from onbottom.checks import f109_generalized as g
-    except ImportError:
-        return None
+def default_functions() -> F109Functions:
+    """:mod:`onbottom.checks.f109_generalized`'s four functions."""
+    from onbottom.checks import f109_generalized as g
+
     return F109Functions(g.l_stable_sand, g.l_10_sand, g.l_stable_clay, g.l_10_clay)
 
 
@@ -240,19 +237,14 @@ def render_sweep(name: str, ds: xr.Dataset, functions: F109Functions) -> str:
 def page_block(root: str | Path, functions: F109Functions | None = None) -> str:
     """The generated block of the validation page (between :data:`BEGIN` and :data:`END`,
     both included) from the committed sweeps under ``root``; ``functions`` default
-    :func:`default_functions` (without that module the block says so)."""
+    :func:`default_functions`."""
     from onbottom.results import load_dataset
 
     f = functions if functions is not None else default_functions()
     root = Path(root)
     files = committed_sweeps(root)
     parts = [BEGIN, ""]
-    if f is None:
-        parts.append(
-            "*Not generated: F109's generalized tables (`onbottom.checks.f109_generalized`)"
-            " are not in this build.*"
-        )
-    elif not files:
+    if not files:
         parts.append(f"*No committed curve sweep in {' or '.join(SWEEP_FOLDERS)}.*")
     else:
         for path in files:

@@ -6,18 +6,18 @@ models have a branch here and an entry in ``_KERNELS``; a model added through
 :func:`onbottom.soil.registry.register_soil_model` with ``kernel=`` gets an id and a
 ``_KERNELS`` entry from :func:`register_soil_kernel`, with no edit of this module.
 
-Compile time (issue 33 item 2): the storm, section and pipeline kernels take the model id as a
+Compile time: the storm, section and pipeline kernels take the model id as a
 numba literal (``numba.literally``; called from Python through
 :func:`onbottom._jit.call_literal`) and call :func:`lateral_step_of` /
 :func:`lateral_step_node`, which compile to a direct call of that one model's kernel, so a run
-compiles only the models it uses (examples/storm_case.toml: 11.0 → 5.4 CPU-s of compiling).
+compiles only the models it uses (about half the compiling of a storm case).
 
-Speed (issue 33): the kernels use ``error_model="numpy"`` (a division by zero gives inf/NaN,
+Speed: the kernels use ``error_model="numpy"`` (a division by zero gives inf/NaN,
 which the solvers' finiteness checks catch, instead of a ZeroDivisionError test at every
 division and a status check after every call); :data:`lateral_step_inline`, the same function
 inlined into its caller (``inline="always"``), is for callers that loop over many nodes (the
-pipeline FE): the called dispatch cost about 40 ns per node call, more than the Coulomb
-kernel itself. The one-node solvers keep the called form (less to compile).
+pipeline FE): the called dispatch costs more per node call than the Coulomb kernel
+itself. The one-node solvers keep the called form (less to compile).
 """
 
 from __future__ import annotations
@@ -71,7 +71,7 @@ _KERNELS = {
 
 
 def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
-    """:func:`lateral_step` that compiles only the kernel of a literal ``model_id`` (issue 33).
+    """:func:`lateral_step` that compiles only the kernel of a literal ``model_id``.
 
     In a kernel whose ``model_id`` is a numba literal (the caller's entry point calls
     ``numba.literally(model_id)``) this is a direct call of that model's kernel
@@ -122,7 +122,7 @@ MODELS_MIXED = -1
 def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
     """Soil step of one node of a solver whose nodes all use the literal model ``soil_id``.
 
-    For the pipeline FE (issue 33): with ``soil_id`` a numba literal model id (all nodes on one
+    For the pipeline FE: with ``soil_id`` a numba literal model id (all nodes on one
     soil model, the usual case) the caller compiles that model's kernel only; with
     :data:`MODELS_MIXED` (or a non-literal) it is :data:`lateral_step_inline` on the node's
     ``model_id``. In plain Python: :func:`lateral_step`.
@@ -131,7 +131,7 @@ def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state
 
 
 # inline="always": the one-line wrapper is inlined into the caller's numba IR, so the node loop
-# calls the model's kernel directly (the wrapper's own call cost ~5 % of a pipeline run, issue 33)
+# calls the model's kernel directly (saving the wrapper's own call per node)
 @overload(
     lateral_step_node, prefer_literal=True, inline="always", jit_options={"error_model": "numpy"}
 )

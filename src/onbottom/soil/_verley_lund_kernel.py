@@ -2,12 +2,12 @@
 
 Contract: :mod:`onbottom.soil.base`; physics and model choices: :mod:`onbottom.soil.verley_lund`
 and ``docs/theory/verley_lund_clay.md``. The twin :func:`verley_lund_kernel_py` is the same
-source run by the Python interpreter (:func:`onbottom.soil._twin.pure_python`).
+source run by the Python interpreter (:func:`onbottom._jit.pure_python`).
 """
 
 from __future__ import annotations
 
-from onbottom._jit import njit
+from onbottom._jit import njit, pure_python
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,
@@ -22,7 +22,6 @@ from onbottom.soil._trough import (
     region_of,
     sign,
 )
-from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
     OUT_DISSIPATED,

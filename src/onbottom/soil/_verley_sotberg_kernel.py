@@ -4,7 +4,7 @@ Contract: :mod:`onbottom.soil.base`. Physics and the choices made where the pape
 :mod:`onbottom.soil.verley_sotberg` and ``docs/theory/verley_sotberg.md``.
 
 The Python twin :func:`verley_sotberg_kernel_py` is the *same source* executed by the Python
-interpreter (:func:`onbottom.soil._twin.pure_python`).
+interpreter (:func:`onbottom._jit.pure_python`).
 
 params (float64, :data:`N_PARAMS`): see the ``P_*`` indices below.
 state (float64, :data:`N_STATE`): common slots of :mod:`onbottom.soil.base` then the ``S_*``
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit
+from onbottom._jit import njit, pure_python
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,
@@ -31,7 +31,6 @@ from onbottom.soil._trough import (
     region_of,
     sign,
 )
-from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
     OUT_DISSIPATED,
@@ -81,7 +80,7 @@ S_Z2 = N_COMMON_STATE + 3  # penetration frozen on first passing y2 [m] (0 befor
 S_PHASE = N_COMMON_STATE + 4  # PHASE_* code
 S_DIR = N_COMMON_STATE + 5  # sign of the last non-zero displacement increment (+1, -1, 0)
 S_PASSIVE = N_COMMON_STATE + 6  # committed passive force [N/m] (for the work integral)
-# memo of the fractional power (z/D)^1.25 of the peak passive force (issue 33): the last
+# memo of the fractional power (z/D)^1.25 of the peak passive force: the last
 # penetration it was evaluated at and its value, one pair for z (trough) or z2 (breakout, out)
 # and one for z3. A hit returns the stored value, which is the same function of the same z,
 # so the memo changes no result; a zero state is a valid memo (0^1.25 = 0).
@@ -214,7 +213,7 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     z_work = zi
     if work > 0.0:
         # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
-        # (issue 33; sqrt is correctly rounded, pow within 1 ulp of it)
+        # (sqrt is correctly rounded, pow within 1 ulp of it)
         z_work = zi + b * 0.23 * d * math.sqrt(work / (g * d**3)) * (ks * smax / d) ** (-0.31)
     half = 0.5
     if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:

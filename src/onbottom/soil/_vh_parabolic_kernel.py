@@ -23,8 +23,8 @@ from __future__ import annotations
 import math
 
 from onbottom._jit import numba_njit as njit
+from onbottom._jit import pure_python
 from onbottom.soil._trough import spring_work
-from onbottom.soil._twin import pure_python
 from onbottom.soil.base import (
     N_COMMON_STATE,
     OUT2_DH_DV,

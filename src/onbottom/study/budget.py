@@ -1,4 +1,4 @@
-"""Run-time and memory estimates of many-storm runs, checked before they start (issue #31).
+"""Run-time and memory estimates of many-storm runs, checked before they start.
 
 ``onbottom storm --seeds``, ``onbottom curves`` and ``onbottom sweep`` print nothing for
 minutes to days; a grid of 10⁶ storms started by a typo should be refused at once, with the

@@ -11,7 +11,7 @@ Numba and BLAS threads inside the workers are capped to one (``NUMBA_NUM_THREADS
 from the processes, and a 16-core machine running 16 workers each with 16 numba threads would
 be oversubscribed 16 times. The dashboard, when asked for, binds to 127.0.0.1 only.
 
-Interrupts and kills (issue 31): the embedded workers are started with SIGINT ignored, so a
+Interrupts and kills: the embedded workers are started with SIGINT ignored, so a
 Ctrl-C in a terminal (sent to the whole process group) reaches this process only, which
 cancels the futures and closes the cluster quietly (:class:`ParallelMap`, :func:`dask_client`);
 each worker asks the kernel for SIGKILL when its parent dies (``PR_SET_PDEATHSIG``, Linux;

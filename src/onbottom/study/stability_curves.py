@@ -2,7 +2,7 @@
 
 For each point (soil, N, M, K) and criterion (max |y| = 0.5D: L_stable; 10D: L_10) the weight
 parameter L = w_s/(½ ρ_w D U_s²) is found by bisection in log L
-(``shared/spec/on-bottom-stability.md``, "Generalized-stability curves from dynamic runs" [I]),
+(the construction of DNV-RP-F109's generalized-stability curves from dynamic runs, F109 §3.5),
 with one of two **curve statistics** (:attr:`CurveSettings.statistic`):
 
 * ``"fractile"`` (default): **each seed gets its own bisection** for the L at which its storm's
@@ -256,7 +256,7 @@ def clay_validity_limit(k: float, n: float, s: CurveSettings) -> float:
     """L at which S·G_c^0.3 = 2.5, the upper validity of the Verley & Lund penetration fit.
 
     S = w_s/(D s_u) = L ½ ρ_w U_s²/s_u (Bai, *Pipelines and Risers*, p. 107: the fit holds
-    for S·G^0.3 < 2.5 and over-predicts beyond; ``shared/spec/dnv-reference.md`` §2.4).
+    for S·G^0.3 < 2.5 and over-predicts beyond; DNV-RP-F109 (2017) §3.4.6).
     """
     su = s.clay_gc * s.diameter * s.clay_unit_weight
     us2 = k * n * GRAVITY * s.diameter

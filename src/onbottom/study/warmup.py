@@ -2,7 +2,7 @@
 
 numba compiles a kernel on its first call and keeps the machine code in its on-disk cache
 (``cache=True``), so the first ``onbottom storm``, ``assess`` or pipeline run after an install
-or an update pays 5–11 CPU-s of compiling before any physics (issue 33 item 2; the per-kernel
+or an update pays 5–11 CPU-s of compiling before any physics (the per-kernel
 cost is numba's typing, lowering and LLVM work, which fewer specialisations cut only by a
 few per cent). :func:`warm_kernels` pays it once, ahead of time: it runs tiny real problems
 (a few seconds of storm, a 24-m line, one load cycle) through the same public functions the

@@ -21,8 +21,7 @@ from onbottom._jit import njit, pure_python
 W_FIXED = 5
 """Half-bandwidth of the pipeline Jacobian (3 DOFs per node, 2-node elements): rows with a full
 band take a path with constant trip counts (unrolled by LLVM; the same operations in the same
-order, so the same result bit for bit; issue 33: factor 29 → 14 µs, solve 16 → 8.5 µs for
-1503 rows)."""
+order, so the same result bit for bit; about half the time of the general loops)."""
 
 
 @njit(cache=True)
@@ -79,7 +78,7 @@ def ldl_solve(ab, b):
 
     Half-bandwidth 5 and n > 10: the general loops' operations in their order, with the last
     five unknowns of each sweep kept in registers (the store-to-load latency of b[i − 1] was
-    on the sweep's critical path: 11.9 → 8.5 µs for 1503 rows, issue 33)."""
+    on the sweep's critical path)."""
     n = ab.shape[0]
     w = ab.shape[1] - 1
     fixed = w == W_FIXED and n > 2 * W_FIXED

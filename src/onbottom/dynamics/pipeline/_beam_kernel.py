@@ -172,7 +172,7 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
         moment[i] = 0.0
         axial[i] = 0.0
     for e in range(n_el):
-        # borrowed: no reference counting of the four arrays per element call (issue 33)
+        # borrowed: no reference counting of the four arrays per element call
         n, m1, m2 = element_force_tangent(
             borrow(d), e, borrow(props), borrow(fe), borrow(ke), want_k
         )

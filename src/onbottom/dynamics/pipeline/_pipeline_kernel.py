@@ -57,10 +57,10 @@ from onbottom.hydro.kernel_contract import (
     penetration_reduction_y,
     penetration_reduction_z,
 )
-from onbottom.hydro.kernel_contract import force_step_of as force_step  # issue 33
+from onbottom.hydro.kernel_contract import force_step_of as force_step  # literal model id
 from onbottom.soil.base import OUT_R, OUT_SIZE, OUT_TANGENT, S_Z
 from onbottom.soil.kernel_contract import friction_return_map
-from onbottom.soil.kernel_contract import lateral_step_node as lateral_step  # issue 33
+from onbottom.soil.kernel_contract import lateral_step_node as lateral_step  # literal id
 
 # ---- settings ------------------------------------------------------------------------------
 ST_DT_MAX = 0
@@ -408,7 +408,7 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
         for k in range(ab.shape[1]):
             ab[j, k] = 0.0
     # np.bool_(True), not the literal True: numba compiles a separate specialisation of the
-    # callee for each literal argument (issue 33: first-run compile cost)
+    # callee for each literal argument (first-run compile cost)
     assemble_internal(d1, props, scratch, ab, np.bool_(True), fe, ke, mom, nax)
     for j in range(ndof):
         ab[j, 0] += spring[j]
@@ -487,7 +487,7 @@ def integrate(
     d₀, v₀) and the committed P, f_ext (hydrodynamic + user load), f_soil; returns (0,
     ``STATUS_END``), or ``STATUS_SOIL_NAN`` when a soil kernel gave NaN. One entry point for
     both: numba optimises and machine-compiles an entry point together with its whole tree of
-    callees, so a second entry point cost that once more (issue 33: first run).
+    callees, so a second entry point cost that once more on a first run.
     """
     literally(soil_id)  # compile only the models used (soil._dispatch.lateral_step_node)
     literally(force_id)

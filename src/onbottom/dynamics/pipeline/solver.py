@@ -6,7 +6,7 @@ written atomically, so an interrupted run resumes from its
 last chunk when called again with the same inputs (the run identity — a hash of the model,
 the settings and the kinematics — must match). Theory: docs/theory/pipeline_fe.md.
 
-Kill-safe files (issue 31): the records of each chunk go to their own small file in
+Kill-safe files: the records of each chunk go to their own small file in
 ``<output>.part/`` (written atomically, with the run identity); when the run ends they are
 written with the envelopes to a temporary NetCDF file renamed to ``output`` (``run_status =
 "complete"``), and the checkpoint and the chunk files are removed. A growing HDF5 file is not
@@ -689,7 +689,7 @@ def simulate_pipeline(
     arr = model.arrays()
     r_perm_z = float(arr["r_perm_z"][0])
     st = _kernel_settings(model, kinematics, s, r_perm_z)
-    # the kernels compile the soil and force models used only (numba literals, issue 33)
+    # the kernels compile the soil and force models used only (numba literals)
     used = np.unique(arr["model_ids"])
     soil_id = int(used[0]) if used.size == 1 else MODELS_MIXED
     force_id = int(model.force_model.model_id)
@@ -812,7 +812,7 @@ def simulate_pipeline(
         )  # fmt: skip
         n_st = arr["sstate"].shape[1]
         if sstate.shape[1] < n_st:
-            # checkpoints written before the V&S memo slots (issue 33): zero slots are an
+            # checkpoints written before the V&S memo slots: zero slots are an
             # empty memo (the memo's key is then 0, whose power 0 is right); before the V&S
             # load-reversal slots: zero is a shut gate, an unknown load direction, no turns
             pad = np.zeros((sstate.shape[0], n_st - sstate.shape[1]))
@@ -889,7 +889,7 @@ def simulate_pipeline(
     )
     ke = 0.5 * float(np.sum(mass * vec[K.V_V] ** 2))
     # the plain-Python twin: ~2 ms per 1000 elements once per run, where the jitted kernel
-    # cost a first run ~0.15 s of compiling (issue 33)
+    # would cost a first run its compiling
     se = float(B.strain_energy_py(d_fin, arr["props"])) + 0.5 * float(
         np.sum(arr["spring"] * d_fin**2)
     )

@@ -3,8 +3,8 @@
 Two comparisons:
 
 1. Q_v of F114 Eq 4.9 (:class:`onbottom.soil.penetration_sand.DrainedPenetration`) against the
-   reference table of ``shared/spec/dnv-reference.md`` §3.3 (an independent implementation,
-   groundhog, rounded to 0.1 kN/m): D = 0.5 m, γ' = 15.9 / 16.7 kN/m³, φ' = 33° / 40°, four
+   reference table of an independent implementation (groundhog, rounded to 0.1 kN/m):
+   D = 0.5 m, γ' = 15.9 / 16.7 kN/m³, φ' = 33° / 40°, four
    N_γ expressions, z/D = 0.1–0.5. Tolerance ±1 % or ±0.06 kN/m (the rounding), the same as
    ``tests/unit/test_penetration_f114.py``.
 2. The centrifuge resistances the penetration paper reports (``onbottom.dem.published``; SM
@@ -39,10 +39,12 @@ REFERENCE_TABLE: tuple[tuple[float, float, str, tuple[float, ...]], ...] = (
     (15.9, 33, "davis_booker_rough", (19.0, 33.8, 44.7, 55.3, 66.2)),
     (15.9, 40, "vesic", (78.3, 139.2, 182.7, 216.9, 246.1)),
 )
-"""γ' [kN/m³], φ' [deg], N_γ expression, Q_v [kN/m] at :data:`LEVELS` (spec §3.3)."""
+"""γ' [kN/m³], φ' [deg], N_γ expression, Q_v [kN/m] at :data:`LEVELS` (DNVGL-RP-F114 (2017) Eq 4.9,
+groundhog's implementation)."""
 
 SPECIMEN_GAMMA_KN = {"SM": 15.9, "SD": 16.7}
-"""Dry unit weight of the paper's specimens [kN/m³] (estimated in spec §3.3 from D_r)."""
+"""Dry unit weight of the paper's specimens [kN/m³] (estimated from the paper's relative
+densities D_r)."""
 
 _RTOL, _ATOL = 0.01, 0.06
 _SHALLOW_NOTE = (
@@ -78,7 +80,7 @@ def build(ctx: SectionContext) -> SectionContent:
                     atol=_ATOL,
                     unit="kN/m",
                     tolerance="±1 % or ±0.06 kN/m",
-                    note="spec §3.3 (groundhog)",
+                    note="F114 Eq 4.9 (groundhog)",
                 )
             )
 
@@ -151,10 +153,10 @@ def build(ctx: SectionContext) -> SectionContent:
             " project's choice; the standard's own definition was not available"
             " (docs/theory/dnv_rp_f114.md).",
             "The specimens' dry unit weights are estimates from the relative densities the"
-            " paper quotes (spec §3.3); the tests were run dry, so γ' = γ_d.",
+            " paper quotes (its §4.1); the tests were run dry, so γ' = γ_d.",
         ],
         sources=[
-            "DNVGL-RP-F114 (2017) Eq 4.9 as decoded in shared/spec/dnv-reference.md §3.3",
+            "DNVGL-RP-F114 (2017) Eq 4.9; reference values from groundhog's implementation",
             "penetration paper (centrifuge 25 g + DEM), §4.2, via onbottom.dem.published",
         ],
     )

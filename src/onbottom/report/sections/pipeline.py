@@ -99,11 +99,9 @@ def build(ctx: SectionContext) -> SectionContent:
         ),
     ]
     figures = []
-    try:
-        from onbottom.plotting.pipeline import plot_pipeline_result
-    except ImportError:  # pipeline plots not in this build
-        plot_pipeline_result = None
-    if plot_pipeline_result is not None and storm.data is not None:
+    from onbottom.plotting.pipeline import plot_pipeline_result
+
+    if storm.data is not None:
         figures.append(
             ctx.save_figure(
                 plot_pipeline_result(storm, title="200 m line, regular wave, sand"),

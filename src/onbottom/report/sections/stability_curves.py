@@ -56,10 +56,8 @@ def build(ctx: SectionContext) -> SectionContent:
                 )
             ],
         )
-    try:
-        from onbottom.plotting.storm import plot_stability_curves
-    except ImportError:
-        plot_stability_curves = None
+    from onbottom.plotting.storm import plot_stability_curves
+
     tables, figures = [], []
     flagged = 0
     costs = []
@@ -90,16 +88,15 @@ def build(ctx: SectionContext) -> SectionContent:
                 digits=3,
             )
         )
-        if plot_stability_curves is not None:
-            figures.append(
-                ctx.save_figure(
-                    plot_stability_curves(ds, title=f"{path.stem}: L = {stat['label']}"),
-                    path.stem,
-                    f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
-                    " markers: points outside the soil model's range.",
-                )
+        figures.append(
+            ctx.save_figure(
+                plot_stability_curves(ds, title=f"{path.stem}: L = {stat['label']}"),
+                path.stem,
+                f"{path.name}: L/(2 + M)² against K for each soil and M; open red"
+                " markers: points outside the soil model's range.",
             )
-    if plot_stability_curves is not None and len(files) > 1:
+        )
+    if len(files) > 1:
         from onbottom.plotting.storm import plot_curves_against_m
 
         sweeps = {p.stem: load_dataset(p) for p in files}

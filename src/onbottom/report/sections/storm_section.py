@@ -73,11 +73,9 @@ def build(ctx: SectionContext) -> SectionContent:
             )
         )
     figures = []
-    try:
-        from onbottom.plotting.storm import plot_storm_result
-    except ModuleNotFoundError:  # plotting of storms not in this build
-        plot_storm_result = None
-    if plot_storm_result is not None and res.data is not None:
+    from onbottom.plotting.storm import plot_storm_result
+
+    if res.data is not None:
         figures.append(
             ctx.save_figure(
                 plot_storm_result(res, title="ex09 storm case"),
