@@ -147,3 +147,33 @@ def test_prune_removes_only_old_unused_hash_folders(tmp_path):
     # ago: within the week); f and g, unused for over a week, are gone
     assert left == {"current", "a", "b", "c", "d", "e"}
     assert keep.stat().st_mtime > now - 60
+
+
+def test_every_kernel_module_compiles_through_jit():
+    """No module imports numba's ``njit``/``jit`` itself: every cached kernel must go through
+    ``onbottom._jit`` (its cache folder per package content hash), or a caller cached next to
+    its source would keep an old copy of an edited callee in another file."""
+    import ast
+    from pathlib import Path
+
+    import onbottom
+
+    root = Path(onbottom.__file__).parent
+    offenders = []
+    for path in sorted(root.rglob("*.py")):
+        if path.name == "_jit.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.module == "numba":
+                names = {a.name for a in node.names} & {"njit", "jit", "generated_jit"}
+                if names:
+                    offenders.append(f"{path.relative_to(root)}: from numba import {names}")
+            if (
+                isinstance(node, ast.Attribute)
+                and isinstance(node.value, ast.Name)
+                and node.value.id == "numba"
+                and node.attr in {"njit", "jit"}
+            ):
+                offenders.append(f"{path.relative_to(root)}: numba.{node.attr}")
+    assert not offenders, "kernels compiled outside onbottom._jit:\n" + "\n".join(offenders)

@@ -105,9 +105,9 @@ def section_marks(s: dict[str, Any], a: Assessment) -> list[dict[str, str]]:
     keys = []
     if any("calibration range" in n or "extrapolat" in n for n in s.get("notes", [])):
         keys.append("E")
-    if "dynamic" in s["levels"] and (
-        s["seabed_model"] == "sand" or a.route.force_model in ("wake", "morison")
-    ):
+    # reconstructed: V&S sand (its Eqs 6 and 8) and the wake force model (public structure,
+    # constants fitted by onbottom); constant Morison coefficients are not a reconstruction
+    if "dynamic" in s["levels"] and (s["seabed_model"] == "sand" or a.route.force_model == "wake"):
         keys.append("R")
     p = a.pipeline or {}
     if p.get("index") == s["index"] and (p.get("at_section_design") or {}).get("disagree"):

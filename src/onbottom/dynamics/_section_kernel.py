@@ -27,8 +27,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import literally, njit
+from numba import literally
 
+from onbottom._jit import numba_njit as njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
 from onbottom.soil.base import (
