@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -200,17 +199,10 @@ def test_cli_storm_dispatches_pipeline_cases(tmp_path, capsys, monkeypatch):
 
     import onbottom.cli.storm as storm_cli
 
-    real = storm_cli._run_pipeline
     monkeypatch.setattr(storm_cli, "_run_pipeline", run_pipeline)
     assert main(["storm", str(case), "--json", "--seeds", "2"]) == 0
     assert calls["path"] == case and calls["options"]["seeds"] == 2
     assert json.loads(capsys.readouterr().out)["max_displacement_m"] == 0.1
-    # without the pipeline module: a clear input error naming [pipeline]
-    monkeypatch.setattr(storm_cli, "_run_pipeline", real)
-    monkeypatch.setitem(sys.modules, "onbottom.cases.pipeline", None)
-    assert main(["storm", str(case), "--json"]) == 1
-    err = json.loads(capsys.readouterr().out)["error"]
-    assert err["field"] == "pipeline" and "issue 13" in err["message"]
 
 
 def test_example_storm_case_parses():
