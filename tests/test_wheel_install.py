@@ -41,13 +41,23 @@ def _comparable(doc: dict, places: dict[str, str]) -> dict:
     and dynamic results, the comparison, the pipeline; the run's own folders and the
     package's folder (in file names) replaced by ``places``' names."""
     drop = {"wall_time_s", "cpu_time_s", "identity", "identity_parts", "checksum"}
+
+    def keep(x):  # the run's own timings and identities dropped at every depth
+        if isinstance(x, dict):
+            return {k: keep(v) for k, v in x.items() if k not in drop}
+        if isinstance(x, list):
+            return [keep(v) for v in x]
+        return x
+
     text = json.dumps(
-        {
-            "summary": doc["summary"],
-            "sections": [{k: v for k, v in s.items() if k not in drop} for s in doc["sections"]],
-            "comparison": doc["comparison"],
-            "pipeline": {k: v for k, v in (doc.get("pipeline") or {}).items() if k not in drop},
-        }
+        keep(
+            {
+                "summary": doc["summary"],
+                "sections": doc["sections"],
+                "comparison": doc["comparison"],
+                "pipeline": doc.get("pipeline") or {},
+            }
+        )
     )
     for path, name in sorted(places.items(), key=lambda kv: -len(kv[0])):
         text = text.replace(path, name)

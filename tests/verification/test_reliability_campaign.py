@@ -217,8 +217,9 @@ def test_resume_after_a_kill_at_a_random_time_equals_an_uninterrupted_run(tmp_pa
 @pytest.mark.long
 def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
     """A short storm (0.05 h build-up, 0.15 h peak) of examples/storm_case.toml with
-    H_s ~ N(3.5, 0.5) m, T_p ~ U(9, 12) s, μ ~ N(0.6, 0.06) and the seed: P[Y > 2D] ≈ 0.04
-    per storm, affordable by Monte Carlo (1000 storms) and by subset simulation (200 a level)."""
+    H_s ~ N(3.5, 0.5) m, T_p ~ U(9, 12) s, μ ~ N(0.6, 0.06) and the seed: P[Y > 2D] ≈ 0.2
+    per storm with the load-reversal reading of V&S (≈ 0.04 with the former, whose pipe dug
+    itself in), affordable by Monte Carlo (1000 storms) and by subset simulation (200 a level)."""
     import tomllib
 
     from onbottom._casefile import parse_case
@@ -252,7 +253,7 @@ def test_monte_carlo_and_subset_agree_on_a_dynamic_storm_case(tmp_path):
         )
         ss = estimate_exceedance(c, params, limit, method="subset", block_size=200, seed=2)
     assert mc.storms == 1000 and mc.failed_runs == 0
-    assert 0.01 < mc.probability < 0.2
+    assert 0.01 < mc.probability < 0.4
     # subset's stated CV is about half its real one (docs/theory/reliability.md): doubled here
     sigma = np.hypot(mc.cv * mc.probability, 2.0 * ss.cv * ss.probability)
     assert abs(mc.probability - ss.probability) <= 3.0 * sigma
