@@ -429,3 +429,19 @@ def _borrow_overload(a):
     if isinstance(a, nbtypes.Array):
         return lambda a: _borrow(a)
     return lambda a: a
+
+
+def registered_kernel_id(kernel: Any, first_id: int) -> int:
+    """The model id of a registered kernel: ``first_id`` plus a CRC-32 of the kernel's module,
+    name and source (mod 2³⁰), so that numba's on-disk cache of a solver specialised on a
+    literal id never serves another kernel under it. Shared by the soil and force dispatch."""
+    import inspect
+    import zlib
+
+    py = getattr(kernel, "py_func", kernel)
+    try:
+        source = inspect.getsource(py)
+    except (OSError, TypeError):
+        source = ""
+    text = f"{py.__module__}.{py.__qualname__}\n{source}"
+    return first_id + zlib.crc32(text.encode()) % (2**30)

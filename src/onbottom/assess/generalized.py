@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -67,6 +68,21 @@ def _lateral(rows: list[Any]) -> list[Any]:
     return [r for r in rows if r.name == "absolute_lateral" and "us" in r.details]
 
 
+def _flow_points(
+    rows: list[Any], name: str, level: str, rho: float, out: list[dict[str, Any]]
+) -> Iterator[tuple[dict[str, Any], dict[str, float]]]:
+    """(row start, point K, M, N, L) of each absolute-lateral row with wave flow at the pipe;
+    a row without flow (U_s = 0) is appended to ``out`` as not covered instead."""
+    for r in _lateral(rows):
+        base = {"name": name, "combination": r.combination, "condition": r.condition,
+                "level": level, "covered": False, "utilisation": None, "pass": None}  # fmt: skip
+        point = _point(r, rho)
+        if point is None:
+            out.append(base | {"message": "no wave flow at the pipe (U_s = 0)", "details": {}})
+            continue
+        yield base, point
+
+
 def generalized_rows(
     rows: list[Any],
     allowable: str = "0.5D",
@@ -82,14 +98,7 @@ def generalized_rows(
 
     out = []
     soil = F109_SOIL.get(seabed_model)
-    for r in _lateral(rows):
-        base = {"name": "generalized_lateral", "combination": r.combination,
-                "condition": r.condition, "level": "generalized", "covered": False,
-                "utilisation": None, "pass": None}  # fmt: skip
-        point = _point(r, water_density)
-        if point is None:
-            out.append(base | {"message": "no wave flow at the pipe (U_s = 0)", "details": {}})
-            continue
+    for base, point in _flow_points(rows, "generalized_lateral", "generalized", water_density, out):
         if soil is None:
             msg = (
                 f"seabed model {seabed_model!r}: F109's generalized method (§3.5) covers sand"
@@ -131,14 +140,9 @@ def dynamic_curve_rows(
     sweeps = [(f, ds) for f in files if (ds := _load(f)) is not None]
     crit = CRITERION.get(allowable)
     soil = F109_SOIL.get(seabed_model)
-    for r in _lateral(rows):
-        base = {"name": "dynamic_curves_lateral", "combination": r.combination,
-                "condition": r.condition, "level": "dynamic_curves", "covered": False,
-                "utilisation": None, "pass": None}  # fmt: skip
-        point = _point(r, water_density)
-        if point is None:
-            out.append(base | {"message": "no wave flow at the pipe (U_s = 0)", "details": {}})
-            continue
+    for base, point in _flow_points(
+        rows, "dynamic_curves_lateral", "dynamic_curves", water_density, out
+    ):
         k, m, n = point["K"], point["M"], point["N"]
         msg = None
         if crit is None:

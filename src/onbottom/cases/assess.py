@@ -58,7 +58,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal, NoReturn
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
 from onbottom._casefile import (
     CaseFileError,
@@ -93,10 +93,9 @@ from onbottom.cases.tables import (
     HydroTable,
     PipeTable,
     SeabedTable,
+    SeawaterTable,
     WavesTable,
-    viscosity_not_used,
 )
-from onbottom.constants import KINEMATIC_VISCOSITY_SEAWATER
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
@@ -203,16 +202,8 @@ class RouteTable(StrictModel):
     sections: list[RouteSection] = Field(min_length=1)
 
 
-class RouteEnvironmentTable(StrictModel):
-    water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
-    kinematic_viscosity: float = Field(
-        KINEMATIC_VISCOSITY_SEAWATER,
-        ge=1.0e-7,
-        le=1.0e-4,
-        description="ν [m²/s] (not used: default only)",
-    )
-
-    _nu = field_validator("kinematic_viscosity")(viscosity_not_used)
+class RouteEnvironmentTable(SeawaterTable):
+    """A route's ``[environment]``: the sea water (depths are per section)."""
 
 
 class RouteDesignTable(DesignTable):

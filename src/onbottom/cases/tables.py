@@ -223,8 +223,9 @@ def viscosity_not_used(value: float) -> float:
     return value
 
 
-class EnvironmentTable(StrictModel):
-    water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
+class SeawaterTable(StrictModel):
+    """Sea-water properties shared by ``[environment]`` and a route's ``[environment]``."""
+
     water_density: float = Field(1025.0, ge=900.0, le=1100.0, description="ρ_w [kg/m³]")
     kinematic_viscosity: float = Field(
         KINEMATIC_VISCOSITY_SEAWATER,
@@ -234,6 +235,10 @@ class EnvironmentTable(StrictModel):
     )
 
     _nu = field_validator("kinematic_viscosity")(viscosity_not_used)
+
+
+class EnvironmentTable(SeawaterTable):
+    water_depth: float = Field(gt=0.0, le=5000.0, description="d [m]")
 
 
 class WavesTable(StrictModel):

@@ -61,12 +61,9 @@ kernels call :func:`force_step_of` with a literal id: they compile the model use
 
 from __future__ import annotations
 
-import inspect
-import zlib
-
 import numpy as np
 
-from onbottom._jit import literal_dispatch, njit
+from onbottom._jit import literal_dispatch, njit, registered_kernel_id
 from onbottom.hydro._force_contract import FO_SIZE
 from onbottom.hydro._fourier_kernel import fourier_kernel
 from onbottom.hydro._morison_kernel import morison_kernel
@@ -132,12 +129,6 @@ def register_force_kernel(kernel) -> int:
     pipeline kernels (literal ids) then call it directly, with no edit of this module; the
     non-literal :func:`force_step` knows the built-in models only.
     """
-    py = getattr(kernel, "py_func", kernel)
-    try:
-        source = inspect.getsource(py)
-    except (OSError, TypeError):
-        source = ""
-    text = f"{py.__module__}.{py.__qualname__}\n{source}"
-    model_id = FIRST_REGISTERED_ID + zlib.crc32(text.encode()) % (2**30)
+    model_id = registered_kernel_id(kernel, FIRST_REGISTERED_ID)
     _KERNELS[model_id] = kernel
     return model_id

@@ -22,13 +22,10 @@ itself. The one-node solvers keep the called form (less to compile).
 
 from __future__ import annotations
 
-import inspect
-import zlib
-
 import numpy as np
 from numba.extending import overload
 
-from onbottom._jit import literal_dispatch, njit
+from onbottom._jit import literal_dispatch, njit, registered_kernel_id
 from onbottom.soil._coulomb_kernel import coulomb_kernel
 from onbottom.soil._verley_lund_kernel import verley_lund_kernel
 from onbottom.soil._verley_sotberg_kernel import verley_sotberg_kernel
@@ -104,13 +101,7 @@ def register_soil_kernel(kernel) -> int:
     then call it directly, with no edit of this module; the non-literal :func:`lateral_step`
     (pipeline nodes on several soil models) knows the built-in models only.
     """
-    py = getattr(kernel, "py_func", kernel)
-    try:
-        source = inspect.getsource(py)
-    except (OSError, TypeError):
-        source = ""
-    text = f"{py.__module__}.{py.__qualname__}\n{source}"
-    model_id = FIRST_REGISTERED_ID + zlib.crc32(text.encode()) % (2**30)
+    model_id = registered_kernel_id(kernel, FIRST_REGISTERED_ID)
     _KERNELS[model_id] = kernel
     return model_id
 
