@@ -15,7 +15,7 @@ from onbottom.assess.route import (
     DesignRange,
     DynamicSettings,
     Levels,
-    PipelineSettings,
+    PipelineFESettings,
     Route,
 )
 from onbottom.cases.assess import build_route, load_route, parse_route_case, section_identity
@@ -96,8 +96,8 @@ def test_value_types_name_the_field():
         DynamicSettings(allowable="user")
     assert DynamicSettings(allowable="10D").allowable_for(0.4) == pytest.approx(4.0)
     assert DynamicSettings(allowable="user", allowable_displacement_m=2.0).allowable_for(9) == 2
-    with pytest.raises(InputError, match="PipelineSettings.element_length"):
-        PipelineSettings(length=10.0, element_length=6.0)
+    with pytest.raises(InputError, match="PipelineFESettings.element_length"):
+        PipelineFESettings(length=10.0, element_length=6.0)
     with pytest.raises(InputError, match="pipeline_fe"):
         Levels(dynamic=False, pipeline_fe=True)
 
@@ -113,3 +113,15 @@ def test_route_checks_its_sections(built):
     plain = replace(route, design=DesignRange(variable="none"))
     assert replace(plain, sections=(replace(s, trial_storm=None),)).sections[0].name == s.name
     assert isinstance(route, Route)
+
+
+def test_route_pipeline_fe_settings_old_name_is_a_deprecated_alias():
+    """The route's FE settings and the solver's settings no longer share a class name; the
+    route's former name still resolves, with a DeprecationWarning, for one release."""
+    import onbottom.assess as assess_pkg
+    from onbottom.dynamics.pipeline import PipelineSettings
+
+    with pytest.warns(DeprecationWarning, match="renamed PipelineFESettings"):
+        old = assess_pkg.PipelineSettings
+    assert old is PipelineFESettings
+    assert PipelineFESettings is not PipelineSettings

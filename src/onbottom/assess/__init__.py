@@ -16,7 +16,7 @@ from onbottom.assess.route import (
     DesignRange,
     DynamicSettings,
     Levels,
-    PipelineSettings,
+    PipelineFESettings,
     Route,
     Section,
     StormCombination,
@@ -27,9 +27,24 @@ __all__ = [
     "DesignRange",
     "DynamicSettings",
     "Levels",
-    "PipelineSettings",
+    "PipelineFESettings",
     "Route",
     "Section",
     "StormCombination",
     "assess",
 ]
+
+
+def __getattr__(name: str) -> object:
+    if name == "PipelineSettings":
+        import warnings
+
+        warnings.warn(
+            "onbottom.assess.PipelineSettings is renamed PipelineFESettings (the pipeline FE"
+            " solver's own settings are onbottom.dynamics.pipeline.PipelineSettings); the old"
+            " name goes in the next release",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return PipelineFESettings
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -16,7 +16,7 @@ straight stretch of the governing section:
   (:func:`onbottom.hydro.short_crested.pipeline_kinematics`);
 * the pipe, soil model, force model, F109 load reductions and current of that storm (the
   section's :data:`~onbottom.assess.route.TrialStorm` at the design value);
-  :class:`~onbottom.assess.route.PipelineSettings` (``[pipeline]`` of the route case) give the
+  :class:`~onbottom.assess.route.PipelineFESettings` (``[pipeline]`` of the route case) give the
   length, element length, end conditions and
   strain limit (default 0.2 %: a screening value below the yield strain of X65 line pipe,
   448 MPa / 207 GPa = 0.22 %; the DNV-ST-F101 displacement-controlled criterion allows more —

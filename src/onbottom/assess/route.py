@@ -32,7 +32,7 @@ __all__ = [
     "DesignRange",
     "DynamicSettings",
     "Levels",
-    "PipelineSettings",
+    "PipelineFESettings",
     "Route",
     "Section",
     "StormCombination",
@@ -167,8 +167,10 @@ class DynamicSettings:
 
 
 @dataclass(frozen=True)
-class PipelineSettings:
-    """The pipeline FE run of the governing section (:mod:`onbottom.assess.pipeline`).
+class PipelineFESettings:
+    """The pipeline FE run of the governing section (:mod:`onbottom.assess.pipeline`): the
+    modelled line and its limits. The time integration's settings are the solver's own
+    (:class:`onbottom.dynamics.pipeline.PipelineSettings`), derived from the dynamic level's.
 
     Parameters
     ----------
@@ -191,13 +193,14 @@ class PipelineSettings:
     duration: float | None = None
 
     def __post_init__(self) -> None:
-        positive("PipelineSettings.length", self.length)
-        in_range("PipelineSettings.element_length", self.element_length, 0.0, 0.5 * self.length,
+        positive("PipelineFESettings.length", self.length)
+        in_range("PipelineFESettings.element_length", self.element_length, 0.0, 0.5 * self.length,
                  low_inclusive=False)  # fmt: skip
-        one_of("PipelineSettings.end_conditions", self.end_conditions, ("fixed", "pinned", "free"))
-        positive("PipelineSettings.strain_limit", self.strain_limit)
+        ends = ("fixed", "pinned", "free")
+        one_of("PipelineFESettings.end_conditions", self.end_conditions, ends)
+        positive("PipelineFESettings.strain_limit", self.strain_limit)
         if self.duration is not None:
-            positive("PipelineSettings.duration", self.duration)
+            positive("PipelineFESettings.duration", self.duration)
 
 
 @dataclass(frozen=True)
@@ -309,7 +312,7 @@ class Route:
         The levels run.
     dynamic : DynamicSettings
         The dynamic level's settings.
-    pipeline : PipelineSettings
+    pipeline : PipelineFESettings
         The pipeline FE's settings (``levels.pipeline_fe``).
     water_density : float
         ρ_w [kg/m³] (the report's V–H diagram).
@@ -324,7 +327,7 @@ class Route:
     design: DesignRange = DesignRange()
     levels: Levels = Levels()
     dynamic: DynamicSettings = DynamicSettings()
-    pipeline: PipelineSettings = PipelineSettings()
+    pipeline: PipelineFESettings = PipelineFESettings()
     water_density: float = 1025.0
     force_model: str = "wake"
     identity: str = ""
