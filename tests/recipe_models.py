@@ -29,8 +29,8 @@ from onbottom.soil.base import (
     OUT_WORK,
     S_FRICTION,
     S_SOIL_WORK,
-    S_U,
     S_WORK,
+    S_Y,
     LateralResistanceModel,
 )
 from onbottom.soil.registry import SOIL_MODELS, register_soil_model
@@ -40,15 +40,15 @@ P_MU, P_ADHESION, P_DELTA = 0, 1, 2
 
 
 @njit(cache=True)
-def adhesive_coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
+def adhesive_coulomb_kernel(params, state_old, y_new, v_load, state_new, out):
     """Elastic–plastic friction with capacity μV + a (V > 0), stiffness capacity/δ; zero at
-    lift-off (V <= 0). Soil work ∫R du by the trapezoid of the increment."""
+    lift-off (V <= 0). Soil work ∫R dy by the trapezoid of the increment."""
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
     for i in range(out.shape[0]):
         out[i] = 0.0
-    du = u_new - state_old[S_U]
-    state_new[S_U] = u_new
+    dy = y_new - state_old[S_Y]
+    state_new[S_Y] = y_new
     f0 = state_old[S_FRICTION]
     f = 0.0
     k = 0.0
@@ -57,7 +57,7 @@ def adhesive_coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
         cap = params[P_MU] * v_load + params[P_ADHESION]
         k = cap / params[P_DELTA]
         f0 = min(max(f0, -cap), cap)
-        f = f0 + k * du
+        f = f0 + k * dy
         if f > cap:
             f, k = cap, 0.0
         elif f < -cap:
@@ -65,7 +65,7 @@ def adhesive_coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
         stored = 0.5 * f * f * params[P_DELTA] / cap
     else:
         f0 = 0.0
-    w = 0.5 * (f + f0) * du
+    w = 0.5 * (f + f0) * dy
     state_new[S_FRICTION] = f
     state_new[S_WORK] = state_old[S_WORK] + abs(w)
     state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + w

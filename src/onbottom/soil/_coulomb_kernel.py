@@ -20,8 +20,8 @@ from onbottom.soil.base import (
     S_FRICTION,
     S_REGION,
     S_SOIL_WORK,
-    S_U,
     S_WORK,
+    S_Y,
     S_Z,
 )
 
@@ -30,8 +30,8 @@ P_DELTA = 1
 
 
 @njit(cache=True)
-def friction_return_map(f_old: float, du: float, v_load: float, mu: float, delta: float):
-    """Elastic predictor / plastic corrector for the Coulomb force (resisting +u).
+def friction_return_map(f_old: float, dy: float, v_load: float, mu: float, delta: float):
+    """Elastic predictor / plastic corrector for the Coulomb force (resisting +y).
 
     Stiffness k = μ·V/δ so that full friction μV mobilises after a displacement δ from rest.
     The predictor starts from the committed force returned into the current capacity ±μV (V
@@ -42,7 +42,7 @@ def friction_return_map(f_old: float, du: float, v_load: float, mu: float, delta
         return 0.0, 0.0
     cap = mu * v_load
     k = cap / delta
-    f_trial = min(max(f_old, -cap), cap) + k * du
+    f_trial = min(max(f_old, -cap), cap) + k * dy
     if f_trial > cap:
         return cap, 0.0
     if f_trial < -cap:
@@ -51,17 +51,17 @@ def friction_return_map(f_old: float, du: float, v_load: float, mu: float, delta
 
 
 @njit(cache=True)
-def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
+def coulomb_kernel(params, state_old, y_new, v_load, state_new, out):
     mu = params[P_MU]
     delta = params[P_DELTA]
-    du = u_new - state_old[S_U]
-    f, k = friction_return_map(state_old[S_FRICTION], du, v_load, mu, delta)
+    dy = y_new - state_old[S_Y]
+    f, k = friction_return_map(state_old[S_FRICTION], dy, v_load, mu, delta)
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
-    state_new[S_U] = u_new
+    state_new[S_Y] = y_new
     state_new[S_FRICTION] = f
     state_new[S_Z] = 0.0
-    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
+    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * dy)
     state_new[S_REGION] = 0.0
     stored = 0.0
     k_fr = 0.0
@@ -69,7 +69,7 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
         stored = 0.5 * f * f * delta / (mu * v_load)
         k_fr = mu * v_load / delta
     f0 = min(max(state_old[S_FRICTION], -mu * v_load), mu * v_load)
-    w_f = spring_work(f0, f, f0 + k_fr * du, k_fr)
+    w_f = spring_work(f0, f, f0 + k_fr * dy, k_fr)
     state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + w_f
     out[OUT_R] = f
     out[OUT_FRICTION] = f
@@ -82,13 +82,13 @@ def coulomb_kernel(params, state_old, u_new, v_load, state_new, out):
     out[OUT_DISSIPATED] = state_new[S_SOIL_WORK] - stored
 
 
-def friction_return_map_py(f_old, du, v_load, mu, delta):
+def friction_return_map_py(f_old, dy, v_load, mu, delta):
     """Plain-Python twin of :func:`friction_return_map`."""
     if v_load <= 0.0:
         return 0.0, 0.0
     cap = mu * v_load
     k = cap / delta
-    f_trial = min(max(f_old, -cap), cap) + k * du
+    f_trial = min(max(f_old, -cap), cap) + k * dy
     if f_trial > cap:
         return cap, 0.0
     if f_trial < -cap:
@@ -96,22 +96,22 @@ def friction_return_map_py(f_old, du, v_load, mu, delta):
     return f_trial, k
 
 
-def coulomb_kernel_py(params, state_old, u_new, v_load, state_new, out):
+def coulomb_kernel_py(params, state_old, y_new, v_load, state_new, out):
     """Plain-Python twin of :func:`coulomb_kernel`."""
-    du = u_new - state_old[S_U]
-    f, k = friction_return_map_py(state_old[S_FRICTION], du, v_load, params[P_MU], params[P_DELTA])
+    dy = y_new - state_old[S_Y]
+    f, k = friction_return_map_py(state_old[S_FRICTION], dy, v_load, params[P_MU], params[P_DELTA])
     state_new[:] = state_old
-    state_new[S_U] = u_new
+    state_new[S_Y] = y_new
     state_new[S_FRICTION] = f
     state_new[S_Z] = 0.0
-    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * du)
+    state_new[S_WORK] = state_old[S_WORK] + abs(0.5 * (f + state_old[S_FRICTION]) * dy)
     state_new[S_REGION] = 0.0
     cap = params[P_MU] * v_load
     stored = 0.5 * f * f * params[P_DELTA] / cap if cap > 0.0 else 0.0
     k_fr = cap / params[P_DELTA] if cap > 0.0 else 0.0
     f0 = min(max(state_old[S_FRICTION], -cap), cap) if cap > 0.0 else 0.0
     state_new[S_SOIL_WORK] = state_old[S_SOIL_WORK] + spring_work.py_func(
-        f0, f, f0 + k_fr * du, k_fr
+        f0, f, f0 + k_fr * dy, k_fr
     )
     soil_work = state_new[S_SOIL_WORK]
     out[:] = (f, f, 0.0, k, 0.0, state_new[S_WORK], 0.0, stored, soil_work - stored)

@@ -38,16 +38,16 @@ MODEL_VH_PARABOLIC = 3  # two-DOF force-resultant test model (onbottom.soil.vh_p
 
 
 @njit(cache=True)
-def lateral_step(model_id, params, state_old, u_new, v_load, state_new, out):
+def lateral_step(model_id, params, state_old, y_new, v_load, state_new, out):
     """Call the kernel of model ``model_id`` (contract: :mod:`onbottom.soil.base`)."""
     if model_id == MODEL_COULOMB:
-        coulomb_kernel(params, state_old, u_new, v_load, state_new, out)
+        coulomb_kernel(params, state_old, y_new, v_load, state_new, out)
     elif model_id == MODEL_VERLEY_SOTBERG:
-        verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out)
+        verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out)
     elif model_id == MODEL_VERLEY_LUND:
-        verley_lund_kernel(params, state_old, u_new, v_load, state_new, out)
+        verley_lund_kernel(params, state_old, y_new, v_load, state_new, out)
     elif model_id == MODEL_VH_PARABOLIC:
-        vh_parabolic_kernel(params, state_old, u_new, v_load, state_new, out)
+        vh_parabolic_kernel(params, state_old, y_new, v_load, state_new, out)
     else:
         # unknown id: signal with NaN resistance; the Python layer validates ids beforehand
         for i in range(out.shape[0]):
@@ -67,7 +67,7 @@ _KERNELS = {
 }
 
 
-def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
+def lateral_step_of(model_id, params, state_old, y_new, v_load, state_new, out):
     """:func:`lateral_step` that compiles only the kernel of a literal ``model_id``.
 
     In a kernel whose ``model_id`` is a numba literal (the caller's entry point calls
@@ -79,9 +79,9 @@ def lateral_step_of(model_id, params, state_old, u_new, v_load, state_new, out):
     """
     kernel = _KERNELS.get(model_id)
     if kernel is None or model_id < FIRST_REGISTERED_ID:
-        lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+        lateral_step(model_id, params, state_old, y_new, v_load, state_new, out)
     else:
-        kernel(params, state_old, u_new, v_load, state_new, out)
+        kernel(params, state_old, y_new, v_load, state_new, out)
 
 
 literal_dispatch(lateral_step_of, _KERNELS, lateral_step)
@@ -110,7 +110,7 @@ MODELS_MIXED = -1
 """``soil_id`` of :func:`lateral_step_node` when the nodes use several soil models."""
 
 
-def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+def lateral_step_node(soil_id, model_id, params, state_old, y_new, v_load, state_new, out):
     """Soil step of one node of a solver whose nodes all use the literal model ``soil_id``.
 
     For the pipeline FE: with ``soil_id`` a numba literal model id (all nodes on one
@@ -118,7 +118,7 @@ def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state
     :data:`MODELS_MIXED` (or a non-literal) it is :data:`lateral_step_inline` on the node's
     ``model_id``. In plain Python: :func:`lateral_step`.
     """
-    lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)
+    lateral_step(model_id, params, state_old, y_new, v_load, state_new, out)
 
 
 # inline="always": the one-line wrapper is inlined into the caller's numba IR, so the node loop
@@ -126,16 +126,16 @@ def lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state
 @overload(
     lateral_step_node, prefer_literal=True, inline="always", jit_options={"error_model": "numpy"}
 )
-def _lateral_step_node(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
+def _lateral_step_node(soil_id, model_id, params, state_old, y_new, v_load, state_new, out):
     kernel = _KERNELS.get(getattr(soil_id, "literal_value", None))
     if kernel is None:
 
-        def mixed(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
-            lateral_step_inline(model_id, params, state_old, u_new, v_load, state_new, out)
+        def mixed(soil_id, model_id, params, state_old, y_new, v_load, state_new, out):
+            lateral_step_inline(model_id, params, state_old, y_new, v_load, state_new, out)
 
         return mixed
 
-    def one(soil_id, model_id, params, state_old, u_new, v_load, state_new, out):
-        kernel(params, state_old, u_new, v_load, state_new, out)
+    def one(soil_id, model_id, params, state_old, y_new, v_load, state_new, out):
+        kernel(params, state_old, y_new, v_load, state_new, out)
 
     return one

@@ -34,7 +34,7 @@ PHASE_OUT = 2.0
 
 @njit(cache=True)
 def envelope(a, fr1, fr2, fr3, y1, y2, y3):
-    """Passive envelope magnitude and slope at distance ``a`` = |u − y0| from the trough centre.
+    """Passive envelope magnitude and slope at distance ``a`` = |y − y0| from the trough centre.
 
     Piecewise linear through (0, 0), (y1, fr1), (y2, fr2), (y3, fr3), constant beyond y3;
     requires 0 < y1 <= y2 < y3 (a zero-length segment is skipped).
@@ -130,7 +130,7 @@ def push_only_start(p_old, s_new, mag):
 
 
 @njit(cache=True)
-def push_only_passive(p_old, du, s_new, mag, slope, k_u):
+def push_only_passive(p_old, dy, s_new, mag, slope, k_u):
     """Push-only elastic–plastic passive force and its tangent [I].
 
     Elastic predictor p_start + k_u·Δu (p_start: :func:`push_only_start`), then return to
@@ -141,7 +141,7 @@ def push_only_passive(p_old, du, s_new, mag, slope, k_u):
     follows the envelope; inside it, the elastic line.
     """
     lo, hi = side_bounds(s_new, mag)
-    p_trial = min(max(p_old, lo), hi) + k_u * du
+    p_trial = min(max(p_old, lo), hi) + k_u * dy
     if p_trial > hi:
         if s_new > 0.0:
             return hi, slope
@@ -179,14 +179,14 @@ def spring_work(x_old, x_new, x_trial, k):
 
 
 @njit(cache=True)
-def elastoplastic_soil_work(f_old, f_new, p_old, p_new, s_new, mag, k_u, du, v_load, mu, delta):
+def elastoplastic_soil_work(f_old, f_new, p_old, p_new, s_new, mag, k_u, dy, v_load, mu, delta):
     """Work done on the soil over one increment by the friction and passive springs [N·m/m].
 
     Each spring's work along its own return-mapped increment (:func:`spring_work`), from the
     start force of its elastic predictor: the friction spring (stiffness μV/δ) from ``f_old``
     returned into ±μV, the push-only passive spring (unloading stiffness ``k_u``) from
     :func:`push_only_start`. ``f_new``/``p_new``: the committed friction and passive forces [N/m];
-    ``s_new``, ``mag``: side and magnitude passed to :func:`push_only_start`; ``du``: increment
+    ``s_new``, ``mag``: side and magnitude passed to :func:`push_only_start`; ``dy``: increment
     [m]; ``v_load``: vertical load [N/m] (no spring works when lifted off, V <= 0). Shared by
     the Verley & Sotberg and Verley & Lund kernels (``passive_rule="elastoplastic"``).
     """
@@ -196,8 +196,8 @@ def elastoplastic_soil_work(f_old, f_new, p_old, p_new, s_new, mag, k_u, du, v_l
         cap = mu * v_load
         k_fr = cap / delta
         f0 = min(max(f_old, -cap), cap)
-    w = spring_work(f0, f_new, f0 + k_fr * du, k_fr)
+    w = spring_work(f0, f_new, f0 + k_fr * dy, k_fr)
     if v_load > 0.0:
         p0 = push_only_start(p_old, s_new, mag)
-        w += spring_work(p0, p_new, p0 + k_u * du, k_u)
+        w += spring_work(p0, p_new, p0 + k_u * dy, k_u)
     return w

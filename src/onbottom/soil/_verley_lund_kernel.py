@@ -36,8 +36,8 @@ from onbottom.soil.base import (
     S_FRICTION,
     S_REGION,
     S_SOIL_WORK,
-    S_U,
     S_WORK,
+    S_Y,
     S_Z,
 )
 
@@ -57,7 +57,7 @@ N_PARAMS = 10
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # centre of the current trough y0 [m]
 S_ZT = N_COMMON_STATE + 1  # penetration of the current trough z_t [m]
-S_SMAX = N_COMMON_STATE + 2  # largest |u - y0| reached in the current trough [m]
+S_SMAX = N_COMMON_STATE + 2  # largest |y - y0| reached in the current trough [m]
 S_PHASE = N_COMMON_STATE + 3  # phase code (onbottom.soil._trough)
 S_DIR = N_COMMON_STATE + 4  # sign of the last non-zero displacement increment
 S_PASSIVE = N_COMMON_STATE + 5  # committed passive force [N/m]
@@ -73,18 +73,18 @@ def clay_passive(params, z):
 
 
 @njit(cache=True)
-def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
+def verley_lund_kernel(params, state_old, y_new, v_load, state_new, out):
     """Verley & Lund clay kernel (contract: :mod:`onbottom.soil.base`)."""
     d = params[P_D]
     y_res = params[P_YRES]
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
 
-    u_old = state_old[S_U]
-    du = u_new - u_old
-    direction = sign(du)
+    y_old = state_old[S_Y]
+    dy = y_new - y_old
+    direction = sign(dy)
     f_old = state_old[S_FRICTION]
-    f, k_f = friction_return_map(f_old, du, v_load, params[P_MU], params[P_DELTA])
+    f, k_f = friction_return_map(f_old, dy, v_load, params[P_MU], params[P_DELTA])
 
     phase = state_old[S_PHASE]
     y0 = state_old[S_Y0]
@@ -96,14 +96,14 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
     legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
     p_old = state_old[S_PASSIVE]
     if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
-        y0 = u_old
+        y0 = y_old
         zt = z
         smax = 0.0
         phase = PHASE_TROUGH
         if not legacy:
             p_old = 0.0  # the berm pushed so far is left: its force released (dissipated)
 
-    s_new = u_new - y0
+    s_new = y_new - y0
     a_new = abs(s_new)
     smax = max(smax, a_new)
     y_brk = (params[P_BRK0] + params[P_BRK1] * zt / d) * d
@@ -127,7 +127,7 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
         passive = sign(s_new) * mag
         e_passive = envelope_energy(a_new, fr_peak, fr_peak, fr_res, y_brk, y_brk, y_res)
     else:
-        passive, slope = push_only_passive(p_old, du, s_new, mag, slope, k_u)
+        passive, slope = push_only_passive(p_old, dy, s_new, mag, slope, k_u)
         e_passive = 0.0
         if k_u > 0.0:
             e_passive = 0.5 * passive * passive / k_u
@@ -138,20 +138,20 @@ def verley_lund_kernel(params, state_old, u_new, v_load, state_new, out):
 
     r_new = f + passive
     r_old = f_old + state_old[S_PASSIVE]
-    work = state_old[S_WORK] + 0.5 * (abs(r_old) + abs(r_new)) * abs(du)
+    work = state_old[S_WORK] + 0.5 * (abs(r_old) + abs(r_new)) * abs(dy)
     if not legacy:
         r_old = f_old + p_old
     if legacy:
-        soil_work = state_old[S_SOIL_WORK] + 0.5 * (r_old + r_new) * du
+        soil_work = state_old[S_SOIL_WORK] + 0.5 * (r_old + r_new) * dy
     else:
         # each spring: work along its return-mapped increment, from its start force
         soil_work = state_old[S_SOIL_WORK] + elastoplastic_soil_work(
-            f_old, f, p_old, passive, s_new, mag, k_u, du, v_load, params[P_MU], params[P_DELTA]
+            f_old, f, p_old, passive, s_new, mag, k_u, dy, v_load, params[P_MU], params[P_DELTA]
         )
     stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
 
     region = region_of(a_new, y_brk, y_brk, y_res)  # 1 rising, 3 softening, 4 residual
-    state_new[S_U] = u_new
+    state_new[S_Y] = y_new
     state_new[S_FRICTION] = f
     state_new[S_Z] = z
     state_new[S_WORK] = work

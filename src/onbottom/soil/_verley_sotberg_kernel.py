@@ -45,8 +45,8 @@ from onbottom.soil.base import (
     S_FRICTION,
     S_REGION,
     S_SOIL_WORK,
-    S_U,
     S_WORK,
+    S_Y,
     S_Z,
 )
 
@@ -75,7 +75,7 @@ N_PARAMS = 19
 # ---- own state slots -------------------------------------------------------------------------
 S_Y0 = N_COMMON_STATE  # origin (centre) of the current trough y0 [m]
 S_ZI = N_COMMON_STATE + 1  # initial penetration of the current trough z_i [m]
-S_SMAX = N_COMMON_STATE + 2  # largest |u - y0| reached in the current trough [m]
+S_SMAX = N_COMMON_STATE + 2  # largest |y - y0| reached in the current trough [m]
 S_Z2 = N_COMMON_STATE + 3  # penetration frozen on first passing y2 [m] (0 before)
 S_PHASE = N_COMMON_STATE + 4  # PHASE_* code
 S_DIR = N_COMMON_STATE + 5  # sign of the last non-zero displacement increment (+1, -1, 0)
@@ -91,7 +91,7 @@ S_MEMO_P3 = N_COMMON_STATE + 10  # its (z3/D)^1.25 [-]
 # which increments count (P_WORK_COUNTING): load direction, gate and turning points
 S_LOAD_DIR = N_COMMON_STATE + 11  # load direction from the soil reaction (+1, -1, 0 unknown)
 S_GATE = N_COMMON_STATE + 12  # 1 once the load has reversed in the current trough, else 0
-S_TP_POS = N_COMMON_STATE + 13  # largest s = u - y0 > 0 at a turning point in the trough [m]
+S_TP_POS = N_COMMON_STATE + 13  # largest s = y - y0 > 0 at a turning point in the trough [m]
 S_TP_NEG = N_COMMON_STATE + 14  # largest -s at a turning point on the side s < 0 [m]
 S_TURNED2 = N_COMMON_STATE + 15  # 1 once the pipe has turned in region 2 of the trough, else 0
 S_TP_LAST = N_COMMON_STATE + 16  # s of the last turning point in the trough (0: its start) [m]
@@ -266,7 +266,7 @@ def counted_length(params, state, s_old, s_new, y1, y2):
 
 
 @njit(cache=True)
-def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
+def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`)."""
     y1 = params[P_Y1]
     y2 = params[P_Y2]
@@ -275,11 +275,11 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
 
-    u_old = state_old[S_U]
-    du = u_new - u_old
-    direction = sign(du)
+    y_old = state_old[S_Y]
+    dy = y_new - y_old
+    direction = sign(dy)
     f_old = state_old[S_FRICTION]
-    f, k_f = friction_return_map(f_old, du, v_load, params[P_MU], params[P_DELTA])
+    f, k_f = friction_return_map(f_old, dy, v_load, params[P_MU], params[P_DELTA])
 
     phase = state_old[S_PHASE]
     y0 = state_old[S_Y0]
@@ -297,7 +297,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     memo_p3 = state_old[S_MEMO_P3]
     # out of the trough and reversing: a new trough starts at the turning point [I]
     if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
-        y0 = u_old
+        y0 = y_old
         zi = z
         smax = 0.0
         z2 = 0.0
@@ -315,8 +315,8 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
             # point (a jump at zero displacement; the stored energy is dissipated)
             p_old = 0.0
 
-    s_old = u_old - y0
-    s_new = u_new - y0
+    s_old = y_old - y0
+    s_new = y_new - y0
     a_new = abs(s_new)
 
     if phase == PHASE_TROUGH:
@@ -343,7 +343,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
                 p_pred = sign(s_new) * mag_p
             else:
                 mag_p, slope_p = envelope(a_new, 0.3 * fr2, fr2, fr2, y1, y2, y3)
-                p_pred, _k = push_only_passive(p_old, du, s_new, mag_p, slope_p, 0.3 * fr2 / y1)
+                p_pred, _k = push_only_passive(p_old, dy, s_new, mag_p, slope_p, 0.3 * fr2 / y1)
             if params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE:
                 mean = 0.5 * (abs(p_old) + abs(p_pred))
             else:
@@ -388,7 +388,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
         passive = sign(s_new) * mag
         e_passive = envelope_energy(a_new, fr1, fr2, fr3, y1, y2, y3)
     else:
-        passive, slope = push_only_passive(p_old, du, s_new, mag, slope, k_u)
+        passive, slope = push_only_passive(p_old, dy, s_new, mag, slope, k_u)
         e_passive = 0.0
         if k_u > 0.0:
             e_passive = 0.5 * passive * passive / k_u
@@ -401,11 +401,11 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
     r_new = f + passive
     if legacy:
         # trapezoidal work of a nonlinear-elastic force (the variant's own bookkeeping)
-        soil_work = state_old[S_SOIL_WORK] + 0.5 * (f_old + state_old[S_PASSIVE] + r_new) * du
+        soil_work = state_old[S_SOIL_WORK] + 0.5 * (f_old + state_old[S_PASSIVE] + r_new) * dy
     else:
         # each spring: work along its return-mapped increment, from its start force
         soil_work = state_old[S_SOIL_WORK] + elastoplastic_soil_work(
-            f_old, f, p_old, passive, s_new, mag, k_u, du, v_load, params[P_MU], params[P_DELTA]
+            f_old, f, p_old, passive, s_new, mag, k_u, dy, v_load, params[P_MU], params[P_DELTA]
         )
     stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
 
@@ -426,7 +426,7 @@ def verley_sotberg_kernel(params, state_old, u_new, v_load, state_new, out):
             state_new[S_LOAD_DIR] = new_dir
 
     region = region_of(a_new, y1, y2, y3)
-    state_new[S_U] = u_new
+    state_new[S_Y] = y_new
     state_new[S_FRICTION] = f
     state_new[S_Z] = z
     state_new[S_WORK] = work

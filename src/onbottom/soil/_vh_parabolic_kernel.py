@@ -43,8 +43,8 @@ from onbottom.soil.base import (
     S_FRICTION,
     S_REGION,
     S_SOIL_WORK,
-    S_U,
     S_WORK,
+    S_Y,
     S_Z,
 )
 
@@ -85,13 +85,13 @@ def vh_parabolic_kernel(params, state_old, y_new, v_load, state_new, out):
     mu_f = params[P_MU_FLOW]
     delta = params[P_DELTA]
     kp = params[P_KP]
-    dy = y_new - state_old[S_U]
+    dy = y_new - state_old[S_Y]
     h_old = state_old[S_FRICTION]
     z_old = state_old[S_Z]
     vp_old = state_old[S_VP]
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
-    state_new[S_U] = y_new
+    state_new[S_Y] = y_new
     coupled = out.shape[0] >= OUT2_SIZE
     if v_load <= 0.0:
         # 1. lift-off: no contact, the soil state is frozen

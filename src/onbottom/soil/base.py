@@ -13,36 +13,36 @@ arguments, and import it from the public :mod:`onbottom.soil.kernel_contract`), 
 (an ``@njit(cache=True)`` function) and ``python_kernel`` (its plain-Python twin, used by the
 tests), both with the signature::
 
-    kernel(params, state_old, u_new, v_load, state_new, out) -> None
+    kernel(params, state_old, y_new, v_load, state_new, out) -> None
 
 1. ``params`` — float64 array from :meth:`LateralResistanceModel.packed_parameters`; read only.
 2. ``state_old`` — float64 array of length ``model.state_size``: the last *committed* state;
    read only. The first slots are common to all models (indices below); the rest are the
    model's own.
-3. ``u_new`` — trial total lateral displacement of the pipe u [m] (any sign).
+3. ``y_new`` — trial total lateral displacement of the pipe y [m] (any sign).
 4. ``v_load`` — vertical contact load V = W_s − F_L [N/m]. V <= 0 means lift-off: the kernel
    must then return zero resistance, not NaN.
 5. ``state_new`` — float64 array, same length as the state; the kernel writes the trial state
-   reached by moving from ``state_old`` to ``u_new`` under ``v_load``. The caller *commits* it
+   reached by moving from ``state_old`` to ``y_new`` under ``v_load``. The caller *commits* it
    (copies it into ``state_old``) once the time step is accepted, so a kernel may be called
    many times from the same ``state_old`` (Newton iterations) without side effects.
 6. ``out`` — float64 array of length :data:`OUT_SIZE`; the kernel writes
    ``out[OUT_R]`` resistance R [N/m], ``out[OUT_FRICTION]`` Coulomb part, ``out[OUT_PASSIVE]``
-   passive part, ``out[OUT_TANGENT]`` dR/du [N/m²], ``out[OUT_Z]`` penetration z [m],
+   passive part, ``out[OUT_TANGENT]`` dR/dy [N/m²], ``out[OUT_Z]`` penetration z [m],
    ``out[OUT_WORK]`` accumulated work [N], ``out[OUT_REGION]`` region code,
    ``out[OUT_STORED]`` elastic energy stored in the soil (friction and passive springs) [N·m/m]
    and ``out[OUT_DISSIPATED]`` energy dissipated by the soil since the start [N·m/m]: the
-   soil work ∫R du (trapezoidal per committed increment, common slot ``S_SOIL_WORK``) minus the
+   soil work ∫R dy (trapezoidal per committed increment, common slot ``S_SOIL_WORK``) minus the
    stored energy. A physically admissible law never lets the dissipated energy decrease on a
    path at constant V (``tests/verification/test_energy_balance.py``).
 7. Sign: R is the soil force *resisting* positive pipe motion, so the equation of lateral motion
    of a pipe section is ``m·ü = H − R``; R > 0 pushes the pipe towards −y.
 8. No allocation, no Python objects, no printing inside the kernel; float64 only.
 
-Common state slots: ``S_U`` committed displacement u [m]; ``S_FRICTION`` friction force
+Common state slots: ``S_Y`` committed displacement y [m]; ``S_FRICTION`` friction force
 [N/m] (elastic–plastic, see :mod:`onbottom.soil.coulomb`); ``S_Z`` penetration z [m];
 ``S_WORK`` accumulated work E [N]; ``S_REGION`` region code; ``S_SOIL_WORK`` work done on the
-soil ∫R du since the start [N·m/m] (energy bookkeeping). Model-specific slots follow
+soil ∫R dy since the start [N·m/m] (energy bookkeeping). Model-specific slots follow
 ``N_COMMON_STATE``; never hard-code state lengths (use ``model.state_size`` or the kernels'
 ``N_STATE``).
 
@@ -55,7 +55,7 @@ load changes the lateral capacity and the lateral slip moves the pipe vertically
 and slots above (so the same :func:`~onbottom.soil._dispatch.lateral_step` serves both forms
 and the section, storm and pipeline solvers take it unchanged), under these further rules:
 
-2.1 *Mixed control.* The pipe's degrees of freedom are the lateral displacement y (``u_new``)
+2.1 *Mixed control.* The pipe's degrees of freedom are the lateral displacement y (``y_new``)
     and the vertical displacement z, positive downward (penetration). The section, storm and
     pipeline solvers have no vertical degree of freedom: they prescribe the vertical load V
     (rule 4) and the kernel returns the lateral reaction H (``out[OUT_R]``) and the vertical
@@ -115,15 +115,15 @@ __all__ = [
     "S_FRICTION",
     "S_REGION",
     "S_SOIL_WORK",
-    "S_U",
     "S_WORK",
+    "S_Y",
     "S_Z",
     "ForceResultantModel",
     "LateralResistanceModel",
 ]
 
 # common state slots
-S_U = 0
+S_Y = 0
 S_FRICTION = 1
 S_Z = 2
 S_WORK = 3
@@ -181,7 +181,7 @@ class LateralResistanceModel(ABC):
 
     @abstractmethod
     def initial_state(self) -> np.ndarray:
-        """State of the pipe at the start of lateral loading (u = 0)."""
+        """State of the pipe at the start of lateral loading (y = 0)."""
 
     @abstractmethod
     def parameters(self) -> Mapping[str, Any]:

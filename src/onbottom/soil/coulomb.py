@@ -3,7 +3,7 @@
 R = μ·V once mobilised (DNV-RP-F109 §3.4.6: rock has no passive resistance and no
 penetration). Rigid-plastic friction is integrated as elastic–perfectly-plastic with a small
 mobilisation displacement δ (return mapping), so a sub-critical load |H| < μV produces a
-bounded elastic displacement |u| <= δ and never creep.
+bounded elastic displacement |y| <= δ and never creep.
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ solver kernel calls. The kernels stay in their private modules (``soil/_*_kernel
 ``soil/_dispatch.py``); the names here are the same objects (numba's on-disk cache is keyed by
 the file that defines a function, so importing them from here changes nothing compiled).
 
-The rules every soil kernel obeys (signature ``kernel(params, state_old, u_new, v_load,
+The rules every soil kernel obeys (signature ``kernel(params, state_old, y_new, v_load,
 state_new, out)``, read-only ``state_old``, trial ``state_new`` committed by the solver on
 accepted steps, zero resistance at lift-off, the ``OUT_*`` and ``S_*`` slots, the two-DOF
 form) are the numbered rules of :mod:`onbottom.soil.base`, which also holds the slot constants.
@@ -16,7 +16,7 @@ form) are the numbered rules of :mod:`onbottom.soil.base`, which also holds the 
 Exports
 -------
 :func:`lateral_step`
-    ``lateral_step(model_id, params, state_old, u_new, v_load, state_new, out)``: the kernel
+    ``lateral_step(model_id, params, state_old, y_new, v_load, state_new, out)``: the kernel
     of model ``model_id`` (a ``MODEL_*`` id; an unknown id gives NaN resistance).
 :data:`lateral_step_inline`
     The same, inlined into its caller (for loops over many nodes).
@@ -32,7 +32,7 @@ Exports
 ``MODEL_COULOMB``, ``MODEL_VERLEY_SOTBERG``, ``MODEL_VERLEY_LUND``, ``MODEL_VH_PARABOLIC``
     The model ids (each model class's ``model_id``).
 :func:`friction_return_map`
-    ``friction_return_map(f_old, du, v_load, mu, delta) -> (force, tangent)``: the
+    ``friction_return_map(f_old, dy, v_load, mu, delta) -> (force, tangent)``: the
     elastic–plastic Coulomb return map (the pipeline FE's axial friction μ_ax·V).
 """
 

@@ -30,7 +30,7 @@ __all__ = ["cyclic_path", "path_response"]
 
 
 def cyclic_path(amplitude: float, cycles: float, points_per_cycle: int = 400) -> np.ndarray:
-    """Sinusoidal displacement path u = a·sin(2πt), t in (0, cycles] [m].
+    """Sinusoidal displacement path y = a·sin(2πt), t in (0, cycles] [m].
 
     Parameters
     ----------
@@ -57,14 +57,14 @@ def cyclic_path(amplitude: float, cycles: float, points_per_cycle: int = 400) ->
 def path_response(
     model: LateralResistanceModel, displacement: np.ndarray, vertical_load: float | np.ndarray
 ) -> xr.Dataset:
-    """Drive ``model`` along ``displacement`` (starting from its initial state at u = 0).
+    """Drive ``model`` along ``displacement`` (starting from its initial state at y = 0).
 
     Parameters
     ----------
     model : LateralResistanceModel
         Any registered lateral model.
     displacement : array
-        Lateral displacements u [m] of successive points (committed one after another).
+        Lateral displacements y [m] of successive points (committed one after another).
     vertical_load : float or array
         V [N/m] at each point (scalar = constant).
 
@@ -75,18 +75,18 @@ def path_response(
         F_passive, z, work, region,
         with units and provenance attributes.
     """
-    u = np.ascontiguousarray(displacement, dtype=float).ravel()
-    if u.size == 0 or not np.all(np.isfinite(u)):
+    y = np.ascontiguousarray(displacement, dtype=float).ravel()
+    if y.size == 0 or not np.all(np.isfinite(y)):
         raise InputError("displacement is invalid: must be a non-empty array of finite values")
-    v = np.ascontiguousarray(np.broadcast_to(np.asarray(vertical_load, dtype=float), u.shape))
+    v = np.ascontiguousarray(np.broadcast_to(np.asarray(vertical_load, dtype=float), y.shape))
     if not np.all(np.isfinite(v)):
         raise InputError("vertical_load is invalid: must be finite")
     v = v.copy()
-    h = np.zeros((u.size, OUT_SIZE))
-    drive_path(model.model_id, model.packed_parameters(), model.initial_state(), u, v, h)
+    h = np.zeros((y.size, OUT_SIZE))
+    drive_path(model.model_id, model.packed_parameters(), model.initial_state(), y, v, h)
     ds = xr.Dataset(
         {
-            "y": ("step", u),
+            "y": ("step", y),
             "V": ("step", v),
             "F_soil": ("step", h[:, OUT_R]),
             "F_friction": ("step", h[:, OUT_FRICTION]),

@@ -376,7 +376,7 @@ class VerleyLund(LateralResistanceModel):
         return p
 
     def initial_state(self) -> np.ndarray:
-        """Pipe at rest at u = 0 in its installation trough: z = z_i, region 1."""
+        """Pipe at rest at y = 0 in its installation trough: z = z_i, region 1."""
         s = np.zeros(self.state_size)
         zi = self.initial_penetration
         s[S_Z] = zi

@@ -86,7 +86,7 @@ WORK_COUNTINGS: dict[str, int] = {
     "two_sided": _k.COUNT_TWO_SIDED,
 }
 """Which region-2 displacement increments add to the work E of Eq 6 [I]
-(``docs/theory/verley_sotberg.md``, "Which increments count"); s = u − y0 about the trough:
+(``docs/theory/verley_sotberg.md``, "Which increments count"); s = y − y0 about the trough:
 
 * ``"load_reversal"`` (default): only in a trough where the load has reversed: the soil
   reaction R = F_f + F_r, which equilibrates the applied load while the pipe is at rest,
@@ -674,7 +674,7 @@ class VerleySotberg(LateralResistanceModel):
         return p
 
     def initial_state(self) -> np.ndarray:
-        """Pipe at rest at u = 0 in its installation trough: z = z_i, region 1."""
+        """Pipe at rest at y = 0 in its installation trough: z = z_i, region 1."""
         s = np.zeros(self.state_size)
         zi = self.initial_penetration
         s[S_Z] = zi
