@@ -29,7 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
-from onbottom.cases.reliability import load_reliability_case
+from onbottom.cases.reliability import load_reliability_setup
 from onbottom.reliability.campaign import Campaign
 from onbottom.reliability.climate import StormClimate
 from onbottom.reliability.dynamic import seeds_from_uniform
@@ -79,7 +79,7 @@ def main() -> None:
         a.storms, a.workers = 4, [1]
     from onbottom.metocean import MetoceanOptions, analyse_hindcast, read_hindcast
 
-    setup = load_reliability_case(CASE)
+    setup = load_reliability_setup(CASE)
     if a.smoke:
         setup = smoke_setup(setup)
     res = analyse_hindcast(

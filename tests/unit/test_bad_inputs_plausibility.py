@@ -57,13 +57,13 @@ def _cli_error(args: list, capsys) -> dict:
 # ---- paths -----------------------------------------------------------------------------------
 @pytest.mark.parametrize("where", ["outside", "absolute", "dotdot"])
 def test_storm_series_outside_the_case_folder_is_refused_without_its_content(tmp_path, where):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     other = _secret_file(tmp_path / "elsewhere")
     value = {"outside": str(other), "absolute": "/etc/passwd", "dotdot": "../elsewhere/secret.csv"}
     case = write_case(tmp_path / "case", MEASURED.replace("data/flow.csv", value[where]))
     with pytest.raises(CaseFileError) as err:
-        load_storm_case(case)
+        load_storm_setup(case)
     msg = str(err.value)
     assert err.value.field == "storm.series" and "leaves the case file's folder" in msg
     assert err.value.line == _line_of(case.read_text(), "series =")
@@ -72,12 +72,12 @@ def test_storm_series_outside_the_case_folder_is_refused_without_its_content(tmp
 
 
 def test_coefficient_table_absolute_path_is_refused_by_key_and_line(tmp_path):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     extra = '[hydro]\ncoefficient_table = "/etc/passwd"\n'
     case = write_case(tmp_path, REGULAR, extra)
     with pytest.raises(CaseFileError) as err:
-        load_storm_case(case)
+        load_storm_setup(case)
     assert err.value.field == "hydro.coefficient_table"
     assert err.value.line == _line_of(case.read_text(), "coefficient_table")
     assert "root:" not in str(err.value)
@@ -86,17 +86,17 @@ def test_coefficient_table_absolute_path_is_refused_by_key_and_line(tmp_path):
 def test_files_inside_the_folder_never_have_their_content_echoed(tmp_path):
     """A file inside the folder that is not what the key wants: the error names the key and
     the file, not its first line."""
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     _secret_file(tmp_path, "table.csv")
     case = write_case(tmp_path, REGULAR, '[hydro]\ncoefficient_table = "table.csv"\n')
     with pytest.raises(InputError) as err:
-        load_storm_case(case)
+        load_storm_setup(case)
     assert err.value.field == "hydro.coefficient_table" and err.value.line is not None
     assert SECRET not in str(err.value)
     case = write_case(tmp_path, MEASURED.replace("data/flow.csv", "table.csv"))
     with pytest.raises(InputError) as err:
-        load_storm_case(case)
+        load_storm_setup(case)
     assert "storm.series" in str(err.value) and SECRET not in str(err.value)
 
 
@@ -113,10 +113,10 @@ def test_allow_outside_paths_opens_the_rule(tmp_path, capsys):
     assert err["field"] == "storm.series" and "leaves the case file's folder" in err["message"]
     try:
         allow_outside_paths(True)
-        from onbottom.cases.storm import load_storm_case
+        from onbottom.cases.storm import load_storm_setup
 
         with pytest.raises(CaseFileError, match="storm.sample_interval"):
-            load_storm_case(case)
+            load_storm_setup(case)
     finally:
         allow_outside_paths(False)
 
@@ -241,15 +241,15 @@ def test_allowable_displacement_of_a_kilometre_is_refused(tmp_path):
 
 
 def test_zero_or_unused_force_coefficients_are_refused(tmp_path):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     case = write_case(tmp_path, REGULAR, "[hydro]\ncd = 0.0\ncm = 0.0\ncl = 0.0\n")
     with pytest.raises(CaseFileError, match="no wave or current force") as err:
-        load_storm_case(case)
+        load_storm_setup(case)
     assert err.value.field == "hydro.cd" and err.value.line is not None
     case = write_case(tmp_path, REGULAR, '[hydro]\nmodel = "wake"\ncd = 1.2\n')
     with pytest.raises(CaseFileError, match="hydro.cd = 1.2 is not used by hydro.model = 'wake'"):
-        load_storm_case(case)
+        load_storm_setup(case)
     doc = route_document()  # assess: the wake model by default
     doc["hydro"] = {"cd": 1.2}
     assert _route_error(tmp_path, doc).field == "hydro.cd"
@@ -313,10 +313,10 @@ def _reliability(tmp_path: Path, **subs: str) -> Path:
 
 
 def _reliability_error(case: Path) -> CaseFileError:
-    from onbottom.cases.reliability import load_reliability_case
+    from onbottom.cases.reliability import load_reliability_setup
 
     with pytest.raises(CaseFileError) as err:
-        load_reliability_case(case)
+        load_reliability_setup(case)
     assert err.value.line is not None, str(err.value)
     return err.value
 

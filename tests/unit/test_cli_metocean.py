@@ -166,11 +166,11 @@ def test_case_fragment_pastes_into_a_stability_case(run, tmp_path):
     # waves from W on a N-S pipe: normal to the pipe
     assert combos[0].sea_state.direction_deg % 180.0 == pytest.approx(90.0)
     # the same fragment in the storm example: [waves] is the storm's peak, [current] its current
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     storm_path = tmp_path / "storm.toml"
     storm_path.write_text(_case_with(frag, "storm_case.toml"), encoding="utf-8")
-    setup = load_storm_case(storm_path)
+    setup = load_storm_setup(storm_path)
     assert max(st.hs for st in setup.storm.stages) == pytest.approx(float(w["hs_100y"]), abs=0.006)
     assert setup.current.velocity == pytest.approx(float(w["current_10y"]), abs=6e-4)
 

@@ -58,13 +58,13 @@ def test_simulate_preset_and_bad_case(tmp_path, capsys):
 
 
 def test_the_section_case_builds_the_run_that_simulate_runs():
-    from onbottom.cases.section import build_section_run
+    from onbottom.cases.section import load_section_run
     from onbottom.dynamics.section_run import SectionRun
 
-    run = build_section_run(EXAMPLES / "section_case.toml")
+    run = load_section_run(EXAMPLES / "section_case.toml")
     assert isinstance(run, SectionRun)
     assert run.attrs == {"case_file": str(EXAMPLES / "section_case.toml")}
-    preset = build_section_run(EXAMPLES / "section_preset.toml")
+    preset = load_section_run(EXAMPLES / "section_preset.toml")
     assert preset.attrs["source"].startswith("Youssef & Cassidy (2014)")
 
 

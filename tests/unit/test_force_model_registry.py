@@ -111,10 +111,10 @@ def _case(tmp_path: Path, extra: str) -> Path:
     ],
 )
 def test_storm_case_runs_each_force_model(tmp_path, extra, cls):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
     from onbottom.dynamics.storm_section import simulate_storm_section
 
-    setup = load_storm_case(_case(tmp_path, extra))
+    setup = load_storm_setup(_case(tmp_path, extra))
     assert isinstance(setup.force_model, cls)
     res = simulate_storm_section(setup.pipe, setup.soil, setup.storm, **setup.kwargs())
     assert res.success
@@ -124,10 +124,10 @@ def test_storm_case_runs_each_force_model(tmp_path, extra, cls):
 
 def test_wake_switched_off_in_a_case_equals_morison_with_the_same_coefficients(tmp_path):
     """WakeModel(wake=False) with C_D∞, C_M, C_L∞ = the Morison case's C_D, C_M, C_L: same run."""
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
     from onbottom.dynamics.storm_section import simulate_storm_section
 
-    off = load_storm_case(
+    off = load_storm_setup(
         _case(
             tmp_path,
             'model = "wake"\n[hydro.wake]\nwake = false\ncd_steady = 0.7\ncl_steady = 0.9\n'
@@ -135,7 +135,7 @@ def test_wake_switched_off_in_a_case_equals_morison_with_the_same_coefficients(t
         )
     )
     shutil.move(tmp_path / "case.toml", tmp_path / "wake.toml")
-    mor = load_storm_case(_case(tmp_path, ""))
+    mor = load_storm_setup(_case(tmp_path, ""))
     a = simulate_storm_section(off.pipe, off.soil, off.storm, **off.kwargs()).data
     b = simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).data
     np.testing.assert_array_equal(a["y"].values, b["y"].values)
@@ -190,20 +190,20 @@ def test_morison_coefficient_table_errors_are_named(tmp_path, body, match):
 def test_storm_case_runs_morison_per_sea_state_from_a_table(tmp_path):
     """Per-sea-state Morison from a case file; a table constant at the [hydro] values gives the
     same run as the constant model, bit for bit."""
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
     from onbottom.dynamics.storm_section import simulate_storm_section
 
     const = "K,M,C_D,C_M,C_L\n-,-,-,-,-\n1,0,0.7,3.29,0.9\n1,5,0.7,3.29,0.9\n"
     const += "500,0,0.7,3.29,0.9\n500,5,0.7,3.29,0.9\n"
     _table(tmp_path, const)
-    tab = load_storm_case(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
+    tab = load_storm_setup(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
     assert tab.force_model.rule is not None
-    mor = load_storm_case(_case(tmp_path, ""))
+    mor = load_storm_setup(_case(tmp_path, ""))
     a = simulate_storm_section(tab.pipe, tab.soil, tab.storm, **tab.kwargs()).data
     b = simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).data
     np.testing.assert_array_equal(a["y"].values, b["y"].values)
     _table(tmp_path, WIDE)
-    var = load_storm_case(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
+    var = load_storm_setup(_case(tmp_path, 'coefficient_table = "coefficients.csv"'))
     r = simulate_storm_section(var.pipe, var.soil, var.storm, **var.kwargs())
     assert r.success and r.max_displacement != pytest.approx(
         simulate_storm_section(mor.pipe, mor.soil, mor.storm, **mor.kwargs()).max_displacement
@@ -211,10 +211,10 @@ def test_storm_case_runs_morison_per_sea_state_from_a_table(tmp_path):
 
 
 def test_coefficient_table_outside_the_case_folder_or_with_another_model_is_refused(tmp_path):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     with pytest.raises(InputError, match="leaves the case file's folder"):
-        load_storm_case(_case(tmp_path, 'coefficient_table = "../coefficients.csv"'))
+        load_storm_setup(_case(tmp_path, 'coefficient_table = "../coefficients.csv"'))
     _table(tmp_path, GOOD)
     with pytest.raises(InputError, match="coefficient_table is given but hydro.model = 'wake'"):
-        load_storm_case(_case(tmp_path, 'model = "wake"\ncoefficient_table = "coefficients.csv"'))
+        load_storm_setup(_case(tmp_path, 'model = "wake"\ncoefficient_table = "coefficients.csv"'))

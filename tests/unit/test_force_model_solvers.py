@@ -160,10 +160,10 @@ def test_example_cases_match_the_results_before_the_force_contract():
     from pathlib import Path
 
     from onbottom.cases.pipeline import load_pipeline_run
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     ex = Path(__file__).resolve().parents[2] / "examples"
-    setup = load_storm_case(ex / "storm_case.toml")
+    setup = load_storm_setup(ex / "storm_case.toml")
     # the numbers below were taken with the former reading of V&S Eq 6 (every region-2
     # increment counted): pin it, so that this stays a regression test of the force contract
     former = dataclasses.replace(setup.soil, work_counting="any_region2")

@@ -399,7 +399,7 @@ def test_fuzz_stability_and_loads_case_files(data, command):
 def test_fuzz_storm_case_files_load(data):
     """Section storm case files, loaded only (the storm is not run): a setup whose depth,
     peak duration and stop limit make sense, or a named error."""
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     base = copy.deepcopy(STABILITY)
     base["storm"] = {"build_up_hours": 0.0, "peak_hours": 0.02}
@@ -409,7 +409,7 @@ def test_fuzz_storm_case_files_load(data):
         case = Path(tmp) / "case.toml"
         case.write_text(_toml(doc), encoding="utf-8")
         try:
-            setup = load_storm_case(case)
+            setup = load_storm_setup(case)
         except OnbottomError as exc:
             assert str(exc) and "np.float" not in str(exc) and "Traceback" not in str(exc)
             return

@@ -125,7 +125,7 @@ def test_from_arrays_and_toml_kinds(tmp_path):
 def test_wave_group_key_of_the_other_kind_is_a_named_error(tmp_path, kind, key, value):
     """A key only the other wave-group kind takes is refused by name (it was a TypeError from
     the builder), by the programme table and by the section case with its line."""
-    from onbottom.cases.section import load_case
+    from onbottom.cases.section import load_section_case
 
     table = {"kind": kind, "vertical_load_kn": 10.0, "n_groups": 2, key: value}
     with pytest.raises(InputError, match=rf"programme\.{key} is invalid with kind = '{kind}'"):
@@ -138,7 +138,7 @@ def test_wave_group_key_of_the_other_kind_is_a_named_error(tmp_path, kind, key, 
         encoding="utf-8",
     )
     with pytest.raises(InputError, match=rf"line 11: programme\.{key} is invalid") as err:
-        load_case(case)
+        load_section_case(case)
     assert err.value.field == f"programme.{key}"
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from onbottom._casefile import CaseFileError
-from onbottom.cases.reliability import load_reliability_case
+from onbottom.cases.reliability import load_reliability_setup
 from onbottom.errors import InputError
 from onbottom.reliability.distributions import UncertainParameter
 from onbottom.reliability.run import planned_storms
@@ -22,7 +22,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "reliability_case.t
 
 @pytest.fixture(scope="module")
 def setup() -> ReliabilitySetup:
-    return load_reliability_case(EXAMPLE)
+    return load_reliability_setup(EXAMPLE)
 
 
 def test_case_file_builds_the_setup(setup):
@@ -66,9 +66,9 @@ def test_case_errors_keep_their_keys(tmp_path):
     p = tmp_path / "case.toml"
     p.write_text(no_climate, encoding="utf-8")
     with pytest.raises(CaseFileError) as err:
-        load_reliability_case(p)
+        load_reliability_setup(p)
     assert err.value.field == "reliability.storms_per_year"
     p.write_text(re.sub(r"(?m)^limits = .*$", 'limits = ["2 diameters"]', text), "utf-8")
     with pytest.raises(CaseFileError, match="reliability.limits") as err:
-        load_reliability_case(p)
+        load_reliability_setup(p)
     assert err.value.field == "reliability.limits[0]" and err.value.line is not None

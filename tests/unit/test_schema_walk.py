@@ -326,9 +326,9 @@ def _storm_regular() -> dict:
 
 
 def _storm_build(path: Path) -> Any:
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
-    return load_storm_case(path)
+    return load_storm_setup(path)
 
 
 _SHARED = "a table of other commands in a shared case file (documented: ignored by this command)"
@@ -486,9 +486,9 @@ def _reliability_base() -> dict:
 
 
 def _reliability_build(path: Path) -> Any:
-    from onbottom.cases.reliability import load_reliability_case
+    from onbottom.cases.reliability import load_reliability_setup
 
-    return load_reliability_case(path)
+    return load_reliability_setup(path)
 
 
 def _reliability_prepare(folder: Path) -> None:
@@ -667,9 +667,9 @@ _WAVES = {"vertical_load_kn": 10.52, "n_groups": 2, "installation_load_kn": 42.9
 
 
 def _section_build(path: Path) -> Any:
-    from onbottom.cases.section import build_section_run
+    from onbottom.cases.section import load_section_run
 
-    return build_section_run(path)
+    return load_section_run(path)
 
 
 def _section_prepare(folder: Path) -> None:

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from onbottom._casefile import CaseFileError
-from onbottom.cases.storm import load_storm_case
+from onbottom.cases.storm import load_storm_setup
 from onbottom.cli.main import main
 from onbottom.hydro.kinematics import regular_wave_bed_velocity
 from onbottom.hydro.storm_kinematics import StormKinematics
@@ -26,7 +26,7 @@ def _series(folder, n=301, dt=0.2):
 
 
 def test_regular_case_builds_airy_flow(tmp_path):
-    setup = load_storm_case(_write(tmp_path, REGULAR))
+    setup = load_storm_setup(_write(tmp_path, REGULAR))
     kin = setup.storm
     assert isinstance(kin, StormKinematics)
     amp = regular_wave_bed_velocity(3.0, 10.0, 13.0)
@@ -41,7 +41,7 @@ def test_measured_case_path_is_relative_to_the_case_folder(tmp_path, monkeypatch
     _series(folder)
     case = _write(folder, MEASURED)
     monkeypatch.chdir(tmp_path)  # not the case's folder
-    kin = load_storm_case(case).storm
+    kin = load_storm_setup(case).storm
     assert kin.sample_interval == pytest.approx(0.2)
     assert kin.duration == pytest.approx(60.0)
     assert kin.stage_parameters[0]["mean_period"] == pytest.approx(8.0, rel=0.02)
@@ -61,7 +61,7 @@ def test_measured_case_path_is_relative_to_the_case_folder(tmp_path, monkeypatch
 )
 def test_flow_case_errors_are_named(tmp_path, storm, field, match):
     with pytest.raises(CaseFileError, match=match) as info:
-        load_storm_case(_write(tmp_path, storm))
+        load_storm_setup(_write(tmp_path, storm))
     assert (info.value.field or "").startswith(field)
 
 
@@ -72,7 +72,7 @@ def test_measured_series_error_names_the_key_and_the_line(tmp_path):
         "t [s],U [m/s]\n0,0\n0.5,0.1\n0.5,0.2\n1.5,0\n", encoding="utf-8"
     )
     with pytest.raises(CaseFileError, match=r"storm.series: .*line 4 duplicates") as info:
-        load_storm_case(_write(folder, MEASURED))
+        load_storm_setup(_write(folder, MEASURED))
     assert info.value.field == "storm.series"
 
 
@@ -108,6 +108,6 @@ def test_regular_example_case_loads():
     from pathlib import Path
 
     case = Path(__file__).resolve().parents[2] / "examples" / "storm_regular_case.toml"
-    kin = load_storm_case(case).storm
+    kin = load_storm_setup(case).storm
     assert kin.stage_parameters[0]["kind"] == "regular"
     assert kin.duration == pytest.approx(0.3 * 3600.0, abs=0.5)

@@ -206,9 +206,9 @@ def test_cli_storm_dispatches_pipeline_cases(tmp_path, capsys, monkeypatch):
 
 
 def test_example_storm_case_parses():
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
-    setup = load_storm_case(EXAMPLES / "storm_case.toml")
+    setup = load_storm_setup(EXAMPLES / "storm_case.toml")
     assert setup.storm.duration_s == 12600.0 and setup.storm.build_up_s == 1800.0
     assert setup.soil.name == "verley_sotberg" and setup.settings.dt_max == 0.1
 
@@ -242,11 +242,11 @@ spreading_s = 4.0
 
 
 def test_staged_clay_case_and_text_output(tmp_path, capsys):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     case = tmp_path / "s.toml"
     case.write_text(_STAGES, encoding="utf-8")
-    setup = load_storm_case(case)
+    setup = load_storm_setup(case)
     assert [s.hs for s in setup.storm.stages] == [3.0, 5.0]
     assert setup.storm.duration_s == pytest.approx(36.0 + 108.0 + 180.0 + 36.0)
     assert setup.soil.name == "verley_lund"

@@ -69,14 +69,14 @@ def test_one_section_equals_stability_command(one_section, tmp_path):
 
 
 def test_one_section_equals_storm_command(one_section, tmp_path):
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
     from onbottom.study.storm_seeds import run_storm_seeds
 
     case, a = one_section
     for name, base in a.sections[0]["dynamic"]["base"].items():
         path = tmp_path / "storm.json"
         path.write_text(json.dumps(case.storm_document(0, name)), encoding="utf-8")
-        setup = load_storm_case(path)
+        setup = load_storm_setup(path)
         ref = run_storm_seeds(
             setup.pipe, setup.soil, setup.storm, seeds=setup.seeds, n_workers=0, **setup.kwargs()
         )

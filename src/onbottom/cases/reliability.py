@@ -29,7 +29,7 @@ table (``examples/reliability_case.toml``).
   rerun with more seeds), ``fractile`` of the design displacement
   (:mod:`onbottom.reliability.design`).
 
-:func:`load_reliability_case` reads such a file and builds the plain
+:func:`load_reliability_setup` reads such a file and builds the plain
 :class:`~onbottom.reliability.setup.ReliabilitySetup` that
 :func:`onbottom.reliability.run.run_reliability` takes (the limits in metres, the hindcast
 path resolved against the case file's folder).
@@ -48,7 +48,7 @@ from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_json
 from onbottom.reliability.distributions import parameter_from_table
 from onbottom.reliability.setup import ClimateSettings, ContourDesign, ReliabilitySetup
 
-__all__ = ["ReliabilityCase", "ReliabilitySetup", "load_reliability_case", "parse_limit"]
+__all__ = ["ReliabilityCase", "ReliabilitySetup", "load_reliability_setup", "parse_limit"]
 
 
 class ClimateTable(StrictModel):
@@ -126,7 +126,7 @@ def parse_limit(value: str | float, diameter: float) -> tuple[str, float]:
     return f"{float(m.group(1)):g}D", float(m.group(1)) * diameter
 
 
-def load_reliability_case(path: str | os.PathLike) -> ReliabilitySetup:
+def load_reliability_setup(path: str | os.PathLike) -> ReliabilitySetup:
     """Read a reliability case and build its :class:`ReliabilitySetup` (errors:
     :class:`CaseFileError` naming the key)."""
     from onbottom.cases.storm import StormCase, build_setup

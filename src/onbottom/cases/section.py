@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Annotated, Any, Literal
 
 from pydantic import Field, model_validator
@@ -61,7 +62,14 @@ from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Sand
 from onbottom.soil.coulomb import CoulombFriction
 
-__all__ = ["SectionCase", "build_section_run", "load_case", "run_case"]
+__all__ = [
+    "SectionCase",
+    "SectionCaseFile",
+    "build_section_run",
+    "load_section_case",
+    "load_section_run",
+    "run_case",
+]
 
 _KN = 1.0e3
 
@@ -222,12 +230,27 @@ class SectionCase(StrictModel):
     preset: PresetTable | None = None
     pipe: PipeTable | None = None
     soil: SoilTable | None = None
-    programme: dict[str, Any] | None = None  # checked by kind in load_case
+    programme: dict[str, Any] | None = None  # checked by kind in load_section_case
     solver: SolverTable = SolverTable()
 
 
-def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
-    """Read and check a case file (or mapping): ``{"case": SectionCase, "doc", "path"}``.
+@dataclass(frozen=True)
+class SectionCaseFile:
+    """A section case, read and validated (:func:`load_section_case`); nothing built.
+
+    ``case``: the schema; ``programme``: its ``[programme]`` table parsed by kind (None with
+    ``[preset]``); ``document``: the TOML document as read; ``path``: the file (None for a
+    mapping).
+    """
+
+    case: SectionCase
+    programme: Any
+    document: dict[str, Any]
+    path: str | None
+
+
+def load_section_case(source: str | os.PathLike | Mapping[str, Any]) -> SectionCaseFile:
+    """Read and check a case file (or mapping); nothing is built (:func:`build_section_run`).
 
     Unknown tables or keys, wrong types and missing keys raise
     :class:`~onbottom._casefile.CaseFileError` naming the key, the file and the line.
@@ -326,21 +349,27 @@ def load_case(source: str | os.PathLike | Mapping[str, Any]) -> dict[str, Any]:
                 )
         if isinstance(programme, CsvTable):
             resolve_path(programme.file, relative_to=path, field="programme.file")
-    return {"case": case, "programme": programme, "doc": doc, "path": path}
+    return SectionCaseFile(case, programme, doc, path)
 
 
 def run_case(
     source: str | os.PathLike | Mapping[str, Any], *, progress: bool = False
 ) -> SectionResult:
     """Run the case of a TOML file or mapping (schema in the module docstring)."""
-    return build_section_run(source).simulate(progress=progress)
+    return load_section_run(source).simulate(progress=progress)
 
 
-def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionRun:
+def load_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionRun:
     """Read, check and build the case of a TOML file or mapping: the
-    :class:`~onbottom.dynamics.section_run.SectionRun` that ``onbottom simulate`` runs."""
-    loaded = load_case(source)
-    case: SectionCase = loaded["case"]
+    :class:`~onbottom.dynamics.section_run.SectionRun` that ``onbottom simulate`` runs
+    (:func:`build_section_run` of :func:`load_section_case`)."""
+    return build_section_run(load_section_case(source))
+
+
+def build_section_run(loaded: SectionCaseFile) -> SectionRun:
+    """The :class:`~onbottom.dynamics.section_run.SectionRun` of a validated section case
+    (:func:`load_section_case`); reads no case file (a CSV programme's file is read)."""
+    case = loaded.case
     if case.preset is not None:
         p = case.preset
         return centrifuge.centrifuge_run(
@@ -363,13 +392,11 @@ def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionR
         submerged_weight=pt.submerged_weight_kn * _KN,
         mass=pt.mass,
     )
-    table = loaded["doc"]["programme"]
-    if isinstance(loaded["programme"], CsvTable):
+    table = loaded.document["programme"]
+    if isinstance(loaded.programme, CsvTable):
         table = dict(table)
         table["file"] = os.fspath(
-            resolve_path(
-                loaded["programme"].file, relative_to=loaded["path"], field="programme.file"
-            )
+            resolve_path(loaded.programme.file, relative_to=loaded.path, field="programme.file")
         )
     prog = programme_from_toml({"programme": table})
     if not _flat(st.model):
@@ -429,5 +456,5 @@ def build_section_run(source: str | os.PathLike | Mapping[str, Any]) -> SectionR
         displacement_limit=sv.displacement_limit,
         after_limit=sv.after_limit,
         settings=settings,
-        attrs={"case_file": loaded["path"] or "<mapping>"},
+        attrs={"case_file": loaded.path or "<mapping>"},
     )

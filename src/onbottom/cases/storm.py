@@ -59,7 +59,7 @@ __all__ = [
     "StormCase",
     "StormSetup",
     "case_relative",
-    "load_storm_case",
+    "load_storm_setup",
 ]
 
 
@@ -419,6 +419,6 @@ def _flow_error(file: str | None, field: str, message: str) -> CaseFileError:
     return CaseFileError(message, field=field)
 
 
-def load_storm_case(path: str | os.PathLike) -> StormSetup:
+def load_storm_setup(path: str | os.PathLike) -> StormSetup:
     """Read, validate and build a storm case file (errors: :class:`CaseFileError`)."""
     return build_setup(load_case_file(path, StormCase), path)

@@ -55,7 +55,7 @@ def _write_run(
     outputs; returns the JSON payload."""
     import time
 
-    from onbottom.cases.reliability import load_reliability_case
+    from onbottom.cases.reliability import load_reliability_setup
     from onbottom.errors import InputError
     from onbottom.reliability.run import (
         require_packages,
@@ -63,7 +63,7 @@ def _write_run(
 
     t0 = time.perf_counter()
     require_packages()
-    setup = load_reliability_case(case)
+    setup = load_reliability_setup(case)
     check_budget(setup, workers=n_workers, force=force)
     out = out if out is not None else case.resolve().parent / f"{case.stem}_reliability"
     if out.exists() and not out.is_dir():

@@ -42,7 +42,7 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
     [programme] and optional [solver] tables; see examples/section_case.toml. Loads in the
     file are in kN/m.
     """
-    from onbottom.cases.section import build_section_run
+    from onbottom.cases.section import load_section_run
 
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")
@@ -50,7 +50,7 @@ def command(case: Path, output: Path | None, plot: Path | None, quiet: bool, as_
         check_output_path(plot, field="--plot")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", OutOfRangeWarning)
-        run = build_section_run(case)  # the whole file is checked before any work
+        run = load_section_run(case)  # the whole file is checked before any work
         res = run.simulate(progress=not quiet and not as_json)
     messages = list(dict.fromkeys(str(w.message) for w in caught))
     res.save(nc)

@@ -220,11 +220,11 @@ def _command(
                 raise click.exceptions.Exit(EXIT_INVALID_RESULT)
         return
 
-    from onbottom.cases.storm import load_storm_case
+    from onbottom.cases.storm import load_storm_setup
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", OutOfRangeWarning)
-        setup = load_storm_case(case)
+        setup = load_storm_setup(case)
     notes = _split_warnings(caught, as_json)
     n = setup.seeds if seeds is None else int(seeds)
     if n > 1 and not hasattr(setup.storm, "with_seed"):

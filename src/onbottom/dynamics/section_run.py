@@ -3,7 +3,7 @@
 A plain value type holding what :func:`onbottom.dynamics.section.simulate_section` takes: the
 load programme, the soil model, the section's mass, the displacement limit and the solver
 settings. :func:`onbottom.dynamics.centrifuge.centrifuge_run` builds it for a centrifuge test
-of Youssef & Cassidy (2014); :func:`onbottom.cases.section.build_section_run` from a case file.
+of Youssef & Cassidy (2014); :func:`onbottom.cases.section.load_section_run` from a case file.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """What a reliability run needs: plain value types, built from a case file or by hand.
 
 :func:`onbottom.reliability.run.run_reliability` takes a :class:`ReliabilitySetup` as it is;
-:func:`onbottom.cases.reliability.load_reliability_case` builds one from a storm case file with
+:func:`onbottom.cases.reliability.load_reliability_setup` builds one from a storm case file with
 a ``[reliability]`` table (``onbottom reliability``), the limits already in metres.
 """
 
