@@ -181,17 +181,20 @@ def harmonic_series(
     inverse_rfft: Callable[..., NDArray] = irfft,
     *,
     overwrite: bool = False,
+    bins: slice | None = None,
 ) -> tuple[NDArray, NDArray]:
     """x and dx/dt at t_m = mΔt, m < ``n_t``, from one-sided harmonic coefficients.
 
     ``spec[..., j]`` = (N/2) a_j e^{iφ_j} on the harmonics ``omega[j]`` = jΔω, j = 0 … N/2
     (N = ``n_fft``, last axis), so that x(t_m) = Σ_j a_j cos(jΔω t_m + φ_j) is one inverse real
     FFT; dx/dt is that of iω·spec. ``inverse_rfft``: ``scipy.fft.irfft`` or
-    ``numpy.fft.irfft``; ``overwrite``: multiply ``spec`` by iω in place (no work copy).
+    ``numpy.fft.irfft``; ``overwrite``: multiply ``spec`` by iω in place (no work copy), only
+    on the harmonics ``bins`` when given (the others must be zero).
     """
     x = inverse_rfft(spec, n_fft, axis=-1)[..., :n_t]
     if overwrite:
-        spec *= 1j * omega
+        band = slice(None) if bins is None else bins
+        spec[..., band] *= 1j * omega[band]
         d = spec
     else:
         d = 1j * omega * spec
@@ -485,6 +488,7 @@ def node_block_series(
     if work is None:
         work = np.zeros((nb, half), dtype=complex)
     n_c = syn.n_components
+    band = slice(1, n_c + 1)
     ub = np.zeros((nb, syn.n_t))
     ab = np.zeros((nb, syn.n_t))
     for kk in range(len(syn.stage_amplitude)):
@@ -493,7 +497,9 @@ def node_block_series(
         )
         spec = work[:nb]
         spec[:] = 0.0
-        spec[:, 1 : n_c + 1] = 0.5 * syn.n_fft * c
-        uk, ak = harmonic_series(spec, syn.omega, syn.n_fft, syn.n_t, np.fft.irfft, overwrite=True)
+        spec[:, band] = 0.5 * syn.n_fft * c
+        uk, ak = harmonic_series(
+            spec, syn.omega, syn.n_fft, syn.n_t, np.fft.irfft, overwrite=True, bins=band
+        )
         add_stage(ub, ab, syn.weights[kk][None, :], syn.dweights[kk][None, :], uk, ak)
     return ub, ab
