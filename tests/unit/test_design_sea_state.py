@@ -67,9 +67,9 @@ def test_spreading_closed_form_matches_quadrature():
         assert np.trapezoid(dw, th) == pytest.approx(1.0, rel=1e-6)
         for tw in (90.0, 60.0, 30.0):
             ref = math.sqrt(np.trapezoid(dw * np.sin(math.radians(tw) - th) ** 2, th))
-            assert spreading_factor(s, tw) == pytest.approx(ref, rel=1e-6)
-    assert spreading_factor(None, 30.0) == pytest.approx(0.5)
-    assert spreading_factor(0, 90.0) == pytest.approx(1.0)
+            assert spreading_factor(s, wave_direction_deg=tw) == pytest.approx(ref, rel=1e-6)
+    assert spreading_factor(None, wave_direction_deg=30.0) == pytest.approx(0.5)
+    assert spreading_factor(0, wave_direction_deg=90.0) == pytest.approx(1.0)
 
 
 def test_design_oscillation_groups():

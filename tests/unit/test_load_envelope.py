@@ -8,17 +8,12 @@ import numpy as np
 import pytest
 
 from onbottom.errors import InputError
-from onbottom.hydro.load_envelope import (
-    _bed_velocity_record,
-    cycle_peak_loads,
-    envelopes_dataset,
-    load_envelope,
-)
-from onbottom.hydro.timeseries import near_bed_velocity_series
+from onbottom.hydro.flow_synthesis import bed_velocity_record, near_bed_velocity_series
+from onbottom.hydro.load_envelope import cycle_peak_loads, envelopes_dataset, load_envelope
 
 
 def test_fft_record_equals_direct_synthesis():
-    t, u, du = _bed_velocity_record(3.0, 9.0, 20.0, 2.0, 7, 600, 1000.0, 30)
+    t, u, du = bed_velocity_record(3.0, 9.0, 20.0, 2.0, 7, 600, 1000.0, 30)
     assert t[-1] <= 1000.0 and np.allclose(np.diff(t), t[1] - t[0])
     u2, du2 = near_bed_velocity_series(t[::13], 3.0, 9.0, 20.0, gamma=2.0, seed=7, n_components=600)
     assert np.max(np.abs(u[::13] - u2)) < 1e-10 * np.max(np.abs(u2))

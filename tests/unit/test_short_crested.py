@@ -8,12 +8,8 @@ import numpy as np
 import pytest
 
 from onbottom.errors import InputError
-from onbottom.hydro.short_crested import (
-    directions_cos_s,
-    pipeline_kinematics,
-    regular_node_kinematics,
-)
-from onbottom.hydro.spreading import spreading_factor
+from onbottom.hydro.short_crested import pipeline_kinematics, regular_node_kinematics
+from onbottom.hydro.spreading import directions_cos_s, spreading_factor
 from onbottom.hydro.storm_kinematics import seabed_velocity_parameters
 from onbottom.inputs.storm import SeaState, Storm
 
@@ -43,7 +39,7 @@ def test_variance_tends_to_rd_squared_m0(direction, s):
     kin = pipeline_kinematics(Storm(stages=(sea,), seed=1), 20.0, np.array([0.0, 300.0]))
     normal = SeaState(hs=4.0, tp=10.0)  # long-crested, normal: U_s without reduction
     us = seabed_velocity_parameters(normal, 20.0)["significant_velocity"]
-    rd = float(spreading_factor(s, direction))
+    rd = float(spreading_factor(s, wave_direction_deg=direction))
     var = np.var(kin.velocity.astype(float), axis=0)
     np.testing.assert_allclose(var, (rd * us / 2.0) ** 2, rtol=0.08)
 

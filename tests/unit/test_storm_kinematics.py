@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from onbottom.errors import InputError
+from onbottom.hydro.spreading import spreading_factor
 from onbottom.hydro.storm_kinematics import (
     current_normal_to_pipe,
     sea_state_for_velocity,
     seabed_velocity_parameters,
-    spreading_factor,
     storm_kinematics,
 )
 from onbottom.inputs.storm import Current, SeaState, Storm
@@ -21,16 +21,24 @@ from onbottom.inputs.storm import Current, SeaState, Storm
 @pytest.mark.parametrize("s", [2.0, 4.0, 8.0, 20.0])
 def test_spreading_factor_normal_waves_closed_form(s):
     # waves normal to the pipe: R_D² = E[cos²θ] = (s + 1)/(s + 2) for the cos^s density
-    assert spreading_factor(90.0, s) == pytest.approx(math.sqrt((s + 1) / (s + 2)), rel=1e-6)
+    r = spreading_factor(s, wave_direction_deg=90.0)
+    assert r == pytest.approx(math.sqrt((s + 1) / (s + 2)), rel=1e-14)
 
 
 def test_spreading_factor_long_crested_and_symmetry():
-    assert spreading_factor(90.0, 0.0) == 1.0
-    assert spreading_factor(30.0, 0.0) == pytest.approx(0.5)
-    assert spreading_factor(0.0, 0.0) == pytest.approx(0.0, abs=1e-15)
-    assert spreading_factor(270.0, 8.0) == pytest.approx(spreading_factor(90.0, 8.0), rel=1e-12)
+    assert spreading_factor(0.0, wave_direction_deg=90.0) == 1.0
+    assert spreading_factor(0.0, wave_direction_deg=30.0) == pytest.approx(0.5)
+    assert spreading_factor(0.0, wave_direction_deg=0.0) == pytest.approx(0.0, abs=1e-15)
+    # the line of the waves only: mirrored directions give bitwise the same R_D
+    for s in (0.0, 3.0, 8.0):
+        for d in (20.0, 70.0, 90.0):
+            ref = spreading_factor(s, wave_direction_deg=d)
+            for m in (-d, 180.0 - d, 180.0 + d, 360.0 - d):
+                assert spreading_factor(s, wave_direction_deg=m) == ref
     with pytest.raises(InputError):
-        spreading_factor(90.0, -1.0)
+        spreading_factor(-1.0, wave_direction_deg=90.0)
+    with pytest.raises(TypeError):  # the direction is keyword-only: no swapped arguments
+        spreading_factor(8.0, 90.0)  # type: ignore[misc]
 
 
 @pytest.fixture(scope="module")

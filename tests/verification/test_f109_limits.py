@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from onbottom.hydro.design_sea_state import significant_bed_velocity
-from onbottom.hydro.load_envelope import _bed_velocity_record
+from onbottom.hydro.flow_synthesis import bed_velocity_record
 from onbottom.hydro.spreading import spreading_factor
 
 pytestmark = pytest.mark.verification
@@ -28,9 +28,13 @@ def test_deep_water_filters_the_bed_velocity():
 
 
 def test_spreading_limits():
-    assert spreading_factor(1000.0, 30.0) == pytest.approx(0.5, rel=2e-3)  # → long-crested
+    assert spreading_factor(1000.0, wave_direction_deg=30.0) == pytest.approx(
+        0.5, rel=2e-3
+    )  # → long-crested
     # isotropic-like s → 0+: R_D² → ½ for any direction
-    assert spreading_factor(1e-9, 10.0) == pytest.approx(math.sqrt(0.5), rel=1e-6)
+    assert spreading_factor(1e-9, wave_direction_deg=10.0) == pytest.approx(
+        math.sqrt(0.5), rel=1e-6
+    )
 
 
 def test_synthesised_record_has_the_spectral_variance():
@@ -39,7 +43,7 @@ def test_synthesised_record_has_the_spectral_variance():
     hs, tp, d, gamma = 3.0, 10.0, 15.0, 2.0
     us, tu = significant_bed_velocity(hs, tp, d, gamma)
     n = math.ceil(5.0 * 10_800.0 / tp)
-    t, u, _ = _bed_velocity_record(hs, tp, d, gamma, 0, n, 10_800.0, 40)
+    t, u, _ = bed_velocity_record(hs, tp, d, gamma, 0, n, 10_800.0, 40)
     assert np.std(u) == pytest.approx(float(us) / 2.0, rel=0.03)
     n_up = np.count_nonzero((u[:-1] < 0) & (u[1:] >= 0))
     assert t[-1] / n_up == pytest.approx(float(tu), rel=0.03)

@@ -31,8 +31,8 @@ import numpy as np
 
 from onbottom._validate import in_range, non_negative, one_of, positive
 from onbottom.errors import InputError
+from onbottom.hydro.flow_synthesis import near_bed_velocity_series, regular_velocity_series
 from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
-from onbottom.hydro.timeseries import near_bed_velocity_series, regular_velocity_series
 
 _DEFAULT_COEFFICIENTS = MorisonCoefficients()
 
@@ -422,7 +422,7 @@ def irregular_wave_current_groups(
     """Groups of irregular wave-plus-current loads (Youssef & Cassidy 2014, Fig. 8).
 
     The first group's shape: near-bed velocity of a JONSWAP sea (H_s, T_p, depth; seeded
-    random phases, :func:`onbottom.hydro.timeseries.near_bed_velocity_series`) over a record of
+    random phases, :func:`onbottom.hydro.flow_synthesis.near_bed_velocity_series`) over a record of
     ``waves_per_group``·T_p, plus a current M·U_s with M solved so that
     min F_H / max F_H = h_trough/h_peak; Morison F_H and lift F_V are scaled to ``h_peak`` and
     ``v_peak``, tapered at the group ends, and the record is mapped linearly onto

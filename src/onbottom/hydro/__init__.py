@@ -12,6 +12,11 @@ from onbottom._lazy import attach
 if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the layering test
     from onbottom.hydro.current import SEABED_ROUGHNESS, mean_current_over_pipe
     from onbottom.hydro.design_sea_state import design_oscillation, significant_bed_velocity
+    from onbottom.hydro.flow_synthesis import (
+        near_bed_velocity_series,
+        random_phase_series,
+        regular_velocity_series,
+    )
     from onbottom.hydro.force_model import ForceModel, MorisonLift
     from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
     from onbottom.hydro.fourier import FourierModel
@@ -31,11 +36,6 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         jonswap_peak_enhancement,
         pierson_moskowitz,
         spectral_moment,
-    )
-    from onbottom.hydro.timeseries import (
-        near_bed_velocity_series,
-        random_phase_series,
-        regular_velocity_series,
     )
     from onbottom.hydro.wake import WakeModel
 
@@ -106,7 +106,7 @@ __getattr__, __dir__ = attach(
             "pierson_moskowitz",
             "spectral_moment",
         ),
-        "onbottom.hydro.timeseries": (
+        "onbottom.hydro.flow_synthesis": (
             "near_bed_velocity_series",
             "random_phase_series",
             "regular_velocity_series",

@@ -310,7 +310,7 @@ def design_oscillation(
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # checked below
         us_lc, tu = significant_bed_velocity(hs, tp, depth, gam, spectrum)
     dia = _array("diameter", diameter, 0.0)
-    rd = spreading_factor(spreading_s, wave_direction_deg)
+    rd = spreading_factor(spreading_s, wave_direction_deg=wave_direction_deg)
     us = rd * us_lc
     vel = np.asarray(current_velocity, dtype=float)
     v_star = np.vectorize(

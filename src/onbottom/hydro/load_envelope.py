@@ -6,9 +6,10 @@ from the V axis — the reason for the load angles of its inclined-load centrifu
 module makes that plot's data for any sea state:
 
 1. U(t), dU/dt: seeded random-phase synthesis of the JONSWAP bed-velocity spectrum
-   (the record of :func:`onbottom.hydro.timeseries.near_bed_velocity_series` — same
-   frequencies, amplitudes and phases — evaluated by one inverse FFT), long-crested, scaled
-   by the spreading factor R_D (:mod:`onbottom.hydro.spreading`), over ``duration`` (3 h).
+   (:func:`onbottom.hydro.flow_synthesis.bed_velocity_record`: the record of
+   :func:`~onbottom.hydro.flow_synthesis.near_bed_velocity_series` — same frequencies,
+   amplitudes and phases — evaluated by one inverse FFT), long-crested, scaled by the
+   spreading factor R_D (:mod:`onbottom.hydro.spreading`), over ``duration`` (3 h).
 2. Loads on a fixed pipe (Morison, :func:`onbottom.hydro.forces.horizontal_force` and
    :func:`~onbottom.hydro.forces.lift_force`, times the reductions r_y, r_z):
    F_Y = r_y[½ρ D C_D (U+V)|U+V| + ρ πD²/4 C_M dU/dt],  F_Z = r_z ½ρ D C_L (U+V)².
@@ -33,9 +34,8 @@ from onbottom._validate import in_range, non_negative, positive
 from onbottom.constants import RHO_SEAWATER
 from onbottom.errors import InputError
 from onbottom.hydro.design_sea_state import DEFAULT_DURATION, jonswap_gamma
+from onbottom.hydro.flow_synthesis import bed_velocity_record
 from onbottom.hydro.forces import MorisonCoefficients, horizontal_force, lift_force
-from onbottom.hydro.kinematics import seabed_transfer
-from onbottom.hydro.spectra import jonswap
 from onbottom.hydro.spreading import spreading_factor
 
 __all__ = ["LoadEnvelope", "cycle_peak_loads", "load_envelope"]
@@ -89,44 +89,6 @@ def cycle_peak_loads(
     a = np.abs(np.asarray(f_y, dtype=float))
     idx = np.array([s + int(np.argmax(a[s:e])) for s, e in itertools.pairwise(up)])
     return np.asarray(time)[idx], a[idx], np.asarray(f_z, dtype=float)[idx]
-
-
-def _bed_velocity_record(
-    hs: float,
-    tp: float,
-    depth: float,
-    gamma: float,
-    seed: int | None,
-    n_components: int,
-    duration: float,
-    samples_per_peak_period: int,
-) -> tuple[NDArray, NDArray, NDArray]:
-    """U(t), dU/dt of :func:`near_bed_velocity_series` (same frequencies, amplitudes and
-    phases) on a uniform grid, by one inverse FFT instead of a (time × frequency) sum.
-
-    With ω_j = (j + ½)Δω and t_m = m Δt, Δt = 2π/(N Δω):
-    Σ_j a_j cos(ω_j t_m + φ_j) = Re[e^{iΔω t_m/2} Σ_j a_j e^{iφ_j} e^{2πi jm/N}].
-    Δt is the largest step <= T_p/samples_per_peak_period that divides the repeat period.
-    """
-    wp = 2.0 * math.pi / tp
-    dw = 5.0 * wp / n_components  # the grid of near_bed_velocity_series (omega_max_factor 5)
-    w = dw * (np.arange(n_components) + 0.5)
-    s_uu = seabed_transfer(w, depth) ** 2 * jonswap(w, hs, tp, gamma)
-    amp = np.sqrt(2.0 * np.maximum(s_uu, 0.0) * dw)
-    phase = np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, n_components)
-    period = 2.0 * math.pi / dw
-    n_fft = max(2 * n_components, math.ceil(period / (tp / samples_per_peak_period)))
-    dt = period / n_fft
-    n_t = min(n_fft, math.floor(duration / dt) + 1)
-    c = np.zeros(n_fft, dtype=complex)
-    c[:n_components] = amp * np.exp(1j * phase)
-    cw = np.zeros(n_fft, dtype=complex)
-    cw[:n_components] = c[:n_components] * w
-    t = dt * np.arange(n_t)
-    shift = np.exp(0.5j * dw * t)
-    x = (shift * np.fft.ifft(c)[:n_t] * n_fft).real
-    dxdt = (1j * shift * np.fft.ifft(cw)[:n_t] * n_fft).real
-    return t, x, dxdt
 
 
 def load_envelope(
@@ -217,8 +179,8 @@ def load_envelope(
     g = 1.0 if spectrum == "pierson-moskowitz" else (
         float(jonswap_gamma(hs, tp)) if gamma is None else gamma
     )  # fmt: skip
-    rd = float(spreading_factor(spreading_s, wave_direction_deg))
-    t, u, dudt = _bed_velocity_record(
+    rd = float(spreading_factor(spreading_s, wave_direction_deg=wave_direction_deg))
+    t, u, dudt = bed_velocity_record(
         hs, tp, depth, g, seed, n_components, dur, samples_per_peak_period
     )
     u *= rd

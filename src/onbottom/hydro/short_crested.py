@@ -6,15 +6,20 @@ DNV-RP-F109 (2010) §3.2)::
 
     u_n(x, t) = Σ_j a_j G(ω_j) sin θ_j cos(ω_j t − k_j x cos θ_j + φ_j)
 
+synthesised by the stages of :mod:`onbottom.hydro.flow_synthesis` (the package's one flow
+synthesiser: :func:`~onbottom.hydro.flow_synthesis.node_synthesis` and
+:func:`~onbottom.hydro.flow_synthesis.node_block_series`), with
+
 * a_j = √(2 S_ηη(ω_j) Δω) from the stage's JONSWAP/Pierson–Moskowitz spectrum
   (:mod:`onbottom.hydro.spectra`, DNV-RP-C205 §3.5.5), G = ω/sinh(kd) the linear transfer to
   the seabed (:mod:`onbottom.hydro.kinematics`, DNV-RP-F109 §3.4.3);
 * **single summation**: one direction θ_j = θ_m + δ_j per frequency component, δ_j drawn from
-  the spreading density D_w(δ) ∝ cos^s δ on |δ| < π/2 by its inverse CDF (DNV-RP-F109 (2010)
-  Eq 3.8; the exponent is that of ``SeaState.spreading_s``, cos^s as in F109 — a
-  "cos^2s" form is the same family with s ↔ 2s). The sea is ergodic and no spreading factor R_D
-  is applied: the variance of u_n over the components tends to R_D²·M_0 (checked by a test
-  against :func:`onbottom.hydro.spreading.spreading_factor`). s = 0 gives a long-crested sea;
+  the spreading density D_w(δ) ∝ cos^s δ on |δ| < π/2 by its inverse CDF
+  (:func:`onbottom.hydro.spreading.directions_cos_s`, DNV-RP-F109 (2010) Eq 3.8; the exponent
+  is that of ``SeaState.spreading_s``, cos^s as in F109 — a "cos^2s" form is the same family
+  with s ↔ 2s). The sea is ergodic and no spreading factor R_D is applied: the variance of
+  u_n over the components tends to R_D²·M_0 (checked by a test against
+  :func:`onbottom.hydro.spreading.spreading_factor`). s = 0 gives a long-crested sea;
 * φ_j uniform on [0, 2π) from ``numpy.random.default_rng(storm.seed)``; phases and the
   uniform numbers behind δ_j are shared by all stages, so stage blends are coherent.
 
@@ -24,8 +29,8 @@ processed in blocks and the result is kept in float32 (velocity and acceleration
 node and sample — 500 nodes × 3.5 h at 0.2 s ≈ 0.25 GB; with ``memory_limit`` a larger
 storm is written node by node to a temporary file, :class:`WindowedNodeKinematics`, and the
 solver reads the time windows it reaches: the same float32 values, a window in memory).
-Stage weights (build-up, blends,
-decay) are those of the section storm (:mod:`onbottom.hydro.storm_kinematics`):
+Stage weights (build-up, blends, decay) are those of the section storm
+(:func:`onbottom.hydro.flow_synthesis.stage_weights`):
 U = Σ_k w_k U_k, U̇ = Σ_k (w_k U̇_k + ẇ_k U_k).
 """
 
@@ -43,19 +48,13 @@ import numpy as np
 
 from onbottom._validate import positive
 from onbottom.errors import InputError
-from onbottom.hydro.kinematics import seabed_transfer, wave_number
-from onbottom.hydro.spectra import jonswap
-from onbottom.hydro.storm_kinematics import (
-    StormKinematics,
-    _stage_weights,
-    seabed_velocity_parameters,
-)
+from onbottom.hydro.flow_synthesis import NodeSynthesis, node_block_series, node_synthesis
+from onbottom.hydro.storm_kinematics import StormKinematics, seabed_velocity_parameters
 from onbottom.inputs.storm import Storm
 
 __all__ = [
     "NodeKinematics",
     "WindowedNodeKinematics",
-    "directions_cos_s",
     "long_crested_node_kinematics",
     "pipeline_kinematics",
     "regular_node_kinematics",
@@ -210,21 +209,102 @@ class WindowedNodeKinematics:
         self.close()
 
 
-def directions_cos_s(uniform: np.ndarray, mean_deg: float, spreading_s: float) -> np.ndarray:
-    """Directions [rad] θ = θ_m + δ with δ from D_w(δ) ∝ cos^s δ, |δ| < π/2 (F109 Eq 3.8).
+def _settings(
+    storm: Storm,
+    depth: float,
+    x: np.ndarray,
+    sample_interval: float | None,
+    omega_max_factor: float,
+) -> tuple[np.ndarray, float]:
+    """Checked inputs of :func:`pipeline_kinematics`: node positions [m] and Δt_s [s]."""
+    if not isinstance(storm, Storm):
+        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
+    positive("depth", depth)
+    if omega_max_factor <= 1.0:
+        raise InputError(f"omega_max_factor = {omega_max_factor!r} is invalid: must be > 1")
+    tp_min = min(s.tp for s in storm.stages)
+    dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
+    return np.asarray(x, dtype=float), dts
 
-    Inverse-CDF transform (4001-point grid) of the uniform numbers ``uniform`` in [0, 1);
-    ``spreading_s`` = 0 → every θ = θ_m (long-crested).
-    """
-    mean = math.radians(mean_deg)
-    u = np.asarray(uniform, dtype=float)
-    if spreading_s <= 0.0:
-        return np.full(u.shape, mean)
-    g = np.linspace(-0.5 * math.pi, 0.5 * math.pi, 4001)
-    pdf = np.cos(g) ** spreading_s
-    cdf = np.concatenate(([0.0], np.cumsum(0.5 * (pdf[1:] + pdf[:-1]) * np.diff(g))))
-    cdf /= cdf[-1]
-    return mean + np.interp(u, cdf, g)
+
+class _MemorySink:
+    """Node blocks into float32 (n_t, n_nodes) arrays held in memory."""
+
+    def __init__(self, n_t: int, n_nodes: int) -> None:
+        self.vel = np.empty((n_t, n_nodes), dtype=np.float32)
+        self.acc = np.empty((n_t, n_nodes), dtype=np.float32)
+
+    def write(self, b0: int, ub: np.ndarray, ab: np.ndarray) -> None:
+        nb = ub.shape[0]
+        self.vel[:, b0 : b0 + nb] = ub.T
+        self.acc[:, b0 : b0 + nb] = ab.T
+
+    def abort(self) -> None:
+        pass
+
+    def result(self, syn: NodeSynthesis, params: tuple[dict[str, float], ...]) -> NodeKinematics:
+        return NodeKinematics(
+            t0=0.0,
+            dt=syn.sample_interval,
+            velocity=self.vel,
+            acceleration=self.acc,
+            weights=syn.weights,
+            stage_parameters=params,
+        )
+
+
+class _FileSink:
+    """Node blocks into a temporary float32 file (node-major), hashed as they are written."""
+
+    def __init__(self, n_t: int, n_nodes: int) -> None:
+        fd, self.path = tempfile.mkstemp(prefix="onbottom-kinematics-", suffix=".f32")
+        self.f = os.fdopen(fd, "wb")
+        self.hu, self.ha = hashlib.blake2b(digest_size=16), hashlib.blake2b(digest_size=16)
+        self.row = n_t * 4  # bytes of one node's series
+        self.shape = (n_t, n_nodes)
+
+    def write(self, b0: int, ub: np.ndarray, ab: np.ndarray) -> None:
+        bu = ub.astype(np.float32).tobytes()
+        ba = ab.astype(np.float32).tobytes()
+        self.hu.update(bu)
+        self.ha.update(ba)
+        self.f.seek(b0 * self.row)
+        self.f.write(bu)
+        self.f.seek((self.shape[1] + b0) * self.row)
+        self.f.write(ba)
+
+    def abort(self) -> None:
+        self.f.close()
+        _unlink(self.path)
+
+    def result(
+        self, syn: NodeSynthesis, params: tuple[dict[str, float], ...]
+    ) -> WindowedNodeKinematics:
+        self.f.close()
+        return WindowedNodeKinematics(
+            self.path,
+            0.0,
+            syn.sample_interval,
+            self.shape,
+            self.hu.hexdigest() + self.ha.hexdigest(),
+            weights=syn.weights,
+            stage_parameters=params,
+        )
+
+
+def _synthesise_nodes(
+    syn: NodeSynthesis, xx: np.ndarray, block_nodes: int, sink: _MemorySink | _FileSink
+) -> None:
+    """Evaluate the flow block by block of ``block_nodes`` nodes into ``sink``."""
+    half = syn.n_fft // 2 + 1
+    work = np.zeros((min(block_nodes, max(xx.size, 1)), half), dtype=complex)
+    try:
+        for b0 in range(0, xx.size, block_nodes):
+            ub, ab = node_block_series(syn, xx[b0 : b0 + block_nodes], work)
+            sink.write(b0, ub, ab)
+    except BaseException:
+        sink.abort()
+        raise
 
 
 def pipeline_kinematics(
@@ -238,6 +318,10 @@ def pipeline_kinematics(
     memory_limit: int | None = None,
 ) -> NodeKinematics | WindowedNodeKinematics:
     """Near-bed velocity and acceleration normal to the pipe at positions ``x`` through a storm.
+
+    Stages: checked settings → set-up of harmonics, phases and directions
+    (:func:`onbottom.hydro.flow_synthesis.node_synthesis`) → node blocks
+    (:func:`~onbottom.hydro.flow_synthesis.node_block_series`) into memory or a file → result.
 
     Parameters
     ----------
@@ -258,98 +342,13 @@ def pipeline_kinematics(
         temporary file and returned as :class:`WindowedNodeKinematics` (the same values, read
         in windows by the solver); None: always held whole.
     """
-    if not isinstance(storm, Storm):
-        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
-    positive("depth", depth)
-    if omega_max_factor <= 1.0:
-        raise InputError(f"omega_max_factor = {omega_max_factor!r} is invalid: must be > 1")
-    xx = np.asarray(x, dtype=float)
-    tp_min = min(s.tp for s in storm.stages)
-    dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
-    n_t = math.ceil(storm.duration_s / dts) + 1
-    nfft = n_t + (n_t % 2)
-    dw = 2.0 * math.pi / (nfft * dts)
-    wmax = min(omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages), math.pi / dts)
-    n_c = max(int(wmax / dw), 1)
-    w = dw * np.arange(1, n_c + 1)
-    rng = np.random.default_rng(storm.seed)
-    phase = rng.uniform(0.0, 2.0 * math.pi, n_c)
-    uni = rng.uniform(0.0, 1.0, n_c)
-    g = seabed_transfer(w, depth)
-    k = wave_number(w, depth)
-    t = dts * np.arange(n_t)
-    weights, dweights = _stage_weights(storm, t)
-    stage_amp = []
-    stage_kx = []
-    for sea in storm.stages:
-        theta = directions_cos_s(uni, sea.direction_deg, sea.spreading_s)
-        a = np.sqrt(2.0 * jonswap(w, sea.hs, sea.tp, sea.peak_enhancement) * dw)
-        stage_amp.append(a * g * np.sin(theta))
-        stage_kx.append(k * np.cos(theta))
-    spill = memory_limit is not None and 8 * n_t * xx.size > memory_limit
-    if spill:
-        fd, path = tempfile.mkstemp(prefix="onbottom-kinematics-", suffix=".f32")
-        f = os.fdopen(fd, "wb")
-        hu, ha = hashlib.blake2b(digest_size=16), hashlib.blake2b(digest_size=16)
-        row = n_t * 4  # bytes of one node's series
-    else:
-        vel = np.empty((n_t, xx.size), dtype=np.float32)
-        acc = np.empty((n_t, xx.size), dtype=np.float32)
-    half = nfft // 2 + 1
-    spec = np.zeros((min(block_nodes, max(xx.size, 1)), half), dtype=complex)
-    try:
-        for b0 in range(0, xx.size, block_nodes):
-            xb = xx[b0 : b0 + block_nodes]
-            nb = xb.size
-            ub = np.zeros((nb, n_t))
-            ab = np.zeros((nb, n_t))
-            for kk in range(len(storm.stages)):
-                c = stage_amp[kk][None, :] * np.exp(
-                    1j * (phase[None, :] - np.outer(xb, stage_kx[kk]))
-                )
-                spec[:nb] = 0.0
-                spec[:nb, 1 : n_c + 1] = 0.5 * nfft * c
-                uk = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
-                spec[:nb, 1 : n_c + 1] *= 1j * w[None, :]
-                ak = np.fft.irfft(spec[:nb], n=nfft, axis=1)[:, :n_t]
-                ub += weights[kk][None, :] * uk
-                ab += weights[kk][None, :] * ak + dweights[kk][None, :] * uk
-            if spill:
-                bu = ub.astype(np.float32).tobytes()
-                ba = ab.astype(np.float32).tobytes()
-                hu.update(bu)
-                ha.update(ba)
-                f.seek(b0 * row)
-                f.write(bu)
-                f.seek((xx.size + b0) * row)
-                f.write(ba)
-            else:
-                vel[:, b0 : b0 + nb] = ub.T
-                acc[:, b0 : b0 + nb] = ab.T
-    except BaseException:
-        if spill:
-            f.close()
-            _unlink(path)
-        raise
-    if spill:
-        f.close()
-        return WindowedNodeKinematics(
-            path,
-            0.0,
-            dts,
-            (n_t, xx.size),
-            hu.hexdigest() + ha.hexdigest(),
-            weights=weights,
-            stage_parameters=tuple(seabed_velocity_parameters(s, depth) for s in storm.stages),
-        )
-    return NodeKinematics(
-        t0=0.0,
-        dt=dts,
-        velocity=vel,
-        acceleration=acc,
-        weights=weights,
-        stage_parameters=tuple(seabed_velocity_parameters(s, depth) for s in storm.stages),
-    )
+    xx, dts = _settings(storm, depth, x, sample_interval, omega_max_factor)
+    syn = node_synthesis(storm, depth, dts, omega_max_factor)
+    spill = memory_limit is not None and 8 * syn.n_t * xx.size > memory_limit
+    sink = (_FileSink if spill else _MemorySink)(syn.n_t, xx.size)
+    _synthesise_nodes(syn, xx, block_nodes, sink)
+    params = tuple(seabed_velocity_parameters(s, depth) for s in storm.stages)
+    return sink.result(syn, params)
 
 
 def regular_node_kinematics(

@@ -1,22 +1,23 @@
 """Seeded near-bed flow of a storm on a pipe section: U(t), U̇(t) normal to the pipe and V.
 
-For each stage of a :class:`~onbottom.inputs.storm.Storm` the JONSWAP (or Pierson–Moskowitz)
-surface spectrum (:func:`onbottom.hydro.spectra.jonswap`, DNV-RP-C205 §3.5.5) is transferred to
-the seabed with linear wave theory, S_UU = G² S_ηη, G = ω / sinh(k d) (DNV-RP-F109 §3.4.3,
-:func:`onbottom.hydro.kinematics.seabed_transfer`), and synthesised by random phases,
+The flow is synthesised by :func:`onbottom.hydro.flow_synthesis.section_storm_flow` (the
+package's one flow synthesiser, where the spectrum, amplitudes, phases, spreading and stage
+blending are described): for each stage of a :class:`~onbottom.inputs.storm.Storm` the JONSWAP
+(or Pierson–Moskowitz) surface spectrum (DNV-RP-C205 §3.5.5) is transferred to the seabed with
+linear wave theory, S_UU = G² S_ηη, G = ω / sinh(k d) (DNV-RP-F109 §3.4.3), and synthesised by
+random phases,
 
     U(t) = R_D · Σ_j a_j cos(ω_j t + φ_j),   a_j = √(2 S_UU(ω_j) Δω),
 
-on the harmonics ω_j = j·Δω of the storm's length (Δω = 2π/T_rep, T_rep >= storm duration, so
-the series never repeats), evaluated by one inverse real FFT per stage (O(n log n) instead of
-the O(n·N) direct sum). The phases φ_j are drawn once per storm from
+on the harmonics ω_j = j·Δω of the storm's length (the series never repeats within the storm),
+one inverse real FFT per stage. The phases φ_j are drawn once per storm from
 ``numpy.random.default_rng(seed)`` and shared by all stages, so stage blends are coherent and
 the same seed gives bitwise the same series on any machine with the same numpy.
 
-R_D is the F109 spreading reduction for a short-crested sea on a section
-(DNV-RP-F109 (2017) §3.4.3): R_D² = ∫ D_w(θ) sin²(θ_w − θ) dθ,
-D_w(θ) = Γ(1 + s/2)/(√π Γ(½ + s/2)) cos^s θ for |θ| < π/2; for a long-crested sea R_D = |sin θ_w|.
-The sign of sin θ_w sets the direction of U (waves travelling towards −y give −U).
+R_D is the F109 spreading reduction for a short-crested sea on a section (DNV-RP-F109 (2017)
+§3.4.3, :func:`onbottom.hydro.spreading.spreading_factor`); for a long-crested sea
+R_D = |sin θ_w|. The sign of sin θ_w sets the direction of U (waves travelling towards −y
+give −U).
 
 The steady current is the mean of the log profile over the diameter (DNV-RP-F109 Eq 3.3,
 :func:`onbottom.hydro.current.mean_current_over_pipe`), times sin θ_c with its sign.
@@ -33,15 +34,15 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.fft import irfft, next_fast_len
-from scipy.special import gammaln
 
 from onbottom._validate import positive
 from onbottom.constants import GRAVITY
 from onbottom.errors import InputError
+from onbottom.hydro import spreading
 from onbottom.hydro.current import mean_current_over_pipe
+from onbottom.hydro.flow_synthesis import sea_state_spectrum, section_storm_flow
 from onbottom.hydro.kinematics import seabed_transfer
-from onbottom.hydro.spectra import jonswap, spectral_moment
+from onbottom.hydro.spectra import spectral_moment
 from onbottom.inputs.storm import Current, SeaState, Storm
 
 __all__ = [
@@ -49,42 +50,8 @@ __all__ = [
     "current_normal_to_pipe",
     "sea_state_for_velocity",
     "seabed_velocity_parameters",
-    "spreading_factor",
     "storm_kinematics",
 ]
-
-
-def spreading_factor(direction_deg: float, spreading_s: float, n: int = 721) -> float:
-    """Spreading reduction R_D [-] of the near-bed velocity normal to the pipe (F109 §3.4.3).
-
-    Parameters
-    ----------
-    direction_deg : float
-        Mean wave direction relative to the pipe axis θ_w [deg].
-    spreading_s : float
-        cos^s spreading exponent s [-], >= 0; 0 → long-crested (R_D = |sin θ_w|).
-    n : int
-        Points of the trapezoidal integration over |θ| < π/2.
-    """
-    # R_D depends on θ_w only through the line of the waves: fold into [0°, 90°] so that
-    # mirrored directions (θ_w, 180° − θ_w, θ_w + 180°, ...) give bitwise the same value
-    folded = math.fmod(abs(direction_deg), 180.0)
-    if folded > 90.0:
-        folded = 180.0 - folded
-    tw = math.radians(folded)
-    if spreading_s < 0.0:
-        raise InputError(f"spreading_s = {spreading_s!r} is invalid: must be >= 0")
-    if spreading_s == 0.0:
-        return abs(math.sin(tw))
-    s = spreading_s
-    th = np.linspace(-0.5 * math.pi, 0.5 * math.pi, n)
-    norm = math.exp(gammaln(1.0 + 0.5 * s) - gammaln(0.5 + 0.5 * s)) / math.sqrt(math.pi)
-    dw = norm * np.cos(th) ** s
-    return float(math.sqrt(np.trapezoid(dw * np.sin(tw - th) ** 2, th)))
-
-
-def _surface_spectrum(sea: SeaState, omega: np.ndarray) -> np.ndarray:
-    return jonswap(omega, sea.hs, sea.tp, sea.peak_enhancement)
 
 
 def seabed_velocity_parameters(
@@ -101,10 +68,10 @@ def seabed_velocity_parameters(
     positive("depth", depth)
     wp = 2.0 * math.pi / sea.tp
     w = np.linspace(wp * 1e-3, omega_max_factor * wp, n)
-    suu = seabed_transfer(w, depth) ** 2 * _surface_spectrum(sea, w)
+    suu = seabed_transfer(w, depth) ** 2 * sea_state_spectrum(sea, w)
     m0 = spectral_moment(w, suu, 0)
     m2 = spectral_moment(w, suu, 2)
-    rd = spreading_factor(sea.direction_deg, sea.spreading_s)
+    rd = float(spreading.spreading_factor(sea.spreading_s, wave_direction_deg=sea.direction_deg))
     # waves that do not reach the seabed (deep water): no flow, T_u of the surface (m0/m2 → the
     # surface spectrum's ratio is not defined once both moments underflow; T_p is a bound)
     t_u = 2.0 * math.pi * math.sqrt(m0 / m2) if m2 > 0.0 else sea.tp
@@ -369,52 +336,6 @@ class StormKinematics:
         )
 
 
-def _stage_weights(storm: Storm, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """w_k(t) and dw_k/dt for the stages (build-up/decay envelope included)."""
-    ns = len(storm.stages)
-    w = np.zeros((ns, t.size))
-    dw = np.zeros((ns, t.size))
-    starts = storm.stage_start_times
-    ends = [s + st.duration_s for s, st in zip(starts, storm.stages, strict=True)]
-    h = 0.5 * storm.transition_s
-    for k in range(ns):
-        up = np.ones(t.size)
-        dup = np.zeros(t.size)
-        if k > 0:
-            b = starts[k]
-            if h > 0.0:
-                x = (t - (b - h)) / (2.0 * h)
-                up = np.clip(x, 0.0, 1.0)
-                dup = np.where((x > 0.0) & (x < 1.0), 1.0 / (2.0 * h), 0.0)
-            else:
-                up = (t >= b).astype(float)
-        down = np.zeros(t.size)
-        ddown = np.zeros(t.size)
-        if k < ns - 1:
-            b = ends[k]
-            if h > 0.0:
-                x = (t - (b - h)) / (2.0 * h)
-                down = np.clip(x, 0.0, 1.0)
-                ddown = np.where((x > 0.0) & (x < 1.0), 1.0 / (2.0 * h), 0.0)
-            else:
-                down = (t >= b).astype(float)
-        w[k] = up - down
-        dw[k] = dup - ddown
-    # envelope: build-up and decay
-    env = np.ones(t.size)
-    denv = np.zeros(t.size)
-    if storm.build_up_s > 0.0:
-        m = t < storm.build_up_s
-        env[m] = t[m] / storm.build_up_s
-        denv[m] = 1.0 / storm.build_up_s
-    if storm.decay_s > 0.0:
-        t_dec = storm.duration_s - storm.decay_s
-        m = t > t_dec
-        env[m] = np.maximum(storm.duration_s - t[m], 0.0) / storm.decay_s
-        denv[m] = -1.0 / storm.decay_s
-    return w * env, dw * env + w * denv
-
-
 def storm_kinematics(
     storm: Storm,
     depth: float,
@@ -453,48 +374,15 @@ def storm_kinematics(
         raise InputError(f"omega_max_factor = {omega_max_factor!r} is invalid: must be > 1")
     tp_min = min(s.tp for s in storm.stages)
     dts = positive("sample_interval", sample_interval) if sample_interval else tp_min / 50.0
-    total = storm.duration_s
-    n = math.ceil(total / dts) + 1
-    # even length >= n with small prime factors (FFT speed): T_rep = nfft·Δt_s >= duration
-    nfft = next_fast_len(n + (n % 2), real=True)
-    while nfft % 2:
-        nfft = next_fast_len(nfft + 1, real=True)
-    dw = 2.0 * math.pi / (nfft * dts)
-    wmax = omega_max_factor * max(2.0 * math.pi / s.tp for s in storm.stages)
-    nbins = nfft // 2 + 1
-    omega = dw * np.arange(nbins)
-    active = (omega > 0.0) & (omega <= wmax) & (omega < math.pi / dts)
-    rng = np.random.default_rng(storm.seed)
-    phase = rng.uniform(0.0, 2.0 * math.pi, nbins)
-    rot = np.exp(1j * phase)
-    g2 = np.zeros(nbins)
-    g2[active] = seabed_transfer(omega[active], depth) ** 2
-    t = np.arange(n) * dts
-    weights, dweights = _stage_weights(storm, t)
-    u = np.zeros(n)
-    a = np.zeros(n)
-    params = []
-    for k, sea in enumerate(storm.stages):
-        s_eta = np.zeros(nbins)
-        s_eta[active] = _surface_spectrum(sea, omega[active])
-        amp = np.sqrt(2.0 * g2 * s_eta * dw)
-        rd = spreading_factor(sea.direction_deg, sea.spreading_s)
-        sgn = math.copysign(1.0, math.sin(math.radians(sea.direction_deg)))
-        if abs(math.sin(math.radians(sea.direction_deg))) < 1e-12:
-            sgn = 1.0
-        spec = (0.5 * nfft) * amp * rot * (rd * sgn)
-        uk = irfft(spec, nfft)[:n]
-        ak = irfft(1j * omega * spec, nfft)[:n]
-        u += weights[k] * uk
-        a += weights[k] * ak + dweights[k] * uk
-        params.append(seabed_velocity_parameters(sea, depth))
+    u, a, weights = section_storm_flow(storm, depth, dts, omega_max_factor)
+    params = [seabed_velocity_parameters(sea, depth) for sea in storm.stages]
     v = current_normal_to_pipe(current, d, z0)
     return StormKinematics(
         sample_interval=dts,
         velocity=u,
         acceleration=a,
         current=v,
-        duration=total,
+        duration=storm.duration_s,
         weights=weights,
         stage_parameters=params,
         seed=storm.seed,

@@ -15,7 +15,7 @@ are passed in as arrays: ``hydro/`` sits below ``checks/`` in the layering.
 both tables (``tools/calibrate_wake.py`` runs it and writes the validation page).
 
 **Irregular check** (:func:`jonswap_record`, :func:`record_peaks`): the same fixed pipe in a
-JONSWAP near-bed velocity record (random phases, :mod:`onbottom.hydro.timeseries`) plus a
+JONSWAP near-bed velocity record (random phases, :mod:`onbottom.hydro.flow_synthesis`) plus a
 current; the record is split into half-cycles at the sign changes of U + V, and the largest
 per-half-cycle peaks of |F_Y| and F_Z are compared by the caller with F109's F* at the design
 U*, T* (F109 (2017) §3.4.3: U* = k_U U_s, T* = k_T T_u).
@@ -44,9 +44,7 @@ from onbottom.hydro.design_sea_state import (
     peak_velocity_factor,
     significant_bed_velocity,
 )
-from onbottom.hydro.kinematics import seabed_transfer
-from onbottom.hydro.spectra import jonswap
-from onbottom.hydro.timeseries import random_phase_series
+from onbottom.hydro.flow_synthesis import bed_spectrum, midpoint_grid, random_phase_series
 from onbottom.hydro.wake import WakeModel
 
 __all__ = [
@@ -367,10 +365,8 @@ def jonswap_record(
     u_star = float(peak_velocity_factor(duration / tu)) * us
     tn = math.sqrt(depth / GRAVITY)
     t_star = float(peak_period_factor(tn / tu, gamma)) * tu
-    wp = 2.0 * math.pi / tp
-    dw = 5.0 * wp / n_components
-    w = dw * (np.arange(n_components) + 0.5)
-    s_uu = seabed_transfer(w, depth) ** 2 * jonswap(w, hs, tp, gamma)
+    w, _ = midpoint_grid(tp, n_components, 5.0)
+    s_uu = bed_spectrum(w, depth, hs, tp, gamma)
     dt = tp / samples_per_peak_period
     t = np.arange(0.0, duration + 0.5 * dt, dt)
     u = np.empty_like(t)
