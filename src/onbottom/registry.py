@@ -66,6 +66,16 @@ class Registry(dict[str, E], Generic[E]):
             loader()
         return self
 
+    def snapshot(self) -> dict[str, E]:
+        """A copy of the entries, the built-in ones included (they are registered first)."""
+        return dict(self.load())
+
+    def restore(self, saved: Mapping[str, E]) -> None:
+        """Make the entries those of ``saved`` (a :meth:`snapshot`), in its order."""
+        self.load()
+        self.clear()
+        self.update(saved)
+
     def add(self, entry: E, *, replace: bool = False) -> E:
         """Register ``entry`` under ``entry.name``; a name taken is an error unless
         ``replace``."""

@@ -97,17 +97,11 @@ class FrictionAngle(LateralResistanceModel):
 
 @pytest.fixture
 def clean_registries():
-    soils = dict(soil_registry.SOIL_MODELS)
-    checks = dict(check_registry.CHECKS)
-    forces = dict(force_registry.FORCE_REGISTRY.load())
+    registries = (soil_registry.SOIL_MODELS, check_registry.CHECKS, force_registry.FORCE_REGISTRY)
+    saved = [reg.snapshot() for reg in registries]
     yield
-    for reg, saved in (
-        (soil_registry.SOIL_MODELS, soils),
-        (check_registry.CHECKS, checks),
-        (force_registry.FORCE_REGISTRY, forces),
-    ):
-        reg.clear()
-        reg.update(saved)
+    for reg, entries in zip(registries, saved, strict=True):
+        reg.restore(entries)
 
 
 def test_recipe_soil_model(clean_registries):
