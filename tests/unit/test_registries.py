@@ -81,3 +81,24 @@ def test_unknown_check_lists_the_choices():
     with pytest.raises(InputError, match=r"checks = 'generalised' is invalid.*'vertical'"):
         CheckOptions(checks=("generalised",))
     assert "vertical" in CHECKS
+
+
+def test_snapshot_of_an_unloaded_registry_keeps_the_builtin_entries():
+    """A snapshot taken before the first look-up still holds the built-in entries, so a
+    restore after a test's own registrations leaves the registry as a user would find it."""
+    from dataclasses import dataclass
+
+    from onbottom.registry import Registry
+
+    @dataclass(frozen=True)
+    class Entry:
+        name: str
+        description: str = "test"
+        options: None = None
+
+    reg: Registry[Entry] = Registry("thing", "things", loader=lambda: reg.add(Entry("builtin")))
+    saved = reg.snapshot()
+    assert list(saved) == ["builtin"]
+    reg.add(Entry("extra"))
+    reg.restore(saved)
+    assert reg.names() == ("builtin",)
