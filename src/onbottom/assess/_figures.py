@@ -224,7 +224,7 @@ def _vh_caption(used: list[dict[str, Any]]) -> str:
     forces = sorted({u["force"] for u in used})
     soils = sorted({u["soil"] for u in used})
     seeds = sorted({u["seed"] for u in used})
-    red = "; ".join(f"r_y {u['r_y']:.3g}, r_z {u['r_z']:.3g}" for u in used)
+    red = "; ".join(dict.fromkeys(f"r_y {u['r_y']:.3g}, r_z {u['r_z']:.3g}" for u in used))
     return (
         "V–H diagram at the given design: the peak load of every wave cycle of the dynamic"
         f" level's storm ({used[0]['duration'] / 3600.0:.3g} h, seed"
