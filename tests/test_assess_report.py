@@ -13,6 +13,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from onbottom.assess import assess
@@ -139,3 +140,80 @@ def test_the_pdf_holds_the_design(report):
         design = f"{value} ({level_name(s['governing_level'])})"
         assert "".join(design.split()) in dense, design
     assert re.search(r"page 1 of \d+", flat)
+
+
+# ---- figures from the models that ran ------------------------------------------------------------
+def _page(a, out) -> str:
+    from onbottom.assess._report import render, report_context
+
+    payload = json.loads((out / "results.json").read_text())
+    return render(report_context(a, payload))
+
+
+def test_a_figure_that_cannot_be_drawn_says_why(report, monkeypatch):
+    """No swallowed exception: the note names the figure, the error class and its message."""
+    import onbottom.assess._figures as figures
+    import onbottom.assess._report as page
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("no flow for this storm")
+
+    monkeypatch.setattr(figures, "vh_figure", broken)
+    monkeypatch.setattr(page, "strip_svg", lambda base: 1 / 0)
+    _route, a, out, _ = report
+    html = _page(a, out)
+    text = _text(html)
+    assert text.count("V–H diagram not drawn: RuntimeError: no flow for this storm") == len(
+        a.sections
+    )
+    assert "Dynamic level strip plot not drawn: ZeroDivisionError: division by zero" in text
+    assert html.count('class="fail figure-not-drawn"') >= len(a.sections) + 1
+    assert "alt='V–H diagram" not in html
+
+
+def test_the_vh_diagram_is_computed_with_the_route_force_model(report, monkeypatch):
+    """A spy on the fixed-pipe loads: every V–H cycle comes from the force model (and soil) that
+    the route built for the section's storms, named in the caption."""
+    import onbottom.hydro.fixed_pipe as fixed_pipe
+
+    seen = []
+    real = fixed_pipe.fixed_pipe_envelope
+
+    def spy(force_model, kinematics, **kw):
+        seen.append(force_model)
+        return real(force_model, kinematics, **kw)
+
+    monkeypatch.setattr(fixed_pipe, "fixed_pipe_envelope", spy)
+    route, a, out, _ = report
+    html = _page(a, out)
+    built = [st.setup.force_model for sec in route.sections for st in sec.storms]
+    assert seen and all(any(m is b for b in built) for m in seen)
+    assert {m.name for m in seen} == {route.force_model} == {"wake"}
+    text = _text(html)
+    assert text.count("force model wake (as built from the case's [hydro])") == len(a.sections)
+    assert "verley_sotberg soil model" in text
+    assert "Morison C_D 0.9" not in text
+
+
+def test_a_non_default_force_model_draws_its_own_loads(report):
+    """The same section with its storms on Morison drag alone (C_L = 0, given in place of the
+    route's wake model): every cycle's lift is zero, V = w_s (a default model would lift)."""
+    import dataclasses
+
+    from onbottom.assess._figures import _storm_envelope, vh_figure
+    from onbottom.hydro.force_model import MorisonLift
+
+    route, a, _out, _ = report
+    drag = MorisonLift(cd=1.2, cm=0.0, cl=0.0, added_mass=0.0)
+    sec = route.sections[0]
+    storms = tuple(
+        dataclasses.replace(st, setup=dataclasses.replace(st.setup, force_model=drag))
+        for st in sec.storms
+    )
+    sec = dataclasses.replace(sec, storms=storms)
+    env, used = _storm_envelope(sec.storms[0].setup)
+    assert used["force"] == "morison_lift" and env.n_cycles > 0
+    assert np.all(env.lift == 0.0)
+    assert np.all(env.vertical == sec.storms[0].setup.pipe.submerged_weight)
+    body, caption = vh_figure(a.sections[0], sec)
+    assert body.startswith("<img") and "force model morison_lift" in caption

@@ -156,7 +156,9 @@ def test_missing_module_makes_a_section_unavailable(tmp_path):
     assert "no_such" in by["zz_test_missing"].reason
     assert by["zz_test_raises"].state == "error" and "boom" in by["zz_test_raises"].reason
     assert res.n_fail == 1  # an error counts as a failure
-    assert "not available in this build" in res.index.read_text(encoding="utf-8")
+    page = res.index.read_text(encoding="utf-8")
+    assert "not available in this build" in page
+    assert "ValueError: boom" in page  # a section (or its figure) that fails says why, on the page
 
 
 def test_registry_order_and_validation():

@@ -15,13 +15,7 @@ SRC = Path(__file__).resolve().parents[2] / "src"
 PACKAGE = "onbottom"
 
 # Cycles that remain, each with its reason (keep this list minimal).
-KNOWN_CYCLES: dict[frozenset[str], str] = {
-    frozenset({"onbottom.assess._report", "onbottom.assess.output"}): (
-        "the report's template renderer (_report) reads output's figure and table helpers,"
-        " while output's report_html/write_outputs call the renderer (deferred import); the"
-        " split belongs with the design-report rework of assess/output.py"
-    ),
-}
+KNOWN_CYCLES: dict[frozenset[str], str] = {}
 
 
 def _module_name(path: Path) -> str:

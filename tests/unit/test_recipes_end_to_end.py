@@ -151,6 +151,11 @@ def test_route_case_names_models_with_their_own_kernels(tmp_path):
         assert storm.setup.soil.adhesion == 100.0
         assert isinstance(storm.setup.force_model, recipe_models.QuadraticDrag)
         assert storm.setup.force_model.cd == 0.9
+    # the design report's V–H diagram is drawn from those two models, not from defaults
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert "force model quadratic_drag (as built from the case&#39;s [hydro])" in page
+    assert "as-laid penetration of the adhesive_coulomb soil model" in page
+    assert "figure-not-drawn" not in page
 
 
 # ---- an unknown model name is a named error in every case kind -----------------------------------

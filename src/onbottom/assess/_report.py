@@ -22,19 +22,16 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from onbottom.assess.core import Assessment
-from onbottom.assess.output import (
+from onbottom.assess._figures import figure_part, history_svg, png, strip_svg, vh_part
+from onbottom.assess._wording import (
     CLAUSES,
     VALIDITY,
     WHY_LIGHTER,
-    _history_svg,
-    _png,
-    _section_validity,
-    _strip_svg,
-    _vh_figure,
     format_value,
     level_name,
+    section_validity,
 )
+from onbottom.assess.core import Assessment
 from onbottom.assess.pipeline import DISAGREEMENT_FACTOR
 
 __all__ = ["MARKS", "SUMMARY_COLUMNS", "render", "report_context", "section_marks"]
@@ -378,8 +375,7 @@ def _absolute_worked(s: dict[str, Any], T: Tables) -> dict[str, Any] | None:
 
 # ---- pipeline FE --------------------------------------------------------------------------------
 def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
-    from matplotlib.figure import Figure
-
+    """The pipeline FE of the governing section: lead, table, agreement, envelopes."""
     var = a.route.variable
     parts: list[dict[str, Any]] = []
     at = p.get("at_section_design") or {}
@@ -449,41 +445,47 @@ def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[st
                 "The FE runs one seed (the worst of the section at the given design); the"
                 " section's dynamic search takes every seed. The design reported is the one that"
                 " passes both.")})  # fmt: skip
-    env = p.get("envelopes")
-    if env:
-        fig = Figure(figsize=(7.5, 4.2), layout="constrained")
-        ax1, ax2 = fig.subplots(2, 1, sharex=True)
-        d = p["diameter_m"]
-        ax1.plot(env["x"], [v / d for v in env["max_abs_y"]], "k-", lw=1.2)
-        ax1.axhline(p["allowable_m"] / d, color="#c00", ls="--", lw=1.0, label="allowable")
-        ax1.set_ylabel("max |y| / D [-]")
-        ax1.legend(fontsize="small")
-        ax2.plot(env["x"], [100.0 * v for v in env["max_strain"]], "C3-", lw=1.2)
-        ax2.axhline(100.0 * p["strain_limit"], color="#c00", ls="--", lw=1.0,
-                    label="strain limit")  # fmt: skip
-        ax2.set_ylabel("max strain [%]")
-        ax2.set_xlabel("x along the line [m]")
-        ax2.legend(fontsize="small")
-        for ax in (ax1, ax2):
-            ax.grid(True, alpha=0.3)
-        parts.append({"kind": "figure", "html": _png(fig, "pipeline envelopes"),
-                      "caption": "Envelopes along the line at the accepted design. "
-                      + CLAUSES["pipeline_strain"]})  # fmt: skip
+    if p.get("envelopes"):
+        parts.append(figure_part("Pipeline FE envelopes", lambda: _envelopes_png(p),
+                                 "Envelopes along the line at the accepted design. "
+                                 + CLAUSES["pipeline_strain"]))  # fmt: skip
     return parts
 
 
+def _envelopes_png(p: dict[str, Any]) -> str:
+    """The pipeline FE's envelopes along the line: max |y| / D and max strain."""
+    from matplotlib.figure import Figure
+
+    env = p["envelopes"]
+    fig = Figure(figsize=(7.5, 4.2), layout="constrained")
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    d = p["diameter_m"]
+    ax1.plot(env["x"], [v / d for v in env["max_abs_y"]], "k-", lw=1.2)
+    ax1.axhline(p["allowable_m"] / d, color="#c00", ls="--", lw=1.0, label="allowable")
+    ax1.set_ylabel("max |y| / D [-]")
+    ax1.legend(fontsize="small")
+    ax2.plot(env["x"], [100.0 * v for v in env["max_strain"]], "C3-", lw=1.2)
+    ax2.axhline(100.0 * p["strain_limit"], color="#c00", ls="--", lw=1.0, label="strain limit")
+    ax2.set_ylabel("max strain [%]")
+    ax2.set_xlabel("x along the line [m]")
+    ax2.legend(fontsize="small")
+    for ax in (ax1, ax2):
+        ax.grid(True, alpha=0.3)
+    return png(fig, "pipeline envelopes")
+
+
 # ---- the page -----------------------------------------------------------------------------------
-def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
-    var = a.route.variable
-    parts: list[dict[str, Any]] = []
-    if s.get("no_design_reason"):
-        parts.append({"kind": "p", "c": "fail", "text": "NO DESIGN: " + s["no_design_reason"]})
-    parts.append(_soil_table(s, T))
+def _sea_table(s: dict[str, Any], T: Tables) -> dict[str, Any]:
+    """The section's design sea states and currents."""
     rows = [[cell(ss.get(k), text=(u == "")) if u == "" else cell(_fmt(ss.get(k)))
              for k, _, u in SEA_COLUMNS] for ss in s["sea_states"]]  # fmt: skip
-    parts.append(T.add(f"s{s['index']}-sea", f"Design sea states and currents: {s['name']}",
-                       [h + (f" [{u}]" if u and u != "-" else "") for _, h, u in SEA_COLUMNS],
-                       rows, wide=True))  # fmt: skip
+    return T.add(f"s{s['index']}-sea", f"Design sea states and currents: {s['name']}",
+                 [h + (f" [{u}]" if u and u != "-" else "") for _, h, u in SEA_COLUMNS],
+                 rows, wide=True)  # fmt: skip
+
+
+def _checks_table(s: dict[str, Any], T: Tables) -> dict[str, Any]:
+    """Every check at the given design, with its clause."""
     crow = []
     for c in s["checks"]:
         ok = c.get("pass")
@@ -495,12 +497,15 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
                      cell(_fmt(c.get("utilisation"))), verdict_cell(ok),
                      cell(CLAUSES.get(c["name"], ""), text=True),
                      cell(note, text=True)])  # fmt: skip
-    parts.append(T.add(f"s{s['index']}-checks", f"Checks at the given design: {s['name']}",
-                       ["Level", "Check", "Combination", "Condition", "Utilisation", "Verdict",
-                        "Clause", "Note"], crow, wide=True))  # fmt: skip
-    w = _absolute_worked(s, T)
-    if w:
-        parts.append(w)
+    return T.add(f"s{s['index']}-checks", f"Checks at the given design: {s['name']}",
+                 ["Level", "Check", "Combination", "Condition", "Utilisation", "Verdict",
+                  "Clause", "Note"], crow, wide=True)  # fmt: skip
+
+
+def _levels_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
+    """The design floor's words and the minimum design per level."""
+    var = a.route.variable
+    parts: list[dict[str, Any]] = []
     lrow = []
     for k, v in s["levels"].items():
         lrow.append([cell(level_name(k), text=True), _level_cell(s, k, var),
@@ -520,64 +525,68 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
             wide=True,
         )
     )
-    vh = _vh_figure(s, a.route.water_density)
-    if vh:
-        parts.append({"kind": "figure", "html": vh, "caption": (
-            "V–H diagram at the given design: the peak load of every wave cycle of a 3-h record"
-            " on a fixed pipe (Morison C_D 0.9, C_M 3.29, C_L 0.9, times r_y, r_z; seed 0),"
-            " V = w_s − F_Z, H = |F_Y|; crosses: the absolute check's design load; lines: the"
-            " soil's resistance H = μV + F_R at the as-laid penetration, without γ_SC. "
-            + CLAUSES["soil_resistance"])})  # fmt: skip
+    return parts
+
+
+def _seeds_table(s: dict[str, Any], base: dict[str, Any], T: Tables) -> dict[str, Any]:
+    """The dynamic level over seeds at the given design, per combination."""
+    srow = []
+    for n, b in base.items():
+        ys = b["max_displacement"]
+        srow.append([cell(n, text=True), len(ys), _fmt(b["diameter"], 4),
+                     _fmt(b["submerged_weight"], 4), _fmt(b["allowable"]),
+                     _fmt(st.mean(ys)), _fmt(st.stdev(ys) if len(ys) > 1 else 0.0),
+                     _fmt(max(ys)), _fmt(max(ys) / b["allowable"]),
+                     cell(", ".join(f"{y:.3g}" for y in ys), text=True)])  # fmt: skip
+    return T.add(
+        f"s{s['index']}-seeds",
+        f"Dynamic level over seeds (given design): {s['name']}",
+        [
+            "Combination",
+            "Seeds",
+            "D [m]",
+            "w_s [N/m]",
+            "Allowable [m]",
+            "mean max |y| [m]",
+            "std [m]",
+            "largest [m]",
+            "largest / allowable",
+            "max |y| per seed [m]",
+        ],
+        srow,
+        wide=True,
+    )
+
+
+def _dynamic_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
+    """The dynamic level: seeds strip, table over seeds, worst-seed histories, the search."""
+    var = a.route.variable
+    parts: list[dict[str, Any]] = []
     dyn = s.get("dynamic") or {}
     if dyn.get("base"):
-        parts.append({"kind": "figure", "html": _strip_svg(dyn["base"]), "caption":
-                      "Dynamic level at the given design: every seed's max |y| / allowable"
-                      " per combination (red: above the allowable)."})  # fmt: skip
-        srow = []
-        for n, b in dyn["base"].items():
-            ys = b["max_displacement"]
-            srow.append([cell(n, text=True), len(ys), _fmt(b["diameter"], 4),
-                         _fmt(b["submerged_weight"], 4), _fmt(b["allowable"]),
-                         _fmt(st.mean(ys)), _fmt(st.stdev(ys) if len(ys) > 1 else 0.0),
-                         _fmt(max(ys)), _fmt(max(ys) / b["allowable"]),
-                         cell(", ".join(f"{y:.3g}" for y in ys), text=True)])  # fmt: skip
-        parts.append(
-            T.add(
-                f"s{s['index']}-seeds",
-                f"Dynamic level over seeds (given design): {s['name']}",
-                [
-                    "Combination",
-                    "Seeds",
-                    "D [m]",
-                    "w_s [N/m]",
-                    "Allowable [m]",
-                    "mean max |y| [m]",
-                    "std [m]",
-                    "largest [m]",
-                    "largest / allowable",
-                    "max |y| per seed [m]",
-                ],
-                srow,
-                wide=True,
-            )
-        )
+        strip = ("Dynamic level at the given design: every seed's max |y| / allowable per"
+                 " combination (red: above the allowable).")  # fmt: skip
+        parts.append(figure_part("Dynamic level strip plot", lambda: strip_svg(dyn["base"]), strip))
+        parts.append(_seeds_table(s, dyn["base"], T))
         for n, b in dyn["base"].items():
             if b.get("history"):
-                parts.append({"kind": "figure", "html": _history_svg(n, b["history"],
-                              b["allowable"]), "caption": f"{n}: lateral displacement y(t) of"
-                              " the worst seed, dashed ±allowable."})  # fmt: skip
+                text = f"{n}: lateral displacement y(t) of the worst seed, dashed ±allowable."
+                draw = lambda n=n, b=b: history_svg(n, b["history"], b["allowable"])  # noqa: E731
+                parts.append(figure_part(f"Displacement history of {n}", draw, text))
     if dyn.get("bisection"):
         tr = "; ".join(f"{format_value(x, var)} → {_fmt(g)}" for x, g in dyn["bisection"]["trials"])
         parts.append({"kind": "p", "c": "muted", "text": (
             "Dynamic design search (g = max over combinations and seeds of max |y| / allowable;"
             f" pass at g ≤ 1): {tr}. {dyn['bisection']['message']} —"
             f" {dyn['bisection']['storms']} storms.")})  # fmt: skip
-    if a.pipeline and a.pipeline.get("index") == s["index"]:
-        parts.append({"kind": "h3", "id": f"fe{s['index']}", "text": "Pipeline FE"})
-        parts += _pipeline_parts(a.pipeline, a, T)
-    parts.append({"kind": "h3", "id": f"v{s['index']}", "text": "Assumptions and validity"})
-    parts.append({"kind": "ul", "c": "", "items": _section_validity(s, a) + s["notes"]})
-    parts.append(
+    return [x for x in parts if x is not None]
+
+
+def _validity_parts(s: dict[str, Any], a: Assessment) -> list[dict[str, Any]]:
+    """The section's assumptions and validity notes, and its run identity."""
+    return [
+        {"kind": "h3", "id": f"v{s['index']}", "text": "Assumptions and validity"},
+        {"kind": "ul", "c": "", "items": section_validity(s, a) + s["notes"]},
         {
             "kind": "p",
             "c": "muted",
@@ -587,9 +596,30 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
                 + (", reused from a previous run" if s["name"] in a.reused else "")
                 + "."
             ),
-        }
-    )
-    return parts
+        },
+    ]
+
+
+def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
+    """One section's page: soil, sea states, checks, the absolute check by hand, levels, the
+    V–H diagram, the dynamic level, the pipeline FE (governing section) and validity."""
+    parts: list[dict[str, Any]] = []
+    if s.get("no_design_reason"):
+        parts.append({"kind": "p", "c": "fail", "text": "NO DESIGN: " + s["no_design_reason"]})
+    parts += [_soil_table(s, T), _sea_table(s, T), _checks_table(s, T)]
+    w = _absolute_worked(s, T)
+    if w:
+        parts.append(w)
+    parts += _levels_parts(s, a, T)
+    vh = vh_part(s, a.route.sections[s["index"]], a.route.force_model,
+                 CLAUSES["soil_resistance"])  # fmt: skip
+    if vh:
+        parts.append(vh)
+    parts += _dynamic_parts(s, a, T)
+    if a.pipeline and a.pipeline.get("index") == s["index"]:
+        parts.append({"kind": "h3", "id": f"fe{s['index']}", "text": "Pipeline FE"})
+        parts += _pipeline_parts(a.pipeline, a, T)
+    return parts + _validity_parts(s, a)
 
 
 def report_context(

@@ -28,7 +28,6 @@ from __future__ import annotations
 import contextlib
 import datetime as _dt
 import hashlib
-import html
 import json
 import math
 import os
@@ -39,6 +38,14 @@ from pathlib import Path
 from typing import Any
 
 from onbottom._version import __version__, content_hash
+from onbottom.assess._report import render, report_context
+from onbottom.assess._wording import (
+    CLAUSES,
+    VALIDITY,
+    WHY_LIGHTER,
+    format_value,
+    level_name,
+)
 from onbottom.assess.core import Assessment
 from onbottom.errors import InputError
 from onbottom.results import atomic_write, save_dataset, write_text_atomic
@@ -70,67 +77,6 @@ RESULTS_KEYS = (
     "validity",
     "clauses",
     "pipeline",
-)
-
-CLAUSES: dict[str, str] = {
-    "vertical_stability": "DNV-RP-F109 (2017) §3.3, Eq 3.1 (flotation, γ_W = 1.1)",
-    "absolute_lateral": "DNV-RP-F109 (2017) §3.6, Eq 3.38 (with C*_Y Table 3-9, γ_SC Tables"
-    " 3-5 to 3-8, load reductions Eqs 3.17–3.22)",
-    "absolute_vertical": "DNV-RP-F109 (2017) §3.6, Eq 3.39 (with C*_Z Table 3-10)",
-    "generalized_lateral": "DNV-RP-F109 (2010/2017) §3.5 (groups K, M, N, L); L_stable and"
-    " L_10 from F109's Tables 3-2 to 3-4 (sand; clay not reproduced), checks/f109_generalized.py",
-    "dynamic_curves_lateral": "the tool's own `onbottom curves` sweeps (dynamic model), read in"
-    " F109's groups K, M, N, L: not F109's tables",
-    "dynamic_lateral": "DNV-RP-F109 (2017) §3.4 (dynamic lateral stability analysis;"
-    " allowable displacement §3.4.1); storm section solver docs/theory/storm_section.md",
-    "design_sea_state": "DNV-RP-F109 (2017) §3.4.3 (JONSWAP, transfer to the seabed, U_s,"
-    " T_u; directional spreading R_D)",
-    "soil_resistance": "DNV-RP-F109 (2017) §3.4.6 (Coulomb friction μ and passive resistance"
-    " F_R, Eqs 3.29–3.32 sand, 3.33–3.36 clay), as in Eq 3.38",
-    "pipeline_strain": "DNV-RP-F109 (2017) §3.4.1 / §3.5 (displacement beyond 0.5D: check the"
-    " strain); DNV-ST-F101 (2021) §5.4.12 displacement-controlled criterion (the limit here is a"
-    " user value, default 0.2 %)",
-}
-
-VALIDITY: list[str] = [
-    "Verley & Sotberg sand model: the penetration-from-work law (Eq 6) and the maximum"
-    " penetration law (Eq 8) are reconstructions (onbottom.soil.verley_sotberg); the dynamic"
-    " level on sand rests on them.",
-    "Wake force model (hydro/wake.py; the default of the dynamic level, as of `onbottom"
-    " curves`): a reconstruction of Lambrakos et al. (1987) / Wake II calibrated only to F109's"
-    " peak-load coefficients C*_Y, C*_Z (Tables 3-9/3-10), not to measured force histories.",
-    "Morison + lift with constant coefficients ([hydro] model = 'morison'): its peak loads"
-    " are about 2.5 times below F109's C*_Y, C*_Z, so a dynamic design weight from"
-    " it is unconservative; without wake effects it also misses the reduced drift under"
-    " opposing wave and current (Chao, Lambrakos & Verley, OTC 6060, 1989).",
-    "F109 tables (C*_Y, C*_Z, γ_SC) as in two agreeing public transcriptions"
-    " (checks/f109_tables.py); check against the standard.",
-    "The generalized level uses F109's own tables (§3.5; sand Tables 3-2 to 3-4 from public"
-    " transcriptions, confidence per table in docs/theory/dnv_rp_f109.md; clay not"
-    " reproduced) and never extrapolates; where they do not cover the point it says 'not"
-    " covered'. The design is never below it unless [levels] allow_below_generalized says why.",
-    "Pipeline FE of the governing section (when run): a straight stretch with fixed (or"
-    " pinned/free) ends, the section's soil and force model, one seed (the worst of the"
-    " section at the given design); its strain limit is a user value (default 0.2 %, a"
-    " screening value, not the DNV-ST-F101 design strain).",
-]
-
-RECONSTRUCTED = {
-    "sand": VALIDITY[0],
-    "wake": VALIDITY[1],
-    "morison": VALIDITY[2],
-}
-"""The validity note of each reconstructed model, by seabed or force-model name."""
-
-WHY_LIGHTER = (
-    "Expected: the absolute method (F109 §3.6) is conservative by design — it asks for no"
-    " movement at all under the single design oscillation (U*, T*) with peak-load"
-    " coefficients and ignores the resistance the pipe gains as it penetrates and the"
-    " displacement the criterion allows (0.5D or 10D). The dynamic level lets the pipe move up"
-    " to the allowable displacement in a full storm with soil resistance that builds up. It"
-    " rests on reconstructed models (the wake force model, the default, calibrated to F109's"
-    " peak-load coefficients only; the Verley & Sotberg sand laws): read the saving with their"
-    " validity notes."
 )
 
 
@@ -249,196 +195,8 @@ def results_payload(a: Assessment, case_text: str | None) -> dict[str, Any]:
     })  # fmt: skip
 
 
-# ---- HTML ------------------------------------------------------------------------------------
-def _fmt(x: Any, unit: str = "", digits: int = 3) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "—"
-    if isinstance(x, bool):
-        return "pass" if x else "FAIL"
-    if isinstance(x, (int, float)):
-        return f"{x:.{digits}g}{(' ' + unit) if unit else ''}"
-    return html.escape(str(x))
-
-
-LEVEL_NAMES = {
-    "vertical": "flotation",
-    "absolute": "absolute",
-    "generalized": "generalized",
-    "dynamic": "dynamic",
-    "dynamic_curves": "dynamic curves",
-    "pipeline_fe": "pipeline FE",
-}
-"""How each level is named on the page and the console."""
-
-
-def level_name(level: str | None) -> str:
-    """The printed name of a level key (None: "none")."""
-    return "none" if level is None else LEVEL_NAMES.get(level, level)
-
-
-def format_value(x: Any, variable: str) -> str:
-    """A design value as text: mm of concrete, N/m of submerged weight, or "no solution"."""
-    if x is None:
-        return "no solution"
-    if variable == "concrete_thickness":
-        return f"{1e3 * x:.1f} mm"
-    return f"{x:.0f} N/m"
-
-
-def _strip_svg(base: dict[str, Any]) -> str:
-    """Inline SVG: every seed's max |y| / allowable per combination (a strip plot)."""
-    names = list(base)
-    if not names:
-        return ""
-    ratios = {n: [y / base[n]["allowable"] for y in base[n]["max_displacement"]] for n in names}
-    top = max(1.2, max(max(v) for v in ratios.values()) * 1.1)
-    w, row, left = 640, 28, 230
-    h = row * len(names) + 40
-
-    def xpos(r: float) -> float:
-        return left + (w - left - 20) * min(r, top) / top
-
-    parts = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" role="img"'
-        ' aria-label="max displacement over allowable per seed">',
-        f'<line x1="{xpos(1.0):.1f}" y1="5" x2="{xpos(1.0):.1f}" y2="{h - 25}" stroke="#c00"'
-        ' stroke-dasharray="4 3"/>',
-        f'<text x="{xpos(1.0) + 3:.1f}" y="15" font-size="11" fill="#c00">allowable</text>',
-        f'<line x1="{left}" y1="{h - 25}" x2="{w - 20}" y2="{h - 25}" stroke="#333"/>',
-        f'<text x="{left}" y="{h - 8}" font-size="11">0</text>',
-        f'<text x="{w - 130}" y="{h - 8}" font-size="11">{top:.2g} × allowable</text>',
-    ]
-    for k, n in enumerate(names):
-        y = 20 + k * row
-        parts.append(
-            f'<text x="5" y="{y + 4}" font-size="11">{html.escape(n[:34])}</text>'
-            f'<line x1="{left}" y1="{y}" x2="{w - 20}" y2="{y}" stroke="#ddd"/>'
-        )
-        for r in ratios[n]:
-            color = "#c00" if r > 1.0 else "#06c"
-            parts.append(
-                f'<circle cx="{xpos(r):.1f}" cy="{y}" r="4" fill="{color}" fill-opacity="0.7"/>'
-            )
-    parts.append("</svg>")
-    return "".join(parts)
-
-
-def _history_svg(name: str, h: dict[str, Any], allowable: float) -> str:
-    """Inline SVG: y(t) of the worst seed with the ±allowable lines."""
-    t, y = h.get("time") or [], h.get("y") or []
-    if len(t) < 2:
-        return ""
-    w, hh, left, pad = 640, 160, 58, 18
-    top = max(max(abs(v) for v in y), allowable) * 1.1 or 1.0
-    tx = lambda v: left + (w - left - 10) * (v - t[0]) / (t[-1] - t[0])  # noqa: E731
-    ty = lambda v: hh / 2 - (hh / 2 - pad) * v / top  # noqa: E731
-    pts = " ".join(f"{tx(a):.1f},{ty(b):.1f}" for a, b in zip(t, y, strict=True))
-    return (
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{hh + 14}" role="img"'
-        f' aria-label="lateral displacement history, seed {h["seed"]}">'
-        f'<text x="{left}" y="12" font-size="11">{html.escape(name)} — seed {h["seed"]}'
-        f" (worst): y(t) [m], dashed ±allowable</text>"
-        f'<line x1="{left}" y1="{ty(0):.1f}" x2="{w - 10}" y2="{ty(0):.1f}" stroke="#999"/>'
-        + "".join(
-            f'<line x1="{left}" y1="{ty(s * allowable):.1f}" x2="{w - 10}"'
-            f' y2="{ty(s * allowable):.1f}" stroke="#c00" stroke-dasharray="4 3"/>'
-            for s in (1, -1)
-        )
-        + f'<polyline fill="none" stroke="#06c" stroke-width="1" points="{pts}"/>'
-        f'<text x="22" y="{ty(top / 1.1) + 4:.1f}" font-size="10">{top / 1.1:.2g}</text>'
-        f'<text x="22" y="{ty(0) + 4:.1f}" font-size="10">0</text>'
-        f'<text x="{left}" y="{hh + 12}" font-size="10">{t[0]:.0f}</text>'
-        f'<text x="{(left + w) / 2 - 30:.0f}" y="{hh + 12}" font-size="11">time t [s]</text>'
-        f'<text x="12" y="{hh / 2 + 30:.0f}" font-size="11" transform="rotate(-90 12'
-        f' {hh / 2 + 30:.0f})">y [m]</text>'
-        f'<text x="{w - 40}" y="{hh + 12}" font-size="10">{t[-1]:.0f}</text></svg>'
-    )
-
-
-# ---- figures (PNG data URIs: the report stays one file) ---------------------------------------
-def _png(fig: Any, alt: str) -> str:
-    import base64
-    import io
-
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=160)
-    data = base64.b64encode(buf.getvalue()).decode("ascii")
-    width = int(fig.get_figwidth() * 80)  # drawn at 160 dpi, shown at 80 px per inch
-    return f"<img alt='{html.escape(alt)}' width='{width}' src='data:image/png;base64,{data}'>"
-
-
-def _vh_figure(s: dict[str, Any], water_density: float) -> str:
-    """V–H diagram of the section at the given design: every wave cycle's peak load in the
-    design sea states (:func:`onbottom.hydro.load_envelope.load_envelope`, drawn by
-    :func:`onbottom.plotting.load_envelope.plot_load_envelope`), F109's design load point
-    (w_s − F*_Z, F*_Y) of the absolute check and the soil's resistance envelope H = μV + F_R
-    (Eq 3.38 without γ_SC) of the three combinations with the highest absolute utilisation."""
-    from onbottom.hydro.forces import MorisonCoefficients
-    from onbottom.hydro.load_envelope import load_envelope
-    from onbottom.plotting.load_envelope import plot_load_envelope
-
-    seas = {ss["combination"]: ss for ss in s["sea_states"]}
-    rows = [
-        c for c in s["checks"]
-        if c["name"] == "absolute_lateral" and "f_y" in (c.get("details") or {})
-        and c["combination"] in seas and c.get("utilisation") is not None
-    ]  # fmt: skip
-    rows = sorted(rows, key=lambda c: -c["utilisation"])[:3]
-    if not rows:
-        return ""
-    envs, labels = [], []
-    try:
-        for c in rows:
-            det, ss = c["details"], seas[c["combination"]]
-            envs.append(
-                load_envelope(
-                    hs=ss["hs"], tp=ss["tp"], depth=s["water_depth"], diameter=det["diameter"],
-                    submerged_weight=det["submerged_weight"], current=max(det["v_star"], 0.0),
-                    gamma=ss["gamma"], wave_direction_deg=ss["wave_direction_deg"] or 90.0,
-                    spreading_s=ss["spreading_s"], coefficients=MorisonCoefficients(),
-                    r_y=det["r_y"], r_z=det["r_z"], density=water_density,
-                )
-            )  # fmt: skip
-            labels.append(str(c["combination"])[:28])
-    except Exception as exc:  # a figure must not sink the report; the reason is shown
-        return f"<p class='note'>V–H diagram not drawn: {html.escape(str(exc))}</p>"
-    fig = plot_load_envelope(envs, labels, title=f"{s['name']}: V–H at the given design")
-    ax = fig.axes[0]
-    vmax = max(ax.get_xlim()[1], 1e-3)
-    for k, c in enumerate(rows):
-        det = c["details"]
-        mu, fr = det["friction_coefficient"], det.get("passive_resistance") or 0.0
-        ax.plot([0.0, vmax], [1e-3 * fr, mu * vmax + 1e-3 * fr], color=f"C{k}", lw=1.5,
-                label=f"resistance μV + F_R ({str(c['combination'])[:18]})")  # fmt: skip
-        ax.plot(1e-3 * (det["submerged_weight"] - det["f_z"]), 1e-3 * det["f_y"], marker="X",
-                ms=10, color=f"C{k}", mec="k", ls="none",
-                label=f"F109 design load, util. {c['utilisation']:.2f}")  # fmt: skip
-    ax.set_ylim(0.0, max(ax.get_ylim()[1], max(1e-3 * r["details"]["f_y"] for r in rows) * 1.2))
-    fig.set_size_inches(9.5, 5.0)
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="x-small")
-    return _png(fig, f"V–H diagram of {s['name']}")
-
-
-def _section_validity(s: dict[str, Any], a: Assessment) -> list[str]:
-    """The assumptions and validity notes that apply to this section (reconstructed models
-    flagged)."""
-    notes = []
-    model = s["seabed_model"]
-    if model in RECONSTRUCTED and "dynamic" in s["levels"]:
-        notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[model])
-    force = a.route.force_model if "dynamic" in s["levels"] else None
-    if force in RECONSTRUCTED:
-        notes.append("RECONSTRUCTED MODEL — " + RECONSTRUCTED[force])
-    notes.append(VALIDITY[3])
-    if "generalized" in s["levels"]:
-        notes.append(VALIDITY[4])
-    return notes
-
-
 def report_html(a: Assessment, payload: dict[str, Any]) -> str:
     """The design report (self-contained HTML: the shared report style, inline figures)."""
-    from onbottom.assess._report import render, report_context
-
     return render(report_context(a, payload))
 
 
@@ -459,8 +217,6 @@ def write_outputs(
     ds = a.dynamic_dataset()
     if ds.data_vars:
         files.append(save_dataset(ds, outp / "dynamic.nc"))
-    from onbottom.assess._report import render, report_context
-
     ctx = report_context(a, payload, notes=notes)
     for tb in ctx["tables"]:
         files.append(write_text_atomic(outp / tb["csv"], tb["csv_text"]))

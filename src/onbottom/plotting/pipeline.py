@@ -16,10 +16,11 @@ __all__ = ["animate_pipeline", "plot_pipeline_result"]
 
 
 def _records(result: Any):
-    try:
-        return result.open_dataset()
-    except Exception:
+    """The run's records, or None when it kept none (run without ``record_interval``); records
+    that cannot be read raise (a figure is never drawn from a silently dropped file)."""
+    if getattr(result, "data", None) is None and getattr(result, "netcdf", None) is None:
         return None
+    return result.open_dataset()
 
 
 def plot_pipeline_result(result: Any, *, title: str | None = None, n_snapshots: int = 6):

@@ -372,45 +372,62 @@ def build_report(
     rendered: list[RenderedSection] = []
     files: list[Path] = []
     for sec in sections:
-        if isinstance(sec, UnavailableSection):
-            rendered.append(
-                RenderedSection(
-                    name=sec.name,
-                    title=sec.title,
-                    order=sec.order,
-                    state="unavailable",
-                    reason=sec.reason,
-                )
-            )
-            continue
-        missing = missing_requirements(sec)
-        if missing:
-            rendered.append(
-                RenderedSection(
-                    name=sec.name,
-                    title=sec.title,
-                    order=sec.order,
-                    state="unavailable",
-                    reason=f"module {', '.join(missing)} is not in this build",
-                )
-            )
-            continue
-        if (wanted is not None and sec.name not in wanted) or (fast and sec.slow):
-            why = "left out by --fast (slow section)" if wanted is None else "not in --only"
-            rendered.append(
-                RenderedSection(
-                    name=sec.name, title=sec.title, order=sec.order, state="skipped", reason=why
-                )
-            )
-            continue
-        ctx = SectionContext(name=sec.name, out_dir=out_dir, repo_root=root)
-        rs = _run(sec, ctx)
-        files += [out_dir / f.path for f in rs.content.figures]
-        files += _write_tables(rs, out_dir)
+        rs, written = _section_outcome(sec, wanted, fast, out_dir, root)
         rendered.append(rs)
+        files += written
 
     prov = provenance(root)
     prov["run_time"] = round(time.perf_counter() - t_start, 2)
+    index, json_path = _write_page(out_dir, title, rendered, prov)
+    return ReportResult(
+        index=index,
+        json_path=json_path,
+        sections=rendered,
+        provenance=prov,
+        files=[index, json_path, *files],
+    )
+
+
+def _section_outcome(
+    sec: Section | UnavailableSection,
+    wanted: set[str] | None,
+    fast: bool,
+    out_dir: Path,
+    root: Path | None,
+) -> tuple[RenderedSection, list[Path]]:
+    """One section of the report: unavailable, skipped, or run (its figures and tables
+    written into ``out_dir``); the files it wrote."""
+    if isinstance(sec, UnavailableSection):
+        rs = RenderedSection(
+            name=sec.name, title=sec.title, order=sec.order, state="unavailable", reason=sec.reason
+        )
+        return rs, []
+    missing = missing_requirements(sec)
+    if missing:
+        rs = RenderedSection(
+            name=sec.name,
+            title=sec.title,
+            order=sec.order,
+            state="unavailable",
+            reason=f"module {', '.join(missing)} is not in this build",
+        )
+        return rs, []
+    if (wanted is not None and sec.name not in wanted) or (fast and sec.slow):
+        why = "left out by --fast (slow section)" if wanted is None else "not in --only"
+        rs = RenderedSection(
+            name=sec.name, title=sec.title, order=sec.order, state="skipped", reason=why
+        )
+        return rs, []
+    ctx = SectionContext(name=sec.name, out_dir=out_dir, repo_root=root)
+    rs = _run(sec, ctx)
+    return rs, [out_dir / f.path for f in rs.content.figures] + _write_tables(rs, out_dir)
+
+
+def _write_page(
+    out_dir: Path, title: str, rendered: list[RenderedSection], prov: dict[str, Any]
+) -> tuple[Path, Path]:
+    """Write ``report.json`` and, last (a whole index.html means a whole report),
+    ``index.html``; return their paths."""
     n_pass = sum(s.n_pass for s in rendered)
     n_fail = sum(s.n_fail for s in rendered)
     html = (
@@ -445,12 +462,6 @@ def build_report(
             allow_nan=False,
         ),
     )
-    index = out_dir / "index.html"  # last: a whole index.html means a whole report
+    index = out_dir / "index.html"
     write_text_atomic(index, html)
-    return ReportResult(
-        index=index,
-        json_path=json_path,
-        sections=rendered,
-        provenance=prov,
-        files=[index, json_path, *files],
-    )
+    return index, json_path

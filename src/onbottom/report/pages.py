@@ -201,12 +201,23 @@ def metocean_sections(
     notes : sequence of str
         The command's notes (extrapolation, sectors without values).
     """
+    tail = _tail_section(result, figures)
+    sections = [
+        ("data", "Hindcast", _metocean_data(result, source)),
+        ("extremes", "Storms and return values", _metocean_extremes(result, figures)),
+        *([("tail", "What the tail fit can be trusted with", tail)] if tail else []),
+        ("joint", "Joint model and environmental contours", _metocean_joint(result, figures)),
+        ("design_table", "DNV-RP-F109 design table", _metocean_design_table(result, rows)),
+        ("assumptions", "Assumptions and limits", _metocean_assumptions(notes)),
+    ]
+    return sections, _metocean_provenance(result, source)
+
+
+def _metocean_data(result, source: Path) -> SectionContent:
+    """The hindcast: its length, step, series and their statistics."""
     import numpy as np
 
     hc = result.hindcast
-    o = result.options
-    rps = list(o.return_periods)
-    conf = f"{100 * o.confidence:g} %"
     data_rows = []
     for name, arr, unit in (
         ("H_s", hc.hs, "m"),
@@ -247,6 +258,14 @@ def metocean_sections(
             )
         ],
     )
+    return data
+
+
+def _metocean_extremes(result, figures: dict[str, str]) -> SectionContent:
+    """Storms over threshold, GPD parameters and return values per sector and series."""
+    o = result.options
+    rps = list(o.return_periods)
+    conf = f"{100 * o.confidence:g} %"
     ext_rows = []
     for name in ["omni", *result.sectors]:
         for what, levels, unit in (("H_s", result.hs, "m"), ("current", result.current, "m/s")):
@@ -278,7 +297,7 @@ def metocean_sections(
                 " intervals.",
             )
         )
-    extremes = SectionContent(
+    return SectionContent(
         summary=f"Peaks over threshold: each series' threshold gives about {o.storm_rate:g}"
         f" storms a year, exceedances closer than {o.r_hours:g} h are one storm; generalised"
         f" Pareto fit of the storm peaks (pyextremes), {o.ci_method} {conf} intervals.",
@@ -293,6 +312,10 @@ def metocean_sections(
         ],
         figures=figs_ext,
     )
+
+
+def _metocean_joint(result, figures: dict[str, str]) -> SectionContent:
+    """The H_s–T_p(–current) joint model and the IFORM contours."""
     j = result.joint
     jrows = [
         ["H_s Weibull α, β, γ", f"{j.hs_scale:.4f} m, {j.hs_shape:.4f}, {j.hs_location:.4f} m"],
@@ -314,7 +337,7 @@ def metocean_sections(
             )
         )
     crow = [[f"{rp:g}", float(h.max())] for rp, (h, _) in result.contours.items()]
-    joint = SectionContent(
+    return SectionContent(
         summary="H_s–T_p: DNV-RP-C205 (2019) §3.6.3 model fitted by virocon (Weibull H_s by"
         " moments, log-normal T_p | H_s); IFORM contours (virocon). Current: Weibull speed"
         " joined to H_s by a Gaussian copula (ρ from Spearman's ρ_S)"
@@ -330,6 +353,11 @@ def metocean_sections(
         ],
         figures=figs_joint,
     )
+
+
+def _metocean_design_table(result, rows) -> SectionContent:
+    """The DNV-RP-F109 design table per sector."""
+    rps = list(result.options.return_periods)
     cols = ["sector", "centre [deg]"]
     for rp in rps:
         cols += [f"H_s {rp:g} y [m]", f"T_p {rp:g} y [s]"]
@@ -347,7 +375,7 @@ def metocean_sections(
             if r.current_with_hs is not None:
                 line += [_f(r.current_with_hs[i]), _f(r.current_with_hs_p90[i])]
         trows.append(line)
-    table = SectionContent(
+    return SectionContent(
         summary="Per sector (waves coming from; current sectored by where it comes from): the"
         " values DNV-RP-F109 (2017) §3.4.2's combinations need — 100-year waves with the"
         " 10-year current and 10-year waves with the 100-year current — and, from the joint"
@@ -355,7 +383,11 @@ def metocean_sections(
         " alternative). design_table.csv and case_<sector>.toml hold the same values.",
         tables=[Table(caption="Design table", columns=cols, rows=trows, digits=3)],
     )
-    assumptions = SectionContent(
+
+
+def _metocean_assumptions(notes: Sequence[str]) -> SectionContent:
+    """Assumptions and limits, with the command's notes."""
+    return SectionContent(
         notes=[
             "Storms are independent (declustering) and the climate stationary over the record.",
             "Return values beyond about 4 times the record length are extrapolations: read"
@@ -379,20 +411,13 @@ def metocean_sections(
             "docs/theory/metocean.md",
         ],
     )
-    tail_section = _tail_section(result, figures)
-    sections = [
-        ("data", "Hindcast", data),
-        ("extremes", "Storms and return values", extremes),
-        *(
-            [("tail", "What the tail fit can be trusted with", tail_section)]
-            if tail_section
-            else []
-        ),
-        ("joint", "Joint model and environmental contours", joint),
-        ("design_table", "DNV-RP-F109 design table", table),
-        ("assumptions", "Assumptions and limits", assumptions),
-    ]
-    prov = {
+
+
+def _metocean_provenance(result, source: Path) -> dict[str, Any]:
+    """Provenance rows: the hindcast, its hash, the options, the package versions."""
+    o = result.options
+    rps = list(o.return_periods)
+    return {
         "hindcast": str(source),
         "hindcast SHA-256": _sha256(source),
         "options": (
@@ -403,7 +428,6 @@ def metocean_sections(
         "packages": f"pyextremes {_version('pyextremes')}, virocon {_version('virocon')},"
         f" scipy {_version('scipy')}",
     }
-    return sections, prov
 
 
 # --------------------------------------------------------------------------- reliability
@@ -421,6 +445,26 @@ def reliability_sections(
     case : Path
         The case file.
     """
+    est = payload["estimates"]
+    sections = [
+        ("climate", "Storm climate and uncertain inputs", _reliability_climate(payload)),
+        ("estimates", "Exceedance probabilities", _reliability_estimates(est, figures)),
+        ("importance", "Importance of the inputs", _reliability_importance(est, figures)),
+    ]
+    d = payload.get("design")
+    if d is not None:
+        design = _reliability_design(d, figures)
+        sections.append(("design", "Response-based design on the environmental contour", design))
+    t = payload.get("target")
+    if t:
+        sections.append(("target", "Against the DNV-OS-F101 target", _reliability_target(t)))
+    assumptions = _reliability_assumptions(payload)
+    sections.append(("campaign", "Campaign, assumptions and limits", assumptions))
+    return sections, _reliability_provenance(payload, case)
+
+
+def _reliability_climate(payload: dict[str, Any]) -> SectionContent:
+    """The storm climate (rate, GPD, sectors, current model) and the random inputs."""
     cl = payload.get("climate") or {}
     crows: list[list[Any]] = [
         ["storms per year λ [1/y]", payload["storms_per_year"]],
@@ -453,14 +497,17 @@ def reliability_sections(
                 f" Gaussian copula ρ {cm['rho']:.3f}",
             ]
         )
-    climate = SectionContent(
+    return SectionContent(
         summary="Each storm's peak sea state is drawn from the long-term model of the site"
         " (storm-peak H_s: Poisson rate and GPD; T_p | H_s; the sector; the current | H_s)"
         " with the uncertain soil inputs and the storm seed; one dynamic section run per"
         " storm gives its maximum lateral displacement Y.",
         tables=[Table(caption="Storm climate and inputs", columns=["", "value"], rows=crows)],
     )
-    est = payload["estimates"]
+
+
+def _reliability_estimates(est: list[dict[str, Any]], figures: dict[str, str]) -> SectionContent:
+    """P[Y > limit] per storm, per year and in the design life, with their intervals."""
     erows = []
     for e in est:
         le = "≤ " if e["upper_bound"] else ""  # an upper bound (no failure, or levels short)
@@ -499,7 +546,7 @@ def reliability_sections(
         )
         if k in figures
     ]
-    estimates = SectionContent(
+    return SectionContent(
         summary="P[Y > limit] per storm by the estimator of the case with its 95 % interval"
         " (Monte Carlo: Clopper–Pearson, a flagged one-sided bound when no storm fails;"
         " importance sampling: the weights' standard error; subset simulation: Au & Beck's CV"
@@ -531,12 +578,16 @@ def reliability_sections(
         ],
         figures=figs,
     )
+
+
+def _reliability_importance(est: list[dict[str, Any]], figures: dict[str, str]) -> SectionContent:
+    """What drives failure: E[u | failure] and SRRC² per limit."""
     names = sorted({k for e in est for k in e["importance"]})
     irows = [[e["label"], e["importance_kind"]] + [e["importance"].get(n) for n in names]
              for e in est]  # fmt: skip
     fnames = list(dict.fromkeys(k for e in est for k in e.get("failure_mean", {})))
     frows = [[e["label"]] + [e["failure_mean"].get(n) for n in fnames] for e in est]
-    importance = SectionContent(
+    return SectionContent(
         summary="What drives failure, two measures that answer different questions."
         " Mean standardized input given failure, E[u | failure]: how many standard deviations"
         " from its median each input stood in the storms that failed (the failing storms of"
@@ -563,39 +614,57 @@ def reliability_sections(
         if "importance" in figures
         else [],
     )
-    sections = [
-        ("climate", "Storm climate and uncertain inputs", climate),
-        ("estimates", "Exceedance probabilities", estimates),
-        ("importance", "Importance of the inputs", importance),
+
+
+def _reliability_design(d: dict[str, Any], figures: dict[str, str]) -> SectionContent:
+    """The response-based design along the environmental contour."""
+    g, f = d["governing"], d["f109"]
+    drows = [
+        [f"{p['hs']:.2f}", f"{p['tp']:.2f}", p["seeds"], p.get("mean"), p.get("fractile")]
+        for p in d["points"]
     ]
-    d = payload.get("design")
-    if d is not None:
-        g, f = d["governing"], d["f109"]
-        drows = [
-            [f"{p['hs']:.2f}", f"{p['tp']:.2f}", p["seeds"], p.get("mean"), p.get("fractile")]
-            for p in d["points"]
-        ]
-        design = SectionContent(
-            summary=f"Response-based design: dynamic runs along the {d['return_period']:g}-year"
-            f" IFORM contour; the design displacement is the {d['fractile']:g} fractile at the"
-            f" governing point (H_s {g['hs']:.2f} m, T_p {g['tp']:.1f} s):"
-            f" {d['design_displacement']:.4g} m, against {f['fractile']:.4g} m for F109's"
-            f" return-period sea state (H_s {f['hs']:.2f} m, T_p {f['tp']:.1f} s).",
-            tables=[
-                Table(
-                    caption="Contour points",
-                    columns=["H_s [m]", "T_p [s]", "seeds", "mean Y [m]", "fractile Y [m]"],
-                    rows=drows,
-                    digits=4,
-                )
-            ],
-            figures=[FigureRef(figures["design"], "Maximum displacement along the contour.")]
-            if "design" in figures
-            else [],
-        )
-        sections.append(("design", "Response-based design on the environmental contour", design))
+    return SectionContent(
+        summary=f"Response-based design: dynamic runs along the {d['return_period']:g}-year"
+        f" IFORM contour; the design displacement is the {d['fractile']:g} fractile at the"
+        f" governing point (H_s {g['hs']:.2f} m, T_p {g['tp']:.1f} s):"
+        f" {d['design_displacement']:.4g} m, against {f['fractile']:.4g} m for F109's"
+        f" return-period sea state (H_s {f['hs']:.2f} m, T_p {f['tp']:.1f} s).",
+        tables=[
+            Table(
+                caption="Contour points",
+                columns=["H_s [m]", "T_p [s]", "seeds", "mean Y [m]", "fractile Y [m]"],
+                rows=drows,
+                digits=4,
+            )
+        ],
+        figures=[FigureRef(figures["design"], "Maximum displacement along the contour.")]
+        if "design" in figures
+        else [],
+    )
+
+
+def _reliability_target(t: dict[str, Any]) -> SectionContent:
+    """The annual probability per limit against the DNV-OS-F101 target."""
+    return SectionContent(
+        summary=f"Annual probability per limit against the target"
+        f" {t['annual_target']:.0e} per year of the {t['safety_class']} safety class"
+        f" ({t['source']}): pass when the 95 % interval's upper end lies below it,"
+        " fail when its lower end lies above it, undecided otherwise.",
+        tables=[
+            Table(
+                caption="Annual probability against the target",
+                columns=["limit", "P per year", "95 % upper", "verdict"],
+                rows=[[r["label"], r["annual"], r["upper"], r["verdict"]] for r in t["limits"]],
+                digits=3,
+            )
+        ],
+    )
+
+
+def _reliability_assumptions(payload: dict[str, Any]) -> SectionContent:
+    """The campaign's counts, and the assumptions and limits of the estimate."""
     c = payload["campaign"]
-    assumptions = SectionContent(
+    return SectionContent(
         summary=f"Campaign: {c['requested']} storms asked for, {c['computed']} run,"
         f" {c['reused']} read back from the store, {c['failed']} failed;"
         f" {c['seconds_per_storm']:.3g} s per storm (compute time)."
@@ -619,33 +688,11 @@ def reliability_sections(
         ],
         sources=["docs/theory/reliability.md", "Au & Beck (2001)", "Melchers & Beck (2018)"],
     )
-    t = payload.get("target")
-    if t:
-        sections.append(
-            (
-                "target",
-                "Against the DNV-OS-F101 target",
-                SectionContent(
-                    summary=f"Annual probability per limit against the target"
-                    f" {t['annual_target']:.0e} per year of the {t['safety_class']} safety class"
-                    f" ({t['source']}): pass when the 95 % interval's upper end lies below it,"
-                    " fail when its lower end lies above it, undecided otherwise.",
-                    tables=[
-                        Table(
-                            caption="Annual probability against the target",
-                            columns=["limit", "P per year", "95 % upper", "verdict"],
-                            rows=[
-                                [r["label"], r["annual"], r["upper"], r["verdict"]]
-                                for r in t["limits"]
-                            ],
-                            digits=3,
-                        )
-                    ],
-                ),
-            )
-        )
-    sections.append(("campaign", "Campaign, assumptions and limits", assumptions))
-    prov = {
+
+
+def _reliability_provenance(payload: dict[str, Any], case: Path) -> dict[str, Any]:
+    """Provenance rows: the case, its hash, the output folder, the package versions."""
+    return {
         "case": str(case),
         "case SHA-256": _sha256(case),
         "output": payload["out"],
@@ -653,4 +700,3 @@ def reliability_sections(
         f" dask {_version('dask')}, virocon {_version('virocon')},"
         f" pyextremes {_version('pyextremes')}",
     }
-    return sections, prov

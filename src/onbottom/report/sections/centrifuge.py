@@ -77,16 +77,8 @@ def _fig9_checks(result) -> list[Check]:
     ]
 
 
-@section("centrifuge", "Youssef & Cassidy (2014): the seven centrifuge tests", order=20)
-def build(ctx: SectionContext) -> SectionContent:
-    """Run the seven tests with Table 2 and Table 3 parameters; check cycles to the limit."""
-    import matplotlib.pyplot as plt
-    import numpy as np
-
-    from onbottom.plotting.section import reproduction_figure
-    from onbottom.study.youssef_cassidy import run_reproduction
-
-    runs = run_reproduction(parameter_sets=("table2", "recommended"))
+def _runs_table_and_checks(runs) -> tuple[list[list], list[Check]]:
+    """Rows of every run (both parameter sets) and the cycles-to-limit checks (Table 2)."""
     checks: list[Check] = []
     rows = []
     for row, _ in runs:
@@ -121,11 +113,13 @@ def build(ctx: SectionContext) -> SectionContent:
                 note=KNOWN_DEVIATIONS.get(row.test, ""),
             )
         )
-    inc1, inc1_result = next(
-        (r, res) for r, res in runs if r.test == "Inclined 1" and r.parameter_set == "table2"
-    )
-    checks += _fig9_checks(inc1_result)
-    checks.append(
+    return rows, checks
+
+
+def _inclined_1_checks(inc1, inc1_result) -> list[Check]:
+    """Fig. 9 behaviour, the runaway's end and the initial penetration of Inclined 1."""
+    return [
+        *_fig9_checks(inc1_result),
         Check(
             name="Inclined 1: displacement where the runaway stops",
             value=inc1.final_displacement,
@@ -133,9 +127,7 @@ def build(ctx: SectionContext) -> SectionContent:
             tolerance="none (the paper's own simulation; the box stopped the test at 3.0 m)",
             status="info",
             unit="m",
-        )
-    )
-    checks.append(
+        ),
         Check(
             name="Inclined 1: initial penetration",
             value=inc1.initial_penetration,
@@ -143,10 +135,15 @@ def build(ctx: SectionContext) -> SectionContent:
             tolerance="none (read from Fig. 9d, ≈; γ' not given, assumption 2)",
             status="info",
             unit="m",
-        )
-    )
+        ),
+    ]
 
-    # cycles, model against Table 1, for both parameter sets
+
+def _cycles_figure(runs):
+    """Cycles to the limit, model against Table 1, for both parameter sets."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+
     names = [r.test for r, _ in runs if r.parameter_set == "table2"]
     x = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(7.0, 3.8))
@@ -165,40 +162,57 @@ def build(ctx: SectionContext) -> SectionContent:
     ax.set_ylabel("load cycles to the displacement limit")
     ax.grid(axis="y", alpha=0.3)
     ax.legend(fontsize=8)
+    return fig
+
+
+RUNS_COLUMNS = [
+    "test",
+    "parameters",
+    "A",
+    "B",
+    "C",
+    "μ",
+    "α [°]",
+    "cycles model",
+    "cycles Table 1",
+    "Δ cycles",
+    "z_i [m]",
+    "max w [m]",
+    "final u [m]",
+]
+"""Columns of the table of every run."""
+
+
+@section("centrifuge", "Youssef & Cassidy (2014): the seven centrifuge tests", order=20)
+def build(ctx: SectionContext) -> SectionContent:
+    """Run the seven tests with Table 2 and Table 3 parameters; check cycles to the limit."""
+    from onbottom.plotting.section import reproduction_figure
+    from onbottom.study.youssef_cassidy import run_reproduction
+
+    runs = run_reproduction(parameter_sets=("table2", "recommended"))
+    rows, checks = _runs_table_and_checks(runs)
+    inc1, inc1_result = next(
+        (r, res) for r, res in runs if r.test == "Inclined 1" and r.parameter_set == "table2"
+    )
+    checks += _inclined_1_checks(inc1, inc1_result)
     figs = [
         ctx.save_figure(
-            fig,
+            _cycles_figure(runs),
             "cycles",
             "Cycles to the displacement limit: model (Table 2 and Table 3 parameters, default"
             " choices) and test (Table 1).",
-        )
-    ]
-    figs.append(
+        ),
         ctx.save_figure(
             reproduction_figure(inc1, inc1_result),
             "inclined_1",
             "Inclined 1 with its Table 2 parameters: load path, penetration and displacement"
             " (compare the paper's Fig. 9).",
             dpi=80,
-        )
-    )
+        ),
+    ]
     table = Table(
         caption="All runs (γ' = 7.5 kN/m³; lengths in m, α in degrees)",
-        columns=[
-            "test",
-            "parameters",
-            "A",
-            "B",
-            "C",
-            "μ",
-            "α [°]",
-            "cycles model",
-            "cycles Table 1",
-            "Δ cycles",
-            "z_i [m]",
-            "max w [m]",
-            "final u [m]",
-        ],
+        columns=RUNS_COLUMNS,
         rows=rows,
         digits=2,
     )

@@ -47,93 +47,81 @@ def _episodes_after(ds, w_min: float, drop: float) -> list[tuple[float, float]]:
     return [(float(a), float(b)) for a, b in zip(w, frac, strict=True) if a > w_min and b > drop]
 
 
-@section("dem", "2D DEM penetration: the full-size runs (committed summaries)", order=90)
-def build(ctx: SectionContext) -> SectionContent:
-    """Apply the full-size DEM tolerances to the committed summaries."""
-    from onbottom.dem.published import PUBLISHED
-    from onbottom.results import load_dataset
+def _no_summaries() -> SectionContent:
+    """The section when the committed summaries are not there (no source checkout)."""
+    return SectionContent(
+        summary="The committed DEM summaries (docs/validation/dem/) are not found: this"
+        " onbottom does not run from a source checkout.",
+        checks=[
+            Check(
+                name="DEM summaries present",
+                value=None,
+                reference="docs/validation/dem/",
+                tolerance="present",
+                status="info",
+            )
+        ],
+    )
 
-    folder = _summary_dir(ctx)
-    if folder is None:
-        return SectionContent(
-            summary="The committed DEM summaries (docs/validation/dem/) are not found: this"
-            " onbottom does not run from a source checkout.",
-            checks=[
-                Check(
-                    name="DEM summaries present",
-                    value=None,
-                    reference="docs/validation/dem/",
-                    tolerance="present",
-                    status="info",
-                )
-            ],
-        )
-    ds = {}
+
+def _specimen(name: str, d) -> tuple[list[Check], list]:
+    """One specimen's checks (complete and quasi-static, heave, V at 0.4D and 0.5D) and its
+    table row."""
+    from onbottom.dem.published import PUBLISHED
+
     checks: list[Check] = []
-    rows = []
-    for name in ("SM", "SD"):
-        path = folder / f"{name}_summary.nc"
-        if not path.exists():
-            checks.append(
-                Check(
-                    name=f"{name} summary present",
-                    value=None,
-                    reference=path.name,
-                    tolerance="present",
-                    status="info",
-                    note="full-size run not done yet",
-                )
-            )
-            continue
-        d = ds[name] = load_dataset(path)
-        complete = int(d.attrs["complete"]) == 1 and float(d.attrs["w_over_D_reached"]) >= 0.499
-        inertial = float(d.attrs["inertial_number"])
+    complete = int(d.attrs["complete"]) == 1 and float(d.attrs["w_over_D_reached"]) >= 0.499
+    inertial = float(d.attrs["inertial_number"])
+    checks.append(
+        Check(
+            name=f"{name}: complete to 0.5D and quasi-static",
+            value=f"w/D {float(d.attrs['w_over_D_reached']):.3f}, I = {inertial:.1e}",
+            reference="w/D ≥ 0.5, I ≤ 1e-3",
+            tolerance="both",
+            status="pass" if complete and inertial <= 1e-3 else "fail",
+        )
+    )
+    heave = float(d.attrs["heave_peak_over_D"])
+    ref = PUBLISHED[name].heave_over_D
+    checks.append(
+        Check(
+            name=f"{name}: heave peak / D",
+            value=heave,
+            reference=ref,
+            tolerance="±0.1",
+            status="pass" if abs(heave - ref) <= 0.1 else "fail",
+            note="paper Fig. 8 (DEM)",
+        )
+    )
+    for ratio in (0.4, 0.5):
+        v = float(d.attrs[f"V_prototype_at_{ratio:g}D"]) / 1e3
+        paper = PUBLISHED[name].resistance[ratio] / 1e3
+        ok = paper / 1.5 <= v <= 1.5 * paper
         checks.append(
             Check(
-                name=f"{name}: complete to 0.5D and quasi-static",
-                value=f"w/D {float(d.attrs['w_over_D_reached']):.3f}, I = {inertial:.1e}",
-                reference="w/D ≥ 0.5, I ≤ 1e-3",
-                tolerance="both",
-                status="pass" if complete and inertial <= 1e-3 else "fail",
+                name=f"{name}: V at {ratio:g}D",
+                value=v,
+                reference=paper,
+                tolerance="within ×1.5",
+                status="pass" if ok else "fail",
+                unit="kN/m",
+                note="" if ok else KNOWN.get((name, ratio), ""),
             )
         )
-        heave = float(d.attrs["heave_peak_over_D"])
-        ref = PUBLISHED[name].heave_over_D
-        checks.append(
-            Check(
-                name=f"{name}: heave peak / D",
-                value=heave,
-                reference=ref,
-                tolerance="±0.1",
-                status="pass" if abs(heave - ref) <= 0.1 else "fail",
-                note="paper Fig. 8 (DEM)",
-            )
-        )
-        for ratio in (0.4, 0.5):
-            v = float(d.attrs[f"V_prototype_at_{ratio:g}D"]) / 1e3
-            paper = PUBLISHED[name].resistance[ratio] / 1e3
-            ok = paper / 1.5 <= v <= 1.5 * paper
-            checks.append(
-                Check(
-                    name=f"{name}: V at {ratio:g}D",
-                    value=v,
-                    reference=paper,
-                    tolerance="within ×1.5",
-                    status="pass" if ok else "fail",
-                    unit="kN/m",
-                    note="" if ok else KNOWN.get((name, ratio), ""),
-                )
-            )
-        rows.append(
-            [
-                name,
-                int(d.attrs["n_particles"]),
-                int(d.attrs["seed"]),
-                *[float(d.attrs[f"V_prototype_at_{r:g}D"]) / 1e3 for r in (0.1, 0.3, 0.5)],
-                heave,
-                int(d.attrs["softening_episodes"]),
-            ]
-        )
+    row = [
+        name,
+        int(d.attrs["n_particles"]),
+        int(d.attrs["seed"]),
+        *[float(d.attrs[f"V_prototype_at_{r:g}D"]) / 1e3 for r in (0.1, 0.3, 0.5)],
+        heave,
+        int(d.attrs["softening_episodes"]),
+    ]
+    return checks, row
+
+
+def _behaviour(ds: dict) -> list[Check]:
+    """SM hardens, SD softens periodically, SD heaves more than SM (of the specimens there)."""
+    checks: list[Check] = []
     if "SM" in ds:
         v = [float(ds["SM"].attrs[f"V_prototype_at_{r:g}D"]) / 1e3 for r in (0.1, 0.3, 0.5)]
         hardens = v[0] <= v[1] <= v[2] and _episodes_after(ds["SM"], 0.1, 0.15) == []
@@ -171,6 +159,52 @@ def build(ctx: SectionContext) -> SectionContent:
                 status="pass" if hd > hm else "fail",
             )
         )
+    return checks
+
+
+ROWS_COLUMNS = [
+    "specimen",
+    "particles",
+    "seed",
+    "V at 0.1D",
+    "V at 0.3D",
+    "V at 0.5D",
+    "heave / D",
+    "softening drops",
+]
+"""Columns of the table of the full-size runs."""
+
+
+@section("dem", "2D DEM penetration: the full-size runs (committed summaries)", order=90)
+def build(ctx: SectionContext) -> SectionContent:
+    """Apply the full-size DEM tolerances to the committed summaries."""
+    from onbottom.results import load_dataset
+
+    folder = _summary_dir(ctx)
+    if folder is None:
+        return _no_summaries()
+    ds = {}
+    checks: list[Check] = []
+    rows = []
+    for name in ("SM", "SD"):
+        path = folder / f"{name}_summary.nc"
+        if not path.exists():
+            checks.append(
+                Check(
+                    name=f"{name} summary present",
+                    value=None,
+                    reference=path.name,
+                    tolerance="present",
+                    status="info",
+                    note="full-size run not done yet",
+                )
+            )
+            continue
+        ds[name] = load_dataset(path)
+        found, row = _specimen(name, ds[name])
+        checks += found
+        rows.append(row)
+    checks += _behaviour(ds)
     figs = [ctx.copy_figure(folder / f, cap) for f, cap in FIGURES if (folder / f).exists()]
     return SectionContent(
         summary=(
@@ -182,16 +216,7 @@ def build(ctx: SectionContext) -> SectionContent:
         tables=[
             Table(
                 caption="Full-size runs (prototype V [kN/m])",
-                columns=[
-                    "specimen",
-                    "particles",
-                    "seed",
-                    "V at 0.1D",
-                    "V at 0.3D",
-                    "V at 0.5D",
-                    "heave / D",
-                    "softening drops",
-                ],
+                columns=ROWS_COLUMNS,
                 rows=rows,
                 digits=2,
             )

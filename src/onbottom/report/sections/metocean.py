@@ -92,29 +92,22 @@ def build(ctx: SectionContext) -> SectionContent:
         ],
         digits=3,
     )
-    figures = []
-    try:
-        from onbottom.plotting.metocean import plot_contours, plot_return_levels
-    except ModuleNotFoundError:
-        plot_return_levels = None
-    if plot_return_levels is not None:
-        figures.append(
-            ctx.save_figure(
-                plot_return_levels(result, title=path.name),
-                "return_levels",
-                "Return values of H_s and current: GPD fits per sector, storm peaks, 95 %"
-                " intervals.",
-                dpi=80,
-            )
-        )
-        figures.append(
-            ctx.save_figure(
-                plot_contours(result),
-                "contours",
-                "Sea states of the record and the 1-, 10-, 100-year IFORM contours.",
-                dpi=80,
-            )
-        )
+    from onbottom.plotting.metocean import plot_contours, plot_return_levels
+
+    figures = [
+        ctx.save_figure(
+            plot_return_levels(result, title=path.name),
+            "return_levels",
+            "Return values of H_s and current: GPD fits per sector, storm peaks, 95 % intervals.",
+            dpi=80,
+        ),
+        ctx.save_figure(
+            plot_contours(result),
+            "contours",
+            "Sea states of the record and the 1-, 10-, 100-year IFORM contours.",
+            dpi=80,
+        ),
+    ]
     return SectionContent(
         summary="The shipped synthetic hindcast (25 years, 3-hourly, known distributions)"
         " analysed as `onbottom metocean` does: declustered storms per sector, POT/GPD return"
