@@ -96,6 +96,8 @@ class _SectionJob:
     def __call__(self, _: Any = None) -> dict[str, Any]:
         t0, c0 = time.perf_counter(), time.process_time()
         result = _run_section(self.route, self.section, self.index, self.curve_files)
+        if _fe_every_section(self.route):
+            result = _section_pipeline(self.route, self.section, result)
         result["wall_time_s"] = time.perf_counter() - t0
         result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
         result["identity"] = _digest(self.identity) if self.identity else self.section.identity
@@ -104,6 +106,26 @@ class _SectionJob:
             path = section_file(Path(self.out), self.index, self.section.name)
             write_text_atomic(path, checksum_json(result, default=_jsonable))
         return result
+
+
+def _fe_every_section(route: Route) -> bool:
+    """The pipeline FE checks every section's design, in the section's task."""
+    return route.levels.pipeline_fe and route.pipeline.sections == "every"
+
+
+def _section_pipeline(route: Route, sec: Section, result: dict[str, Any]) -> dict[str, Any]:
+    """The section's result with the pipeline FE check of its design (``pipeline_fe``: the
+    document of :func:`onbottom.assess.pipeline.check_section_pipeline`, every FE storm stopped
+    at the allowable) and its ``pipeline_fe`` level (:func:`_apply_pipeline`); unchanged where
+    the section has no design or no dynamic run."""
+    from onbottom.assess.pipeline import check_section_pipeline
+
+    if not (result.get("dynamic") or {}).get("base") or (
+        route.variable != "none" and result.get("design_value") is None
+    ):
+        return result
+    doc = _clean(check_section_pipeline(route, sec, result, None, early_stop=True))
+    return _apply_pipeline(route, [result], doc)[0] | {"pipeline_fe": doc}
 
 
 def _digest(parts: dict[str, Any]) -> str:
@@ -832,6 +854,8 @@ def assess(
     data = data_hashes(route, files)
     for i, s in enumerate(route.sections):
         parts = section_identity_parts(s, data) if s.identity else {}
+        if parts and _fe_every_section(route):  # the section's result holds its FE check
+            parts["pipeline"] = dataclasses.asdict(route.pipeline)
         if outp is not None and parts:  # a section without an identity is always run
             f = section_file(outp, i, s.name)
             if f.is_file():
@@ -858,12 +882,27 @@ def assess(
         for r in done:
             results[r["index"]] = r
     sections = [results[i] for i in range(len(route.sections))]
-    pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
-    if pipe is not None:
-        sections = _apply_pipeline(route, sections, pipe)
+    if _fe_every_section(route):
+        pipe = _governing_section_pipeline(route, sections)
+    else:
+        pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
+        if pipe is not None:
+            sections = _apply_pipeline(route, sections, pipe)
     return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
                       source=source, pipeline=pipe, recomputed=recomputed)  # fmt: skip
+
+
+def _governing_section_pipeline(route: Route, sections: list[dict[str, Any]]) -> dict | None:
+    """Where the FE checked every section: the check of the governing section (the heaviest
+    design after the FE; ties: the highest dynamic utilisation), None when none ran."""
+    from onbottom.assess.pipeline import governing_storm
+
+    checked = [s for s in sections if s.get("pipeline_fe")]
+    gov = governing_storm(route, checked) if checked else None
+    if gov is None:
+        return None
+    return next(s["pipeline_fe"] for s in checked if s["index"] == gov["index"])
 
 
 def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) -> dict | None:

@@ -190,6 +190,13 @@ class PipelineSettings:
         Strain limit [-] (a fraction, not %).
     duration : float or None
         Simulate only [0, duration] of the storm [s] (None: all of it).
+    sections : str
+        ``"governing"``: the FE runs on the governing section only (the heaviest design);
+        ``"every"``: it checks every section's design, in that section's task (on its Dask
+        worker), from the section's accepted design.
+    mesh : str
+        ``"given"``: ``length`` and ``element_length`` as given; ``"rule"``: both from the
+        section, sea state and pipe (:func:`onbottom.assess.pipeline.fe_mesh`).
     """
 
     length: float = 200.0
@@ -197,8 +204,12 @@ class PipelineSettings:
     end_conditions: str = "fixed"
     strain_limit: float = 2.0e-3
     duration: float | None = None
+    sections: str = "governing"
+    mesh: str = "given"
 
     def __post_init__(self) -> None:
+        one_of("PipelineSettings.sections", self.sections, ("governing", "every"))
+        one_of("PipelineSettings.mesh", self.mesh, ("given", "rule"))
         positive("PipelineSettings.length", self.length)
         in_range("PipelineSettings.element_length", self.element_length, 0.0, 0.5 * self.length,
                  low_inclusive=False)  # fmt: skip

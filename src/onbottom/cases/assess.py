@@ -297,6 +297,15 @@ class RoutePipelineTable(StrictModel):
     duration: float | None = Field(
         None, gt=0.0, description="simulate only [0, duration] of the storm [s] (None: all)"
     )
+    sections: Literal["governing", "every"] = Field(
+        "governing",
+        description="the FE checks the governing section only, or every section's design",
+    )
+    mesh: Literal["given", "rule"] = Field(
+        "given",
+        description="length and element_length as given, or from the section by the stated"
+        " rule (onbottom.assess.pipeline.fe_mesh)",
+    )
 
     @model_validator(mode="after")
     def _mesh(self) -> RoutePipelineTable:
