@@ -152,9 +152,10 @@ def fe_mesh(
     0.25 %, so L >= 12/β leaves the middle of the line free of the end conditions; L >= λ_p
     puts one crest and trough of the storm's peak wave along the line (short-crested loads
     vary along it on that scale or longer, the spreading lengthening the crests). An element
-    of length h <= 1/β interpolates the deflection mode e^{-βx} cos βx by cubic Hermite
-    shape functions with a relative error of order (βh)⁴/384 <= 0.3 %; h <= λ_p/16 resolves the
-    load's along-line variation with 16 elements per wavelength. k_s = μ W_s/(0.02 D) counts
+    of length h <= 1/β interpolates the deflection mode u = e^{-βx} cos βx by cubic Hermite
+    shape functions within h⁴/384 · max|u⁗| = (βh)⁴/96 · max|u| (about 1 % at βh = 1; the
+    classical Hermite interpolation bound, |u⁗| = 4β⁴|u|); h <= λ_p/16 resolves the load's
+    along-line variation with 16 elements per wavelength. k_s = μ W_s/(0.02 D) counts
     friction only (the passive resistance of the embedment would stiffen it); β ∝ k_s^{1/4}, so a
     soil twice as stiff changes 1/β by 16 %.
     """
