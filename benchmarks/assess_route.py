@@ -38,6 +38,14 @@ fix); ``--route 3`` with this version: 215 storms, 34.5 / 40.9 / 25.5 s worker C
 section (0.156 s per storm) → ~680 s CPU for 20 sections, ~6 min on 2 free cores.
 Idle machine, final code (load 0.4 -> 1.8): big route on --scheduler auto in 290.9 s wall
 (target met), 27.1 s worker CPU and 218 storms per section, 0.124 s CPU per storm.
+FE on every section (``--fe every``, mesh rule; 2026-11-29, 2 cores shared with 7 other jobs,
+load average 9-15, run with nice): ``--route 3``, 2 local workers: 382 s wall, worker CPU
+106.7 s (33.1 / 44.4 / 29.2 s per section, of which the FE 1.4 / 2.8 / 2.3 s: 18, 40 and 33
+elements, every design passing the FE at once), main process 10.3 s; ``--route 6 --scheduler
+auto``: 593 s wall, worker CPU 206.3 s (34.4 s per section: 1.93 times the 3-section CPU for
+twice the sections, linear), FE 12.5 s in all. 20 sections at 34.5-39 s CPU each: 690-780 s of
+CPU, ~345-390 s on 2 idle cores (target 600 s: met by extrapolation; not timed whole on the
+loaded machine). A section whose design fails the FE adds ~1.5-3 s of CPU per raise trial.
 Earlier version (bisection over the full range, no worst-first
 order): default route 227 s at a lower load with 138-164 storms per section; 20 sections × 2
 combinations (Morison): 1594 s.
