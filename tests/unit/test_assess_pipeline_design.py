@@ -63,3 +63,37 @@ def test_no_design_passing_the_fe_leaves_the_section_without_design(route):
     assert out[1]["design_value"] is None and out[1]["governing_level"] is None
     assert "upper bound 0.2 fails" in out[1]["no_design_reason"]
     assert out[1]["levels"]["pipeline_fe"]["success"] is False
+
+
+def test_the_fe_checks_every_sections_design_in_its_task():
+    """``[pipeline] sections = "every"``, ``mesh = "rule"``: each section's result carries its
+    own FE check (on its worst storm, at its design, mesh by the stated rule) and its
+    ``pipeline_fe`` level; the route's ``pipeline`` is the governing section's check."""
+    import sys
+    from pathlib import Path
+
+    from onbottom.assess import assess
+    from onbottom.assess.pipeline import MESH_RULE, section_storm
+    from onbottom.cases.assess import build_route, parse_route_case
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from assess_cases import route_document
+
+    doc = route_document(sections=1, seeds=1, peak_hours=0.05)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"sections": "every", "mesh": "rule", "end_conditions": "pinned"}
+    built = build_route(parse_route_case(doc))
+    a = assess(built, n_workers=0)
+    for s in a.sections:
+        p = s["pipeline_fe"]
+        gov = section_storm(built, s | {"design_value": p["section_design"]})
+        assert (p["section"], p["combination"], p["seed"]) == (
+            s["name"], gov["combination"], gov["seed"])  # fmt: skip
+        assert p["mesh"]["rule"] == MESH_RULE
+        assert p["length_m"] == pytest.approx(p["mesh"]["length"])
+        assert p["n_nodes"] == p["mesh"]["n_elements"] + 1
+        assert "pipeline_fe" in s["levels"]
+        if p["pass"] and not p["raised"]:
+            assert s["design_value"] == p["section_design"]
+    heaviest = max(a.sections, key=lambda s: s["design_value"])
+    assert a.pipeline["section"] == heaviest["name"]

@@ -96,6 +96,8 @@ class _SectionJob:
     def __call__(self, _: Any = None) -> dict[str, Any]:
         t0, c0 = time.perf_counter(), time.process_time()
         result = _run_section(self.route, self.section, self.index, self.curve_files)
+        if _fe_every_section(self.route):
+            result = _section_pipeline(self.route, self.section, result)
         result["wall_time_s"] = time.perf_counter() - t0
         result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
         result["identity"] = _digest(self.identity) if self.identity else self.section.identity
@@ -104,6 +106,26 @@ class _SectionJob:
             path = section_file(Path(self.out), self.index, self.section.name)
             write_text_atomic(path, checksum_json(result, default=_jsonable))
         return result
+
+
+def _fe_every_section(route: Route) -> bool:
+    """The pipeline FE checks every section's design, in the section's task."""
+    return route.levels.pipeline_fe and route.pipeline.sections == "every"
+
+
+def _section_pipeline(route: Route, sec: Section, result: dict[str, Any]) -> dict[str, Any]:
+    """The section's result with the pipeline FE check of its design (``pipeline_fe``: the
+    document of :func:`onbottom.assess.pipeline.check_section_pipeline`, every FE storm stopped
+    at the allowable) and its ``pipeline_fe`` level (:func:`_apply_pipeline`); unchanged where
+    the section has no design or no dynamic run."""
+    from onbottom.assess.pipeline import check_section_pipeline
+
+    if not (result.get("dynamic") or {}).get("base") or (
+        route.variable != "none" and result.get("design_value") is None
+    ):
+        return result
+    doc = _clean(check_section_pipeline(route, sec, result, None, early_stop=True))
+    return _apply_pipeline(route, [result], doc)[0] | {"pipeline_fe": doc}
 
 
 def _digest(parts: dict[str, Any]) -> str:
@@ -289,16 +311,30 @@ def _coulomb_trial(trial: Any) -> Any:
 def _run_section(
     route: Route, sec: Section, i: int, curve_files: tuple[str, ...]
 ) -> dict[str, Any]:
-    from onbottom.assess import dynamic as dyn
-    from onbottom.assess.generalized import dynamic_curve_rows, generalized_rows
+    """Every level of one section, in named stages: the static levels (vertical, absolute)
+    → the table levels (generalized, dynamic curves) → the dynamic level at the given design
+    → the dynamic design search → the governing design → the section's result."""
+    rows, levels, checks, notes = _static_levels(route, sec)
+    gen, floor_requirement = _table_levels(route, sec, rows, levels, checks, curve_files)
+    dynamic: dict[str, Any] = {}
+    if route.levels.dynamic:
+        dynamic = _dynamic_at_given(route, sec, checks)
+        if route.variable != "none":
+            _dynamic_design(route, sec, dynamic, levels, gen)
+    return _section_result(route, sec, i, levels, gen, floor_requirement, checks, dynamic, notes)
+
+
+def _static_levels(
+    route: Route, sec: Section
+) -> tuple[list[Any], dict[str, Any], list[dict[str, Any]], list[str]]:
+    """The F109 checks at the given design, the vertical (flotation) and absolute designs:
+    (check rows, levels, check rows as dicts, notes)."""
     from onbottom.checks.design import penetration_outside_validity, run_checks
     from onbottom.errors import OutOfRangeWarning
     from onbottom.inputs.consistency import warnings_reported_by_case
 
     section, seabed, env = sec.pipe, sec.seabed, sec.environment
-    combos = sec.combinations
-    options = sec.options
-    variable = route.variable
+    combos, options, variable = sec.combinations, sec.options, route.variable
     notes: list[str] = []
     with warnings.catch_warnings(record=True) as caught, warnings_reported_by_case():
         warnings.simplefilter("always", OutOfRangeWarning)
@@ -324,8 +360,23 @@ def _run_section(
                if r.name.startswith("absolute") else "vertical", "details": r.details})
         for r in rows
     ]  # fmt: skip
+    return rows, levels, checks, notes
 
-    # -- generalized (F109 §3.5 tables) and dynamic curves (the tool's own sweeps) ------------
+
+def _table_levels(
+    route: Route,
+    sec: Section,
+    rows: list[Any],
+    levels: dict[str, Any],
+    checks: list[dict[str, Any]],
+    curve_files: tuple[str, ...],
+) -> tuple[list[dict[str, Any]], dict[str, Any] | None]:
+    """The generalized level (F109 §3.5 tables) and the dynamic curves (the tool's own
+    sweeps), added to ``levels`` and ``checks``: (the generalized rows, F109's generalized
+    requirement computed for the design floor alone, or None)."""
+    from onbottom.assess.generalized import dynamic_curve_rows, generalized_rows
+
+    env, variable = sec.environment, route.variable
     gen: list[dict[str, Any]] = []
     floor_requirement: dict[str, Any] | None = None
     if route.levels.generalized or route.levels.dynamic:
@@ -354,115 +405,155 @@ def _run_section(
             levels["dynamic_curves"] |= _generalized_design(
                 variable, sec, curve_files, route, levels
             )
+    return gen, floor_requirement
 
-    # -- dynamic ---------------------------------------------------------------------------
+
+def _dynamic_at_given(route: Route, sec: Section, checks: list[dict[str, Any]]) -> dict[str, Any]:
+    """The storms of every load combination over the seeds at the given design, the worst
+    seed's history (for the report) and one ``dynamic_lateral`` check row per combination
+    (added to ``checks``): the ``dynamic`` document with its ``base``."""
+    from onbottom.assess import dynamic as dyn
+
+    d = route.dynamic
+    seeds = d.seed_list
+    names = [c.name for c in sec.storms]
+    base = {}
+    for c in sec.storms:
+        base[c.name] = dyn.run_seeds(c.setup, seeds)
+    allow = {
+        n: d.allowable_for(base[n][0]["diameter"]) for n in names if base[n]
+    }  # D of the given design
     dynamic: dict[str, Any] = {}
-    if route.levels.dynamic:
-        d = route.dynamic
-        seeds = d.seed_list
-        names = [c.name for c in sec.storms]
-        base = {}
-        for c in sec.storms:
-            base[c.name] = dyn.run_seeds(c.setup, seeds)
-        allow = {
-            n: d.allowable_for(base[n][0]["diameter"]) for n in names if base[n]
-        }  # D of the given design
-        dynamic["base"] = {
-            n: {
-                "seeds": [r["seed"] for r in base[n]],
-                "max_displacement": [r["max_displacement"] for r in base[n]],
-                "final_displacement": [r["final_displacement"] for r in base[n]],
-                "status": [r["status"] for r in base[n]],
-                "diameter": base[n][0]["diameter"],
-                "submerged_weight": base[n][0]["submerged_weight"],
-                "allowable": allow[n],
-                "utilisation": max(r["max_displacement"] for r in base[n]) / allow[n],
-                "condition": c.condition,
-            }
-            for n, c in zip(names, sec.storms, strict=True)
+    dynamic["base"] = {
+        n: {
+            "seeds": [r["seed"] for r in base[n]],
+            "max_displacement": [r["max_displacement"] for r in base[n]],
+            "final_displacement": [r["final_displacement"] for r in base[n]],
+            "status": [r["status"] for r in base[n]],
+            "diameter": base[n][0]["diameter"],
+            "submerged_weight": base[n][0]["submerged_weight"],
+            "allowable": allow[n],
+            "utilisation": max(r["max_displacement"] for r in base[n]) / allow[n],
+            "condition": c.condition,
         }
-        for (n, b), c in zip(dynamic["base"].items(), sec.storms, strict=True):
-            # the worst seed's history, for the report
-            worst = b["seeds"][int(np.argmax(b["max_displacement"]))]
-            b["history"] = {"seed": worst} | dyn.history(c.setup, worst, duration=d.duration_s)
-            checks.append(
-                _clean({
-                    "name": "dynamic_lateral", "combination": n, "condition": b["condition"],
-                    "utilisation": b["utilisation"], "pass": b["utilisation"] <= 1.0,
-                    "level": "dynamic",
-                    "details": {"allowable": b["allowable"], "seeds": len(b["seeds"]),
-                                "max_over_seeds": max(b["max_displacement"]),
-                                "mean_over_seeds": float(np.mean(b["max_displacement"]))},
-                })
-            )  # fmt: skip
-        if variable != "none":
-            evaluate = dyn.DynamicTrials(sec.trial_storm, len(names), seeds, d.allowable_for)
-            evaluate.prime({
-                (k, sd): y / dynamic["base"][n]["allowable"]
-                for k, n in enumerate(names)
-                for sd, y in zip(dynamic["base"][n]["seeds"],
-                                 dynamic["base"][n]["max_displacement"], strict=True)
-            })  # fmt: skip
-            rng = route.design
-            lo, hi, tol = (
-                (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
-                if variable == "concrete_thickness"
-                else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
-            )
-            vert = levels.get("vertical", {}).get("value")
-            if vert is not None and vert > lo:
-                lo = min(vert, hi)  # the design is raised to the flotation minimum anyway
-            given = sec.given_value
-            known = []
-            if given is not None and all(len(b["seeds"]) == len(seeds) for b in
-                                         dynamic["base"].values()):  # fmt: skip
-                known.append((given, max(b["utilisation"] for b in dynamic["base"].values())))
-            guesses = [
-                levels[k]["value"]
-                for k in ("generalized", "absolute")
-                if (levels.get(k) or {}).get("success") and levels[k].get("value") is not None
-            ]
-            b = dyn.search_dynamic(evaluate, lo, hi, tol, known=known, guesses=guesses)
-            dynamic["bisection"] = b
-            value = b["value"]
-            governed = "dynamic lateral (every seed <= allowable)"
-            if value is not None and vert is not None and vert > value:
-                value, governed = vert, "flotation (F109 Eq 3.1)"
-            levels["dynamic"] = {
-                "success": value is not None,
-                "value": value,
-                "utilisation": None,
-                "governing_check": governed if value is not None else None,
-                "message": b["message"],
-                "storms": b["storms"],
-            }
-            # Coulomb-friction lower bound where F109's tables leave a current-dominated point
-            uncovered = [
-                g["combination"] for g in gen
-                if not g["covered"] and g["details"].get("M", 0.0) >= CURRENT_DOMINATED_M
-            ]  # fmt: skip
-            if value is not None and uncovered:
-                cb_eval = dyn.DynamicTrials(
-                    _coulomb_trial(sec.trial_storm), len(names), seeds, d.allowable_for
-                )
-                cb = dyn.search_dynamic(cb_eval, lo, hi, tol, known=[], guesses=guesses)
-                cbv = cb["value"]
-                if cbv is not None and vert is not None and vert > cbv:
-                    cbv = vert
-                dynamic["coulomb_bound"] = {
-                    "combinations": uncovered, "value": cbv, "message": cb["message"],
-                    "storms": cb["storms"],
-                }  # fmt: skip
-                levels["dynamic"]["coulomb_bound"] = cbv
-                below = cbv is None or value < cbv
-                if below and route.levels.allow_below_coulomb is None:
-                    levels["dynamic"] |= {
-                        "value": cbv, "success": cbv is not None, "unbounded_value": value,
-                        "governing_check": "Coulomb-friction lower bound (same storms, no"
-                        " penetration benefit)" if cbv is not None else None,
-                    }  # fmt: skip
+        for n, c in zip(names, sec.storms, strict=True)
+    }
+    for (n, b), c in zip(dynamic["base"].items(), sec.storms, strict=True):
+        # the worst seed's history, for the report
+        worst = b["seeds"][int(np.argmax(b["max_displacement"]))]
+        b["history"] = {"seed": worst} | dyn.history(c.setup, worst, duration=d.duration_s)
+        checks.append(
+            _clean({
+                "name": "dynamic_lateral", "combination": n, "condition": b["condition"],
+                "utilisation": b["utilisation"], "pass": b["utilisation"] <= 1.0,
+                "level": "dynamic",
+                "details": {"allowable": b["allowable"], "seeds": len(b["seeds"]),
+                            "max_over_seeds": max(b["max_displacement"]),
+                            "mean_over_seeds": float(np.mean(b["max_displacement"]))},
+            })
+        )  # fmt: skip
+    return dynamic
 
-    # -- governing -------------------------------------------------------------------------
+
+def _search_range(route: Route) -> tuple[float, float, float]:
+    """(lower bound, upper bound, tolerance) of the design variable's search [m or N/m]."""
+    d, rng = route.dynamic, route.design
+    if route.variable == "concrete_thickness":
+        return rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m
+    return rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m
+
+
+def _dynamic_design(
+    route: Route,
+    sec: Section,
+    dynamic: dict[str, Any],
+    levels: dict[str, Any],
+    gen: list[dict[str, Any]],
+) -> None:
+    """The minimum design of the dynamic level (:func:`onbottom.assess.dynamic.search_dynamic`
+    from the runs at the given design, the absolute and generalized designs as guesses, the
+    flotation minimum as lower bound) and, where F109's tables leave a current-dominated point
+    uncovered, the Coulomb-friction lower bound: ``levels["dynamic"]`` and
+    ``dynamic["bisection"]`` (and ``dynamic["coulomb_bound"]``)."""
+    from onbottom.assess import dynamic as dyn
+
+    d = route.dynamic
+    seeds = d.seed_list
+    names = [c.name for c in sec.storms]
+    evaluate = dyn.DynamicTrials(sec.trial_storm, len(names), seeds, d.allowable_for)
+    evaluate.prime({
+        (k, sd): y / dynamic["base"][n]["allowable"]
+        for k, n in enumerate(names)
+        for sd, y in zip(dynamic["base"][n]["seeds"],
+                         dynamic["base"][n]["max_displacement"], strict=True)
+    })  # fmt: skip
+    lo, hi, tol = _search_range(route)
+    vert = levels.get("vertical", {}).get("value")
+    if vert is not None and vert > lo:
+        lo = min(vert, hi)  # the design is raised to the flotation minimum anyway
+    given = sec.given_value
+    known = []
+    if given is not None and all(len(b["seeds"]) == len(seeds) for b in
+                                 dynamic["base"].values()):  # fmt: skip
+        known.append((given, max(b["utilisation"] for b in dynamic["base"].values())))
+    guesses = [
+        levels[k]["value"]
+        for k in ("generalized", "absolute")
+        if (levels.get(k) or {}).get("success") and levels[k].get("value") is not None
+    ]
+    b = dyn.search_dynamic(evaluate, lo, hi, tol, known=known, guesses=guesses)
+    dynamic["bisection"] = b
+    value = b["value"]
+    governed = "dynamic lateral (every seed <= allowable)"
+    if value is not None and vert is not None and vert > value:
+        value, governed = vert, "flotation (F109 Eq 3.1)"
+    levels["dynamic"] = {
+        "success": value is not None,
+        "value": value,
+        "utilisation": None,
+        "governing_check": governed if value is not None else None,
+        "message": b["message"],
+        "storms": b["storms"],
+    }
+    # Coulomb-friction lower bound where F109's tables leave a current-dominated point
+    uncovered = [
+        g["combination"] for g in gen
+        if not g["covered"] and g["details"].get("M", 0.0) >= CURRENT_DOMINATED_M
+    ]  # fmt: skip
+    if value is None or not uncovered:
+        return
+    cb_eval = dyn.DynamicTrials(_coulomb_trial(sec.trial_storm), len(names), seeds, d.allowable_for)
+    cb = dyn.search_dynamic(cb_eval, lo, hi, tol, known=[], guesses=guesses)
+    cbv = cb["value"]
+    if cbv is not None and vert is not None and vert > cbv:
+        cbv = vert
+    dynamic["coulomb_bound"] = {
+        "combinations": uncovered, "value": cbv, "message": cb["message"],
+        "storms": cb["storms"],
+    }  # fmt: skip
+    levels["dynamic"]["coulomb_bound"] = cbv
+    below = cbv is None or value < cbv
+    if below and route.levels.allow_below_coulomb is None:
+        levels["dynamic"] |= {
+            "value": cbv, "success": cbv is not None, "unbounded_value": value,
+            "governing_check": "Coulomb-friction lower bound (same storms, no"
+            " penetration benefit)" if cbv is not None else None,
+        }  # fmt: skip
+
+
+def _section_result(
+    route: Route,
+    sec: Section,
+    i: int,
+    levels: dict[str, Any],
+    gen: list[dict[str, Any]],
+    floor_requirement: dict[str, Any] | None,
+    checks: list[dict[str, Any]],
+    dynamic: dict[str, Any],
+    notes: list[str],
+) -> dict[str, Any]:
+    """The governing level and design (the lightest passing level, raised to the design
+    floor), the worst check and the weight saved: the section's result document."""
     candidates = {
         k: v["value"]
         for k, v in levels.items()
@@ -484,7 +575,7 @@ def _run_section(
     return _clean({
         "index": i, "name": sec.name, "kp_start_m": sec.kp_start, "kp_end_m": sec.kp_end,
         "water_depth": sec.water_depth, "seabed_model": sec.seabed_model,
-        "variable": variable, "checks": checks, "levels": levels, "dynamic": dynamic,
+        "variable": route.variable, "checks": checks, "levels": levels, "dynamic": dynamic,
         "governing_level": gov_level,
         "design_value": design_value,
         "design_floor": floor,
@@ -499,7 +590,8 @@ def _run_section(
                         "spreading_s": c.sea_state.spreading_s,
                         "current_velocity": c.current.velocity,
                         "current_reference_height": c.current.reference_height,
-                        "current_direction_deg": c.current.direction_deg} for c in combos],
+                        "current_direction_deg": c.current.direction_deg}
+                       for c in sec.combinations],
     })  # fmt: skip
 
 
@@ -762,6 +854,8 @@ def assess(
     data = data_hashes(route, files)
     for i, s in enumerate(route.sections):
         parts = section_identity_parts(s, data) if s.identity else {}
+        if parts and _fe_every_section(route):  # the section's result holds its FE check
+            parts["pipeline"] = dataclasses.asdict(route.pipeline)
         if outp is not None and parts:  # a section without an identity is always run
             f = section_file(outp, i, s.name)
             if f.is_file():
@@ -788,12 +882,27 @@ def assess(
         for r in done:
             results[r["index"]] = r
     sections = [results[i] for i in range(len(route.sections))]
-    pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
-    if pipe is not None:
-        sections = _apply_pipeline(route, sections, pipe)
+    if _fe_every_section(route):
+        pipe = _governing_section_pipeline(route, sections)
+    else:
+        pipe = _pipeline(route, sections, outp) if route.levels.pipeline_fe else None
+        if pipe is not None:
+            sections = _apply_pipeline(route, sections, pipe)
     return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
                       source=source, pipeline=pipe, recomputed=recomputed)  # fmt: skip
+
+
+def _governing_section_pipeline(route: Route, sections: list[dict[str, Any]]) -> dict | None:
+    """Where the FE checked every section: the check of the governing section (the heaviest
+    design after the FE; ties: the highest dynamic utilisation), None when none ran."""
+    from onbottom.assess.pipeline import governing_storm
+
+    checked = [s for s in sections if s.get("pipeline_fe")]
+    gov = governing_storm(route, checked) if checked else None
+    if gov is None:
+        return None
+    return next(s["pipeline_fe"] for s in checked if s["index"] == gov["index"])
 
 
 def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) -> dict | None:

@@ -272,6 +272,89 @@ class DynamicTrials:
         return worst, n
 
 
+class _Points:
+    """g(x) memoised: every trial (x, g) in order, the storms run, and the points known."""
+
+    def __init__(self, evaluate: Callable[[float], tuple[float, int]]) -> None:
+        self.evaluate = evaluate
+        self.trials: list[tuple[float, float]] = []
+        self.storms = 0
+        self.pts: dict[float, float] = {}
+
+    def __call__(self, x: float) -> float:
+        x = float(x)
+        if x in self.pts:
+            return self.pts[x]
+        v, n = self.evaluate(x)
+        self.storms += n
+        self.trials.append((x, float(v)))
+        self.pts[x] = float(v)
+        return float(v)
+
+    def result(self, value: float | None, status: int, bracket: list, message: str, **more):
+        return {"value": value, "status": status, "bracket": bracket, "trials": self.trials,
+                "storms": self.storms, **more, "message": message}  # fmt: skip
+
+
+def _passing_end(
+    g: _Points, lo: float, hi: float, guesses: list[float] | tuple, failing: list[float]
+) -> float | None:
+    """The passing end b of the bracket: the lightest known passing value, else the first
+    guess that passes (in increasing order, skipping those at or below a known failure), else
+    ``hi`` (None: ``hi`` fails). Failing guesses are added to ``failing``."""
+    passing = sorted(x for x, v in g.pts.items() if v <= 1.0)
+    b = passing[0] if passing else None
+    for x in sorted(guesses):  # only without a known passing design: the climb from below
+        if b is not None:  # needs a passing end to stop at, not a tight one
+            break
+        if lo < x < hi and not any(f >= x for f in failing):
+            if g(x) <= 1.0:
+                b = x
+                break
+            failing.append(x)
+    if b is None:
+        if g(hi) > 1.0:
+            return None
+        b = hi
+    return b
+
+
+def _ascend(
+    g: _Points, a: float, b: float, tol: float, max_steps: int, levels_k: int, max_trials: int
+) -> tuple[float, float]:
+    """Narrow the bracket [a failing, b passing] from below to ``tol`` (see
+    :func:`search_dynamic`): the new bracket."""
+    # ``tol * (1 + 1e-9)``: a bracket wider than ``tol`` by round-off only is closed (it
+    # would give n = 1, a step onto b, and no progress); n >= 2 puts every first trial
+    # strictly inside the bracket, so each pass narrows it.
+    while b - a > tol * (1.0 + 1e-9) and len(g.trials) < max_trials:
+        width = b - a
+        n = max(2, math.ceil(width / tol - 1e-9))
+        step = width / n if n <= max_steps else width / levels_k
+        x = a + step
+        while x < b - 1e-12 * max(1.0, abs(b)) and len(g.trials) < max_trials:
+            if g(x) <= 1.0:
+                b = x
+                break
+            a = x
+            x = a + step
+    return a, b
+
+
+def _first_failing_above(
+    g: _Points, b: float, tol: float, hi: float, confirm: int, max_trials: int
+) -> float | None:
+    """The first of the next ``confirm`` values above ``b`` (steps of ``tol``) that fails
+    (None: they pass, or lie above ``hi``)."""
+    for k in range(1, confirm + 1):
+        x = b + k * tol
+        if x > hi or len(g.trials) >= max_trials:
+            break
+        if g(x) > 1.0:
+            return x
+    return None
+
+
 def search_dynamic(
     evaluate: Callable[[float], tuple[float, int]],
     lo: float,
@@ -299,78 +382,32 @@ def search_dynamic(
     run away at a heavier design and not at a lighter one); where one fails the ascent goes on
     above it (``non_monotone`` lists those values). Returns the keys of
     :func:`bisect_dynamic` (value, status 0/1/2, bracket, trials, storms, message).
+
+    Stages: the points known → the passing end → the failing end → ascent and confirmation,
+    repeated above a value that fails the confirmation.
     """
-    trials: list[tuple[float, float]] = []
-    storms = 0
-    pts: dict[float, float] = {}
-
-    def g(x: float) -> float:
-        nonlocal storms
-        x = float(x)
-        if x in pts:
-            return pts[x]
-        v, n = evaluate(x)
-        storms += n
-        trials.append((x, float(v)))
-        pts[x] = float(v)
-        return float(v)
-
+    g = _Points(evaluate)
     for x, v in known:
         if lo - 1e-12 <= x <= hi + 1e-12:
-            pts[float(x)] = float(v)
-    passing = sorted(x for x, v in pts.items() if v <= 1.0)
-    failing = sorted(x for x, v in pts.items() if v > 1.0)
-    b = passing[0] if passing else None
-    for x in sorted(guesses):  # only without a known passing design: the climb from below
-        if b is not None:  # needs a passing end to stop at, not a tight one
-            break
-        if lo < x < hi and not any(f >= x for f in failing):
-            if g(x) <= 1.0:
-                b = x
-                break
-            failing.append(x)
+            g.pts[float(x)] = float(v)
+    failing = sorted(x for x, v in g.pts.items() if v > 1.0)
+    b = _passing_end(g, lo, hi, guesses, failing)
     if b is None:
-        if g(hi) > 1.0:
-            return {"value": None, "status": 2, "bracket": [lo, hi], "trials": trials,
-                    "storms": storms, "message": f"the upper bound {hi:g} fails"}  # fmt: skip
-        b = hi
+        return g.result(None, 2, [lo, hi], f"the upper bound {hi:g} fails")
     below = [f for f in failing if f < b]
     a = max(below) if below else None
     if a is None:
         if g(lo) <= 1.0:
-            msg = f"the lower bound {lo:g} already passes"
-            return {"value": lo, "status": 1, "bracket": [lo, lo], "trials": trials,
-                    "storms": storms, "message": msg}  # fmt: skip
+            return g.result(lo, 1, [lo, lo], f"the lower bound {lo:g} already passes")
         a = lo
     above: list[float] = []  # failing designs found above a passing one (g not monotone)
     while True:
-        # ``tol * (1 + 1e-9)``: a bracket wider than ``tol`` by round-off only is closed (it
-        # would give n = 1, a step onto b, and no progress); n >= 2 puts every first trial
-        # strictly inside the bracket, so each pass narrows it.
-        while b - a > tol * (1.0 + 1e-9) and len(trials) < max_trials:
-            width = b - a
-            n = max(2, math.ceil(width / tol - 1e-9))
-            step = width / n if n <= max_steps else width / levels_k
-            x = a + step
-            while x < b - 1e-12 * max(1.0, abs(b)) and len(trials) < max_trials:
-                if g(x) <= 1.0:
-                    b = x
-                    break
-                a = x
-                x = a + step
-        # confirm: the next ``confirm`` steps above the design pass too
-        bad = None
-        for k in range(1, confirm + 1):
-            x = b + k * tol
-            if x > hi or len(trials) >= max_trials:
-                break
-            if g(x) > 1.0:
-                bad = x
-                break
+        a, b = _ascend(g, a, b, tol, max_steps, levels_k, max_trials)
+        bad = _first_failing_above(g, b, tol, hi, confirm, max_trials)
         if bad is None:
             break
         above.append(bad)
-        ok = sorted(x for x, v in pts.items() if v <= 1.0 and x > bad)
+        ok = sorted(x for x, v in g.pts.items() if v <= 1.0 and x > bad)
         if ok:
             a, b = bad, ok[0]
         elif bad < hi and g(hi) <= 1.0:
@@ -380,8 +417,7 @@ def search_dynamic(
                 f"no design in range passes with its next heavier step: {bad:g} fails above"
                 f" the passing {b:g}, and the upper bound {hi:g} fails"
             )
-            return {"value": None, "status": 2, "bracket": [bad, hi], "trials": trials,
-                    "storms": storms, "non_monotone": above, "message": msg}  # fmt: skip
+            return g.result(None, 2, [bad, hi], msg, non_monotone=above)
     note = (
         ""
         if not above
@@ -392,5 +428,4 @@ def search_dynamic(
         f"ascent to {tol:g} from below, confirmed by the next {confirm} step(s) above (failing"
         f" trials stop at their first seed above the allowable){note}"
     )
-    return {"value": b, "status": 0, "bracket": [a, b], "trials": trials, "storms": storms,
-            "non_monotone": above, "message": msg}  # fmt: skip
+    return g.result(b, 0, [a, b], msg, non_monotone=above)

@@ -40,6 +40,15 @@ the section solver is run once more on the same storm and seed at that design, t
 ratio of the two solvers' max |y| (:data:`DISAGREEMENT_FACTOR`). Cost: the FE line has
 ``length / element_length + 1`` nodes (the route's ``[pipeline]``; default 200 m / 5 m = 41
 nodes); one complete FE storm costs about as much as 45 section storms of the same storm.
+
+Every section (``[pipeline] sections = "every"``). The FE then checks each section's design in
+that section's own task (:func:`check_section_pipeline`, on its Dask worker: the cost is linear
+in sections), on the section's worst storm (the combination and seed of
+:func:`section_storm`), started from the section's accepted design — the nearest accepted trial
+of the section solver's search — with the search's passing trials as the first guesses above it
+(warm start), and every FE storm stopped once |y| passes the allowable (a passing run is
+complete by definition; a failing one is decided there). With ``mesh = "rule"`` the line length
+and element length follow :func:`fe_mesh`, stated in ``docs/assess.md``.
 """
 
 from __future__ import annotations
@@ -49,12 +58,17 @@ from pathlib import Path
 from typing import Any
 
 from onbottom.assess.route import Route
+from onbottom.results import save_dataset
 
 __all__ = [
     "DISAGREEMENT_FACTOR",
+    "MESH_RULE",
+    "check_section_pipeline",
+    "fe_mesh",
     "governing_storm",
     "pipeline_trial",
     "run_governing_pipeline",
+    "section_storm",
 ]
 
 DISAGREEMENT_FACTOR = 2.0
@@ -80,6 +94,14 @@ def governing_storm(route: Route, sections: list[dict[str, Any]]) -> dict[str, A
         return max(b["utilisation"] for b in s["dynamic"]["base"].values())
 
     sec = max(cands, key=lambda s: (0.0 if given else s["design_value"], dyn_util(s)))
+    return section_storm(route, sec)
+
+
+def section_storm(route: Route, sec: dict[str, Any]) -> dict[str, Any]:
+    """The FE storm of one section's result ``sec``: its combination with the highest dynamic
+    utilisation at the given design and that combination's worst seed, at the section's design
+    value (None without a design variable)."""
+    given = route.variable == "none"
     name, base = max(sec["dynamic"]["base"].items(), key=lambda kv: kv[1]["utilisation"])
     seed = base["seeds"][max(range(len(base["seeds"])), key=lambda k: base["max_displacement"][k])]
     return {
@@ -92,12 +114,109 @@ def governing_storm(route: Route, sections: list[dict[str, Any]]) -> dict[str, A
     }
 
 
+MESH_RULE = (
+    "L = max(λ_p, 12/β), h = min(λ_p/16, 1/β), n_e = ceil(L/h): λ_p the linear wavelength at"
+    " the peak period and depth (ω² = g k tanh kd), β = (k_s/(4EI))^(1/4) the Winkler"
+    " wavenumber (Hetényi 1946) with k_s = μ W_s/(0.02 D), friction mobilised over the"
+    " region-1 displacement y1 = 0.02 D of Verley & Sotberg (1994)"
+)
+"""The stated rule of the FE mesh (``[pipeline] mesh = "rule"``, :func:`fe_mesh`)."""
+
+
+def fe_mesh(
+    pipe: Any, friction_coefficient: float, depth: float, peak_period: float
+) -> dict[str, Any]:
+    """The FE line's length and element length by :data:`MESH_RULE`.
+
+    Parameters
+    ----------
+    pipe : Pipe
+        The pipe at the design checked: D [m], W_s [N/m], EI [N·m²].
+    friction_coefficient : float
+        μ [-] of the seabed (lateral friction).
+    depth : float
+        Water depth d [m].
+    peak_period : float
+        T_p [s] of the storm's peak sea state.
+
+    Returns
+    -------
+    dict
+        ``length`` [m], ``element_length`` [m], ``n_elements``, ``wavelength`` λ_p [m],
+        ``beta`` β [1/m] (0 without bending stiffness), ``rule`` (:data:`MESH_RULE`).
+
+    Notes
+    -----
+    A fixed or pinned end disturbs a beam on an elastic foundation as e^{-βx} (Hetényi 1946,
+    *Beams on Elastic Foundation*, Ch. II): at 6/β from each end the disturbance is below
+    0.25 %, so L >= 12/β leaves the middle of the line free of the end conditions; L >= λ_p
+    puts one crest and trough of the storm's peak wave along the line (short-crested loads
+    vary along it on that scale or longer, the spreading lengthening the crests). An element
+    of length h <= 1/β interpolates the deflection mode u = e^{-βx} cos βx by cubic Hermite
+    shape functions within h⁴/384 · max|u⁗| = (βh)⁴/96 · max|u| (about 1 % at βh = 1; the
+    classical Hermite interpolation bound, |u⁗| = 4β⁴|u|); h <= λ_p/16 resolves the load's
+    along-line variation with 16 elements per wavelength. k_s = μ W_s/(0.02 D) counts
+    friction only (the passive resistance of the embedment would stiffen it); β ∝ k_s^{1/4}, so a
+    soil twice as stiff changes 1/β by 16 %.
+    """
+    import math
+
+    from onbottom.hydro.kinematics import wave_number
+
+    k = float(wave_number(2.0 * math.pi / peak_period, depth)[0])
+    lam = 2.0 * math.pi / k
+    d, ws, ei = pipe.outer_diameter, pipe.submerged_weight, pipe.bending_stiffness
+    k_s = friction_coefficient * ws / (0.02 * d)
+    beta = (k_s / (4.0 * ei)) ** 0.25 if ei > 0.0 and k_s > 0.0 else 0.0
+    inv_beta = math.inf if beta == 0.0 else 1.0 / beta
+    length = max(lam, 12.0 * inv_beta) if beta > 0.0 else lam
+    h_max = min(lam / 16.0, inv_beta)
+    n = max(2, math.ceil(length / h_max - 1e-9))
+    return {"length": length, "element_length": length / n, "n_elements": n,
+            "wavelength": lam, "beta": beta, "rule": MESH_RULE}  # fmt: skip
+
+
+def _peak_period(setup: Any, sec: Any, combination: str) -> float:
+    """T_p [s] of the storm's strongest stage (its load combination's sea state without
+    stages)."""
+    stages = getattr(setup.storm, "stages", None)
+    if stages:
+        return float(max(stages, key=lambda st: st.hs).tp)
+    for c in sec.combinations:
+        if c.name == combination:
+            return float(c.sea_state.tp)
+    return float(sec.combinations[0].sea_state.tp)
+
+
+def _mesh_for(route: Route, sec: Any, gov: dict[str, Any], value: float | None) -> dict[str, Any]:
+    """The FE mesh of section ``sec`` at design ``value``: the route's ``[pipeline]`` length and
+    element length, or :func:`fe_mesh` (``mesh = "rule"``), fixed over the section's trials."""
+    p = route.pipeline
+    if p.mesh != "rule":
+        n = round(p.length / p.element_length)
+        return {"length": p.length, "element_length": p.element_length, "n_elements": n,
+                "rule": "given"}  # fmt: skip
+    k = sec.storm_index(gov["combination"])
+    setup = sec.storms[k].setup if value is None else sec.trial_storm(k, value)
+    mu = getattr(sec.seabed, "friction_coefficient", None)
+    if mu is None:
+        from onbottom.errors import InputError
+
+        raise InputError(
+            f"[pipeline] mesh = 'rule' is invalid for section {sec.name!r}: its seabed"
+            f" ({type(sec.seabed).__name__}) has no friction_coefficient; give the length"
+        )
+    return fe_mesh(setup.pipe, mu, sec.water_depth, _peak_period(setup, sec, gov["combination"]))
+
+
 def pipeline_trial(
     route: Route,
     gov: dict[str, Any],
     value: float | None,
     *,
     stop_at_allowable: bool = False,
+    section: Any = None,
+    mesh: dict[str, Any] | None = None,
 ) -> tuple[dict[str, Any], Any]:
     """One pipeline FE run of the governing storm ``gov`` (:func:`governing_storm`) at design
     value ``value`` (None: the given design). ``stop_at_allowable``: stop the storm once a
@@ -105,7 +224,10 @@ def pipeline_trial(
     is the full run's; max |y| is then a lower bound). Returns (the row of results.json
     ``pipeline``, without ``envelopes``; the :class:`~onbottom.dynamics.pipeline.PipelineResult`).
     The row's ``pass`` is max |y| <= allowable and the strain within its limit; ``ratio`` is
-    max(max |y| / allowable, strain / limit)."""
+    max(max |y| / allowable, strain / limit). ``section``: the
+    :class:`~onbottom.assess.route.Section` (default ``route.sections[gov["index"]]``);
+    ``mesh``: ``length`` and ``element_length`` [m] of the line (default the route's
+    ``[pipeline]``)."""
     import warnings
 
     from onbottom.assess.dynamic import STOP_MARGIN
@@ -115,7 +237,10 @@ def pipeline_trial(
 
     t0, c0 = time.perf_counter(), time.process_time()
     p = route.pipeline
-    sec = route.sections[gov["index"]]
+    sec = route.sections[gov["index"]] if section is None else section
+    length, element_length = (
+        (p.length, p.element_length) if mesh is None else (mesh["length"], mesh["element_length"])
+    )
     k = sec.storm_index(gov["combination"])
     setup = sec.storms[k].setup if value is None else sec.trial_storm(k, value)
     pipe = setup.pipe
@@ -124,8 +249,8 @@ def pipeline_trial(
     steel = getattr(sec.pipe, "steel_outer_diameter", None)
     model = PipelineModel(
         pipe=pipe,
-        length=p.length,
-        element_length=p.element_length,
+        length=length,
+        element_length=element_length,
         soil=setup.soil,
         end_conditions=p.end_conditions,
         force_model=setup.force_model,
@@ -181,11 +306,13 @@ def pipeline_trial(
     return row, r
 
 
-def _section_solver(route: Route, gov: dict[str, Any], value: float | None) -> dict[str, Any]:
+def _section_solver(
+    route: Route, gov: dict[str, Any], value: float | None, section: Any = None
+) -> dict[str, Any]:
     """The section solver on the FE's storm and seed at ``value``: max |y| [m]."""
     from onbottom.assess.dynamic import run_seeds
 
-    sec = route.sections[gov["index"]]
+    sec = route.sections[gov["index"]] if section is None else section
     k = sec.storm_index(gov["combination"])
     setup = sec.storms[k].setup if value is None else sec.trial_storm(k, value)
     r = run_seeds(setup, [gov["seed"]])[0]
@@ -220,63 +347,140 @@ def run_governing_pipeline(
     ``search`` (the trials and message; None when the section design passes), ``design_value``
     (the accepted design; None: no design in range passes the FE) and ``raised``.
     """
-    from onbottom.assess.dynamic import search_dynamic
-    from onbottom.results import save_dataset
-
     gov = governing_storm(route, sections)
     if gov is None:
         return None
+    result = next(s for s in sections if s["index"] == gov["index"])
+    return check_section_pipeline(route, route.sections[gov["index"]], result, out, gov=gov)
+
+
+def check_section_pipeline(
+    route: Route,
+    section: Any,
+    result: dict[str, Any],
+    out: str | Path | None = None,
+    *,
+    gov: dict[str, Any] | None = None,
+    early_stop: bool = False,
+) -> dict[str, Any]:
+    """The pipeline FE check of one section's design, raised until it passes (see the module).
+
+    Stages: the FE storm (``gov``, default :func:`section_storm` of ``result``) and mesh → the
+    run at the section's design (the nearest accepted trial of the section solver's search),
+    with the section solver on the same storm and seed → the design raised where it fails,
+    the section's passing trials as the first guesses → the document. ``section``: the
+    :class:`~onbottom.assess.route.Section`; ``result``: its result (``design_value``,
+    ``levels``, ``dynamic``); ``out``: folder of ``pipeline.nc`` (None: not written);
+    ``early_stop``: stop the run at the section's design too once |y| passes the allowable
+    (its verdict is the complete run's; its max |y| a lower bound). Returns the keys of
+    :func:`run_governing_pipeline` and ``mesh``.
+    """
     t0, c0 = time.perf_counter(), time.process_time()
-    p = route.pipeline
+    gov = section_storm(route, result) if gov is None else gov
     x0 = gov["design_value"]
-    first, r0 = pipeline_trial(route, gov, x0)
-    sect = _section_solver(route, gov, x0)
+    mesh = _mesh_for(route, section, gov, x0)
+    trial_mesh = mesh if route.pipeline.mesh == "rule" else None
+    first, r0 = pipeline_trial(
+        route, gov, x0, stop_at_allowable=early_stop, section=section, mesh=trial_mesh
+    )
+    at_design = _at_design(route, gov, section, first)
+    accepted, res, search, value = first, r0, None, x0
+    if not first["pass"] and x0 is not None:
+        search, accepted, res, value = _raise_design(
+            route, gov, section, result, first, r0, trial_mesh
+        )
+    env = res.envelopes
+    if out is not None and env is not None:
+        save_dataset(env.assign_attrs(assess_section=gov["section"],
+                                      combination=gov["combination"]),
+                     Path(out) / "pipeline.nc")  # fmt: skip
+    return _document(route, gov, mesh, accepted, res, search, value, at_design, out) | {
+        "cpu_time_s": time.process_time() - c0,
+        "wall_time_s": time.perf_counter() - t0,
+    }
+
+
+def _at_design(
+    route: Route, gov: dict[str, Any], section: Any, first: dict[str, Any]
+) -> dict[str, Any]:
+    """The FE run at the section's design with the section solver's max |y| on the same storm
+    and seed, their ratio, ``disagree`` and the candidate causes."""
+    p = route.pipeline
+    sect = _section_solver(route, gov, gov["design_value"], section)
     y_fe, y_sec = first["max_displacement_m"], sect["max_displacement_m"]
     factor = y_fe / y_sec if y_sec > 0 else float("inf")
-    at_design = first | {
+    return first | {
         "section_solver_max_displacement_m": y_sec,
         "fe_over_section": factor,
         "disagree": bool(factor > DISAGREEMENT_FACTOR or factor < 1.0 / DISAGREEMENT_FACTOR),
         "causes": [c.format(ends=p.end_conditions, length=p.length) for c in CAUSES],
     }
-    accepted, result, search, value = first, r0, None, x0
-    if not first["pass"] and x0 is not None:
-        d = route.dynamic
-        rng = route.design
-        _lo, hi, tol = (
-            (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
-            if route.variable == "concrete_thickness"
-            else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
-        )
-        runs: dict[float, tuple[dict[str, Any], Any]] = {}
 
-        def evaluate(x: float) -> tuple[float, int]:
-            row, res = pipeline_trial(route, gov, x, stop_at_allowable=True)
-            runs[float(x)] = (row, res)
-            return row["ratio"], 1
 
-        sec = next(s for s in sections if s["index"] == gov["index"])
-        known_pass = sorted(
-            v for v in [(sec["levels"].get(k) or {}).get("value") for k in sec["levels"]]
-            + [x for x, g in ((sec.get("dynamic") or {}).get("bisection") or {}).get("trials", [])
-               if g <= 1.0]
-            if v is not None and v > x0
-        )  # fmt: skip
-        ladder = [x0 + tol * 2**j for j in range(1, 12) if x0 + tol * 2**j < hi]
-        guesses = sorted(set(ladder) | set(known_pass))
-        search = search_dynamic(evaluate, lo=x0, hi=hi, tol=tol,
-                                known=[(x0, first["ratio"])], guesses=guesses)  # fmt: skip
-        search = {k: search[k] for k in ("value", "status", "bracket", "trials", "message")}
-        value = search["value"]
-        if value is not None:
-            accepted, result = runs.get(float(value), (first, r0))
-        else:
-            accepted, result = first, r0
-    env = result.envelopes
-    if out is not None and env is not None:
-        save_dataset(env.assign_attrs(assess_section=gov["section"],
-                                      combination=gov["combination"]),
-                     Path(out) / "pipeline.nc")  # fmt: skip
+def _raise_design(
+    route: Route,
+    gov: dict[str, Any],
+    section: Any,
+    result: dict[str, Any],
+    first: dict[str, Any],
+    r0: Any,
+    mesh: dict[str, Any] | None,
+) -> tuple[dict[str, Any], dict[str, Any], Any, float | None]:
+    """The design raised from the failing section design x0 until the FE passes
+    (:func:`onbottom.assess.dynamic.search_dynamic`, failing trials stopped at the allowable;
+    the first guesses: the section's heavier passing values already known, then x0 + 2, 4, 8,
+    ... tolerances): (the search, the accepted row, its result, the value; None: none passes)."""
+    from onbottom.assess.dynamic import search_dynamic
+
+    x0 = gov["design_value"]
+    d, rng = route.dynamic, route.design
+    _lo, hi, tol = (
+        (rng.thickness_min, rng.thickness_max, d.thickness_tolerance_m)
+        if route.variable == "concrete_thickness"
+        else (rng.weight_min, rng.weight_max, d.weight_tolerance_n_per_m)
+    )
+    runs: dict[float, tuple[dict[str, Any], Any]] = {}
+
+    def evaluate(x: float) -> tuple[float, int]:
+        row, res = pipeline_trial(route, gov, x, stop_at_allowable=True, section=section, mesh=mesh)
+        runs[float(x)] = (row, res)
+        return row["ratio"], 1
+
+    levels = result["levels"]
+    known_pass = sorted(
+        v for v in [(levels.get(k) or {}).get("value") for k in levels]
+        + [x for x, g in ((result.get("dynamic") or {}).get("bisection") or {}).get("trials", [])
+           if g <= 1.0]
+        if v is not None and v > x0
+    )  # fmt: skip
+    ladder = [x0 + tol * 2**j for j in range(1, 12) if x0 + tol * 2**j < hi]
+    guesses = sorted(set(ladder) | set(known_pass))
+    search = search_dynamic(evaluate, lo=x0, hi=hi, tol=tol,
+                            known=[(x0, first["ratio"])], guesses=guesses)  # fmt: skip
+    search = {k: search[k] for k in ("value", "status", "bracket", "trials", "message")}
+    value = search["value"]
+    if value is not None:
+        accepted, res = runs.get(float(value), (first, r0))
+    else:
+        accepted, res = first, r0
+    return search, accepted, res, value
+
+
+def _document(
+    route: Route,
+    gov: dict[str, Any],
+    mesh: dict[str, Any],
+    accepted: dict[str, Any],
+    res: Any,
+    search: dict[str, Any] | None,
+    value: float | None,
+    at_design: dict[str, Any],
+    out: str | Path | None,
+) -> dict[str, Any]:
+    """The results.json ``pipeline`` document of a section's FE check."""
+    p = route.pipeline
+    x0 = gov["design_value"]
+    env = res.envelopes
     ok = accepted["pass"] and (value is not None or x0 is None)
     return (
         gov
@@ -288,9 +492,9 @@ def run_governing_pipeline(
             "pass": bool(ok),
             "at_section_design": at_design,
             "search": search,
-            "length_m": p.length,
-            "element_length_m": p.element_length,
-            "n_nodes": int(result.x.size),
+            "length_m": mesh["length"],
+            "element_length_m": mesh["element_length"],
+            "n_nodes": int(res.x.size),
             "end_conditions": p.end_conditions,
             "strain_limit": p.strain_limit,
             "duration_s": p.duration,
@@ -303,7 +507,6 @@ def run_governing_pipeline(
                 "max_abs_moment": [float(v) for v in env["max_abs_moment"].values],
             },
             "netcdf": None if out is None else str(Path(out) / "pipeline.nc"),
-            "cpu_time_s": time.process_time() - c0,
-            "wall_time_s": time.perf_counter() - t0,
         }
+        | ({"mesh": mesh} if p.mesh == "rule" else {})
     )

@@ -7,13 +7,19 @@ the static levels, the :class:`~onbottom.dynamics.storm_setup.StormSetup` of eac
 combination at the given design, and a :data:`TrialStorm` that builds them at a trial design
 (the dynamic search and the pipeline FE). Every object is picklable: a section is the task a
 Dask worker runs.
+
+Data flows one way: the case file is read and validated once, by :mod:`onbottom.cases.assess`;
+a trial design is a :func:`dataclasses.replace` on the built objects (:class:`DesignTrials`:
+the layer thickness of the built :class:`~onbottom.inputs.pipe_buildup.PipeBuildUp`, or the
+submerged weight of the built :class:`~onbottom.inputs.pipe.Pipe`, then the soil model and
+load reductions that depend on the pipe), never a case document read again.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from onbottom._validate import in_range, integer, non_negative, one_of, positive
@@ -30,11 +36,13 @@ __all__ = [
     "ALLOWABLE_OVER_D",
     "VARIABLES",
     "DesignRange",
+    "DesignTrials",
     "DynamicSettings",
     "Levels",
     "PipelineFESettings",
     "Route",
     "Section",
+    "SoilChoice",
     "StormCombination",
     "TrialStorm",
 ]
@@ -184,6 +192,13 @@ class PipelineFESettings:
         Strain limit [-] (a fraction, not %).
     duration : float or None
         Simulate only [0, duration] of the storm [s] (None: all of it).
+    sections : str
+        ``"governing"``: the FE runs on the governing section only (the heaviest design);
+        ``"every"``: it checks every section's design, in that section's task (on its Dask
+        worker), from the section's accepted design.
+    mesh : str
+        ``"given"``: ``length`` and ``element_length`` as given; ``"rule"``: both from the
+        section, sea state and pipe (:func:`onbottom.assess.pipeline.fe_mesh`).
     """
 
     length: float = 200.0
@@ -191,8 +206,12 @@ class PipelineFESettings:
     end_conditions: str = "fixed"
     strain_limit: float = 2.0e-3
     duration: float | None = None
+    sections: str = "governing"
+    mesh: str = "given"
 
     def __post_init__(self) -> None:
+        one_of("PipelineFESettings.sections", self.sections, ("governing", "every"))
+        one_of("PipelineFESettings.mesh", self.mesh, ("given", "rule"))
         positive("PipelineFESettings.length", self.length)
         in_range("PipelineFESettings.element_length", self.element_length, 0.0, 0.5 * self.length,
                  low_inclusive=False)  # fmt: skip
@@ -211,6 +230,110 @@ class StormCombination:
     name: str
     condition: str
     setup: StormSetup
+
+
+@dataclass(frozen=True)
+class SoilChoice:
+    """A soil model by its registry name (:mod:`onbottom.soil.registry`) with its options,
+    validated when the case was read: :meth:`build` makes it for a trial pipe (the models
+    depend on the pipe's D and w_s, e.g. the as-laid penetration).
+
+    Parameters
+    ----------
+    name : str
+        Registered soil model name (``verley_sotberg_silica``, ...).
+    options : dict
+        Keyword options of the model (units as its class states).
+    where : str
+        The case-file key named by an error (``soil.model`` or ``seabed.model``).
+    """
+
+    name: str
+    options: dict[str, Any] = field(default_factory=dict)
+    where: str = "soil.model"
+
+    def build(self, pipe: Pipe, seabed: Sand | Clay | Rock) -> Any:
+        """The soil model for ``pipe`` on ``seabed``."""
+        from onbottom.soil.registry import build_soil_model
+
+        return build_soil_model(self.name, pipe, seabed, where=self.where, **self.options)
+
+
+@dataclass(frozen=True)
+class DesignTrials:
+    """The :data:`TrialStorm` of a section from built objects: ``trials(k, x)`` is the storm
+    setup of load combination ``k`` at design value ``x`` — a :func:`dataclasses.replace` of
+    that combination's setup at the given design with the trial pipe, its soil model and its
+    load reductions. Nothing is read or validated again (the case was, once).
+
+    Parameters
+    ----------
+    section : Pipe or PipeBuildUp
+        The pipe section at the given design (the route's ``[pipe]``, built).
+    variable : str
+        ``concrete_thickness`` (the thickness [m] of ``layer`` of a build-up) or
+        ``submerged_weight`` (w_s [N/m] of a simple pipe).
+    layer : str
+        The build-up layer sized (``concrete_thickness``).
+    conditions : tuple of str
+        The pipe condition of each load combination (``operation``, ``installation``, ...).
+    setups : tuple of StormSetup
+        The storm setup of each load combination at the given design.
+    soil : SoilChoice
+        The soil model, rebuilt for each trial pipe.
+    trench_depth : float or None
+        Trench depth z_t [m] of the F109 load reductions (rebuilt as z_t/D for each trial
+        pipe); None: the setups run without load reductions.
+    """
+
+    section: Pipe | PipeBuildUp
+    variable: str
+    layer: str
+    conditions: tuple[str, ...]
+    setups: tuple[StormSetup, ...]
+    soil: SoilChoice
+    trench_depth: float | None = None
+
+    def __post_init__(self) -> None:
+        one_of("DesignTrials.variable", self.variable, VARIABLES[:2])
+        if len(self.conditions) != len(self.setups):
+            raise InputError(
+                f"DesignTrials.conditions has {len(self.conditions)} entries, setups"
+                f" {len(self.setups)}: give one condition per load combination"
+            )
+
+    def pipe(self, k: int, x: float) -> Pipe:
+        """The pipe of load combination ``k`` at design value ``x``; raises
+        :class:`~onbottom.errors.InputError` where it floats (w_s <= 0) in that condition."""
+        if self.variable == "submerged_weight":
+            if isinstance(self.section, PipeBuildUp):
+                raise InputError(
+                    "DesignTrials.variable = 'submerged_weight' is invalid for a build-up pipe:"
+                    " size concrete_thickness"
+                )
+            return replace(self.section, submerged_weight=float(x))
+        if not isinstance(self.section, PipeBuildUp):
+            raise InputError(
+                "DesignTrials.variable = 'concrete_thickness' is invalid for a simple pipe:"
+                " size submerged_weight"
+            )
+        return self.section.with_layer_thickness(self.layer, float(x)).pipe(self.conditions[k])
+
+    def __call__(self, k: int, x: float) -> StormSetup:
+        base = self.setups[k]
+        pipe = self.pipe(k, x)
+        reductions = base.reductions
+        if self.trench_depth is not None:
+            if self.trench_depth > pipe.outer_diameter:
+                raise InputError(
+                    f"seabed.trench_depth = {self.trench_depth!r} m is invalid: deeper than the"
+                    f" trial pipe's outer diameter {pipe.outer_diameter:.4g} m"
+                )
+            reductions = replace(
+                reductions, trench_depth_over_d=self.trench_depth / pipe.outer_diameter
+            )
+        soil = self.soil.build(pipe, base.seabed)
+        return replace(base, pipe=pipe, soil=soil, reductions=reductions)
 
 
 @dataclass(frozen=True)

@@ -39,9 +39,11 @@ re-raised under the route key it came from (``route.sections[1].water_depth``).
 
 :func:`build_route` turns a validated case into the plain :class:`~onbottom.assess.route.Route`
 that :func:`onbottom.assess.assess` takes (each section's check inputs and the storm setups of
-its load combinations, built by those same loaders, and a :class:`StormTrials` for the trial
-designs of the dynamic search); :func:`load_route` reads a file and builds it in one call;
-:func:`example_path` is the embedded example route (``onbottom assess`` without a CASE).
+its load combinations, built by those same loaders, and a
+:class:`~onbottom.assess.route.DesignTrials` for the trial designs of the dynamic search: built
+objects varied by ``replace``, never a case document read again); :func:`load_route` reads a
+file and builds it in one call; :func:`example_path` is the embedded example route
+(``onbottom assess`` without a CASE).
 """
 
 from __future__ import annotations
@@ -54,9 +56,8 @@ import math
 import os
 import re
 import warnings
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, NoReturn
+from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
 from pydantic import Field, model_validator
 
@@ -72,11 +73,13 @@ from onbottom._version import __version__
 from onbottom.assess.route import (
     ALLOWABLE_OVER_D,
     DesignRange,
+    DesignTrials,
     DynamicSettings,
     Levels,
     PipelineFESettings,
     Route,
     Section,
+    SoilChoice,
     StormCombination,
 )
 from onbottom.cases.models import SoilTable, check_model_names
@@ -99,12 +102,14 @@ from onbottom.cases.tables import (
 from onbottom.dynamics.storm_setup import StormSetup
 from onbottom.errors import InputError
 
+if TYPE_CHECKING:
+    from onbottom.cases.storm import StormCase
+
 __all__ = [
     "ALLOWABLE_OVER_D",
     "EXAMPLE",
     "RouteCase",
     "RouteSection",
-    "StormTrials",
     "build_route",
     "case_identity",
     "dynamic_curve_files",
@@ -291,6 +296,15 @@ class RoutePipelineTable(StrictModel):
     )
     duration: float | None = Field(
         None, gt=0.0, description="simulate only [0, duration] of the storm [s] (None: all)"
+    )
+    sections: Literal["governing", "every"] = Field(
+        "governing",
+        description="the FE checks the governing section only, or every section's design",
+    )
+    mesh: Literal["given", "rule"] = Field(
+        "given",
+        description="length and element_length as given, or from the section by the stated"
+        " rule (onbottom.assess.pipeline.fe_mesh)",
     )
 
     @model_validator(mode="after")
@@ -721,7 +735,9 @@ def example_path() -> Path:
 # ---- the built route -------------------------------------------------------------------------
 def trial_pipe(pipe: dict[str, Any], variable: str, layer: str, x: float) -> dict[str, Any]:
     """A ``[pipe]`` table at design value ``x``: the submerged weight [N/m] of a simple pipe,
-    or the thickness [m] of the build-up's layer ``layer`` (``variable``)."""
+    or the thickness [m] of the build-up's layer ``layer`` (``variable``). A case document
+    for writing out a design (the assessment itself varies the built pipe,
+    :class:`~onbottom.assess.route.DesignTrials`)."""
     p = copy.deepcopy(pipe)
     if variable == "submerged_weight":
         p["submerged_weight"] = float(x)
@@ -732,31 +748,52 @@ def trial_pipe(pipe: dict[str, Any], variable: str, layer: str, x: float) -> dic
     return p
 
 
-def _storm_setup(doc: dict[str, Any]) -> StormSetup:
-    """A section's storm document through the ``onbottom storm`` loader (its warnings were
+def _storm_case(doc: dict[str, Any]) -> StormCase:
+    """A section's storm document parsed as an ``onbottom storm`` case."""
+    from onbottom.cases.storm import StormCase
+
+    return parse_case(StormCase, doc)
+
+
+def _storm_setup(case: StormCase) -> StormSetup:
+    """A section's storm case built by the ``onbottom storm`` loader (its warnings were
     reported when the route was loaded)."""
-    from onbottom.cases.storm import StormCase, build_setup
+    from onbottom.cases.storm import build_setup
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return build_setup(parse_case(StormCase, doc), None)
+        return build_setup(case, None)
 
 
-@dataclass(frozen=True)
-class StormTrials:
-    """The :data:`~onbottom.assess.route.TrialStorm` of a route section: the storm documents
-    of its load combinations at the given design; ``trials(k, x)`` puts the pipe at design
-    value ``x`` (:func:`trial_pipe`) into document ``k`` and builds it through the
-    ``onbottom storm`` loader (a pipe that floats in the combination's condition raises)."""
+def _soil_choice(case: StormCase) -> SoilChoice:
+    """The soil model a storm case builds (:func:`onbottom.cases.models.soil_from_case`): ``[soil]
+    model`` with its checked options, else the default of the seabed kind."""
+    from onbottom.soil.registry import SEABED_MODELS, SOIL_MODELS
 
-    documents: tuple[dict[str, Any], ...]
-    variable: str
-    layer: str
+    soil = case.soil
+    if soil is None or soil.model is None:
+        return SoilChoice(SEABED_MODELS[case.seabed.model], {}, where="seabed.model")
+    opts = SOIL_MODELS.check_options(
+        soil.model, soil.models.get(soil.model), where=f"soil.{soil.model}"
+    )
+    return SoilChoice(soil.model, dict(opts), where="soil.model")
 
-    def __call__(self, k: int, x: float) -> StormSetup:
-        doc = dict(self.documents[k])
-        doc["pipe"] = trial_pipe(doc["pipe"], self.variable, self.layer, x)
-        return _storm_setup(doc)
+
+def _design_trials(
+    case: RouteCase, cases: list[StormCase], setups: tuple[StormSetup, ...]
+) -> DesignTrials:
+    """The trial designs of a section's storms: the built pipe section, soil choice and
+    trench of its storm cases (read once), varied by :class:`DesignTrials`."""
+    first = cases[0]
+    return DesignTrials(
+        section=first.pipe.section(first.environment.water_density),
+        variable=case.solve_for,
+        layer=case.design.layer,
+        conditions=tuple(c.pipe.condition for c in cases),
+        setups=setups,
+        soil=_soil_choice(first),
+        trench_depth=first.seabed.trench_depth if first.hydro.reductions else None,
+    )
 
 
 def _given_value(case: RouteCase) -> float | None:
@@ -778,13 +815,14 @@ def _build_section(case: RouteCase, i: int) -> Section:
     trials = None
     if case.levels.dynamic:
         names = case.combination_names(i)
-        docs = tuple(case.storm_document(i, n) for n in names)
+        cases = [_storm_case(case.storm_document(i, n)) for n in names]
+        setups = tuple(_storm_setup(c) for c in cases)
         storms = tuple(
-            StormCombination(n, d["pipe"]["condition"], _storm_setup(d))
-            for n, d in zip(names, docs, strict=True)
+            StormCombination(n, c.pipe.condition, st)
+            for n, c, st in zip(names, cases, setups, strict=True)
         )
         if case.solve_for != "none":
-            trials = StormTrials(docs, case.solve_for, case.design.layer)
+            trials = _design_trials(case, cases, setups)
     return Section(
         name=s.name,
         kp_start=s.kp_start,
