@@ -54,6 +54,7 @@ from scipy import special, stats
 
 from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.errors import InputError
+from onbottom.status import Status
 from onbottom.reliability import _sampling
 from onbottom.reliability.campaign import Campaign
 from onbottom.reliability.distributions import UncertainParameter
@@ -279,7 +280,7 @@ class _LimitState:
         y = out[:, self.k].copy()
         if self.k_stop is not None:
             self.stopped += int(np.count_nonzero(out[:, self.k_stop] == 1.0))
-        bad = ~np.isfinite(y) | ((status < 0) & (status != -3))
+        bad = ~np.isfinite(y) | ((status < 0) & (status != Status.OUTSIDE_VALIDITY))
         self.failed += int(np.count_nonzero(bad))
         y[bad] = np.inf
         self.calls += a.shape[0]
