@@ -28,7 +28,6 @@ from onbottom.soil.penetration_f114 import (
     solve_embedment,
 )
 from onbottom.soil.penetration_geometry import contact_width, penetrated_area
-from onbottom.status import Status
 from onbottom.soil.penetration_sand import (
     DrainedBounds,
     DrainedPenetration,
@@ -36,6 +35,7 @@ from onbottom.soil.penetration_sand import (
     bearing_factor_n_q,
     surcharge_depth,
 )
+from onbottom.status import Status
 
 D = 0.5
 LEVELS = np.array([0.1, 0.2, 0.3, 0.4, 0.5])

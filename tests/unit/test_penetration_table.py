@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
-from onbottom.status import Status
 from onbottom.soil.penetration_clay import UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import LayConditions
 from onbottom.soil.penetration_sand import DrainedPenetration
 from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
+from onbottom.status import Status
 
 SAND = {"diameter": 0.5, "unit_weight": 16.7e3}
 CLAY = {"diameter": 0.5, "su_mudline": 2.0e3, "su_gradient": 3.0e3, "unit_weight": 6.0e3}

@@ -209,8 +209,8 @@ class DesignResult:
 
     ``success`` (True: ``status.success``), ``status`` (a :class:`~onbottom.status.Status`:
     ``CONVERGED`` (6), the minimum found inside the range; ``AT_BOUND`` (7), the lower bound
-    already passes), ``message``; ``variable`` (``"concrete_thickness"`` [m] or ``"submerged_weight"``
-    [N/m]); ``value``; ``utilisation`` (governing, at ``value``); ``governing_check``;
+    already passes), ``message``; ``variable`` (``"concrete_thickness"`` [m] or
+    ``"submerged_weight"`` [N/m]); ``value``; ``utilisation`` (governing, at ``value``); ``governing_check``;
     ``checks`` (rows at ``value``); ``section`` (the designed PipeBuildUp or Pipe).
     """
 
@@ -254,8 +254,8 @@ def minimum_passing(
     its :class:`CheckRow` list (the governing row decides). ``n_scan`` (>= 2) values are
     scanned from ``lo`` to ``hi``; the first passing one and its failing neighbour bracket
     the crossing, refined by Brent's method to ``xtol`` (in the unit of x) and returned on
-    the passing side. Status ``AT_BOUND``: ``lo`` already passes; ``CONVERGED``: a crossing found. A governing
-    utilisation that is not monotone in x between scan points can hide a narrower passing
+    the passing side. Status ``AT_BOUND``: ``lo`` already passes; ``CONVERGED``: a crossing
+    found. A governing utilisation that is not monotone in x between scan points can hide a narrower passing
     window: refine ``n_scan``.
 
     Parameters
@@ -303,7 +303,8 @@ def minimum_passing(
         )
     i = int(ok[0])
     if i == 0:
-        x, status, msg = float(xs[0]), Status.AT_BOUND, f"the lower bound {lo:g} {unit} already passes"
+        x, status = float(xs[0]), Status.AT_BOUND
+        msg = f"the lower bound {lo:g} {unit} already passes"
     else:
         a, b = float(xs[i - 1]), float(xs[i])
         if math.isfinite(us[i - 1]):
@@ -319,8 +320,8 @@ def minimum_passing(
     rows = evaluate(section)
     g = governing(rows)
     return DesignResult(
-        status.success, status, msg, variable, x, g.utilisation, f"{g.name} / {g.combination}", tuple(rows),
-        section,
+        status.success, status, msg, variable, x, g.utilisation, f"{g.name} / {g.combination}",
+        tuple(rows), section,
     )  # fmt: skip
 
 

@@ -54,11 +54,11 @@ from scipy import special, stats
 
 from onbottom._validate import in_range, integer, one_of, positive
 from onbottom.errors import InputError
-from onbottom.status import Status
 from onbottom.reliability import _sampling
 from onbottom.reliability.campaign import Campaign
 from onbottom.reliability.distributions import UncertainParameter
 from onbottom.reliability.estimators import lifetime_probability
+from onbottom.status import Status
 
 __all__ = [
     "DYNAMIC_METHODS",

@@ -38,10 +38,10 @@ from onbottom.errors import InputError, OutOfRangeWarning, SolutionError
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.soil import Clay, Rock, Sand
 from onbottom.results import annotate, provenance
-from onbottom.status import Status
 from onbottom.soil.penetration_clay import UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_geometry import as_penetration, contact_width
 from onbottom.soil.penetration_sand import DrainedBounds, DrainedPenetration
+from onbottom.status import Status
 
 __all__ = [
     "STANDARD",

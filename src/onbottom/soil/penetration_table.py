@@ -18,7 +18,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from onbottom.errors import OutOfRangeWarning
-from onbottom.status import Status
 from onbottom.soil.penetration_clay import DEFAULT_ROUGHNESS, UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import (
     EmbedmentResult,
@@ -32,6 +31,7 @@ from onbottom.soil.penetration_sand import (
     DrainedBounds,
     DrainedPenetration,
 )
+from onbottom.status import Status
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -183,8 +183,8 @@ class PenetrationRun:
 
     def embedment_dict(self) -> dict[str, Any] | None:
         """:meth:`EmbedmentResult.as_dict`, with ``success`` false, ``status`` −3
-        (:attr:`~onbottom.status.Status.OUTSIDE_VALIDITY`) and the notes in ``message`` when the solution is outside the
-        model's validity; None without an embedment."""
+        (:attr:`~onbottom.status.Status.OUTSIDE_VALIDITY`) and the notes in ``message`` when the
+        solution is outside the model's validity; None without an embedment."""
         if self.embedment is None:
             return None
         emb = self.embedment.as_dict()
