@@ -210,8 +210,9 @@ class DesignResult:
     ``success`` (True: ``status.success``), ``status`` (a :class:`~onbottom.status.Status`:
     ``CONVERGED`` (6), the minimum found inside the range; ``AT_BOUND`` (7), the lower bound
     already passes), ``message``; ``variable`` (``"concrete_thickness"`` [m] or
-    ``"submerged_weight"`` [N/m]); ``value``; ``utilisation`` (governing, at ``value``); ``governing_check``;
-    ``checks`` (rows at ``value``); ``section`` (the designed PipeBuildUp or Pipe).
+    ``"submerged_weight"`` [N/m]); ``value``; ``utilisation`` (governing, at ``value``);
+    ``governing_check``; ``checks`` (rows at ``value``); ``section`` (the designed PipeBuildUp
+    or Pipe).
     """
 
     success: bool
@@ -255,8 +256,8 @@ def minimum_passing(
     scanned from ``lo`` to ``hi``; the first passing one and its failing neighbour bracket
     the crossing, refined by Brent's method to ``xtol`` (in the unit of x) and returned on
     the passing side. Status ``AT_BOUND``: ``lo`` already passes; ``CONVERGED``: a crossing
-    found. A governing utilisation that is not monotone in x between scan points can hide a narrower passing
-    window: refine ``n_scan``.
+    found. A governing utilisation that is not monotone in x between scan points can hide a
+    narrower passing window: refine ``n_scan``.
 
     Parameters
     ----------
