@@ -152,10 +152,6 @@ class AbsoluteStabilityResult:
         return out
 
 
-def _args(**kwargs: Any) -> list[tuple[str, Any]]:
-    return list(kwargs.items())
-
-
 def absolute_lateral_stability(
     pipe: Pipe,
     seabed: Sand | Clay | Rock,
@@ -229,30 +225,27 @@ def absolute_lateral_stability(
     """
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {pipe!r} is invalid: expected a Pipe")
-    # one number per argument (an array is a named error, a 0-d array a number)
-    hs, tp, depth = (
-        finite(k, consistency.scalar(k, v)) for k, v in _args(hs=hs, tp=tp, depth=depth)
-    )
-    current_velocity, current_reference_height, wave_direction_deg, current_direction_deg = (
-        finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            current_velocity=current_velocity,
-            current_reference_height=current_reference_height,
-            wave_direction_deg=wave_direction_deg,
-            current_direction_deg=current_direction_deg,
-        )
-    )
-    trench_depth, trench_angle_deg, duration = (
-        finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            trench_depth=trench_depth, trench_angle_deg=trench_angle_deg, duration=duration
-        )
-    )
-    roughness, gamma, spreading_s, penetration = (
-        None if v is None else finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            roughness=roughness, gamma=gamma, spreading_s=spreading_s, penetration=penetration
-        )
+    # settings: one number per argument, checked for a section in this sea
+    (
+        (hs, tp, depth),
+        (current_velocity, current_reference_height, wave_direction_deg, current_direction_deg),
+        (trench_depth, trench_angle_deg, duration),
+        (roughness, gamma, spreading_s, penetration),
+    ) = _numbers(
+        hs=hs,
+        tp=tp,
+        depth=depth,
+        current_velocity=current_velocity,
+        current_reference_height=current_reference_height,
+        wave_direction_deg=wave_direction_deg,
+        current_direction_deg=current_direction_deg,
+        trench_depth=trench_depth,
+        trench_angle_deg=trench_angle_deg,
+        duration=duration,
+        roughness=roughness,
+        gamma=gamma,
+        spreading_s=spreading_s,
+        penetration=penetration,
     )
     consistency.report(
         consistency.section_in_sea(
@@ -270,6 +263,7 @@ def absolute_lateral_stability(
     kind = seabed_kind(seabed)
     one_of("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
     gamma_sc = safety_factor(region, kind, safety_class)
+    # the design oscillation (F109 §3.4.3)
     d, ws, rho = pipe.outer_diameter, pipe.submerged_weight, pipe.seawater_density
     z0 = seabed_roughness(seabed) if roughness is None else roughness
     osc = design_oscillation(
@@ -289,8 +283,48 @@ def absolute_lateral_stability(
         seawater_density=rho,
         duration=duration,
     )
+    # the load reductions (penetration, trench, permeable seabed)
     zp = initial_penetration_f109(pipe, seabed) if penetration is None else penetration
     non_negative("penetration", zp)
+    r_y, r_z = _load_reductions(d, kind, zp, trench_depth, trench_angle_deg, permeable)
+    # the peak loads and the utilisations (Eqs 3.38–3.41)
+    return _utilisation(pipe, seabed, osc, gamma_sc, zp, r_y, r_z)
+
+
+def _numbers(**values: Any) -> tuple[tuple[Any, ...], ...]:
+    """The scalar arguments of :func:`absolute_lateral_stability`, each one finite number (an
+    array is a named error, a 0-d array a number; the optional ones may be None), checked in
+    order, in four groups: sea state; current and angles; trench and duration; overrides."""
+    groups = (
+        ("hs", "tp", "depth"),
+        (
+            "current_velocity",
+            "current_reference_height",
+            "wave_direction_deg",
+            "current_direction_deg",
+        ),
+        ("trench_depth", "trench_angle_deg", "duration"),
+    )
+    required = tuple(
+        tuple(finite(k, consistency.scalar(k, values[k])) for k in group) for group in groups
+    )
+    optional = tuple(
+        None if values[k] is None else finite(k, consistency.scalar(k, values[k]))
+        for k in ("roughness", "gamma", "spreading_s", "penetration")
+    )
+    return (*required, optional)
+
+
+def _load_reductions(
+    d: float,
+    kind: str,
+    zp: float,
+    trench_depth: float,
+    trench_angle_deg: float,
+    permeable: bool | None,
+) -> tuple[float, float]:
+    """r_y, r_z [-]: the penetration, trench and permeable-seabed (Eq 3.18) reductions of the
+    horizontal and vertical peak loads (:mod:`onbottom.hydro.reductions`)."""
     r_pen_y, r_pen_z = (float(r) for r in penetration_reduction(zp / d))
     zt = non_negative("trench_depth", trench_depth)
     r_tr_y, r_tr_z = trench_reduction(zt / d, trench_angle_deg) if zt > 0.0 else (1.0, 1.0)
@@ -299,6 +333,20 @@ def absolute_lateral_stability(
     perm = (kind != "clay") if permeable is None else bool(permeable)
     r_y = r_pen_y * r_tr_y
     r_z = (PERMEABLE_SEABED_REDUCTION_Z if perm else 1.0) * r_pen_z * r_tr_z
+    return r_y, r_z
+
+
+def _utilisation(
+    pipe: Pipe,
+    seabed: Sand | Clay | Rock,
+    osc: Any,
+    gamma_sc: float,
+    zp: float,
+    r_y: float,
+    r_z: float,
+) -> AbsoluteStabilityResult:
+    """Peak loads F*_Y, F*_Z (Eqs 3.40, 3.41) and the utilisations (Eqs 3.38, 3.39)."""
+    d, ws, rho = pipe.outer_diameter, pipe.submerged_weight, pipe.seawater_density
     k_star = float(osc.k_star)
     m_star = float(osc.m_star)
     if not math.isfinite(k_star) or k_star <= 0.0:
