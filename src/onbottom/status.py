@@ -11,8 +11,10 @@ not valid). The closed-form solves that iterate use the same enumeration: the F1
 (:func:`onbottom.soil.penetration_f114.solve_embedment`: :attr:`Status.CONVERGED` or
 :attr:`Status.NOT_CONVERGED`), the F109 design solve (:class:`onbottom.checks.design.DesignResult`:
 :attr:`Status.CONVERGED`, :attr:`Status.AT_BOUND`; :attr:`Status.NO_SOLUTION` in the stability
-evaluation's design table) and the LAMMPS run (:class:`onbottom.dem.lammps_run.LammpsResult`:
-:attr:`Status.END` or :attr:`Status.RAISED`). A result's ``success`` is ``status.success``.
+evaluation's design table), the calibration (:class:`onbottom.calibration.fit.CalibrationResult`:
+``CONVERGED``, ``NOT_CONVERGED``, ``NO_SOLUTION``) and the LAMMPS run
+(:class:`onbottom.dem.lammps_run.LammpsResult`: :attr:`Status.END` or :attr:`Status.RAISED`).
+A result's ``success`` is ``status.success``.
 Table: docs/conventions.md, "Solver status". This is a base module (every package may import
 it); :mod:`onbottom.dynamics.status` re-exports it for the time-domain solvers.
 
@@ -67,7 +69,8 @@ class Status(IntEnum):
                                  lift-off in a centrifuge programme); numbers kept
     −4        SINGULAR           pipeline: the Jacobian became singular (a mechanism)
     −5        NOT_CONVERGED      an iterative solve did not converge (last iterate returned)
-    −6        NO_SOLUTION        design solve: no value in the range passes
+    −6        NO_SOLUTION        design solve: no value in the range passes; calibration:
+                                 every simulation failed at the fitted parameters
     −9        RAISED             a run of a study raised an exception (seeds, campaigns)
     ========  =================  ==========================================================
     """

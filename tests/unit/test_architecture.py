@@ -137,9 +137,7 @@ def test_no_table_entry_overstates():
             ok = bool(got & (BASE - {unit})) if entry == "base" else entry in got
             if not ok:
                 stale.append(f"{unit} → {entry}")
-    assert not stale, (
-        f"docs/architecture.md's import table lists imports no module makes: {stale}"
-    )
+    assert not stale, f"docs/architecture.md's import table lists imports no module makes: {stale}"
 
 
 def test_the_table_has_no_circle():

@@ -82,8 +82,7 @@ def _long_functions() -> dict[str, str]:
 def test_no_function_over_120_lines():
     offenders = [where for key, where in _long_functions().items() if key not in PENDING]
     assert not offenders, (
-        f"functions over {MAX_LINES} lines (split them into named stages):\n"
-        + "\n".join(offenders)
+        f"functions over {MAX_LINES} lines (split them into named stages):\n" + "\n".join(offenders)
     )
 
 

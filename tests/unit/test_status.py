@@ -83,11 +83,12 @@ def test_no_solver_result_reports_success_as_zero():
     import dataclasses
     import typing
 
+    from onbottom.calibration.fit import CalibrationResult
     from onbottom.checks.design import DesignResult
     from onbottom.dem.lammps_run import LammpsResult
     from onbottom.soil.penetration_f114 import EmbedmentResult
 
-    for cls in (DesignResult, LammpsResult, EmbedmentResult):
+    for cls in (DesignResult, LammpsResult, EmbedmentResult, CalibrationResult):
         hints = typing.get_type_hints(cls)
         names = {f.name for f in dataclasses.fields(cls)}
         assert {"success", "status"} <= names and hints["status"] is Status, cls
