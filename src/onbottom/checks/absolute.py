@@ -226,12 +226,7 @@ def absolute_lateral_stability(
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {pipe!r} is invalid: expected a Pipe")
     # settings: one number per argument, checked for a section in this sea
-    (
-        (hs, tp, depth),
-        (current_velocity, current_reference_height, wave_direction_deg, current_direction_deg),
-        (trench_depth, trench_angle_deg, duration),
-        (roughness, gamma, spreading_s, penetration),
-    ) = _numbers(
+    n = _numbers(
         hs=hs,
         tp=tp,
         depth=depth,
@@ -247,72 +242,69 @@ def absolute_lateral_stability(
         spreading_s=spreading_s,
         penetration=penetration,
     )
-    consistency.report(
-        consistency.section_in_sea(
-            diameter=pipe.outer_diameter,
-            depth=depth,
-            hs=hs,
-            tp=tp,
-            current_velocity=current_velocity,
-            angles=(
-                ("wave_direction_deg", wave_direction_deg),
-                ("current_direction_deg", current_direction_deg),
-            ),
-        )
-    )
+    _check_section_in_sea(pipe, n)
     kind = seabed_kind(seabed)
     one_of("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
     gamma_sc = safety_factor(region, kind, safety_class)
-    # the design oscillation (F109 §3.4.3)
-    d, ws, rho = pipe.outer_diameter, pipe.submerged_weight, pipe.seawater_density
-    z0 = seabed_roughness(seabed) if roughness is None else roughness
-    osc = design_oscillation(
-        hs,
-        tp,
-        depth,
-        d,
-        gamma=gamma,
-        spectrum=spectrum,
-        wave_direction_deg=wave_direction_deg,
-        spreading_s=spreading_s,
-        current_velocity=current_velocity,
-        current_reference_height=current_reference_height,
-        current_direction_deg=current_direction_deg,
-        roughness=z0,
-        submerged_weight=ws,
-        seawater_density=rho,
-        duration=duration,
-    )
+    # the design oscillation (U*, V*, K*, M*)
+    osc = _oscillation(pipe, seabed, n, spectrum)
+    d, penetration = pipe.outer_diameter, n["penetration"]
     # the load reductions (penetration, trench, permeable seabed)
     zp = initial_penetration_f109(pipe, seabed) if penetration is None else penetration
     non_negative("penetration", zp)
-    r_y, r_z = _load_reductions(d, kind, zp, trench_depth, trench_angle_deg, permeable)
+    r_y, r_z = _load_reductions(d, kind, zp, n["trench_depth"], n["trench_angle_deg"], permeable)
     # the peak loads and the utilisations (Eqs 3.38–3.41)
     return _utilisation(pipe, seabed, osc, gamma_sc, zp, r_y, r_z)
 
 
-def _numbers(**values: Any) -> tuple[tuple[Any, ...], ...]:
+def _numbers(**values: Any) -> dict[str, Any]:
     """The scalar arguments of :func:`absolute_lateral_stability`, each one finite number (an
-    array is a named error, a 0-d array a number; the optional ones may be None), checked in
-    order, in four groups: sea state; current and angles; trench and duration; overrides."""
-    groups = (
-        ("hs", "tp", "depth"),
-        (
-            "current_velocity",
-            "current_reference_height",
-            "wave_direction_deg",
-            "current_direction_deg",
-        ),
-        ("trench_depth", "trench_angle_deg", "duration"),
+    array is a named error, a 0-d array a number; the last four may be None), checked in the
+    order given."""
+    optional = ("roughness", "gamma", "spreading_s", "penetration")
+    return {
+        k: None if v is None and k in optional else finite(k, consistency.scalar(k, v))
+        for k, v in values.items()
+    }
+
+
+def _check_section_in_sea(pipe: Pipe, n: dict[str, Any]) -> None:
+    """The physical consistency of the section in its sea (errors raised, warnings issued)."""
+    consistency.report(
+        consistency.section_in_sea(
+            diameter=pipe.outer_diameter,
+            depth=n["depth"],
+            hs=n["hs"],
+            tp=n["tp"],
+            current_velocity=n["current_velocity"],
+            angles=(
+                ("wave_direction_deg", n["wave_direction_deg"]),
+                ("current_direction_deg", n["current_direction_deg"]),
+            ),
+        )
     )
-    required = tuple(
-        tuple(finite(k, consistency.scalar(k, values[k])) for k in group) for group in groups
+
+
+def _oscillation(pipe: Pipe, seabed: Sand | Clay | Rock, n: dict[str, Any], spectrum: str) -> Any:
+    """The design oscillation U*, V*, T_u, K*, M* of the sea state (:func:`design_oscillation`)."""
+    z0 = seabed_roughness(seabed) if n["roughness"] is None else n["roughness"]
+    return design_oscillation(
+        n["hs"],
+        n["tp"],
+        n["depth"],
+        pipe.outer_diameter,
+        gamma=n["gamma"],
+        spectrum=spectrum,
+        wave_direction_deg=n["wave_direction_deg"],
+        spreading_s=n["spreading_s"],
+        current_velocity=n["current_velocity"],
+        current_reference_height=n["current_reference_height"],
+        current_direction_deg=n["current_direction_deg"],
+        roughness=z0,
+        submerged_weight=pipe.submerged_weight,
+        seawater_density=pipe.seawater_density,
+        duration=n["duration"],
     )
-    optional = tuple(
-        None if values[k] is None else finite(k, consistency.scalar(k, values[k]))
-        for k in ("roughness", "gamma", "spreading_s", "penetration")
-    )
-    return (*required, optional)
 
 
 def _load_reductions(
