@@ -1,95 +1,180 @@
-"""Unit test: the package layering of docs/architecture.md holds (no upward imports).
+"""Unit test: the import table of docs/architecture.md is the code's, both ways.
 
-Parses every module's imports (static, so lazy imports inside functions count too) and checks
-each subpackage against the dependencies the architecture allows.
+The table ("## Import table": package or base module → what it imports) is parsed from the
+markdown. Every module's imports (static, so lazy imports inside functions count too) must be
+listed for its package, every listed entry must be used by some module of that package (the doc
+cannot overstate), the table has no circle (nothing lower imports anything higher), and the
+"depends on" column of the package table says the same as the import table.
 """
 
 from __future__ import annotations
 
 import ast
 import pathlib
+import re
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
-BASE = {
-    "_version", "errors", "constants", "_validate", "_casefile", "results", "_lazy", "_roots",
-    "_jit", "registry",
-}  # fmt: skip
+REPO = pathlib.Path(__file__).resolve().parents[2]
+ROOT = REPO / "src" / "onbottom"
+DOC = REPO / "docs" / "architecture.md"
+TOP = "onbottom"  # the package's own __init__.py (its lazy exports)
 
-ALLOWED: dict[str, set[str]] = {
-    "_version": set(),
-    "_lazy": set(),
-    "_roots": set(),
-    "_jit": {"_version"},
-    "errors": set(),
-    "constants": set(),
-    "_validate": {"errors"},
-    "_casefile": {"errors"},
-    "registry": {"errors"},
-    "results": {"_version", "errors"},
-    "inputs": BASE,
-    "hydro": BASE | {"inputs"},
-    "soil": BASE | {"inputs"},
-    "checks": BASE | {"inputs", "hydro", "soil"},
-    "dynamics": BASE | {"inputs", "hydro", "soil"},
-    "dem": BASE,  # never soil/ or hydro/
-    "metocean": BASE | {"inputs"},  # hindcast statistics: no physics of the pipe
-    # reliability: estimators, the storm campaign (dynamics, study, metocean)
-    "reliability": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "metocean"},
-    "study": BASE | {"inputs", "hydro", "soil", "dynamics", "checks"},
-    "calibration": BASE | {"inputs", "hydro", "soil", "dynamics", "study"},
-    # peers: other programs (OpenSees) solving onbottom's problems, for standing comparisons
-    "peers": BASE | {"inputs", "hydro", "soil", "dynamics"},
-    # assess: a route through every F109 level (onbottom assess); its report draws with plotting/
-    "assess": BASE | {"inputs", "hydro", "soil", "checks", "dynamics", "study", "plotting"},
-    "plotting": BASE
-    | {"inputs", "hydro", "soil", "dynamics", "dem", "calibration", "study", "metocean"}
-    | {"reliability"},
-    # report draws its figures with plotting/ and reports the checks/ of the design cases
-    "report": BASE
-    | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "metocean", "reliability"},
-    # cases: every case-file schema and case -> model builder, just below the command line
-    "cases": BASE
-    | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "metocean", "reliability", "assess", "peers"},
-    "cli": BASE
-    | {"inputs", "hydro", "soil", "checks", "dynamics", "dem", "calibration", "study"}
-    | {"plotting", "report", "metocean", "reliability", "assess", "cases"},
-}
+BASE = frozenset(
+    p.stem for p in ROOT.glob("*.py") if p.stem not in {"__init__", "__main__"}
+)  # the base modules: every top-level module of the package
+PACKAGES = frozenset(p.name for p in ROOT.iterdir() if (p / "__init__.py").is_file())
 
 
-def _imports(path: pathlib.Path) -> set[str]:
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    found: set[str] = set()
-    for node in ast.walk(tree):
+def _table_rows(text: str, heading: str) -> list[list[str]]:
+    """The cells of the first markdown table after ``heading`` (header and rule dropped)."""
+    lines = text.splitlines()
+    i = lines.index(heading)
+    rows: list[list[str]] = []
+    for line in lines[i + 1 :]:
+        if line.startswith("#"):
+            break
+        if line.startswith("|"):
+            rows.append([c.strip() for c in line.strip().strip("|").split("|")])
+        elif rows:
+            break
+    return rows[2:]
+
+
+def _names(cell: str) -> set[str]:
+    return set(re.findall(r"`([^`]+)`", cell))
+
+
+def _import_table() -> dict[str, set[str]]:
+    table: dict[str, set[str]] = {}
+    for row in _table_rows(DOC.read_text(encoding="utf-8"), "## Import table"):
+        (name,) = _names(row[0])
+        assert name not in table, f"{name} has two rows in the import table"
+        table[name] = _names(row[1]) if row[1] != "—" else set()
+    return table
+
+
+TABLE = _import_table()
+
+
+def _unit_of(name: str) -> str:
+    """The table row a top-level name belongs to (a package, a base module, or the top)."""
+    return TOP if name == "__init__" else name
+
+
+def _imports(path: pathlib.Path) -> dict[str, int]:
+    """Top-level onbottom units imported by ``path`` → the first line importing each."""
+    found: dict[str, int] = {}
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
         names: list[str] = []
-        if isinstance(node, ast.ImportFrom) and node.module:
-            names.append(node.module)
+        if isinstance(node, ast.ImportFrom):
+            assert node.level == 0, f"{path}:{node.lineno}: relative import (use onbottom.x)"
+            parts = (node.module or "").split(".")
+            if parts[0] != "onbottom":
+                continue
+            if len(parts) > 1:
+                names.append(parts[1])
+            else:  # from onbottom import x: a module, a subpackage or an export of the top
+                for a in node.names:
+                    names.append(a.name if a.name in BASE | PACKAGES else TOP)
         elif isinstance(node, ast.Import):
-            names.extend(a.name for a in node.names)
+            for a in node.names:
+                parts = a.name.split(".")
+                if parts[0] == "onbottom":
+                    names.append(parts[1] if len(parts) > 1 else TOP)
         for name in names:
-            parts = name.split(".")
-            if parts[0] == "onbottom" and len(parts) > 1:
-                found.add(parts[1])
+            found.setdefault(name, node.lineno)
     return found
 
 
 def _package_of(path: pathlib.Path) -> str:
     rel = path.relative_to(ROOT)
-    return rel.parts[0] if len(rel.parts) > 1 else rel.stem
+    return rel.parts[0] if len(rel.parts) > 1 else _unit_of(rel.stem)
 
 
-MODULES = sorted(p for p in ROOT.rglob("*.py") if _package_of(p) not in {"__init__", "__main__"})
+MODULES = sorted(ROOT.rglob("*.py"))
+
+
+def _expand(unit: str, entries: set[str]) -> set[str]:
+    """What a row allows: ``base`` is any base module (never for a base module's own row)."""
+    return (entries - {"base"}) | (BASE if "base" in entries and unit not in BASE else set())
+
+
+def test_every_package_and_base_module_has_one_row():
+    units = set(BASE) | set(PACKAGES) | {TOP, "__main__"}
+    assert set(TABLE) == units, (
+        f"rows missing: {sorted(units - set(TABLE))}; rows of nothing: "
+        f"{sorted(set(TABLE) - units)} (docs/architecture.md, Import table)"
+    )
+    for unit, entries in TABLE.items():
+        unknown = entries - units - {"base"}
+        assert not unknown, f"{unit}: {sorted(unknown)} is no package or base module"
+        if unit in BASE:
+            assert entries <= BASE, f"base module {unit} imports a package: {entries - BASE}"
 
 
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(ROOT)))
-def test_module_imports_only_lower_layers(path):
-    pkg = _package_of(path)
-    assert pkg in ALLOWED, f"{pkg} is not in the architecture table: add it to docs and here"
-    upward = _imports(path) - ALLOWED[pkg] - {pkg}
-    assert not upward, f"{path.relative_to(ROOT)} imports {sorted(upward)} (not allowed for {pkg})"
+def test_module_imports_are_in_the_table(path):
+    unit = _package_of(path)
+    allowed = _expand(unit, TABLE.get(unit, set()))
+    extra = {n: line for n, line in _imports(path).items() if n != unit and n not in allowed}
+    where = ", ".join(f"{n} (line {line})" for n, line in sorted(extra.items()))
+    assert not extra, (
+        f"{path.relative_to(ROOT)} imports {where}: not in the row of {unit} of the import"
+        " table in docs/architecture.md (add it there if the layering allows it)"
+    )
+
+
+def test_no_table_entry_overstates():
+    used: dict[str, set[str]] = {}
+    for path in MODULES:
+        unit = _package_of(path)
+        used.setdefault(unit, set()).update(n for n in _imports(path) if n != unit)
+    stale = []
+    for unit, entries in TABLE.items():
+        got = used.get(unit, set())
+        for entry in sorted(entries):
+            ok = bool(got & (BASE - {unit})) if entry == "base" else entry in got
+            if not ok:
+                stale.append(f"{unit} → {entry}")
+    assert not stale, f"docs/architecture.md's import table lists imports no module makes: {stale}"
+
+
+def test_the_table_has_no_circle():
+    graph = {u: _expand(u, e) - {u} for u, e in TABLE.items()}
+    done: set[str] = set()
+
+    def visit(u: str, path: tuple[str, ...]) -> None:
+        if u in path:
+            raise AssertionError("import circle: " + " → ".join((*path[path.index(u) :], u)))
+        if u in done:
+            return
+        for v in sorted(graph.get(u, ())):
+            visit(v, (*path, u))
+        done.add(u)
+
+    for u in sorted(graph):
+        visit(u, ())
+
+
+def test_package_table_depends_on_says_the_same():
+    """The "depends on" column of the package table names the packages of the import table."""
+    rows = _table_rows(DOC.read_text(encoding="utf-8"), "# Architecture")
+    checked = 0
+    for row in rows:
+        names = _names(row[0])
+        if len(names) != 1:
+            continue  # the base row
+        unit = next(iter(names)).rstrip("/")
+        if unit not in PACKAGES:
+            continue
+        said = {n.rstrip("/") for n in _names(row[-1])} & PACKAGES
+        assert said == TABLE[unit] & PACKAGES, (
+            f"docs/architecture.md: {unit}'s depends-on says {sorted(said)}, the import table"
+            f" {sorted(TABLE[unit] & PACKAGES)}"
+        )
+        checked += 1
+    assert checked == len(PACKAGES)
 
 
 # ---- no private name is imported across packages ---------------------------------------------

@@ -21,6 +21,7 @@ from click.testing import CliRunner
 from onbottom.cli.main import cli
 from onbottom.dem.config import SD_REDUCED
 from onbottom.errors import InputError, OutOfRangeWarning
+from onbottom.status import Status
 
 # --------------------------------------------------------------------------------------------
 # the contract
@@ -737,7 +738,7 @@ def test_f114_embedment_outside_the_model_range():
     out = _result([*CLAY[:-1], "5", "--model", "2", "--su-kpa", "1", "--load-kn", "4"])
     emb = out["embedment"]
     assert emb["z_over_D"] > 0.5 and emb["success"] is False
-    assert emb["status"] == "outside_validity" and "converged" not in emb["message"]
+    assert emb["status"] == Status.OUTSIDE_VALIDITY == -3 and "converged" not in emb["message"]
 
 
 def test_section_lift_off(tmp_path):

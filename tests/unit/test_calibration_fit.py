@@ -160,3 +160,24 @@ def test_parallel_objective_evaluations_on_dask_equal_serial():
     # records fitted in parallel, one task each, in record order
     assert each[0].values == serial.values
     assert each[1].values == calibrate(other, _params(), **kw).values
+
+
+def test_status_is_the_one_enumeration():
+    """A fit reports its end with onbottom.status.Status: CONVERGED, NOT_CONVERGED when a
+    least-squares stage hits its evaluation limit, NO_SOLUTION when every simulation fails at
+    the fitted parameters; ``success`` is ``status.success`` (never a bare 0)."""
+    from onbottom.status import Status
+
+    rec = _record(TRUTH)
+    ok = calibrate(rec, _params(start=(0.31, 2.1, 1.05)), simulator=toy, method="local")
+    assert ok.status is Status.CONVERGED and ok.success and ok.to_dict()["status"] == 6
+    short = calibrate(rec, _params(), simulator=toy, method="local", max_nfev=2)
+    assert short.status is Status.NOT_CONVERGED and not short.success
+    assert short.to_dict()["status"] == -5
+
+    def broken(record, params):
+        raise RuntimeError("diverged")
+
+    none = calibrate(rec, _params(), simulator=broken, method="local", max_nfev=2)
+    assert none.status is Status.NO_SOLUTION and not none.success
+    assert "failed at the fitted parameters" in none.message

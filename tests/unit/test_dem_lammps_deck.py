@@ -153,3 +153,29 @@ def test_run_options_are_validated():
         lb.run_lammps_case(_case(), "unused", mode="gpu")
     with pytest.raises(InputError, match="n_procs"):
         lb.run_lammps_case(_case(), "unused", n_procs=2, mode="inprocess")
+
+
+def test_run_result_reports_with_the_one_status(monkeypatch, tmp_path):
+    """A LAMMPS run that finishes is Status.END (success), one that raises is Status.RAISED
+    (−9, not success): the status enumeration of every solver, never a bare 0 for success.
+    LAMMPS itself is replaced by stubs (this test needs no LAMMPS)."""
+    from onbottom.dem import lammps_run as lr
+    from onbottom.status import Status
+
+    case = _case()
+    monkeypatch.setattr(lr, "find_lammps", lambda: None)
+    final = (case.positions.copy(), np.zeros_like(case.positions), np.zeros(case.n))
+    monkeypatch.setattr(lr, "read_final", lambda deck, n: final)
+
+    def fail(deck, log_path):
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(lr, "_run_in_process", fail)
+    bad = lr.run_lammps_case(case, tmp_path / "bad")
+    assert bad.status is Status.RAISED and bad.status == -9 and not bad.success
+    assert "boom" in bad.message and bad.final_sample is None
+
+    monkeypatch.setattr(lr, "_run_in_process", lambda deck, log_path: None)
+    ok = lr.run_lammps_case(case, tmp_path / "ok")
+    assert ok.status is Status.END and ok.status == 1 and ok.success
+    assert ok.final_sample is not None

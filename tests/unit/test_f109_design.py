@@ -17,6 +17,7 @@ from onbottom.inputs import Layer, Pipe, Sand
 from onbottom.inputs.environment import Environment, LoadCombination, f109_combinations
 from onbottom.inputs.pipe_buildup import Contents, PipeBuildUp
 from onbottom.inputs.storm import Current, SeaState
+from onbottom.status import Status
 
 SAND = Sand(submerged_unit_weight=10.0e3)
 ENV = Environment(water_depth=40.0)
@@ -59,7 +60,7 @@ def test_rows_per_condition_and_combination():
 
 def test_minimum_concrete_thickness_is_the_boundary():
     res = design_concrete_thickness(BUILDUP, SAND, ENV, COMBOS, thickness_max=0.15)
-    assert res.success and res.status == 0
+    assert res.success and res.status is Status.CONVERGED
     assert res.utilisation == pytest.approx(1.0, abs=2e-3) and res.utilisation <= 1.0
     below = BUILDUP.with_layer_thickness("concrete", res.value - 1e-3)
     assert governing(run_checks(below, SAND, ENV, COMBOS)).utilisation > 1.0
@@ -103,16 +104,18 @@ def test_floating_condition_fails_without_crashing():
 def test_minimum_passing_is_public_and_finds_the_crossing():
     """checks.design.minimum_passing on a hand-made check: utilisation 2 − x passes from x = 1
     (the root, returned on the passing side to xtol); a range that passes at once returns lo
-    with status 1; a range with no pass raises NoFeasibleDesignError with the best point."""
+    with status AT_BOUND; a range with no pass raises NoFeasibleDesignError with the best point."""
     from onbottom.checks.design import CheckRow, NoFeasibleDesignError, minimum_passing
 
     def evaluate(x):
         return [CheckRow("hand", "c", "operation", 2.0 - x, 2.0 - x <= 1.0, {})]
 
     r = minimum_passing(lambda x: x, evaluate, 0.0, 3.0, 7, 1e-6, "x", "m")
-    assert r.status == 0 and 1.0 <= r.value <= 1.0 + 2e-6 and r.utilisation <= 1.0
+    assert r.status is Status.CONVERGED and r.success
+    assert 1.0 <= r.value <= 1.0 + 2e-6 and r.utilisation <= 1.0
     r = minimum_passing(lambda x: x, evaluate, 1.5, 3.0, 4, 1e-6, "x", "m")
-    assert r.status == 1 and r.value == 1.5
+    assert r.status is Status.AT_BOUND and r.success and r.value == 1.5
+    assert r.as_dict()["status"] == 7
     with pytest.raises(NoFeasibleDesignError) as err:
         minimum_passing(lambda x: x, evaluate, 0.0, 0.5, 6, 1e-6, "x", "m")
     assert err.value.best_value == 0.5

@@ -35,6 +35,7 @@ from onbottom.soil.penetration_sand import (
     bearing_factor_n_q,
     surcharge_depth,
 )
+from onbottom.status import Status
 
 D = 0.5
 LEVELS = np.array([0.1, 0.2, 0.3, 0.4, 0.5])
@@ -246,7 +247,7 @@ def test_embedment_with_lay_factor_is_self_consistent():
     model = DrainedPenetration(diameter=D, unit_weight=16.7e3, friction_angle_deg=33)
     lay = LayConditions(bending_stiffness=1e8, bottom_tension=5e5)
     res = solve_embedment(model, 4e3, lay=lay)
-    assert res.success and res.status == 0 and res.iterations > 1
+    assert res.success and res.status is Status.CONVERGED and res.iterations > 1
     q = float(model.resistance(res.z))
     k = lay_factor(bending_stiffness=1e8, secant_stiffness=q / res.z, bottom_tension=5e5)
     assert res.lay_factor == pytest.approx(k, rel=1e-6)
@@ -259,7 +260,8 @@ def test_lay_iteration_not_converged_is_reported_not_raised():
     model = DrainedPenetration(diameter=D, unit_weight=16.7e3, friction_angle_deg=33)
     lay = LayConditions(bending_stiffness=1e8, bottom_tension=5e5)
     res = solve_embedment(model, 4e3, lay=lay, max_iterations=1)
-    assert not res.success and res.status == 1 and "did not converge" in res.message
+    assert not res.success and res.status is Status.NOT_CONVERGED
+    assert "did not converge" in res.message and res.as_dict()["status"] == -5
     assert res.iterations == 1 and len(res.history) == 2
     with pytest.raises(InputError, match="max_iterations"):
         solve_embedment(model, 4e3, lay=lay, max_iterations=0)

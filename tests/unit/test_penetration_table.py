@@ -13,6 +13,7 @@ from onbottom.soil.penetration_clay import UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_f114 import LayConditions
 from onbottom.soil.penetration_sand import DrainedPenetration
 from onbottom.soil.penetration_table import drained_estimates, penetration_run, undrained_model
+from onbottom.status import Status
 
 SAND = {"diameter": 0.5, "unit_weight": 16.7e3}
 CLAY = {"diameter": 0.5, "su_mudline": 2.0e3, "su_gradient": 3.0e3, "unit_weight": 6.0e3}
@@ -71,7 +72,7 @@ def test_lay_factor_outside_its_validity_is_a_note():
         run = penetration_run(model, [0.1], load=3.0e3, lay=lay)
     assert len(run.validity) == 1 and "2.008e+05 N" in run.validity[0]
     emb = run.embedment_dict()
-    assert emb["success"] is False and emb["status"] == "outside_validity"
+    assert emb["success"] is False and emb["status"] == Status.OUTSIDE_VALIDITY == -3
     assert emb["message"] == "outside the model's validity at the solution: " + run.validity[0]
     assert emb["design_load"] == pytest.approx(emb["lay_factor"] * 3.0e3)
 

@@ -30,6 +30,7 @@ def test_every_kernel_uses_the_enumeration(kernel):
 def test_exit_codes():
     assert S.EXIT_INVALID_RESULT == EXIT_INVALID_RESULT == 3
     ok = {Status.END, Status.LIMIT, Status.LIFTOFF, Status.RUNAWAY_END}
+    ok |= {Status.CONVERGED, Status.AT_BOUND}
     for st in Status:
         assert exit_code(st) == (0 if st in ok else 3), st
         assert st.success == (st in ok)
@@ -62,3 +63,32 @@ def test_docs_table_is_the_message_table():
     assert set(seen) == set(Status) - internal
     for st, (message, exit_status) in seen.items():
         assert message == S.MESSAGES[st] and exit_status == st.exit_code, st
+
+
+def test_one_enumeration_for_every_solver():
+    """The closed-form solves report with the same Status (base module onbottom.status, which
+    dynamics.status re-exports): positive is success, negative failure, never a bare 0."""
+    import onbottom.status as base
+
+    assert S.Status is base.Status and S.MESSAGES is base.MESSAGES
+    assert [Status.CONVERGED, Status.AT_BOUND] == [6, 7]
+    assert [Status.NOT_CONVERGED, Status.NO_SOLUTION] == [-5, -6]
+    for st in Status:
+        if st not in {Status.CHUNK, Status.BUFFER_FULL}:
+            assert st.success == (st > 0), st
+
+
+def test_no_solver_result_reports_success_as_zero():
+    """Every result class with ``success`` and ``status`` annotates ``status`` as Status."""
+    import dataclasses
+    import typing
+
+    from onbottom.calibration.fit import CalibrationResult
+    from onbottom.checks.design import DesignResult
+    from onbottom.dem.lammps_run import LammpsResult
+    from onbottom.soil.penetration_f114 import EmbedmentResult
+
+    for cls in (DesignResult, LammpsResult, EmbedmentResult, CalibrationResult):
+        hints = typing.get_type_hints(cls)
+        names = {f.name for f in dataclasses.fields(cls)}
+        assert {"success", "status"} <= names and hints["status"] is Status, cls

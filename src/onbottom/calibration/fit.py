@@ -58,6 +58,7 @@ from onbottom.calibration.objective import (
 from onbottom.calibration.parameters import Parameter
 from onbottom.calibration.records import TestRecord
 from onbottom.errors import InputError
+from onbottom.status import Status
 from onbottom.study.engine import ParallelMap, SerialMap, dask_client
 from onbottom.study.functions import register
 from onbottom.study.sweep import sweep
@@ -203,8 +204,11 @@ class CalibrationResult:
     residuals : numpy.ndarray
         Residual vector at the optimum (read-only).
     success : bool
-    status : int
-        0 converged; 1 stopped at the evaluation/iteration limit; 2 every simulation failed.
+        ``status.success``.
+    status : Status
+        :attr:`~onbottom.status.Status.CONVERGED` (6); ``NOT_CONVERGED`` (−5): a least-squares
+        stage stopped at its evaluation limit; ``NO_SOLUTION`` (−6): every simulation failed
+        at the fitted parameters.
     message : str
     n_evaluations : int
         Simulations of the full record set (objective evaluations, Jacobian included).
@@ -224,7 +228,7 @@ class CalibrationResult:
     misfits: tuple[Misfit, ...]
     residuals: np.ndarray
     success: bool
-    status: int
+    status: Status
     message: str
     n_evaluations: int
     method: str
@@ -247,7 +251,7 @@ class CalibrationResult:
         """JSON-ready summary."""
         return {
             "success": self.success,
-            "status": self.status,
+            "status": int(self.status),
             "message": self.message,
             "method": self.method,
             "records": list(self.record_names),
@@ -485,64 +489,107 @@ def _calibrate(
     t0: float,
     xtol: float = 1e-6,
 ) -> CalibrationResult:
-    from scipy.optimize import differential_evolution, least_squares
-
+    """The fit in stages: start point, global search (``method="global"``), local least
+    squares per finite-difference step, then the result with its uncertainty and misfits."""
     varied = objective.varied
-    p = len(varied)
     theta0 = np.array([(v.value - v.lower) / v.span for v in varied])
-    n_eval = 0
-    history: dict[str, float] = {}
     r_start = objective(theta0)
-    n_eval += 1
-    history["start"] = float(r_start @ r_start)
-    messages = []
-    status = 0
+    history: dict[str, float] = {"start": float(r_start @ r_start)}
+    messages: list[str] = []
+    n_eval = 1
     if method == "global":
-        de = differential_evolution(
-            _Scalar(objective),
-            bounds=[(0.0, 1.0)] * p,
-            seed=seed,
-            popsize=popsize,
-            maxiter=maxiter,
-            tol=tol,
-            init="latinhypercube",
-            polish=False,
-            updating="deferred",
-            workers=pmap,
-            x0=theta0,
+        theta0, nfev = _global_search(
+            objective, pmap, theta0, seed, popsize, maxiter, tol, history, messages
         )
-        n_eval += int(de.nfev)
-        theta0 = np.clip(de.x, 0.0, 1.0)
-        history["global"] = float(de.fun)
-        # DE stopping at maxiter is normal here: the polish that follows decides convergence
-        messages.append(f"differential evolution: {de.message}")
+        n_eval += nfev
+    cached = _CachedObjective(objective, pmap)
+    theta, r, status = _local_search(cached, theta0, fd_steps, max_nfev, xtol, history, messages)
+    # Jacobian at the optimum for the uncertainty (the solver's last one may be older)
+    jac_theta = cached.jacobian(fd_steps[-1])(theta)
+    n_eval += cached.n_fun + cached.n_jac
+    return _result(objective, method, theta, r, jac_theta, status, messages, n_eval, history, t0)
 
-    cache: dict[bytes, np.ndarray] = {}
-    counter = {"fun": 0, "jac": 0}
 
-    def fun(theta: np.ndarray) -> np.ndarray:
+def _global_search(
+    objective: Objective,
+    pmap: Callable,
+    theta0: np.ndarray,
+    seed: int | None,
+    popsize: int,
+    maxiter: int,
+    tol: float,
+    history: dict[str, float],
+    messages: list[str],
+) -> tuple[np.ndarray, int]:
+    """Differential evolution on the unit cube from ``theta0``: its best point, evaluations."""
+    from scipy.optimize import differential_evolution
+
+    de = differential_evolution(
+        _Scalar(objective),
+        bounds=[(0.0, 1.0)] * len(objective.varied),
+        seed=seed,
+        popsize=popsize,
+        maxiter=maxiter,
+        tol=tol,
+        init="latinhypercube",
+        polish=False,
+        updating="deferred",
+        workers=pmap,
+        x0=theta0,
+    )
+    history["global"] = float(de.fun)
+    # DE stopping at maxiter is normal here: the polish that follows decides convergence
+    messages.append(f"differential evolution: {de.message}")
+    return np.clip(de.x, 0.0, 1.0), int(de.nfev)
+
+
+class _CachedObjective:
+    """The residuals of the last point asked (least squares asks twice) and finite-difference
+    Jacobians, counting the simulations of each."""
+
+    def __init__(self, objective: Objective, pmap: Callable) -> None:
+        self.objective, self.pmap = objective, pmap
+        self.cache: dict[bytes, np.ndarray] = {}
+        self.n_fun = self.n_jac = 0
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
         key = np.asarray(theta, dtype=float).tobytes()
-        if key not in cache:
-            cache.clear()
-            cache[key] = objective(theta)
-            counter["fun"] += 1
-        return cache[key]
+        if key not in self.cache:
+            self.cache.clear()
+            self.cache[key] = self.objective(theta)
+            self.n_fun += 1
+        return self.cache[key]
 
-    def make_jac(step: float) -> Callable[[np.ndarray], np.ndarray]:
+    def jacobian(self, step: float) -> Callable[[np.ndarray], np.ndarray]:
         def jac(theta: np.ndarray) -> np.ndarray:
-            r0 = fun(theta)
-            j, n = _jacobian(objective, np.asarray(theta, dtype=float), r0, step, pmap)
-            counter["jac"] += n
+            r0 = self(theta)
+            j, n = _jacobian(self.objective, np.asarray(theta, dtype=float), r0, step, self.pmap)
+            self.n_jac += n
             return j
 
         return jac
 
-    theta = theta0
+
+def _local_search(
+    fun: _CachedObjective,
+    theta: np.ndarray,
+    fd_steps: tuple[float, ...],
+    max_nfev: int,
+    xtol: float,
+    history: dict[str, float],
+    messages: list[str],
+) -> tuple[np.ndarray, np.ndarray, Status]:
+    """Bounded least squares (trf) once per finite-difference step, each from the last:
+    the optimum, its residuals and the status (NOT_CONVERGED if a stage hit ``max_nfev``)."""
+    from scipy.optimize import least_squares
+
+    p = theta.size
+    status = Status.CONVERGED
     for k, step in enumerate(fd_steps):
         lsq = least_squares(
             fun,
             theta,
-            jac=make_jac(step),
+            jac=fun.jacobian(step),
             bounds=(np.zeros(p), np.ones(p)),
             method="trf",
             x_scale=1.0,
@@ -555,13 +602,26 @@ def _calibrate(
         r = fun(theta)
         history[f"local[{k}]"] = float(r @ r)
         messages.append(f"least squares (step {step:g}): {lsq.message}")
-        if lsq.status == 0:
-            status = max(status, 1)
+        if lsq.status == 0:  # scipy's own code: the evaluation limit was reached
+            status = Status.NOT_CONVERGED
     history["local"] = float(r @ r)
-    jac = make_jac(fd_steps[-1])
-    # Jacobian at the optimum for the uncertainty (the solver's last one may be older)
-    jac_theta = jac(theta)
-    n_eval += counter["fun"] + counter["jac"]
+    return theta, r, status
+
+
+def _result(
+    objective: Objective,
+    method: str,
+    theta: np.ndarray,
+    r: np.ndarray,
+    jac_theta: np.ndarray,
+    status: Status,
+    messages: list[str],
+    n_eval: int,
+    history: dict[str, float],
+    t0: float,
+) -> CalibrationResult:
+    """The fitted parameters, their uncertainty and each record's misfit at the optimum."""
+    varied = objective.varied
     cov, corr = _uncertainty(jac_theta, r, objective.span)
     x = objective.lower + theta * objective.span
     fitted = tuple(
@@ -586,9 +646,8 @@ def _calibrate(
             all_failed = False
             misfits.append(evaluate_misfit(rec, sim, objective.weights))
     if all_failed:
-        status = 2
+        status = Status.NO_SOLUTION
         messages.append("the simulation failed at the fitted parameters")
-    success = status == 0
     return CalibrationResult(
         parameters=fitted,
         names=tuple(v.name for v in varied),
@@ -598,7 +657,7 @@ def _calibrate(
         misfit=float(r @ r),
         misfits=tuple(misfits),
         residuals=_readonly(r),
-        success=success,
+        success=status.success,
         status=status,
         message="; ".join(messages),
         n_evaluations=n_eval,

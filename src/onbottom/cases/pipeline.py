@@ -26,7 +26,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
-from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_toml
+from onbottom._casefile import CaseFileError, StrictModel, parse_case, read_json, read_toml
 from onbottom.dynamics.pipeline.storm_run import (
     BYTES_PER_NODE_HOUR,
     SECONDS_PER_NODE_STEP,
@@ -42,6 +42,7 @@ __all__ = [
     "MAX_RUN_SECONDS",
     "PipelineTable",
     "RouteSectionTable",
+    "is_pipeline_case",
     "load_pipeline_run",
 ]
 
@@ -504,3 +505,20 @@ def load_pipeline_run(path: str | os.PathLike) -> PipelineStormRun:
         attrs={"case_file": str(p)},
         identity={"case": text},
     )
+
+
+def is_pipeline_case(path: str | os.PathLike) -> bool:
+    """True when the storm case file ``path`` has a ``[pipeline]`` table: ``onbottom storm``
+    then runs the pipeline FE (:func:`load_pipeline_run`), else the rigid section
+    (:func:`onbottom.cases.storm.load_storm_case`).
+
+    Read with the size- and nesting-limited readers (a device or a huge file is refused at
+    once); a file that cannot be read is not a pipeline case: the storm loader then reports the
+    problem with its line.
+    """
+    p = Path(path)
+    try:
+        doc, _ = read_json(p) if p.suffix.lower() == ".json" else read_toml(p)
+    except CaseFileError:
+        return False
+    return isinstance(doc, dict) and "pipeline" in doc

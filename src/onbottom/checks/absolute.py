@@ -152,10 +152,6 @@ class AbsoluteStabilityResult:
         return out
 
 
-def _args(**kwargs: Any) -> list[tuple[str, Any]]:
-    return list(kwargs.items())
-
-
 def absolute_lateral_stability(
     pipe: Pipe,
     seabed: Sand | Clay | Rock,
@@ -229,68 +225,98 @@ def absolute_lateral_stability(
     """
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {pipe!r} is invalid: expected a Pipe")
-    # one number per argument (an array is a named error, a 0-d array a number)
-    hs, tp, depth = (
-        finite(k, consistency.scalar(k, v)) for k, v in _args(hs=hs, tp=tp, depth=depth)
+    # settings: one number per argument, checked for a section in this sea
+    n = _numbers(
+        hs=hs,
+        tp=tp,
+        depth=depth,
+        current_velocity=current_velocity,
+        current_reference_height=current_reference_height,
+        wave_direction_deg=wave_direction_deg,
+        current_direction_deg=current_direction_deg,
+        trench_depth=trench_depth,
+        trench_angle_deg=trench_angle_deg,
+        duration=duration,
+        roughness=roughness,
+        gamma=gamma,
+        spreading_s=spreading_s,
+        penetration=penetration,
     )
-    current_velocity, current_reference_height, wave_direction_deg, current_direction_deg = (
-        finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            current_velocity=current_velocity,
-            current_reference_height=current_reference_height,
-            wave_direction_deg=wave_direction_deg,
-            current_direction_deg=current_direction_deg,
-        )
-    )
-    trench_depth, trench_angle_deg, duration = (
-        finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            trench_depth=trench_depth, trench_angle_deg=trench_angle_deg, duration=duration
-        )
-    )
-    roughness, gamma, spreading_s, penetration = (
-        None if v is None else finite(k, consistency.scalar(k, v))
-        for k, v in _args(
-            roughness=roughness, gamma=gamma, spreading_s=spreading_s, penetration=penetration
-        )
-    )
-    consistency.report(
-        consistency.section_in_sea(
-            diameter=pipe.outer_diameter,
-            depth=depth,
-            hs=hs,
-            tp=tp,
-            current_velocity=current_velocity,
-            angles=(
-                ("wave_direction_deg", wave_direction_deg),
-                ("current_direction_deg", current_direction_deg),
-            ),
-        )
-    )
+    _check_section_in_sea(pipe, n)
     kind = seabed_kind(seabed)
     one_of("spectrum", spectrum, ("jonswap", "pierson-moskowitz"))
     gamma_sc = safety_factor(region, kind, safety_class)
-    d, ws, rho = pipe.outer_diameter, pipe.submerged_weight, pipe.seawater_density
-    z0 = seabed_roughness(seabed) if roughness is None else roughness
-    osc = design_oscillation(
-        hs,
-        tp,
-        depth,
-        d,
-        gamma=gamma,
-        spectrum=spectrum,
-        wave_direction_deg=wave_direction_deg,
-        spreading_s=spreading_s,
-        current_velocity=current_velocity,
-        current_reference_height=current_reference_height,
-        current_direction_deg=current_direction_deg,
-        roughness=z0,
-        submerged_weight=ws,
-        seawater_density=rho,
-        duration=duration,
-    )
+    # the design oscillation (U*, V*, K*, M*)
+    osc = _oscillation(pipe, seabed, n, spectrum)
+    d, penetration = pipe.outer_diameter, n["penetration"]
+    # the load reductions (penetration, trench, permeable seabed)
     zp = initial_penetration_f109(pipe, seabed) if penetration is None else penetration
     non_negative("penetration", zp)
+    r_y, r_z = _load_reductions(d, kind, zp, n["trench_depth"], n["trench_angle_deg"], permeable)
+    # the peak loads and the utilisations (Eqs 3.38–3.41)
+    return _utilisation(pipe, seabed, osc, gamma_sc, zp, r_y, r_z)
+
+
+def _numbers(**values: Any) -> dict[str, Any]:
+    """The scalar arguments of :func:`absolute_lateral_stability`, each one finite number (an
+    array is a named error, a 0-d array a number; the last four may be None), checked in the
+    order given."""
+    optional = ("roughness", "gamma", "spreading_s", "penetration")
+    return {
+        k: None if v is None and k in optional else finite(k, consistency.scalar(k, v))
+        for k, v in values.items()
+    }
+
+
+def _check_section_in_sea(pipe: Pipe, n: dict[str, Any]) -> None:
+    """The physical consistency of the section in its sea (errors raised, warnings issued)."""
+    consistency.report(
+        consistency.section_in_sea(
+            diameter=pipe.outer_diameter,
+            depth=n["depth"],
+            hs=n["hs"],
+            tp=n["tp"],
+            current_velocity=n["current_velocity"],
+            angles=(
+                ("wave_direction_deg", n["wave_direction_deg"]),
+                ("current_direction_deg", n["current_direction_deg"]),
+            ),
+        )
+    )
+
+
+def _oscillation(pipe: Pipe, seabed: Sand | Clay | Rock, n: dict[str, Any], spectrum: str) -> Any:
+    """The design oscillation U*, V*, T_u, K*, M* of the sea state (:func:`design_oscillation`)."""
+    z0 = seabed_roughness(seabed) if n["roughness"] is None else n["roughness"]
+    return design_oscillation(
+        n["hs"],
+        n["tp"],
+        n["depth"],
+        pipe.outer_diameter,
+        gamma=n["gamma"],
+        spectrum=spectrum,
+        wave_direction_deg=n["wave_direction_deg"],
+        spreading_s=n["spreading_s"],
+        current_velocity=n["current_velocity"],
+        current_reference_height=n["current_reference_height"],
+        current_direction_deg=n["current_direction_deg"],
+        roughness=z0,
+        submerged_weight=pipe.submerged_weight,
+        seawater_density=pipe.seawater_density,
+        duration=n["duration"],
+    )
+
+
+def _load_reductions(
+    d: float,
+    kind: str,
+    zp: float,
+    trench_depth: float,
+    trench_angle_deg: float,
+    permeable: bool | None,
+) -> tuple[float, float]:
+    """r_y, r_z [-]: the penetration, trench and permeable-seabed (Eq 3.18) reductions of the
+    horizontal and vertical peak loads (:mod:`onbottom.hydro.reductions`)."""
     r_pen_y, r_pen_z = (float(r) for r in penetration_reduction(zp / d))
     zt = non_negative("trench_depth", trench_depth)
     r_tr_y, r_tr_z = trench_reduction(zt / d, trench_angle_deg) if zt > 0.0 else (1.0, 1.0)
@@ -299,6 +325,20 @@ def absolute_lateral_stability(
     perm = (kind != "clay") if permeable is None else bool(permeable)
     r_y = r_pen_y * r_tr_y
     r_z = (PERMEABLE_SEABED_REDUCTION_Z if perm else 1.0) * r_pen_z * r_tr_z
+    return r_y, r_z
+
+
+def _utilisation(
+    pipe: Pipe,
+    seabed: Sand | Clay | Rock,
+    osc: Any,
+    gamma_sc: float,
+    zp: float,
+    r_y: float,
+    r_z: float,
+) -> AbsoluteStabilityResult:
+    """Peak loads F*_Y, F*_Z (Eqs 3.40, 3.41) and the utilisations (Eqs 3.38, 3.39)."""
+    d, ws, rho = pipe.outer_diameter, pipe.submerged_weight, pipe.seawater_density
     k_star = float(osc.k_star)
     m_star = float(osc.m_star)
     if not math.isfinite(k_star) or k_star <= 0.0:

@@ -43,6 +43,7 @@ from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.pipe_buildup import CONDITIONS, PipeBuildUp
 from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.status import Status
 
 __all__ = [
     "CheckOptions",
@@ -206,14 +207,16 @@ def governing(rows: Sequence[CheckRow]) -> CheckRow:
 class DesignResult:
     """Result of a design solve.
 
-    ``success`` (True), ``status`` (0: found inside the range, 1: the lower bound already
-    passes), ``message``; ``variable`` (``"concrete_thickness"`` [m] or ``"submerged_weight"``
-    [N/m]); ``value``; ``utilisation`` (governing, at ``value``); ``governing_check``;
-    ``checks`` (rows at ``value``); ``section`` (the designed PipeBuildUp or Pipe).
+    ``success`` (True: ``status.success``), ``status`` (a :class:`~onbottom.status.Status`:
+    ``CONVERGED`` (6), the minimum found inside the range; ``AT_BOUND`` (7), the lower bound
+    already passes), ``message``; ``variable`` (``"concrete_thickness"`` [m] or
+    ``"submerged_weight"`` [N/m]); ``value``; ``utilisation`` (governing, at ``value``);
+    ``governing_check``; ``checks`` (rows at ``value``); ``section`` (the designed PipeBuildUp
+    or Pipe).
     """
 
     success: bool
-    status: int
+    status: Status
     message: str
     variable: str
     value: float
@@ -226,7 +229,7 @@ class DesignResult:
         """JSON-ready summary (without the check rows' details)."""
         return {
             "success": self.success,
-            "status": self.status,
+            "status": int(self.status),
             "message": self.message,
             "variable": self.variable,
             "value": self.value,
@@ -252,9 +255,9 @@ def minimum_passing(
     its :class:`CheckRow` list (the governing row decides). ``n_scan`` (>= 2) values are
     scanned from ``lo`` to ``hi``; the first passing one and its failing neighbour bracket
     the crossing, refined by Brent's method to ``xtol`` (in the unit of x) and returned on
-    the passing side. Status 1: ``lo`` already passes; 0: a crossing found. A governing
-    utilisation that is not monotone in x between scan points can hide a narrower passing
-    window: refine ``n_scan``.
+    the passing side. Status ``AT_BOUND``: ``lo`` already passes; ``CONVERGED``: a crossing
+    found. A governing utilisation that is not monotone in x between scan points can hide a
+    narrower passing window: refine ``n_scan``.
 
     Parameters
     ----------
@@ -301,7 +304,8 @@ def minimum_passing(
         )
     i = int(ok[0])
     if i == 0:
-        x, status, msg = float(xs[0]), 1, f"the lower bound {lo:g} {unit} already passes"
+        x, status = float(xs[0]), Status.AT_BOUND
+        msg = f"the lower bound {lo:g} {unit} already passes"
     else:
         a, b = float(xs[i - 1]), float(xs[i])
         if math.isfinite(us[i - 1]):
@@ -312,13 +316,13 @@ def minimum_passing(
                 x = min(x + xtol, b) if util(x) > 1.0 else x
         else:
             x = b
-        status, msg = 0, f"minimum {variable} found to ±{xtol:g} {unit}"
+        status, msg = Status.CONVERGED, f"minimum {variable} found to ±{xtol:g} {unit}"
     section = build(x)
     rows = evaluate(section)
     g = governing(rows)
     return DesignResult(
-        True, status, msg, variable, x, g.utilisation, f"{g.name} / {g.combination}", tuple(rows),
-        section,
+        status.success, status, msg, variable, x, g.utilisation, f"{g.name} / {g.combination}",
+        tuple(rows), section,
     )  # fmt: skip
 
 

@@ -33,6 +33,7 @@ from onbottom.inputs.environment import Environment, LoadCombination
 from onbottom.inputs.pipe import Pipe
 from onbottom.inputs.pipe_buildup import PipeBuildUp
 from onbottom.inputs.soil import Clay, Rock, Sand
+from onbottom.status import Status
 
 __all__ = [
     "SOLVE_FOR",
@@ -233,7 +234,7 @@ def evaluate_stability(inputs: StabilityInputs) -> StabilityEvaluation:
             design.update(
                 {
                     "success": False,
-                    "status": 2,
+                    "status": int(Status.NO_SOLUTION),
                     "message": str(exc),
                     "variable": exc.variable,
                     "value": None,

@@ -167,34 +167,18 @@ def command(
     and the per-test values (Table 2) and recommended values (Table 3, rules of Youssef &
     Cassidy 2014: A lowest, B and C mean, μ range only) are printed.
     """
-    from onbottom.calibration.fit import calibrate
     from onbottom.calibration.objective import HISTORY_ONLY
-    from onbottom.calibration.records import load_record
-    from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
-    from onbottom.calibration.summary import (
-        fit_each,
-        parameter_table,
-        recommend,
-        to_markdown,
-        write_fits,
-    )
+    from onbottom.calibration.summary import write_fits
 
+    # settings
     params = _parameters(vary, bounds, start, gamma)
     misfit_weights = HISTORY_ONLY if history_only else _weights(weights)
     if output:
         check_output_path(output, field="--output")
-    recs = []
-    for p in records:
-        try:
-            recs.append(load_record(p))
-        except InputError as exc:
-            exc.field = getattr(exc, "field", None) or "records"  # type: ignore[attr-defined]
-            raise
-    if loads == "preset":
-        simulator = CentrifugeSimulator(gamma=gamma)
-    else:
-        simulator = RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
-    kwargs = dict(
+    # setup
+    recs = _load_records(records)
+    simulator = _simulator(loads, gamma)
+    fit_options = dict(
         simulator=simulator,
         weights=misfit_weights,
         method=method,
@@ -203,39 +187,83 @@ def command(
         popsize=popsize,
         progress=not as_json,
     )
+    # the fits
+    results = _fit(recs, params, each, scheduler, workers, fit_options)
+    # results
+    if output:
+        write_fits(results, output)
+    if plot_dir:
+        _plot_fits(results, recs, simulator, Path(plot_dir))
+    _report(results, params, each, as_json)
+
+
+def _load_records(records: tuple[str, ...]) -> list:
+    """The test records (CSV or NetCDF); an unreadable one is an error naming ``records``."""
+    from onbottom.calibration.records import load_record
+
+    recs = []
+    for p in records:
+        try:
+            recs.append(load_record(p))
+        except InputError as exc:
+            exc.field = getattr(exc, "field", None) or "records"  # type: ignore[attr-defined]
+            raise
+    return recs
+
+
+def _simulator(loads: str, gamma: float | None):
+    """The record's centrifuge preset (``--loads preset``) or its recorded H and V."""
+    from onbottom.calibration.simulators import CentrifugeSimulator, RecordedLoadSimulator
+
+    if loads == "preset":
+        return CentrifugeSimulator(gamma=gamma)
+    return RecordedLoadSimulator(**({"gamma": gamma} if gamma is not None else {}))
+
+
+def _fit(recs, params, each: bool, scheduler, workers, fit_options: dict) -> list:
+    """One joint fit, or one per record (``--each``, records in parallel), on Dask when a
+    scheduler or workers are given."""
+    from onbottom.calibration.fit import calibrate
+    from onbottom.calibration.summary import fit_each
 
     def run(client=None):
         if each:  # records in parallel, one task each
-            return fit_each(recs, params, client=client, **kwargs)
-        return [calibrate(recs, params, client=client, n_workers=0, **kwargs)]
+            return fit_each(recs, params, client=client, **fit_options)
+        return [calibrate(recs, params, client=client, n_workers=0, **fit_options)]
 
     if scheduler or workers:
         from onbottom.study.engine import dask_client
 
         with dask_client(scheduler_address=scheduler, n_workers=workers or None) as client:
-            results = run(client)
-    else:
-        results = run()
-    if output:
-        write_fits(results, output)
-    if plot_dir:
-        from onbottom.plotting.calibration import plot_fit
+            return run(client)
+    return run()
 
-        pdir = Path(plot_dir)
-        pdir.mkdir(parents=True, exist_ok=True)
-        written_plots: set[str] = set()
-        for res in results:
-            for rec in (r for r in recs if r.name in res.record_names):
-                sim = simulator(rec, res.values)
-                fig = plot_fit(rec, sim, title=f"{rec.name}: fitted")
-                tag = "".join(ch if ch.isalnum() else "_" for ch in rec.name)
-                name = f"fit_{tag}.png"
-                k = 2
-                while name in written_plots:  # two records of one name: keep both figures
-                    name = f"fit_{tag}_{k}.png"
-                    k += 1
-                written_plots.add(name)
-                fig.savefig(pdir / name, dpi=120)
+
+def _plot_fits(results, recs, simulator, pdir: Path) -> None:
+    """One figure per fitted record, ``fit_<name>.png`` (a second record of one name gets
+    ``_2``)."""
+    from onbottom.plotting.calibration import plot_fit
+
+    pdir.mkdir(parents=True, exist_ok=True)
+    written_plots: set[str] = set()
+    for res in results:
+        for rec in (r for r in recs if r.name in res.record_names):
+            sim = simulator(rec, res.values)
+            fig = plot_fit(rec, sim, title=f"{rec.name}: fitted")
+            tag = "".join(ch if ch.isalnum() else "_" for ch in rec.name)
+            name = f"fit_{tag}.png"
+            k = 2
+            while name in written_plots:  # two records of one name: keep both figures
+                name = f"fit_{tag}_{k}.png"
+                k += 1
+            written_plots.add(name)
+            fig.savefig(pdir / name, dpi=120)
+
+
+def _report(results, params, each: bool, as_json: bool) -> None:
+    """The fits (JSON or text, with Tables 2 and 3 for ``--each``); exit 3 if one failed."""
+    from onbottom.calibration.summary import parameter_table, recommend, to_markdown
+
     rows = parameter_table(results)
     names = [p.name for p in params if p.vary]
     rec_rows = recommend(rows, names=names) if each else []

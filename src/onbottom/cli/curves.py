@@ -94,15 +94,12 @@ def _command(
     restart: bool,
     as_json: bool,
 ) -> None:
+    """Settings (case, output names, budget), the curves, their files, the report."""
     from onbottom.cases.curves import build_curve_settings, check_budget, load_curves_case
-    from onbottom.results import TaskStore, save_dataset, save_figure, write_csv_atomic
-    from onbottom.study.stability_curves import (
-        curve_statistic,
-        curves_table,
-        point_summary,
-        stability_curves,
-    )
+    from onbottom.results import TaskStore, save_dataset
+    from onbottom.study.stability_curves import curves_table, stability_curves
 
+    # settings
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_names(case, [("--output", nc, (".nc",))])
     check_output_names(  # the CSV and the figure go beside the NetCDF
@@ -126,6 +123,7 @@ def _command(
             click.echo(f"warning: {note}", err=True)
     check_output_path(nc, field="--output")
     check_budget(c, workers=workers, force=force)
+    # the curves (resumable: one task file per point)
     store = nc.with_name(nc.name + ".tasks")
     t0 = time.perf_counter()
     ds = stability_curves(
@@ -141,23 +139,9 @@ def _command(
         store=store,
         restart=restart,
     )
+    # the files, then the report
     save_dataset(ds, nc)
-    rows = curves_table(ds)
-    csv_path = nc.with_suffix(".csv")
-    write_csv_atomic(csv_path, rows, list(rows[0]))
-    import matplotlib.pyplot as plt
-
-    from onbottom.plotting.storm import plot_stability_curves
-
-    stat = curve_statistic(ds)
-    fig = plot_stability_curves(
-        ds,
-        title=f"{case.stem}: {c.build_up_hours:g} h + {c.peak_hours:g} h storms; L ="
-        f" {stat['label']}",
-    )
-    png = nc.with_suffix(".png")
-    save_figure(fig, png, dpi=110)
-    plt.close(fig)
+    rows, csv_path, png, stat = _write_table_and_figure(ds, nc, case, c)
     TaskStore.delete(store)  # the NetCDF, CSV and figure hold every point now
     failures = ds.attrs.get("failures", "[]")
     import json
@@ -185,30 +169,62 @@ def _command(
     if as_json:
         emit_json(payload)
     else:
-        for r in payload["points"]:
-            click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {point_summary(r)}")
-        for note in notes:
-            click.echo(
-                f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
-                f" M={note['M']:g}: {note['message']}"
-            )
-        flagged = [
-            f"{r['soil']} K={r['K']:g} M={r['M']:g} N={r['N']:g}"
-            for r in rows
-            if any(v for k, v in r.items() if k.endswith("_out_of_range"))
-        ]
-        if flagged:
-            click.echo(
-                f"  outside the soil model's range (storms buried the pipe beyond D/2; marked"
-                f" out_of_range): {', '.join(flagged)}"
-            )
-        click.echo(f"L = {stat['label']}")
-        if seed_note:
-            click.echo(f"note: {seed_note}")
-        click.echo(
-            f"{payload['total_storms']} storms ({payload['stopped_early']} stopped once their"
-            f" verdict was known) in {payload['wall_time_s']:.1f} s on"
-            f" {payload['workers']} worker(s); written: {nc}, {csv_path}, {png}"
-        )
+        _echo(payload, rows, notes, stat, seed_note, (nc, csv_path, png))
     if failures:
         raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+
+
+def _write_table_and_figure(ds, nc: Path, case: Path, c) -> tuple[list[dict], Path, Path, dict]:
+    """The CSV table and the figure beside the NetCDF: the table's rows, the two paths and the
+    curves' statistic."""
+    import matplotlib.pyplot as plt
+
+    from onbottom.plotting.storm import plot_stability_curves
+    from onbottom.results import save_figure, write_csv_atomic
+    from onbottom.study.stability_curves import curve_statistic, curves_table
+
+    rows = curves_table(ds)
+    csv_path = nc.with_suffix(".csv")
+    write_csv_atomic(csv_path, rows, list(rows[0]))
+    stat = curve_statistic(ds)
+    fig = plot_stability_curves(
+        ds,
+        title=f"{case.stem}: {c.build_up_hours:g} h + {c.peak_hours:g} h storms; L ="
+        f" {stat['label']}",
+    )
+    png = nc.with_suffix(".png")
+    save_figure(fig, png, dpi=110)
+    plt.close(fig)
+    return rows, csv_path, png, stat
+
+
+def _echo(payload: dict, rows: list[dict], notes: list, stat: dict, seed_note, files) -> None:
+    """The text report: one line per point, the points without L and those out of range."""
+    from onbottom.study.stability_curves import point_summary
+
+    for r in payload["points"]:
+        click.echo(f"{r['soil']:>4} N={r['N']:g} M={r['M']:g} K={r['K']:g}: {point_summary(r)}")
+    for note in notes:
+        click.echo(
+            f"  no L for {note['criterion']} at {note['soil']} K={note['K']:g}"
+            f" M={note['M']:g}: {note['message']}"
+        )
+    flagged = [
+        f"{r['soil']} K={r['K']:g} M={r['M']:g} N={r['N']:g}"
+        for r in rows
+        if any(v for k, v in r.items() if k.endswith("_out_of_range"))
+    ]
+    if flagged:
+        click.echo(
+            f"  outside the soil model's range (storms buried the pipe beyond D/2; marked"
+            f" out_of_range): {', '.join(flagged)}"
+        )
+    click.echo(f"L = {stat['label']}")
+    if seed_note:
+        click.echo(f"note: {seed_note}")
+    nc, csv_path, png = files
+    click.echo(
+        f"{payload['total_storms']} storms ({payload['stopped_early']} stopped once their"
+        f" verdict was known) in {payload['wall_time_s']:.1f} s on"
+        f" {payload['workers']} worker(s); written: {nc}, {csv_path}, {png}"
+    )

@@ -78,7 +78,9 @@ CONTRACT: dict[str, Output] = {
             "success": "false where the design solve has no solution or z_p/D > 0.5",
             "message": "why success is false, else empty",
             "all_pass": "true if every check passes",
-            "design": "the design solve ([design] solve_for): value, utilisation, …",
+            "design": "the design solve ([design] solve_for): value, utilisation, status (a"
+            " solver status, docs/conventions.md: 6 converged, 7 the lower bound already passes,"
+            " -6 no value in the range passes), …",
             "generalized": "F109 §3.5 from F109's tables per lateral combination: point {K, M,"
             " N, L_actual}, L_stable and L_10 (null where not covered, with *_reason) and"
             " utilisation_0.5D / utilisation_10D at the given design",
@@ -346,7 +348,9 @@ CONTRACT: dict[str, Output] = {
             "parameters": "model parameters",
             "units": "units of the table's columns",
             "table": "z, B, Q_v per embedment",
-            "embedment": "embedment under the given load, or null",
+            "embedment": "embedment under the given load, or null; its status is a solver status"
+            " (docs/conventions.md: 6 converged, -5 the lay-factor iteration did not converge,"
+            " -3 outside the model's validity)",
             "bounds": "lower/upper bound parameters (where computed)",
             "warnings": "unusual-input warnings",
         },

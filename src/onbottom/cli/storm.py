@@ -28,16 +28,6 @@ from onbottom.cli._common import (
 from onbottom.errors import InputError, OutOfRangeWarning
 
 
-def _has_pipeline_table(case: Path) -> bool:
-    from onbottom._casefile import CaseFileError, read_json, read_toml
-
-    try:  # size- and nesting-limited readers (a device or a huge file is refused at once)
-        doc, _ = read_json(case) if case.suffix.lower() == ".json" else read_toml(case)
-    except CaseFileError:
-        return False  # the strict loader reports the problem with its line
-    return isinstance(doc, dict) and "pipeline" in doc
-
-
 def _run_pipeline(
     case: Path,
     *,
@@ -188,6 +178,9 @@ def _command(
     restart: bool,
     as_json: bool,
 ) -> None:
+    """Check the output names, then run the pipeline FE or the section (one seed or many)."""
+    from onbottom.cases.pipeline import is_pipeline_case
+
     progress = not quiet and not as_json
     check_output_names(
         case,
@@ -196,28 +189,19 @@ def _command(
             ("--plot", plot, FIGURE_SUFFIXES),
         ],
     )
-    if _has_pipeline_table(case):
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", OutOfRangeWarning)
-            payload = _run_pipeline(
-                case,
-                seeds=seeds,
-                scheduler=scheduler,
-                workers=workers,
-                output=output,
-                plot=plot,
-                progress=progress,
-                restart=restart,
-                force=force,
-            )
-        notes = _split_warnings(caught, as_json)
-        if isinstance(payload, dict):
-            payload["warnings"] = notes
-            _report(payload, as_json)
-            if not payload.get("success", True):
-                # as the section: a failed or flagged run (e.g. status −3, outside the soil
-                # model's range) exits with EXIT_INVALID_RESULT
-                raise click.exceptions.Exit(EXIT_INVALID_RESULT)
+    if is_pipeline_case(case):
+        _pipeline_command(
+            case,
+            seeds=seeds,
+            scheduler=scheduler,
+            workers=workers,
+            output=output,
+            plot=plot,
+            progress=progress,
+            restart=restart,
+            force=force,
+            as_json=as_json,
+        )
         return
 
     from onbottom.cases.storm import load_storm_setup
@@ -232,42 +216,98 @@ def _command(
     nc = output if output is not None else case.with_suffix(".nc")
     check_output_path(nc, field="--output")
     if n == 1:
-        from onbottom.dynamics.storm_section import simulate_storm_section
-
-        res = simulate_storm_section(
-            setup.pipe,
-            setup.soil,
-            setup.storm,
+        _one_seed(case, setup, nc, plot=plot, progress=progress, notes=notes, as_json=as_json)
+    else:
+        _many_seeds(
+            setup,
+            nc,
+            n,
+            scheduler=scheduler,
+            workers=workers,
             progress=progress,
-            attrs={"case_file": str(case)},
-            **setup.kwargs(),
+            restart=restart,
+            force=force,
+            notes=notes,
+            as_json=as_json,
         )
-        res.save(nc, compression_level=setup.compression_level)
-        if plot is not None:
-            import matplotlib.pyplot as plt
 
-            from onbottom.plotting.storm import plot_storm_result
-            from onbottom.results import save_figure
 
-            check_output_path(plot, field="--plot")
-            fig = plot_storm_result(res, title=f"{case.stem}: {res.message}")
-            save_figure(fig, plot, dpi=110)
-            plt.close(fig)
-        payload = {
-            **res.to_dict(),
-            "mean_max_displacement_m": res.to_dict().get("max_displacement_m"),
-            "seeds": 1,
-            "seed": setup.storm.seed,
-            "diameter_m": res.diameter,
-            "netcdf": str(nc),
-            "plot": None if plot is None else str(plot),
-            "warnings": notes,
-        }
+def _pipeline_command(case: Path, *, as_json: bool, **options: Any) -> None:
+    """The pipeline FE case: run it with its warnings caught, report, exit 3 if not valid."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", OutOfRangeWarning)
+        payload = _run_pipeline(case, **options)
+    notes = _split_warnings(caught, as_json)
+    if isinstance(payload, dict):
+        payload["warnings"] = notes
         _report(payload, as_json)
-        if res.exit_code:
-            raise click.exceptions.Exit(res.exit_code)
-        return
+        if not payload.get("success", True):
+            # as the section: a failed or flagged run (e.g. status −3, outside the soil
+            # model's range) exits with EXIT_INVALID_RESULT
+            raise click.exceptions.Exit(EXIT_INVALID_RESULT)
 
+
+def _one_seed(
+    case: Path,
+    setup: Any,
+    nc: Path,
+    *,
+    plot: Path | None,
+    progress: bool,
+    notes: list[str],
+    as_json: bool,
+) -> None:
+    """One storm on the rigid section: simulate, save, draw, report; exit by its status."""
+    from onbottom.dynamics.storm_section import simulate_storm_section
+
+    res = simulate_storm_section(
+        setup.pipe,
+        setup.soil,
+        setup.storm,
+        progress=progress,
+        attrs={"case_file": str(case)},
+        **setup.kwargs(),
+    )
+    res.save(nc, compression_level=setup.compression_level)
+    if plot is not None:
+        import matplotlib.pyplot as plt
+
+        from onbottom.plotting.storm import plot_storm_result
+        from onbottom.results import save_figure
+
+        check_output_path(plot, field="--plot")
+        fig = plot_storm_result(res, title=f"{case.stem}: {res.message}")
+        save_figure(fig, plot, dpi=110)
+        plt.close(fig)
+    payload = {
+        **res.to_dict(),
+        "mean_max_displacement_m": res.to_dict().get("max_displacement_m"),
+        "seeds": 1,
+        "seed": setup.storm.seed,
+        "diameter_m": res.diameter,
+        "netcdf": str(nc),
+        "plot": None if plot is None else str(plot),
+        "warnings": notes,
+    }
+    _report(payload, as_json)
+    if res.exit_code:
+        raise click.exceptions.Exit(res.exit_code)
+
+
+def _many_seeds(
+    setup: Any,
+    nc: Path,
+    n: int,
+    *,
+    scheduler: str | None,
+    workers: int | None,
+    progress: bool,
+    restart: bool,
+    force: bool,
+    notes: list[str],
+    as_json: bool,
+) -> None:
+    """``n`` storms on Dask: check the budget, run (resumable task store), save, report."""
     from onbottom.results import TaskStore, save_dataset
     from onbottom.study import budget
     from onbottom.study.storm_seeds import run_storm_seeds

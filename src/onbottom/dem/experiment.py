@@ -23,7 +23,9 @@ import json
 import logging
 import math
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -440,11 +442,50 @@ def penetrate(
         when stopped by ``max_steps``) and the event-snapshot settings and counts
         (``event_*``; ``event_snapshots_capped`` = 1 when the cap was hit).
     """
+    # settings
     D = config.geometry.pipe_diameter
     N = config.loading.gravity_factor
     w_end = config.loading.final_embedment_ratio * D
     v = config.loading.pipe_velocity
-    rec_every = config.numerics.record_every
+    _check_run_options(checkpoint_every, max_steps, event_snapshots, max_event_snapshots)
+    # validates event_step and event_drop_fraction (named InputErrors)
+    fresh_events = _Events(
+        SofteningDetector(step=event_step, drop_fraction=event_drop_fraction),
+        int(max_event_snapshots),
+    )
+    identity = run_identity(config, "penetration", sample=sample)
+    ck = Path(checkpoint) if checkpoint is not None else None
+    if ck is not None and restart:
+        ck.unlink(missing_ok=True)
+    # setup: a fresh run, or the checkpoint's
+    if ck is not None and resume and ck.exists():
+        run = _resume(ck, config, threads, identity, snapshots, D, fresh_events, event_snapshots)
+    else:
+        run = _start(config, sample, threads, D, v, fresh_events if event_snapshots else None)
+    run.meta["identity"] = identity
+    surf0 = float(run.meta["surf0"])
+    steps_total = math.ceil(w_end / v / run.sim.dt)
+    # the loop: push, record, checkpoint
+    _push(
+        run,
+        snapshots,
+        D,
+        v,
+        surf0,
+        steps_total,
+        rec_every=config.numerics.record_every,
+        max_steps=max_steps,
+        progress=progress,
+        ck=ck,
+        checkpoint_every=checkpoint_every,
+    )
+    return _result(config, sample, run, ck, identity, steps_total, surf0, N)
+
+
+def _check_run_options(
+    checkpoint_every: int, max_steps: int | None, event_snapshots: bool, max_event_snapshots: int
+) -> None:
+    """Named errors for the run options of :func:`penetrate`."""
     if int(checkpoint_every) < 1:
         raise CheckpointError(
             f"checkpoint_every = {checkpoint_every!r} is invalid: must be >= 1",
@@ -465,45 +506,90 @@ def penetrate(
             f"max_event_snapshots = {max_event_snapshots!r} is invalid: must be an integer >= 2"
             " (peak and trough are stored in pairs)"
         )
-    # validates event_step and event_drop_fraction (named InputErrors)
-    fresh_events = _Events(
-        SofteningDetector(step=event_step, drop_fraction=event_drop_fraction),
-        int(max_event_snapshots),
-    )
-    identity = run_identity(config, "penetration", sample=sample)
-    ck = Path(checkpoint) if checkpoint is not None else None
-    if ck is not None and restart:
-        ck.unlink(missing_ok=True)
+
+
+@dataclass
+class _PenetrationRun:
+    """The state of a penetration between the stages of :func:`penetrate` (and in its
+    checkpoint): the simulation, the records, the field snapshots, the run's metadata
+    (``surf0``, ``xc``, identity), the initial rotations and the event-snapshot state."""
+
+    sim: Simulation
+    records: dict[str, list]
+    snaps: list
+    meta: dict[str, Any]
+    theta0: np.ndarray
+    events: _Events | None
+    events_note: str = ""
+
+
+def _start(
+    config: DEMConfig,
+    sample: Sample,
+    threads: int | None,
+    D: float,
+    v: float,
+    events: _Events | None,
+) -> _PenetrationRun:
+    """A fresh run: the pipe above the sample's centre, touching its rough surface at w = 0."""
+    sim = make_simulation(config, sample, threads)
+    xc = 0.5 * (sample.box[0] + sample.box[1])
+    # w = 0 when the pipe first touches the rough surface
+    surf0 = _touch_height(sample, xc, 0.5 * D) - 0.5 * D
+    sim.set_pipe(PipeState(xc, surf0 + 0.5 * D, 0.5 * D, -v))
+    sim.time = 0.0
+    theta0 = sim.th.copy()
+    records: dict[str, list] = {k: [] for k in ("time", "w", "V", "H", "unbalanced_ratio")}
+    return _PenetrationRun(sim, records, [], {"surf0": surf0, "xc": xc}, theta0, events)
+
+
+def _resume(
+    ck: Path,
+    config: DEMConfig,
+    threads: int | None,
+    identity: dict[str, Any],
+    snapshots: tuple[float, ...],
+    D: float,
+    fresh_events: _Events,
+    event_snapshots: bool,
+) -> _PenetrationRun:
+    """The run of checkpoint ``ck`` (its identity checked); its event detector when it has
+    one under the same settings, none (with a note) when it has none."""
+    sim, records, snaps, meta, theta0, ck_events = _load_checkpoint(ck, config, threads, identity)
+    log.info("resumed from %s at step %d", ck, sim.step_count)
+    _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
+    meta.pop("events", None)
     events: _Events | None = fresh_events if event_snapshots else None
     events_note = ""
-    if ck is not None and resume and ck.exists():
-        sim, records, snaps, meta, theta0, ck_events = _load_checkpoint(
-            ck, config, threads, identity
-        )
-        log.info("resumed from %s at step %d", ck, sim.step_count)
-        _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
-        meta.pop("events", None)
-        if event_snapshots and ck_events is None:
-            events = None
-            events_note = "checkpoint without event-snapshot state: event snapshots off"
-            log.warning("resumed %s has no event-snapshot state: event snapshots off", ck)
-        elif event_snapshots and ck_events is not None:
-            _check_event_settings(ck_events, fresh_events, ck)
-            events = ck_events
-    else:
-        sim = make_simulation(config, sample, threads)
-        xc = 0.5 * (sample.box[0] + sample.box[1])
-        # w = 0 when the pipe first touches the rough surface
-        surf0 = _touch_height(sample, xc, 0.5 * D) - 0.5 * D
-        sim.set_pipe(PipeState(xc, surf0 + 0.5 * D, 0.5 * D, -v))
-        sim.time = 0.0
-        theta0 = sim.th.copy()
-        records = {k: [] for k in ("time", "w", "V", "H", "unbalanced_ratio")}
-        snaps = []
-        meta = {"surf0": surf0, "xc": xc}
-    meta["identity"] = identity
-    surf0 = float(meta["surf0"])
-    steps_total = math.ceil(w_end / v / sim.dt)
+    if event_snapshots and ck_events is None:
+        events = None
+        events_note = "checkpoint without event-snapshot state: event snapshots off"
+        log.warning("resumed %s has no event-snapshot state: event snapshots off", ck)
+    elif event_snapshots and ck_events is not None:
+        _check_event_settings(ck_events, fresh_events, ck)
+        events = ck_events
+    return _PenetrationRun(sim, records, snaps, meta, theta0, events, events_note)
+
+
+def _push(
+    run: _PenetrationRun,
+    snapshots: tuple[float, ...],
+    D: float,
+    v: float,
+    surf0: float,
+    steps_total: int,
+    *,
+    rec_every: int,
+    max_steps: int | None,
+    progress: Progress | None,
+    ck: Path | None,
+    checkpoint_every: int,
+) -> None:
+    """Push the pipe (velocity ``v`` [m/s]) down ``rec_every`` steps at a time to
+    ``steps_total`` (or ``max_steps`` of this call): a record per chunk, field snapshots as
+    the embedment passes them, the event detector fed, a checkpoint every
+    ``checkpoint_every`` steps."""
+    sim, records, snaps, theta0, events = run.sim, run.records, run.snaps, run.theta0, run.events
     next_ck = (sim.step_count // checkpoint_every + 1) * checkpoint_every
     done_here = 0
     while True:
@@ -531,16 +617,43 @@ def penetrate(
         if progress is not None:
             progress(min(1.0, sim.step_count / steps_total))
         if ck is not None and sim.step_count >= next_ck:
-            _save_checkpoint(ck, sim, records, snaps, meta, theta0, events)
+            _save_checkpoint(ck, sim, records, snaps, run.meta, theta0, events)
             next_ck += checkpoint_every
+
+
+def _result(
+    config: DEMConfig,
+    sample: Sample,
+    run: _PenetrationRun,
+    ck: Path | None,
+    identity: dict[str, Any],
+    steps_total: int,
+    surf0: float,
+    N: float,
+) -> xr.Dataset:
+    """The result of :func:`penetrate` (an unfinished run checkpointed first): the records,
+    the snapshots, the event-snapshot attributes and the run identity."""
+    sim, events = run.sim, run.events
     complete = sim.step_count >= steps_total
     if ck is not None and not complete:
-        _save_checkpoint(ck, sim, records, snaps, meta, theta0, events)
+        _save_checkpoint(ck, sim, run.records, run.snaps, run.meta, run.theta0, events)
     if events is not None and complete:
         # the record ends: the open bin closes, a drop still under way ends there
         events.act(events.det.close_bin())
         events.act([(a, events.det.bin) for a in events.det.finish()])
-    ds = _assemble(config, sample, sim, records, snaps, surf0, complete, N, events)
+    ds = _assemble(config, sample, sim, run.records, run.snaps, surf0, complete, N, events)
+    _event_attrs(ds, events, run.events_note)
+    # the configuration itself is in attrs["config"]; the rest of the identity here
+    ds.attrs["run_identity"] = json.dumps(
+        {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
+    )
+    ds.attrs["run_fingerprint"] = fingerprint(identity)
+    ds.attrs["sample_fingerprint"] = identity["sample"]
+    return ds
+
+
+def _event_attrs(ds: xr.Dataset, events: _Events | None, events_note: str) -> None:
+    """The event-snapshot settings and counts (``event_*`` attributes) of the result."""
     if events is not None:
         ds.attrs.update(
             event_snapshots=1,
@@ -561,13 +674,6 @@ def penetrate(
         ds.attrs["event_snapshots"] = 0
         if events_note:
             ds.attrs["event_snapshots_note"] = events_note
-    # the configuration itself is in attrs["config"]; the rest of the identity here
-    ds.attrs["run_identity"] = json.dumps(
-        {k: v for k, v in identity.items() if k != "config"}, sort_keys=True
-    )
-    ds.attrs["run_fingerprint"] = fingerprint(identity)
-    ds.attrs["sample_fingerprint"] = identity["sample"]
-    return ds
 
 
 def _check_event_settings(found: _Events, asked: _Events, path: Path) -> None:

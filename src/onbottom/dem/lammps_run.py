@@ -23,6 +23,7 @@ from onbottom.dem.lammps_find import LAMMPS_EXTRA_HINT, LammpsError, _import_lam
 from onbottom.dem.lammps_read import read_curve, read_final
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
+from onbottom.status import Status
 
 __all__ = ["LammpsResult", "run_lammps_case"]
 
@@ -37,9 +38,10 @@ class LammpsResult:
     Attributes
     ----------
     success
-        True if LAMMPS finished all stages.
+        True if LAMMPS finished all stages (``status.success``).
     status
-        0 ok, 1 LAMMPS failed.
+        :attr:`~onbottom.status.Status.END` (1): LAMMPS finished;
+        :attr:`~onbottom.status.Status.RAISED` (−9): LAMMPS failed or raised.
     message
         Human-readable outcome.
     curve
@@ -57,7 +59,7 @@ class LammpsResult:
     """
 
     success: bool
-    status: int
+    status: Status
     message: str
     curve: xr.Dataset
     final_sample: Sample | None
@@ -152,22 +154,22 @@ def run_lammps_case(
         stale.unlink(missing_ok=True)
     log.info("LAMMPS %s run of %d disks, %d steps, %d rank(s)", mode, case.n, case.n_steps, n_procs)
     t_start = time.perf_counter()
-    success, status, message = True, 0, "LAMMPS run finished"
+    status, message = Status.END, "LAMMPS run finished"
     try:
         if mode == "inprocess":
             _run_in_process(deck, log_path)
         else:
             _run_subprocess(deck, log_path, n_procs, timeout)
     except (LammpsError, subprocess.TimeoutExpired) as exc:
-        success, status, message = False, 1, str(exc)
+        status, message = Status.RAISED, str(exc)
     except Exception as exc:  # LAMMPS raises plain Exception from the Python module
-        success, status, message = False, 1, f"LAMMPS error: {exc}"
+        status, message = Status.RAISED, f"LAMMPS error: {exc}"
     wall = time.perf_counter() - t_start
     meta = {"n_procs": n_procs, "mode": mode, "wall_time_s": wall}
     curve = read_curve(case, deck, meta)
-    final = read_final(deck, case.n) if success else None
+    final = read_final(deck, case.n) if status.success else None
     return LammpsResult(
-        success=success,
+        success=status.success,
         status=status,
         message=message,
         curve=curve,

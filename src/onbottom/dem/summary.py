@@ -344,77 +344,21 @@ def summarize_run(
     D = float(ds.attrs["pipe_diameter"])
     N = float(ds.attrs["gravity_factor"])
     w = ds["w_over_D"].values
-    V = ds["V"].values
-    centres, mean, lo, hi = binned_resistance(w, V, step)
+    # the V–w curve in bins, its softening episodes, the surface heave
+    centres, mean, lo, hi = binned_resistance(w, ds["V"].values, step)
     eps = softening_episodes(centres, mean, drop_fraction)
     x = ds["x_bin"].values
     box_mid = 0.5 * (float(x.min()) + float(x.max()))
     x_pipe = float(ds.attrs.get("pipe_x", box_mid))
     heave = heave_metrics(x, ds["surface0"].values, ds["surface"].values, x_pipe, D)
-    out = xr.Dataset(
-        {
-            "V_mean": ("w_over_D", mean, {"long_name": "bin-mean resistance", "units": "N/m"}),
-            "V_min": ("w_over_D", lo, {"long_name": "bin-minimum resistance", "units": "N/m"}),
-            "V_max": ("w_over_D", hi, {"long_name": "bin-maximum resistance", "units": "N/m"}),
-            "V_prototype_mean": (
-                "w_over_D",
-                mean * N,
-                {"long_name": "bin-mean resistance, prototype", "units": "N/m"},
-            ),
-            "V_prototype_min": ("w_over_D", lo * N, {"units": "N/m"}),
-            "V_prototype_max": ("w_over_D", hi * N, {"units": "N/m"}),
-            "surface0": (
-                "x_over_D",
-                ds["surface0"].values,
-                {"long_name": "initial surface height", "units": "m"},
-            ),
-            "surface": (
-                "x_over_D",
-                ds["surface"].values,
-                {"long_name": "final surface height", "units": "m"},
-            ),
-            "heave": (
-                "x_over_D",
-                heave["change"],
-                {"long_name": "smoothed surface change (NaN under the pipe)", "units": "m"},
-            ),
-        },
-        coords={
-            "w_over_D": ("w_over_D", centres, {"long_name": "embedment / D (bin centre)"}),
-            "x_over_D": ("x_over_D", (x - x_pipe) / D, {"long_name": "x from pipe axis / D"}),
-        },
-    )
-    for key, attr, unit in (
-        ("w_peak", "w_peak", "1"),
-        ("w_trough", "w_trough", "1"),
-        ("V_prototype_peak", "v_peak", "N/m"),
-        ("V_prototype_trough", "v_trough", "N/m"),
-    ):
-        scale = N if unit == "N/m" else 1.0
-        out[f"softening_{key}"] = (
-            "episode",
-            np.array([getattr(e, attr) * scale for e in eps], float),
-            {"long_name": f"softening episode {key.replace('_', ' ')}", "units": unit},
-        )
+    out = _curve_and_surfaces(ds, N, centres, mean, lo, hi, heave, (x - x_pipe) / D)
+    _add_softening(out, eps, N)
     bands = band_episodes(ds, threshold_deg=band_threshold_deg)
-    for key, unit, ln in (
-        ()
-        if not bands
-        else (
-            ("w_peak", "1", "w/D of the peak snapshot"),
-            ("w_trough", "1", "w/D of the trough snapshot"),
-            ("drop_percent", "%", "drop of the bin-mean V, peak to trough"),
-            ("reaches_surface", "1", "1 if a band of rotated disks joins pipe and surface"),
-            ("outcrop_x_over_D", "1", "signed distance of the band's outcrop from the axis / D"),
-            ("cluster_size", "1", "disks in the largest rotated cluster touching the pipe"),
-        )
-    ):
-        vals = [b[key] for b in bands]
-        arr = np.array(vals, int if key in ("reaches_surface", "cluster_size") else float)
-        out[f"band_{key}"] = ("band_episode", arr, {"long_name": ln, "units": unit})
+    _add_bands(out, bands)
     for name in ds.data_vars:
         if str(name).startswith("initial_"):
             out[name] = ds[name]
+    # attributes: the run's, the summary's provenance and rules, V at the reported w/D
     attrs = {k: ds.attrs[k] for k in ds.attrs if not str(k).startswith("_")}
     attrs.update(
         provenance(
@@ -456,3 +400,85 @@ def summarize_run(
         )
     out.attrs.update(attrs)
     return out
+
+
+def _curve_and_surfaces(
+    ds: xr.Dataset,
+    N: float,
+    centres: np.ndarray,
+    mean: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    heave: dict,
+    x_over_d: np.ndarray,
+) -> xr.Dataset:
+    """The binned V (model and prototype, N/m) on ``w_over_D``, the surfaces and the smoothed
+    heave on ``x_over_D``."""
+    return xr.Dataset(
+        {
+            "V_mean": ("w_over_D", mean, {"long_name": "bin-mean resistance", "units": "N/m"}),
+            "V_min": ("w_over_D", lo, {"long_name": "bin-minimum resistance", "units": "N/m"}),
+            "V_max": ("w_over_D", hi, {"long_name": "bin-maximum resistance", "units": "N/m"}),
+            "V_prototype_mean": (
+                "w_over_D",
+                mean * N,
+                {"long_name": "bin-mean resistance, prototype", "units": "N/m"},
+            ),
+            "V_prototype_min": ("w_over_D", lo * N, {"units": "N/m"}),
+            "V_prototype_max": ("w_over_D", hi * N, {"units": "N/m"}),
+            "surface0": (
+                "x_over_D",
+                ds["surface0"].values,
+                {"long_name": "initial surface height", "units": "m"},
+            ),
+            "surface": (
+                "x_over_D",
+                ds["surface"].values,
+                {"long_name": "final surface height", "units": "m"},
+            ),
+            "heave": (
+                "x_over_D",
+                heave["change"],
+                {"long_name": "smoothed surface change (NaN under the pipe)", "units": "m"},
+            ),
+        },
+        coords={
+            "w_over_D": ("w_over_D", centres, {"long_name": "embedment / D (bin centre)"}),
+            "x_over_D": ("x_over_D", x_over_d, {"long_name": "x from pipe axis / D"}),
+        },
+    )
+
+
+def _add_softening(out: xr.Dataset, eps: list, N: float) -> None:
+    """``softening_*`` on ``episode``: w/D and prototype V of each episode's peak and trough."""
+    for key, attr, unit in (
+        ("w_peak", "w_peak", "1"),
+        ("w_trough", "w_trough", "1"),
+        ("V_prototype_peak", "v_peak", "N/m"),
+        ("V_prototype_trough", "v_trough", "N/m"),
+    ):
+        scale = N if unit == "N/m" else 1.0
+        out[f"softening_{key}"] = (
+            "episode",
+            np.array([getattr(e, attr) * scale for e in eps], float),
+            {"long_name": f"softening episode {key.replace('_', ' ')}", "units": unit},
+        )
+
+
+def _add_bands(out: xr.Dataset, bands: list[dict]) -> None:
+    """``band_*`` on ``band_episode`` (the run's event episodes), when there are any."""
+    for key, unit, ln in (
+        ()
+        if not bands
+        else (
+            ("w_peak", "1", "w/D of the peak snapshot"),
+            ("w_trough", "1", "w/D of the trough snapshot"),
+            ("drop_percent", "%", "drop of the bin-mean V, peak to trough"),
+            ("reaches_surface", "1", "1 if a band of rotated disks joins pipe and surface"),
+            ("outcrop_x_over_D", "1", "signed distance of the band's outcrop from the axis / D"),
+            ("cluster_size", "1", "disks in the largest rotated cluster touching the pipe"),
+        )
+    ):
+        vals = [b[key] for b in bands]
+        arr = np.array(vals, int if key in ("reaches_surface", "cluster_size") else float)
+        out[f"band_{key}"] = ("band_episode", arr, {"long_name": ln, "units": unit})

@@ -51,6 +51,7 @@ import numpy as np
 
 from onbottom._validate import integer
 from onbottom.errors import InputError
+from onbottom.status import Status
 
 __all__ = [
     "STATUS_RAISED",
@@ -60,8 +61,9 @@ __all__ = [
     "task_key",
 ]
 
-STATUS_RAISED = -9
-"""Status of a run whose model raised an exception (recorded, never fatal)."""
+STATUS_RAISED = int(Status.RAISED)
+"""Status of a run whose model raised an exception (recorded, never fatal):
+:attr:`onbottom.status.Status.RAISED`."""
 
 _FORMAT = "onbottom-campaign-1"
 _ARRAYS = ("inputs", "seed", "outputs", "status", "task", "task_key", "task_start", "task_rows")
@@ -108,7 +110,7 @@ def run_task(model: CampaignModel, x: np.ndarray, seeds: np.ndarray) -> dict[str
             messages.append((i, f"{type(exc).__name__}: {exc} ({tb})"))
             continue
         out[i] = [float(r[name]) for name in model.output_names]
-        status[i] = int(r.get("status", 1))
+        status[i] = int(r.get("status", Status.END))
         if "message" in r and status[i] < 0:
             messages.append((i, str(r["message"])))
     return {

@@ -58,6 +58,7 @@ from onbottom.reliability import _sampling
 from onbottom.reliability.campaign import Campaign
 from onbottom.reliability.distributions import UncertainParameter
 from onbottom.reliability.estimators import lifetime_probability
+from onbottom.status import Status
 
 __all__ = [
     "DYNAMIC_METHODS",
@@ -279,7 +280,7 @@ class _LimitState:
         y = out[:, self.k].copy()
         if self.k_stop is not None:
             self.stopped += int(np.count_nonzero(out[:, self.k_stop] == 1.0))
-        bad = ~np.isfinite(y) | ((status < 0) & (status != -3))
+        bad = ~np.isfinite(y) | ((status < 0) & (status != Status.OUTSIDE_VALIDITY))
         self.failed += int(np.count_nonzero(bad))
         y[bad] = np.inf
         self.calls += a.shape[0]

@@ -41,6 +41,7 @@ from onbottom.results import annotate, provenance
 from onbottom.soil.penetration_clay import UndrainedModel1, UndrainedModel2
 from onbottom.soil.penetration_geometry import as_penetration, contact_width
 from onbottom.soil.penetration_sand import DrainedBounds, DrainedPenetration
+from onbottom.status import Status
 
 __all__ = [
     "STANDARD",
@@ -216,9 +217,11 @@ class EmbedmentResult:
     iterations : int
         Fixed-point iterations on k_lay (1 without lay conditions).
     success : bool
-        True when converged.
-    status : int
-        0 converged; 1 lay-factor iteration did not converge (last iterate returned).
+        True when converged (``status.success``).
+    status : Status
+        :attr:`~onbottom.status.Status.CONVERGED` (6), or
+        :attr:`~onbottom.status.Status.NOT_CONVERGED` (−5) when the lay-factor iteration did not
+        converge (the last iterate is returned).
     message : str
         Human-readable outcome.
     model : str
@@ -232,7 +235,7 @@ class EmbedmentResult:
     lay_factor: float
     iterations: int
     success: bool
-    status: int
+    status: Status
     message: str
     model: str
     history: tuple[float, ...] = field(default=(), repr=False)
@@ -258,7 +261,7 @@ class EmbedmentResult:
             "design_load": self.design_load,
             "iterations": self.iterations,
             "success": self.success,
-            "status": self.status,
+            "status": int(self.status),
             "message": self.message,
             "model": self.model,
         }
@@ -345,7 +348,7 @@ def solve_embedment(
     k = 1.0
     history = [z]
     iterations = 1
-    status, message = 0, "converged"
+    status, message = Status.CONVERGED, "converged"
     if lay is not None:
         t_min = lay_validity_tension(lay.bending_stiffness, w)
         if lay.bottom_tension <= t_min:
@@ -356,7 +359,8 @@ def solve_embedment(
                 OutOfRangeWarning,
                 stacklevel=2,
             )
-        status, message = 1, f"lay-factor iteration did not converge in {max_iterations} steps"
+        status = Status.NOT_CONVERGED
+        message = f"lay-factor iteration did not converge in {max_iterations} steps"
         for iterations in range(1, int(max_iterations) + 1):  # noqa: B007
             q = float(_quiet_resistance(model, np.array(z)))
             k = lay_factor(
@@ -369,9 +373,9 @@ def solve_embedment(
             converged = abs(z_new - z) <= 10.0 * tolerance * z_new
             z = z_new
             if converged:
-                status, message = 0, f"converged (k_lay = {k:.4g})"
+                status, message = Status.CONVERGED, f"converged (k_lay = {k:.4g})"
                 break
-        if status:
+        if not status.success:
             log.warning("solve_embedment: %s", message)
     # Evaluate once more with warnings on, so that range checks apply at the solution.
     q_final = float(np.asarray(model.resistance(np.array(z))))
@@ -382,7 +386,7 @@ def solve_embedment(
         load=w,
         lay_factor=k,
         iterations=iterations,
-        success=status == 0,
+        success=status.success,
         status=status,
         message=message,
         model=str(model.name),

@@ -31,6 +31,7 @@ from onbottom.soil.penetration_sand import (
     DrainedBounds,
     DrainedPenetration,
 )
+from onbottom.status import Status
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -181,15 +182,15 @@ class PenetrationRun:
         return rows
 
     def embedment_dict(self) -> dict[str, Any] | None:
-        """:meth:`EmbedmentResult.as_dict`, with ``success`` false, ``status``
-        ``"outside_validity"`` and the notes in ``message`` when the solution is outside the
-        model's validity; None without an embedment."""
+        """:meth:`EmbedmentResult.as_dict`, with ``success`` false, ``status`` −3
+        (:attr:`~onbottom.status.Status.OUTSIDE_VALIDITY`) and the notes in ``message`` when the
+        solution is outside the model's validity; None without an embedment."""
         if self.embedment is None:
             return None
         emb = self.embedment.as_dict()
         if self.validity:
             emb["success"] = False
-            emb["status"] = "outside_validity"
+            emb["status"] = int(Status.OUTSIDE_VALIDITY)
             emb["message"] = "outside the model's validity at the solution: " + "; ".join(
                 self.validity
             )
