@@ -44,7 +44,17 @@ def command(only: tuple[str, ...], processes: int | None, quiet: bool, as_json: 
     seconds. Other models (Fourier forces, the V–H soil model, rock under a pipeline, mixed
     soils along a line) still compile on their first use.
     """
-    from onbottom.study.warmup import warm_kernels
+    from onbottom.study.warmup import estimate, warm_kernels
+
+    if not quiet:
+        cpu, wall, workers = estimate(only or None, processes=processes)
+        n = len(set(only)) if only else len(TARGETS)
+        click.echo(
+            f"onbottom warmup: compiling {n} kernel group{'s' if n != 1 else ''} on {workers}"
+            f" process{'es' if workers > 1 else ''}: about {cpu:.0f} CPU-s, {wall:.0f} s on"
+            " free cores (longer on a busy machine; seconds for groups already cached) ...",
+            err=True,
+        )
 
     def progress(k: int, n: int, target) -> None:
         if not quiet:
