@@ -141,3 +141,22 @@ def test_the_direct_write_is_atomic(tmp_path, monkeypatch):
         save_dataset(_mixed(), tmp_path / "keep.nc")
     assert (tmp_path / "keep.nc").read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["keep.nc"]
+
+
+def test_large_datasets_are_written_straight_to_the_file(tmp_path, monkeypatch):
+    """Above IN_MEMORY_MAX_BYTES the direct writer writes the temporary file itself."""
+    from onbottom.results import netcdf
+
+    monkeypatch.setattr(netcdf, "IN_MEMORY_MAX_BYTES", 0)
+    save_dataset(_mixed(), tmp_path / "big.nc", compression_level=2)
+    assert load_dataset(tmp_path / "big.nc").identical(_mixed().assign_attrs(run_status="complete"))
+
+
+def test_an_empty_dimension_round_trips(tmp_path):
+    ds = xr.Dataset(
+        {"H_peak": ("cycle", np.zeros(0)), "w_s": ((), 1.0)}, coords={"cycle": np.zeros(0)}
+    )
+    for level in (0, 5):
+        save_dataset(ds, tmp_path / f"e{level}.nc", compression_level=level)
+        back = load_dataset(tmp_path / f"e{level}.nc")
+        assert back.identical(ds.assign_attrs(run_status="complete"))
