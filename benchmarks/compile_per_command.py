@@ -2,12 +2,12 @@
 
 For each command, one whole process (``python -m onbottom ...``) with ``NUMBA_CACHE_DIR``
 pointed at a new empty folder (the first run after an install, no ``onbottom warmup``), then
-``--warm`` (default 2) more with that folder filled (the minimum kept: on a busy machine one
-warm run of ``simulate`` read 6.0 CPU-s where the next read 1.7). The compile cost is the CPU time (user + system of the
-child) of the cold run less the warm one, printed against the target
-≤ 5 CPU-s per command (issue: "the compile of each command without the warm-up ≤ 5 s"), with
-the number of specialisations numba compiled and cached and the load average (a shared
-machine: CPU time is the better figure).
+``--warm`` (default 2) more with that folder filled, the minimum kept (on a busy machine one
+warm run of ``simulate`` read 6.0 CPU-s where the next read 1.7). The compile cost is the CPU
+time (user + system of the child) of the cold run less the warm one, printed against the
+target <= 5 CPU-s per command (issue: "the compile of each command without the warm-up
+<= 5 s"), with the number of specialisations numba compiled and cached and the load average
+(a shared machine: CPU time is the better figure).
 
 Commands: ``stability`` (examples/stability_case.toml), ``storm`` on a pipe section
 (examples/storm_case.toml) and on a pipeline (examples/pipeline_case.toml: the FE), ``assess``
