@@ -52,7 +52,7 @@ import xarray as xr
 
 from onbottom.dem.config import PRESETS, RELAXATIONS, DEMConfig
 from onbottom.dem.experiment import penetrate
-from onbottom.dem.identity import differences, run_identity
+from onbottom.dem.identity import dem_identity, differences
 from onbottom.dem.preparation import prepare_sample
 from onbottom.dem.sample import Sample
 from onbottom.results import save_dataset
@@ -76,7 +76,7 @@ def adopt_compaction(cfg: DEMConfig, source: Path, target: Path) -> None:
             f"{source}: not a checkpoint of a finished compaction (layers_done"
             f" {meta['layers_done']}, stage {meta.get('stage')})"
         )
-    ident = run_identity(cfg, "preparation")
+    ident = dem_identity(cfg, "preparation").fields
     diff = differences(meta["identity"], ident)
     after_compaction = (
         "config.preparation.relaxation:",

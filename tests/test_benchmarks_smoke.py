@@ -41,6 +41,7 @@ FIGURES: dict[str, tuple[str, ...]] = {
         rf"scaling efficiency 2 vs 1 worker: {NUM}",
         rf"calibration of Inclined 1 \(serial\): {NUM} s",
     ),
+    "compile_per_command.py": (rf"stability +cold +{NUM} CPU-s .* compile +{NUM} CPU-s",),
     "crosscheck_dem_lammps.py": (r"w/D",),
     "dem_full_case.py": (rf"total {NUM} min \(preparation {NUM}",),
     # one seed of the tiny case: no scatter, so the ratio is nan (printed all the same)
@@ -64,6 +65,10 @@ FIGURES: dict[str, tuple[str, ...]] = {
         rf"one storm, CPU time +best {NUM} s",
         rf"NetCDF write, compression level 4: {NUM} CPU-s",
         rf"write / integration = {NUM}; aim <= 0.5",
+    ),
+    "storm_write.py": (
+        rf"save_dataset, plain +{NUM} CPU-s .* write/integration +{NUM}",
+        rf"save_dataset, level 4 .* write/integration +{NUM}",
     ),
     "wake_kernel.py": (rf"ratio: {NUM}",),
 }

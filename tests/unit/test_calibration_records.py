@@ -153,25 +153,14 @@ def test_invalid_metadata_rejected():
         TestRecord(name="x", data=bad, diameter=1.0)
 
 
-def test_records_written_by_0_1_open_with_today_names(tmp_path):
-    """0.1 wrote the displacement as ``u`` and the penetration as ``w``: CSV and NetCDF
-    records in that form open with ``y`` and ``z`` (same values), and a simulated result with
-    the old names still becomes a record."""
+def test_records_without_y_and_z_are_refused_by_column_name(tmp_path):
+    """Only today's names are read: a record naming its columns ``u``/``w`` is refused,
+    naming the missing column."""
     old_csv = CSV.replace("time,H,V,y,z", "time,H,V,u,w")
-    new = load_record(_write(tmp_path, CSV))
-    old = load_record(_write(tmp_path, old_csv, "old.csv"))
-    assert set(old.data.data_vars) == {"H", "V", "y", "z"}
-    np.testing.assert_array_equal(old.y, new.y)
-    np.testing.assert_array_equal(old.z, new.z)
-    with pytest.raises(InputError, match=r"column 'w'.*'inch'"):  # the file's own name
-        load_record(_write(tmp_path, old_csv.replace("m,mm", "m,inch"), "bad.csv"))
-    nc = new.to_dataset().rename({"y": "u", "z": "w"})
-    nc.to_netcdf(tmp_path / "old.nc", engine="h5netcdf")
-    back = load_record(tmp_path / "old.nc")
-    np.testing.assert_array_equal(back.y, new.y)
-    np.testing.assert_array_equal(back.z, new.z)
-    sim = xr.Dataset(
-        {"u": ("time", [0.0, 0.1]), "w": ("time", [0.05, 0.06])}, coords={"time": [0.0, 1.0]}
+    with pytest.raises(InputError, match="column 'y' is missing"):
+        load_record(_write(tmp_path, old_csv, "old.csv"))
+    ds = xr.Dataset(
+        {"u": ("time", [0.0, 0.1]), "z": ("time", [0.05, 0.06])}, coords={"time": [0.0, 1.0]}
     )
-    rec = record_from_result(sim, name="sim", diameter=1.0)
-    np.testing.assert_array_equal(rec.z, [0.05, 0.06])
+    with pytest.raises(InputError, match="column 'y' is missing"):
+        TestRecord(name="x", data=ds, diameter=1.0)

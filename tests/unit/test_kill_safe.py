@@ -143,7 +143,7 @@ def test_identity_hash_is_stable_and_the_pipeline_identity_is_unchanged():
     h.update(json.dumps(meta, sort_keys=True, default=str).encode())
     h.update(np.ascontiguousarray(kin.velocity).tobytes())
     h.update(np.ascontiguousarray(kin.acceleration).tobytes())
-    assert S.run_identity(m, kin, ST) == h.hexdigest()
+    assert S.pipeline_identity(m, kin, ST).digest == h.hexdigest()
 
 
 def test_task_store_round_trip_foreign_and_corrupt_files_restart(tmp_path):

@@ -351,35 +351,3 @@ def test_case_file_displacement_increment_is_taken_as_given(tmp_path):
     case.write_text(text)
     assert load_pipeline_run(case).settings.max_displacement_increment_over_d == 0.01
     assert load_pipeline_run(EXAMPLE).settings.max_displacement_increment_over_d == 0.05
-
-
-def test_checkpoint_without_the_vs_memo_slots_resumes_bitwise(tmp_path, monkeypatch):
-    """A V&S checkpoint written before the memo slots (issue 33: 4 more state columns) resumes,
-    and the run equals the uninterrupted one bitwise (an empty memo recomputes the powers)."""
-    from onbottom.soil import _verley_sotberg_kernel as VK
-
-    # such a checkpoint also predates the load-reversal slots (after the memo): it was written
-    # under the first reading of Eq 6 (every region-2 increment counts), which does not read
-    # them, so that reading is the one to resume bitwise
-    soil = VerleySotberg.silica(
-        PIPE,
-        Sand(submerged_unit_weight=1.0e4, friction_coefficient=0.6),
-        work_counting="any_region2",
-    )
-    m = PipelineModel(pipe=PIPE, length=60.0, element_length=4.0, soil=soil)
-    kin = regular_node_kinematics(
-        m.x.size, 60.0, 0.05, 1.5, 10.0, ramp=20.0, x=m.x, wavelength=200.0
-    )
-    st = PipelineSettings(record_interval=1.0, chunk_duration=10.0)
-    ref = simulate_pipeline(m, kin, settings=st, output=tmp_path / "ref.nc").open_dataset()
-    out = tmp_path / "run.nc"
-    _interrupt_at_the_third_chunk(monkeypatch, m, kin, st, out)
-    ckpt = tmp_path / "run.nc.ckpt.npz"
-    with np.load(ckpt) as z:
-        parts = dict(z)
-    assert parts["sstate"].shape[1] == VK.N_STATE
-    parts["sstate"] = np.ascontiguousarray(parts["sstate"][:, : VK.S_MEMO_Z])
-    np.savez(ckpt, **parts)
-    ds = simulate_pipeline(m, kin, settings=st, output=out, resume="require").open_dataset()
-    np.testing.assert_array_equal(ds["y"].values, ref["y"].values)
-    np.testing.assert_array_equal(ds["z"].values, ref["z"].values)

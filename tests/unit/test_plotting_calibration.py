@@ -11,7 +11,7 @@ from onbottom.plotting.calibration import plot_fit, plot_misfit_map, plot_misfit
 
 def _record():
     t = np.linspace(0.0, 10.0, 11)
-    ds = xr.Dataset({"u": ("time", 0.1 * t), "w": ("time", 0.05 + 0.001 * t)}, coords={"time": t})
+    ds = xr.Dataset({"y": ("time", 0.1 * t), "z": ("time", 0.05 + 0.001 * t)}, coords={"time": t})
     return TestRecord(name="rec", data=ds, diameter=1.0, displacement_limit=1.0)
 
 

@@ -21,9 +21,9 @@ from onbottom.dem.experiment import penetrate
 from onbottom.dem.identity import (
     CheckpointError,
     CheckpointMismatchError,
+    dem_identity,
     differences,
     fingerprint,
-    run_identity,
 )
 from onbottom.dem.preparation import prepare_sample
 from onbottom.dem.sample import Sample
@@ -72,8 +72,8 @@ def checkpoint(tmp_path, sample):
 
 
 def test_identity_fingerprint_changes_with_every_determining_field(sample):
-    base = run_identity(TINY, "penetration", sample=sample)
-    assert fingerprint(base) == fingerprint(run_identity(TINY, "penetration", sample=sample))
+    base = dem_identity(TINY, "penetration", sample=sample).fields
+    assert fingerprint(base) == fingerprint(dem_identity(TINY, "penetration", sample=sample).fields)
     changed = {
         "seed": TINY.replace(seed=9),
         "name": TINY.replace(name="other"),
@@ -82,10 +82,10 @@ def test_identity_fingerprint_changes_with_every_determining_field(sample):
         ),
     }
     for what, cfg in changed.items():
-        other = run_identity(cfg, "penetration", sample=sample)
+        other = dem_identity(cfg, "penetration", sample=sample).fields
         assert fingerprint(other) != fingerprint(base), what
         assert len(differences(base, other)) == 1, what
-    other = run_identity(TINY, "penetration", sample=_lattice_sample(jitter_seed=1))
+    other = dem_identity(TINY, "penetration", sample=_lattice_sample(jitter_seed=1)).fields
     assert differences(base, other)[0].startswith("sample:")
 
 
@@ -117,7 +117,7 @@ def test_matching_resume_continues_and_result_carries_the_identity(sample, check
     ident = json.loads(more.attrs["run_identity"])
     assert ident["file_format"] >= 2 and ident["kind"] == "penetration"
     assert more.attrs["run_fingerprint"] == fingerprint(
-        run_identity(TINY, "penetration", sample=sample)
+        dem_identity(TINY, "penetration", sample=sample).fields
     )
 
 
@@ -222,7 +222,7 @@ def test_cli_prepare_refuses_a_foreign_or_corrupt_checkpoint_and_restart_starts_
     assert payload["success"] is bool(payload["equilibrium_Ng_converged"])
     assert out.exists() and not ck.exists()
     assert json.loads(r.output)["run_fingerprint"] == fingerprint(
-        run_identity(MINI.replace(seed=7), "preparation")
+        dem_identity(MINI.replace(seed=7), "preparation").fields
     )
     # the specimen of that run is not overwritten by another run without --restart
     cfg2 = tmp_path / "mini.json"
@@ -302,7 +302,7 @@ def test_guard_output_refuses_a_file_of_another_run_unless_restart(tmp_path):
     """dem.identity.guard_output (the check of 'dem prepare/penetrate --out'), as a library call."""
     from onbottom.dem.identity import guard_output, recorded_identity
 
-    ident = run_identity(SD_REDUCED, "preparation")
+    ident = dem_identity(SD_REDUCED, "preparation").fields
     out = tmp_path / "out.nc"
     guard_output(out, ident, restart=False, field="--out")  # no file: nothing to refuse
     out.write_text("not a result", encoding="utf-8")

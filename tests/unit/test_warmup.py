@@ -23,6 +23,8 @@ from onbottom.study.warmup import (
     STORM_FORCE_MODELS,
     STORM_SEABEDS,
     TARGETS,
+    WORKER_START_S,
+    estimate,
     warm_kernels,
 )
 
@@ -102,6 +104,22 @@ def test_two_worker_processes_run_two_targets():
     assert all(t.wall_s > 0 and t.compiled >= 0 for t in report.targets)
 
 
+def test_estimate_deals_the_measured_targets_to_the_processes():
+    """Hand calculation from the table: one process runs the targets one after the other; two
+    take the next target as each finishes, after their start."""
+    cpu_of = {t.name: t.cpu_s for t in TARGETS}
+    cpu, wall, workers = estimate(["section", "storm-rock"], processes=1)
+    assert workers == 1
+    assert cpu == pytest.approx(cpu_of["section"] + cpu_of["storm-rock"]) == wall
+    cpu, wall, workers = estimate(["pipeline", "storm-sand", "section"], processes=2)
+    p, s, c = cpu_of["pipeline"], cpu_of["storm-sand"], cpu_of["section"]
+    assert workers == 2 and cpu == pytest.approx(p + s + c + 2 * WORKER_START_S)
+    # the second process runs storm-sand then section while the first runs the pipeline
+    assert wall == pytest.approx(WORKER_START_S + max(p, s + c))
+    assert estimate(["section"], processes=4)[2] == 1  # never more processes than targets
+    assert all(t.cpu_s > 0 for t in TARGETS)
+
+
 def test_cli_help_lists_the_targets():
     res = CliRunner().invoke(cli, ["warmup", "--help"])
     assert res.exit_code == 0
@@ -120,6 +138,10 @@ def test_cli_runs_one_target_with_json(capsys):
     assert set(row) == documented_keys("warmup", "targets[]")
     assert row["name"] == "section" and out["processes"] == 1
     assert "compiling centrifuge-section kernel" in captured.err and "(1/1)" in captured.err
+    # the duration is said before anything compiles
+    first = captured.err.splitlines()[0]
+    assert first.startswith("onbottom warmup: compiling 1 kernel group on 1 process: about")
+    assert "CPU-s" in first and "free cores" in first
 
 
 def test_cli_quiet_prints_the_totals_only(capsys):

@@ -302,19 +302,6 @@ def test_compacted_layers_settle_before_their_time_cap(tiny_sample):
     assert all(a[f"layer{i}_settled"] for i in (1, 2))
 
 
-def test_snapshot_info_of_an_old_checkpoint_is_rebuilt():
-    """Checkpoints of onbottom 0.1.0 lost the snapshot's (w/D, w, pipe y); they are rebuilt."""
-    import xarray as xr
-
-    from onbottom.dem.experiment import _restore_snapshot_info
-
-    kept = xr.Dataset({"x": ("particle", [0.0]), "info": ("info", [0.1, 0.0021, 0.5])})
-    lost = xr.Dataset({"x": ("particle", [0.0])})
-    _restore_snapshot_info([kept, lost], (0.1, 0.2), surf0=0.1, D=0.02)
-    np.testing.assert_array_equal(kept["info"].values, [0.1, 0.0021, 0.5])  # untouched
-    np.testing.assert_allclose(lost["info"].values, [0.2, 0.004, 0.1 + 0.01 - 0.004])
-
-
 # ---- event snapshots at softening peaks and troughs (tiny SD-reduced, to 0.2D: 2 episodes) --
 # the plain engine: the stop points of the event resume test below are step counts chosen on
 # its record (the sub-cycled engine's bitwise resume is tested with TINY above)

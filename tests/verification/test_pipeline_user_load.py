@@ -161,7 +161,7 @@ def test_user_load_inputs_are_validated():
 
 
 def test_a_user_load_changes_the_run_identity_and_none_keeps_it():
-    from onbottom.dynamics.pipeline import run_identity
+    from onbottom.dynamics.pipeline import pipeline_identity
 
     soil = CoulombFriction(friction_coefficient=0.6)
     base = PipelineModel(pipe=PIPE, length=L, element_length=5.0, soil=soil)
@@ -170,4 +170,4 @@ def test_a_user_load_changes_the_run_identity_and_none_keeps_it():
     sine = TravellingSineLoad(amplitude=100.0, wavelength=40.0, period=8.0)
     loaded = PipelineModel(pipe=PIPE, length=L, element_length=5.0, soil=soil, user_load=sine)
     assert "user_load" not in base.describe()
-    assert run_identity(base, kin, s) != run_identity(loaded, kin, s)
+    assert pipeline_identity(base, kin, s).digest != pipeline_identity(loaded, kin, s).digest

@@ -44,7 +44,6 @@ import xarray as xr
 from onbottom._validate import non_negative
 from onbottom.calibration.records import TestRecord
 from onbottom.errors import InputError
-from onbottom.results import LEGACY_NAMES
 
 __all__ = [
     "FAILED_RESIDUAL",
@@ -158,9 +157,6 @@ def time_to_limit(t: np.ndarray, u: np.ndarray, limit: float, t0: float = 0.0) -
 
 
 def _series(ds: xr.Dataset, name: str) -> np.ndarray:
-    legacy = {new: old for old, new in LEGACY_NAMES.items()}.get(name)
-    if name not in ds and legacy is not None and legacy in ds:  # a 0.1 result
-        name = legacy
     if name not in ds:
         raise InputError(f"simulated result has no variable {name!r} (has {list(ds.variables)})")
     return np.asarray(ds[name].values, dtype=float)

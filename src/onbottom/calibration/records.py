@@ -25,9 +25,7 @@ CSV
         ...
 
     Required columns: ``time``, ``y``, ``z``; ``H`` and ``V`` are optional but recommended.
-    Further columns are kept (converted when their unit is known). Files written by onbottom
-    0.1 call the displacement ``u`` and the penetration ``w``: they are read as ``y`` and
-    ``z`` (``docs/conventions.md``).
+    Further columns are kept (converted when their unit is known).
 NetCDF
     A Dataset with coordinate ``time`` and variables ``y``, ``z`` (``H``, ``V``), each with a
     ``units`` attribute; metadata as global attributes (``record_name``, ``programme``,
@@ -78,17 +76,6 @@ _COLUMN_KIND = {
     "y": "length",
     "z": "length",
 }
-# 0.1 column names (onbottom.results.LEGACY_NAMES): read as today's
-_LEGACY_COLUMNS = {"u": "y", "w": "z"}
-
-
-def _current_names(names: list[str]) -> list[str]:
-    """``names`` with the 0.1 columns ``u``/``w`` called ``y``/``z`` (unless both are there)."""
-    return [
-        _LEGACY_COLUMNS[n] if n in _LEGACY_COLUMNS and _LEGACY_COLUMNS[n] not in names else n
-        for n in names
-    ]
-
 
 _SI_UNIT = {"time": "s", "force_per_length": "N/m", "length": "m", "unit_weight": "N/m3"}
 
@@ -163,8 +150,7 @@ class TestRecord:
     data : xarray.Dataset
         Coordinate ``time`` [s] strictly increasing; variables ``y`` lateral displacement [m]
         and ``z`` penetration of the invert [m, positive down]; optionally ``H`` horizontal
-        and ``V`` vertical load per unit length [N/m]. A private copy is kept (0.1's names
-        ``u`` and ``w`` are renamed ``y`` and ``z``).
+        and ``V`` vertical load per unit length [N/m]. A private copy is kept.
     diameter : float
         Pipe outer diameter D [m], > 0.
     programme : str
@@ -259,10 +245,6 @@ def _validated_data(data: xr.Dataset, name: str) -> xr.Dataset:
         raise InputError(f"TestRecord.data of {name!r} is invalid: expected an xarray.Dataset")
     if "time" not in data.coords and "time" not in data.variables:
         raise InputError(f"TestRecord.data of {name!r} is invalid: column 'time' is missing")
-    names = [str(n) for n in data.variables]
-    data = data.rename(
-        {old: new for old, new in zip(names, _current_names(names), strict=True) if old != new}
-    )
     for col in ("y", "z"):
         if col not in data.variables:
             raise InputError(f"TestRecord.data of {name!r} is invalid: column {col!r} is missing")
@@ -349,14 +331,13 @@ def _read_csv(path: Path) -> TestRecord:
         )
     if len(set(names)) != len(names):
         raise InputError(f"{path}: duplicate column names in {names}")
-    current = _current_names(names)  # a 0.1 file's u, w are read as y, z
     for required in ("time", "y", "z"):
-        if required not in current:
+        if required not in names:
             raise InputError(f"{path}: column {required!r} is missing (columns: {names})")
     factors: list[float] = []
     kinds: list[str | None] = []
-    for col, cur, unit in zip(names, current, units, strict=True):
-        kind = _COLUMN_KIND.get(cur) or _kind_of_unit(unit)
+    for col, unit in zip(names, units, strict=True):
+        kind = _COLUMN_KIND.get(col) or _kind_of_unit(unit)
         kinds.append(kind)
         factors.append(
             to_si(1.0, unit, kind, field_name=f"{path}: column {col!r}") if kind else 1.0
@@ -392,7 +373,7 @@ def _read_csv(path: Path) -> TestRecord:
             f" after {float(t[r - 1])!r} s: time must increase strictly"
         )
     ds = xr.Dataset(coords={"time": ("time", t)})
-    for c, col in enumerate(current):
+    for c, col in enumerate(names):
         if col == "time":
             continue
         ds[col] = ("time", values[:, c])
@@ -574,8 +555,8 @@ def record_from_result(
     Parameters
     ----------
     result : xarray.Dataset or object with ``.data``
-        Section-solver output: coordinate ``time`` [s] and variables ``y`` [m], ``z`` [m]
-        (0.1's ``u``, ``w`` accepted), optionally ``H``, ``V`` [N/m]. Other variables are
+        Section-solver output: coordinate ``time`` [s] and variables ``y`` [m], ``z`` [m],
+        optionally ``H``, ``V`` [N/m]. Other variables are
         dropped.
     name, diameter, programme, V_peak, V_i, displacement_limit, t_cyclic_start, cycle_period,
     metadata
@@ -589,12 +570,9 @@ def record_from_result(
     if not isinstance(ds, xr.Dataset):
         raise InputError("record_from_result: result must be an xarray.Dataset or have .data")
     keep = xr.Dataset(coords={"time": np.asarray(ds["time"].values, dtype=float)})
-    names = [str(n) for n in ds.variables]
-    current = dict(zip(_current_names(names), names, strict=True))  # today's name -> in ds
-    for dst in ("y", "z", "H", "V"):
-        src = current.get(dst)
-        if src is not None:
-            keep[dst] = ("time", np.asarray(ds[src].values, dtype=float))
+    for name in ("y", "z", "H", "V"):
+        if name in ds.variables:
+            keep[name] = ("time", np.asarray(ds[name].values, dtype=float))
     attrs = ds.attrs
     if diameter is None:
         try:

@@ -286,7 +286,7 @@ def penetrate_cmd(
     """
     from onbottom.cases.dem import load_sample
     from onbottom.dem.experiment import penetrate, with_initial_state
-    from onbottom.dem.identity import check_sample_config, guard_output, run_identity
+    from onbottom.dem.identity import check_sample_config, dem_identity, guard_output
     from onbottom.results import clean_stale_temporaries, save_dataset
 
     cfg = _config(preset, seed, config_file)
@@ -300,7 +300,10 @@ def penetrate_cmd(
     ck = checkpoint if checkpoint is not None else out.with_suffix(".checkpoint.nc")
     if not ck.exists():  # else the checkpoint's own identity check decides (in penetrate)
         guard_output(
-            out, run_identity(cfg, "penetration", sample=sample), restart=restart, field="--out"
+            out,
+            dem_identity(cfg, "penetration", sample=sample).fields,
+            restart=restart,
+            field="--out",
         )
     if ck.resolve() in (out.resolve(), sample_path.resolve()):
         raise InputError(

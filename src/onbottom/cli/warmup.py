@@ -44,11 +44,21 @@ def command(only: tuple[str, ...], processes: int | None, quiet: bool, as_json: 
     seconds. Other models (Fourier forces, the V–H soil model, rock under a pipeline, mixed
     soils along a line) still compile on their first use.
     """
-    from onbottom.study.warmup import warm_kernels
+    from onbottom.study.warmup import estimate, warm_kernels
 
     def progress(k: int, n: int, target) -> None:
-        if not quiet:
-            click.echo(f"onbottom warmup: compiling {target.title} ({k}/{n}) ...", err=True)
+        if quiet:
+            return
+        if k == 1:  # what it will cost, before the first compile starts
+            cpu, wall, workers = estimate(only or None, processes=processes)
+            click.echo(
+                f"onbottom warmup: compiling {n} kernel group{'s' if n != 1 else ''} on"
+                f" {workers} process{'es' if workers > 1 else ''}: about {cpu:.0f} CPU-s,"
+                f" {wall:.0f} s on free cores (longer on a busy machine; seconds for groups"
+                " already cached) ...",
+                err=True,
+            )
+        click.echo(f"onbottom warmup: compiling {target.title} ({k}/{n}) ...", err=True)
 
     try:
         report = warm_kernels(only or None, processes=processes, progress=progress)

@@ -49,8 +49,8 @@ from onbottom.dem.identity import (
     CheckpointError,
     CheckpointMismatchError,
     check_identity,
+    dem_identity,
     fingerprint,
-    run_identity,
 )
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
@@ -337,22 +337,6 @@ def _load_checkpoint(
     return sim, records, snaps, meta, ds["theta0"].values, events
 
 
-def _restore_snapshot_info(
-    snaps: list[xr.Dataset], targets: tuple[float, ...], surf0: float, D: float
-) -> None:
-    """Rebuild the ``info`` of snapshots read from an onbottom 0.1.0 checkpoint, which lost it.
-
-    The snapshot at target w/D = r was taken at the first record with w ≥ r·D − v·Δt/2, so
-    w = r·D to within one record interval (``record_every``·v·Δt: 5.5e-7 m, 3e-5 D at full
-    size); the pipe centre is then at surf0 + D/2 − w.
-    """
-    for q, snap in enumerate(snaps):
-        if "info" not in snap.variables:
-            w = targets[q] * D
-            log.warning("checkpoint from onbottom 0.1.0: snapshot w = %gD taken", targets[q])
-            snap["info"] = ("info", np.array([targets[q], w, surf0 + 0.5 * D - w]))
-
-
 def _snapshot(sim: Simulation, theta0: np.ndarray, ratio: float, w: float) -> xr.Dataset:
     c = sim.contact_forces()
     return xr.Dataset(
@@ -453,7 +437,7 @@ def penetrate(
         SofteningDetector(step=event_step, drop_fraction=event_drop_fraction),
         int(max_event_snapshots),
     )
-    identity = run_identity(config, "penetration", sample=sample)
+    identity = dem_identity(config, "penetration", sample=sample).fields
     ck = Path(checkpoint) if checkpoint is not None else None
     if ck is not None and restart:
         ck.unlink(missing_ok=True)
@@ -557,7 +541,6 @@ def _resume(
     one under the same settings, none (with a note) when it has none."""
     sim, records, snaps, meta, theta0, ck_events = _load_checkpoint(ck, config, threads, identity)
     log.info("resumed from %s at step %d", ck, sim.step_count)
-    _restore_snapshot_info(snaps, snapshots, float(meta["surf0"]), D)
     meta.pop("events", None)
     events: _Events | None = fresh_events if event_snapshots else None
     events_note = ""

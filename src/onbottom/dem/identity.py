@@ -30,11 +30,11 @@ __all__ = [
     "CheckpointMismatchError",
     "check_identity",
     "check_sample_config",
+    "dem_identity",
     "differences",
     "fingerprint",
     "guard_output",
     "recorded_identity",
-    "run_identity",
     "sample_fingerprint",
 ]
 
@@ -82,11 +82,12 @@ def sample_fingerprint(sample: Any) -> str:
     return h.hexdigest()[:16]
 
 
-def run_identity(config: Any, kind: str, *, sample: Any = None) -> dict[str, Any]:
-    """Everything that determines a checkpoint or result of stage ``kind``.
+def dem_identity(config: Any, kind: str, *, sample: Any = None) -> results.RunIdentity:
+    """The run identity (:func:`onbottom.results.run_identity`) of a checkpoint or result of
+    stage ``kind``: its ``fields`` hold everything that determines it.
 
     ``kind`` is ``"preparation"`` or ``"penetration"``; ``sample`` (penetration) adds the
-    specimen's fingerprint.
+    specimen's fingerprint. The files store and compare the ``fields`` (field by field).
     """
     from onbottom.dem._kernels import N_PRM
 
@@ -99,12 +100,11 @@ def run_identity(config: Any, kind: str, *, sample: Any = None) -> dict[str, Any
     }
     if sample is not None:
         ident["sample"] = sample_fingerprint(sample)
-    return results.run_identity(ident).fields
+    return results.run_identity(ident)
 
 
 def fingerprint(identity: Mapping[str, Any]) -> str:
-    """SHA-256 (16 hex digits) of a run identity (:func:`onbottom.results.run_identity`, the
-    pipeline's function too)."""
+    """SHA-256 (16 hex digits) of the fields of a run identity (:func:`dem_identity`)."""
     return results.run_identity(identity).fingerprint
 
 
@@ -214,7 +214,7 @@ def guard_output(
 ) -> None:
     """Refuse to overwrite a file that holds the result of another run (unless ``restart``).
 
-    ``identity`` is the :func:`run_identity` of the run about to write ``path``; a file whose
+    ``identity`` is the :func:`dem_identity` fields of the run about to write ``path``; a file whose
     recorded identity (:func:`recorded_identity`) differs, or that has none, is an
     :class:`~onbottom.errors.InputError` naming ``field`` and the differing fields.
     """

@@ -47,9 +47,9 @@ from onbottom.dem.engine import Simulation, step_sizes
 from onbottom.dem.identity import (
     CheckpointError,
     check_identity,
+    dem_identity,
     fingerprint,
     guard_output,
-    run_identity,
 )
 from onbottom.dem.sample import Sample
 from onbottom.errors import InputError
@@ -316,7 +316,7 @@ def prepare_sample(
             f" {n_est * BYTES_PER_PARTICLE / 1024**3:.3g} GiB of memory), more than the"
             f" {MAX_PARTICLES:.0e} allowed; reduce the box or enlarge the disks"
         )
-    identity = run_identity(config, "preparation")
+    identity = dem_identity(config, "preparation").fields
     ck = Path(checkpoint) if checkpoint is not None else None
     if ck is not None and restart:
         ck.unlink(missing_ok=True)
@@ -362,7 +362,7 @@ def prepare_to_file(
     from onbottom.results import clean_stale_temporaries
 
     out = Path(out)
-    guard_output(out, run_identity(config, "preparation"), restart=restart, field=field)
+    guard_output(out, dem_identity(config, "preparation").fields, restart=restart, field=field)
     checkpoint = out.with_name(out.name + ".prep-checkpoint.nc")
     clean_stale_temporaries(out)
     clean_stale_temporaries(checkpoint)

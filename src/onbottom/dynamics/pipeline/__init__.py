@@ -17,7 +17,7 @@ if TYPE_CHECKING:  # the same names, for type checkers, mkdocstrings and the lay
         CRITERIA_OVER_D,
         PipelineResult,
         PipelineSettings,
-        run_identity,
+        pipeline_identity,
         simulate_pipeline,
     )
     from onbottom.dynamics.pipeline.storm_run import PipelineStormRun, simulate_pipeline_storm
@@ -39,7 +39,7 @@ __all__ = [
     "TableLoad",
     "TravellingSineLoad",
     "UserLoad",
-    "run_identity",
+    "pipeline_identity",
     "simulate_pipeline",
     "simulate_pipeline_storm",
     "still_water",
@@ -57,7 +57,7 @@ __getattr__, __dir__ = attach(
             "CRITERIA_OVER_D",
             "PipelineResult",
             "PipelineSettings",
-            "run_identity",
+            "pipeline_identity",
             "simulate_pipeline",
         ),
         "onbottom.dynamics.pipeline.storm_run": ("PipelineStormRun", "simulate_pipeline_storm"),

@@ -56,19 +56,20 @@ from onbottom.hydro.short_crested import NodeKinematics, WindowedNodeKinematics
 from onbottom.results import (
     RESTART_ADVICE,
     RUN_STATUS_COMPLETE,
+    RunIdentity,
     annotate,
     atomic_write,
     check_result_file,
     provenance,
+    run_identity,
 )
-from onbottom.results import run_identity as results_run_identity
 from onbottom.soil.kernel_contract import MODELS_MIXED
 
 __all__ = [
     "CRITERIA_OVER_D",
     "PipelineResult",
     "PipelineSettings",
-    "run_identity",
+    "pipeline_identity",
     "simulate_pipeline",
 ]
 
@@ -257,15 +258,16 @@ class PipelineResult(SolverResult):
         return load_dataset(self.netcdf)
 
 
-def run_identity(
+def pipeline_identity(
     model: PipelineModel,
     kinematics: NodeKinematics | WindowedNodeKinematics,
     settings: PipelineSettings,
     extra: Any = None,
     force_parameters: np.ndarray | None = None,
-) -> str:
-    """Hash (sha256, hex) of everything that determines a run: model, settings, kinematics
-    (the digest of :func:`onbottom.results.run_identity`, the DEM's function too).
+) -> RunIdentity:
+    """The run identity (:func:`onbottom.results.run_identity`) of everything that determines
+    a run: model, settings, kinematics; its ``digest`` is the ``run_id`` of the checkpoint,
+    the chunk files and the result.
 
     ``force_parameters``: the force model's parameter rows; folded in only when they change
     along the storm (per sea state), so a constant model keeps the identity of earlier runs.
@@ -285,7 +287,7 @@ def run_identity(
         arrays = [kinematics.velocity, kinematics.acceleration]
     if force_parameters is not None and force_parameters.shape[0] > 1:
         arrays.append(force_parameters)
-    return results_run_identity(meta, *arrays).digest
+    return run_identity(meta, *arrays)
 
 
 def _kernel_settings(
@@ -509,8 +511,8 @@ def _load_checkpoint(
             skip = ("run_id", "rows", "chunks", "last_time")
             state = {k: z[k].copy() for k in z.files if k not in skip}
             rows = int(z["rows"])
-            chunks = int(z["chunks"]) if "chunks" in z.files else -1
-            last = float(z["last_time"]) if "last_time" in z.files else math.nan
+            chunks = int(z["chunks"])
+            last = float(z["last_time"])
     except Exception as exc:  # any damage (a zip error, a missing array, ...)
         raise ResultFileError(
             f"checkpoint {str(path)!r} is unreadable (corrupt, truncated or not a checkpoint:"
@@ -532,8 +534,6 @@ def _partial_agrees(
 ) -> str | None:
     """None if the chunk files 0 … ``chunks`` − 1 of ``folder`` carry ``run_id`` and hold
     ``rows`` records, the last at ``last_time``; otherwise why they cannot be resumed."""
-    if chunks < 0:
-        return "it was written by an older onbottom (no chunk count)"
     n = 0
     t_last = math.nan
     for i in range(chunks):
@@ -702,7 +702,7 @@ def simulate_pipeline(
     )
     kin = _KinematicsWindow(kinematics, st, s.chunk_duration)
     ndof = B.NDOF_NODE * n
-    run_id = run_identity(model, kinematics, s, [t_end, identity_extra], fparams)
+    run_id = pipeline_identity(model, kinematics, s, [t_end, identity_extra], fparams).digest
     d = model.pipe.outer_diameter
     if s.record_interval is not None:
         n_out = math.floor(t_end / s.record_interval + 1e-9) + 1
@@ -805,20 +805,11 @@ def simulate_pipeline(
             raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
         rows = 0
     else:
-        done = int(state.pop("status", np.array(K.STATUS_CHUNK)))
-        vec, scal, sstate, axst, nodal, env = (
+        done = int(state.pop("status"))
+        vec, scal, sstate, axst, nodal, env, fstate = (
             state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
-            state["env"],
+            state["env"], state["fstate"],
         )  # fmt: skip
-        n_st = arr["sstate"].shape[1]
-        if sstate.shape[1] < n_st:
-            # checkpoints written before the V&S memo slots: zero slots are an
-            # empty memo (the memo's key is then 0, whose power 0 is right); before the V&S
-            # load-reversal slots: zero is a shut gate, an unknown load direction, no turns
-            pad = np.zeros((sstate.shape[0], n_st - sstate.shape[1]))
-            sstate = np.ascontiguousarray(np.hstack([sstate, pad]))
-        # checkpoints written before the force state existed: Morison only, no state
-        fstate = state.get("fstate", np.zeros((n, N_FORCE_STATE)))
     writer = None
     if out_path is not None:
         resumed = (rows, chunks, last_time) if state is not None else (0, 0, math.nan)
