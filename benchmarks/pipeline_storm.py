@@ -43,6 +43,26 @@ from onbottom.inputs.storm import SeaState, Storm
 from onbottom.soil.verley_sotberg import VerleySotberg
 
 
+def model_of(n_el: int, length: float = 1000.0) -> PipelineModel:
+    """The benchmark pipe of ``n_el`` elements over ``length`` [m] on Verley & Sotberg sand."""
+    pipe = PipeBuildUp(
+        steel_outer_diameter=0.2191,
+        wall_thickness=0.0127,
+        layers=(Layer(name="fbe", thickness=0.0055, density=1335.0),
+                Layer(name="concrete", thickness=0.03, density=3043.5)),
+        contents=Contents.uniform(1025.0),
+    ).pipe("operation")  # fmt: skip
+    sand = Sand(submerged_unit_weight=1.0e4, friction_coefficient=0.6)
+    return PipelineModel(
+        pipe=pipe,
+        length=length,
+        element_length=length / n_el,
+        soil=VerleySotberg.silica(pipe, sand),
+        end_conditions="fixed",
+        current=0.3,
+    )
+
+
 def run(
     n_el: int,
     build_up_h: float,
@@ -52,22 +72,7 @@ def run(
     kin_limit: int | None = None,
     simulate_s: float | None = None,
 ) -> dict:
-    pipe = PipeBuildUp(
-        steel_outer_diameter=0.2191,
-        wall_thickness=0.0127,
-        layers=(Layer(name="fbe", thickness=0.0055, density=1335.0),
-                Layer(name="concrete", thickness=0.03, density=3043.5)),
-        contents=Contents.uniform(1025.0),
-    ).pipe("operation")  # fmt: skip
-    sand = Sand(submerged_unit_weight=1.0e4, friction_coefficient=0.6)
-    model = PipelineModel(
-        pipe=pipe,
-        length=length,
-        element_length=length / n_el,
-        soil=VerleySotberg.silica(pipe, sand),
-        end_conditions="fixed",
-        current=0.3,
-    )
+    model = model_of(n_el, length)
     sea = SeaState(hs=4.5, tp=10.0, direction_deg=80.0, spreading_s=8.0)
     storm = Storm.standard(sea, build_up_hours=build_up_h, peak_hours=peak_h, seed=0)
     t0 = time.perf_counter()
