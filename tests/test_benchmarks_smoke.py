@@ -58,6 +58,7 @@ FIGURES: dict[str, tuple[str, ...]] = {
     "opensees_peer.py": (r"problem: 20 m, 10 elements",),
     "penetration_f114.py": (rf"solve_embedment: +{NUM} ms",),
     "pipeline_storm.py": (rf"peak resident memory: {NUM} MB", rf"^ +20 +21 +{NUM}"),
+    "pipeline_profile.py": (rf"measured step: {NUM} us CPU", rf"soil kernel {NUM} us"),
     "reliability_campaign.py": (rf"1 worker\(s\): 4 storms in {NUM} s = {NUM} storms/s",),
     "soil_trough_kernels.py": (rf"verley_sotberg_silica +1000 steps +{NUM} ns/step",),
     "stability_curves.py": (rf"{NUM} storms/h", rf"CPU time of the workers: {NUM} s"),

@@ -665,7 +665,29 @@ def simulate_pipeline(
         first_liftoff_time [s], first_liftoff_x [m], work_hydro [J], work_soil [J],
         kinetic_energy [J], strain_energy [J], energy_residual [J] (KE + SE − W_hydro −
         W_soil; ≈ 0 for α = 0), negative_pivot_steps.
+
+    The run is four stages: the settings are checked (:func:`_checked_settings`), the run is
+    set up (:func:`_setup`: kernel arrays, identity, files) and started, resumed or found
+    finished (:func:`_start`), the time loop runs chunk by chunk (:func:`_time_loop`), and
+    the result is assembled (:func:`_result`).
     """
+    s, t_end = _checked_settings(model, kinematics, settings, duration, resume)
+    run = _setup(model, kinematics, s, t_end, output, checkpoint, attrs, identity_extra)
+    finished = _start(run, resume)
+    if finished is not None:
+        return finished
+    status, records = _time_loop(run, progress)
+    return _result(run, status, records)
+
+
+def _checked_settings(
+    model: PipelineModel,
+    kinematics: NodeKinematics | WindowedNodeKinematics,
+    settings: PipelineSettings | None,
+    duration: float | None,
+    resume: str,
+) -> tuple[PipelineSettings, float]:
+    """Settings stage: the inputs checked; (settings, end time [s])."""
     if not isinstance(model, PipelineModel):
         raise InputError(f"model = {type(model).__name__} is invalid: expected PipelineModel")
     if not isinstance(kinematics, NodeKinematics | WindowedNodeKinematics):
@@ -674,8 +696,7 @@ def simulate_pipeline(
         )
     s = settings if settings is not None else PipelineSettings()
     one_of("resume", resume, ("auto", "never", "require"))
-    x = model.x
-    n = x.size
+    n = model.x.size
     if kinematics.shape[1] != n:
         raise InputError(
             f"kinematics has {kinematics.shape[1]} node columns, the model"
@@ -686,6 +707,66 @@ def simulate_pipeline(
         raise InputError(
             f"duration = {t_end!r} s is invalid: the kinematics end at {kinematics.t_end:g} s"
         )
+    return s, t_end
+
+
+@dataclass(eq=False)
+class _Run:
+    """Everything one run of :func:`simulate_pipeline` holds between its stages: the inputs
+    and kernel arrays (set up once), then the solver state (fresh or resumed) that the time
+    loop advances in place."""
+
+    model: PipelineModel
+    kinematics: NodeKinematics | WindowedNodeKinematics
+    s: PipelineSettings
+    t_end: float
+    arr: dict[str, np.ndarray]
+    st: np.ndarray
+    soil_id: int
+    force_id: int
+    fparams: np.ndarray
+    kin: _KinematicsWindow
+    run_id: str
+    t_out: np.ndarray
+    out_path: Path | None
+    ckpt: Path | None
+    base_attrs: dict[str, Any]
+    rec: np.ndarray
+    rec_t: np.ndarray
+    # solver state (set by _start)
+    vec: np.ndarray | None = None
+    scal: np.ndarray | None = None
+    sstate: np.ndarray | None = None
+    axst: np.ndarray | None = None
+    nodal: np.ndarray | None = None
+    env: np.ndarray | None = None
+    fstate: np.ndarray | None = None
+    done: int = K.STATUS_CHUNK
+    resumed: tuple[int, int, float] | None = None  # (rows, chunks, last time) of a resume
+    writer: _Writer | None = None  # the records' files (with an output), set by the loop
+
+    @property
+    def x(self) -> np.ndarray:
+        return self.model.x
+
+    @property
+    def d(self) -> float:
+        return self.model.pipe.outer_diameter
+
+
+def _setup(
+    model: PipelineModel,
+    kinematics: NodeKinematics | WindowedNodeKinematics,
+    s: PipelineSettings,
+    t_end: float,
+    output: str | os.PathLike | None,
+    checkpoint: str | os.PathLike | None,
+    attrs: Mapping[str, Any] | None,
+    identity_extra: Any,
+) -> _Run:
+    """Setup stage: kernel settings and arrays, the models to compile, the force parameters,
+    the run identity, output times, file names, provenance and the record buffer."""
+    n = model.x.size
     arr = model.arrays()
     r_perm_z = float(arr["r_perm_z"][0])
     st = _kernel_settings(model, kinematics, s, r_perm_z)
@@ -701,9 +782,7 @@ def simulate_pipeline(
         model.pipe.outer_diameter,
     )
     kin = _KinematicsWindow(kinematics, st, s.chunk_duration)
-    ndof = B.NDOF_NODE * n
     run_id = pipeline_identity(model, kinematics, s, [t_end, identity_extra], fparams).digest
-    d = model.pipe.outer_diameter
     if s.record_interval is not None:
         n_out = math.floor(t_end / s.record_interval + 1e-9) + 1
         t_out = s.record_interval * np.arange(n_out)
@@ -728,13 +807,19 @@ def simulate_pipeline(
     per_chunk = 1
     if t_out.size:
         per_chunk = max(math.ceil(s.chunk_duration / s.record_interval) + 2, 2)
-    rec = np.zeros((per_chunk, K.N_FIELDS, n))
-    rec_t = np.zeros(per_chunk)
-    # ---- finished already, resumed, or fresh
+    return _Run(
+        model=model, kinematics=kinematics, s=s, t_end=t_end, arr=arr, st=st,
+        soil_id=soil_id, force_id=force_id, fparams=fparams, kin=kin, run_id=run_id,
+        t_out=t_out, out_path=out_path, ckpt=ckpt, base_attrs=base_attrs,
+        rec=np.zeros((per_chunk, K.N_FIELDS, n)), rec_t=np.zeros(per_chunk),
+    )  # fmt: skip
+
+
+def _start(run: _Run, resume: str) -> PipelineResult | None:
+    """Start stage: the finished result of this run when its output is there (returned);
+    else the solver state resumed from the checkpoint, or a fresh start (set on ``run``)."""
+    out_path, ckpt, run_id = run.out_path, run.ckpt, run.run_id
     state = None
-    rows = chunks = 0
-    last_time = math.nan
-    done = K.STATUS_CHUNK
     if out_path is not None and resume != "never":
         finished = _finished_output(out_path, run_id)
         if finished is not None:
@@ -744,7 +829,7 @@ def simulate_pipeline(
                 ckpt.unlink(missing_ok=True)
             shutil.rmtree(partial_path(out_path), ignore_errors=True)
             logger.info("%s is the finished result of this run: returned as it is", out_path)
-            return _result_from_file(out_path, finished, model, s, run_id)
+            return _result_from_file(out_path, finished, run.model, run.s, run_id)
         if resume == "require" and out_path.exists() and (ckpt is None or not ckpt.exists()):
             raise ResultFileError(
                 f"output {str(out_path)!r} belongs to another run (other inputs) and there is"
@@ -768,7 +853,7 @@ def simulate_pipeline(
                     raise ResultFileError(f"{msg}; {RESTART_ADVICE}", field="checkpoint")
                 logger.warning("%s; starting afresh", msg)
                 ckpt.unlink(missing_ok=True)
-                state, rows, chunks = None, 0, 0
+                state = None
             else:
                 logger.info(
                     "resuming %s from t = %.6g s (checkpoint %s)",
@@ -776,44 +861,75 @@ def simulate_pipeline(
                     float(state["scal"][K.SC_T]),
                     ckpt,
                 )
+                run.resumed = (rows, chunks, last_time)
     if state is None:
-        vec = np.zeros((K.N_VEC, ndof))
-        scal = np.zeros(K.N_SCAL)
-        scal[K.SC_T] = kinematics.t0
-        scal[K.SC_DT] = s.dt_max
-        scal[K.SC_T_LIFT] = math.nan
-        scal[K.SC_T_LIMIT] = math.nan
-        scal[K.SC_LIFT_NODE] = -1.0
-        scal[K.SC_T_ZLIMIT] = math.nan
-        scal[K.SC_ZLIMIT_NODE] = -1.0
-        sstate = arr["sstate"]
-        axst = arr["axst"]
-        fstate = np.zeros((n, N_FORCE_STATE))
-        nodal = np.zeros((3, n))
-        env = np.zeros((K.N_ENV, n))
-        env[K.E_MIN_V] = 0.0
-        env[K.E_MIN_N] = math.inf
-        env[K.E_MAX_N] = -math.inf
-        env[K.E_MIN_VCONT] = math.inf
-        ok = K.initial_acceleration(
-            soil_id, force_id,
-            st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
-            arr["sparams"], sstate, axst, fparams, fstate, *kin.cover(scal[K.SC_T], scal[K.SC_T]),
-            arr["uload"], vec, scal, nodal, t_out, t_end, rec, rec_t, env,
-        )  # fmt: skip
-        if not ok:
-            raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
-        rows = 0
+        _fresh_state(run)
     else:
-        done = int(state.pop("status"))
-        vec, scal, sstate, axst, nodal, env, fstate = (
-            state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
-            state["env"], state["fstate"],
-        )  # fmt: skip
+        _resumed_state(run, state)
+    return None
+
+
+def _fresh_state(run: _Run) -> None:
+    """The solver state at the start of the storm, with a₀ = M⁻¹P(t₀, d₀, v₀)."""
+    arr, n = run.arr, run.x.size
+    vec = np.zeros((K.N_VEC, B.NDOF_NODE * n))
+    scal = np.zeros(K.N_SCAL)
+    scal[K.SC_T] = run.kinematics.t0
+    scal[K.SC_DT] = run.s.dt_max
+    scal[K.SC_T_LIFT] = math.nan
+    scal[K.SC_T_LIMIT] = math.nan
+    scal[K.SC_LIFT_NODE] = -1.0
+    scal[K.SC_T_ZLIMIT] = math.nan
+    scal[K.SC_ZLIMIT_NODE] = -1.0
+    sstate = arr["sstate"]
+    axst = arr["axst"]
+    fstate = np.zeros((n, N_FORCE_STATE))
+    nodal = np.zeros((3, n))
+    env = np.zeros((K.N_ENV, n))
+    env[K.E_MIN_V] = 0.0
+    env[K.E_MIN_N] = math.inf
+    env[K.E_MAX_N] = -math.inf
+    env[K.E_MIN_VCONT] = math.inf
+    ok = K.initial_acceleration(
+        run.soil_id, run.force_id,
+        run.st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"], arr["model_ids"],
+        arr["sparams"], sstate, axst, run.fparams, fstate,
+        *run.kin.cover(scal[K.SC_T], scal[K.SC_T]),
+        arr["uload"], vec, scal, nodal, run.t_out, run.t_end, run.rec, run.rec_t, env,
+    )  # fmt: skip
+    if not ok:
+        raise InputError("the soil kernel returned NaN at the start (invalid soil model)")
+    run.vec, run.scal, run.sstate, run.axst = vec, scal, sstate, axst
+    run.nodal, run.env, run.fstate = nodal, env, fstate
+
+
+def _resumed_state(run: _Run, state: dict[str, np.ndarray]) -> None:
+    """The solver state of a checkpoint."""
+    run.done = int(state.pop("status"))
+    run.vec, run.scal, run.sstate, run.axst, run.nodal, run.env, run.fstate = (
+        state["vec"], state["scal"], state["sstate"], state["axst"], state["nodal"],
+        state["env"], state["fstate"],
+    )  # fmt: skip
+
+
+def _time_loop(run: _Run, progress: bool) -> tuple[int, tuple[list[np.ndarray], ...] | None]:
+    """Loop stage: :func:`._pipeline_kernel.integrate` chunk by chunk under the driver, the
+    records kept (chunk files, or in memory without an output), a checkpoint per chunk.
+
+    Returns the final status and, without an output file, the records kept in memory
+    (times, rows); with one, the records stay in the writer (``run.writer``) to be finished.
+    """
+    s, arr, st, kin = run.s, run.arr, run.st, run.kin
+    vec, scal, sstate, axst = run.vec, run.scal, run.sstate, run.axst
+    nodal, env, fstate = run.nodal, run.env, run.fstate
+    t_end, ckpt = run.t_end, run.ckpt
     writer = None
-    if out_path is not None:
-        resumed = (rows, chunks, last_time) if state is not None else (0, 0, math.nan)
-        writer = _Writer(out_path, x, base_attrs, run_id, resumed, s.compression_level)
+    if run.out_path is not None:
+        resumed = run.resumed if run.resumed is not None else (0, 0, math.nan)
+        writer = _Writer(
+            run.out_path, run.x, run.base_attrs, run.run_id, resumed, s.compression_level
+        )
+    run.writer = writer
     mem_t: list[np.ndarray] = []
     mem_r: list[np.ndarray] = []
 
@@ -825,15 +941,16 @@ def simulate_pipeline(
             mem_r.append(r.copy())
 
     # the kernel fills rec/rec_t from row 0 at each call: the driver spills them to ``keep``
-    recorder = SpillRecorder(keep, rec_t, rec)
+    recorder = SpillRecorder(keep, run.rec_t, run.rec)
 
     def advance(t_stop: float, _rows: np.ndarray, _n: int) -> tuple[int, int]:
         m, status = call_literal(
-            K.integrate, 2, soil_id, force_id,
+            K.integrate, 2, run.soil_id, run.force_id,
             st, arr["props"], arr["nodes"], arr["fixed"], arr["spring"],
-            arr["model_ids"], arr["sparams"], sstate, axst, fparams, fstate,
+            arr["model_ids"], arr["sparams"], sstate, axst, run.fparams, fstate,
             *kin.cover(scal[K.SC_T], t_stop),
-            arr["uload"], vec, scal, nodal, t_out, t_end, t_stop, rec, rec_t, env, False,
+            arr["uload"], vec, scal, nodal, run.t_out, t_end, t_stop, run.rec, run.rec_t, env,
+            False,
         )  # fmt: skip
         # a full buffer returns STATUS_CHUNK before t_stop
         if status == K.STATUS_CHUNK and scal[K.SC_T] < t_stop - 1e-9 * (1 + t_stop):
@@ -846,7 +963,7 @@ def simulate_pipeline(
         if ckpt is not None and writer is not None:
             _save_checkpoint(
                 ckpt,
-                run_id,
+                run.run_id,
                 writer.rows,
                 writer.chunks,
                 writer.last_time if writer.rows else math.nan,
@@ -860,7 +977,7 @@ def simulate_pipeline(
                 advance,
                 lambda _k: min(float(scal[K.SC_T]) + s.chunk_duration, t_end),
                 recorder=recorder,
-                status=done,
+                status=run.done,
                 bar=bar,
                 position=lambda: round(scal[K.SC_T]),
                 after_chunk=after_chunk,
@@ -869,9 +986,14 @@ def simulate_pipeline(
         if writer is not None:
             writer.close()
         raise
-    # ---- summary
+    return status, (None if writer is not None else (mem_t, mem_r))
+
+
+def _summary(run: _Run) -> dict[str, float]:
+    """Counters, energies and events of the run (``PipelineResult.summary``)."""
+    arr, vec, scal, st, x, n = run.arr, run.vec, run.scal, run.st, run.x, run.x.size
     d_fin = vec[K.V_D]
-    mass = np.zeros(ndof)
+    mass = np.zeros(B.NDOF_NODE * n)
     nodes = arr["nodes"]
     mass[0::3], mass[1::3], mass[2::3] = (
         nodes[:, K.ND_MASS_U],
@@ -886,12 +1008,6 @@ def simulate_pipeline(
     )
     w_h = float(scal[K.SC_W_HYD])
     w_s = float(scal[K.SC_W_SOIL])
-    env_ds = _envelopes(x, env)
-    k_worst = int(np.argmax(env[K.E_ABS_V]))
-    vmax = float(env[K.E_ABS_V, k_worst])
-    emax = float(np.max(env[K.E_STRAIN]))
-    stopped = status == K.STATUS_LIMIT
-    criteria = _criteria(vmax, emax, d, stopped, s)
     n_steps = float(scal[K.SC_NSTEP])
     lift_node = int(scal[K.SC_LIFT_NODE])
     summary = {
@@ -917,6 +1033,21 @@ def simulate_pipeline(
     summary["out_of_range_node"] = float(z_node)
     summary["out_of_range_x"] = float(x[z_node]) if z_node >= 0 else math.nan
     summary["penetration_limit"] = float(st[K.ST_Z_LIMIT])
+    return summary
+
+
+def _result(run: _Run, status: int, records: tuple[list[np.ndarray], ...] | None) -> PipelineResult:
+    """Result stage: the summary, the verdict, the envelopes, and the records (the output
+    file finished under its name, or a Dataset in memory)."""
+    s, scal, st, env, x, d = run.s, run.scal, run.st, run.env, run.x, run.d
+    env_ds = _envelopes(x, env)
+    k_worst = int(np.argmax(env[K.E_ABS_V]))
+    vmax = float(env[K.E_ABS_V, k_worst])
+    emax = float(np.max(env[K.E_STRAIN]))
+    stopped = status == K.STATUS_LIMIT
+    criteria = _criteria(vmax, emax, d, stopped, s)
+    summary = _summary(run)
+    z_node = int(scal[K.SC_ZLIMIT_NODE])
     outside = None
     if z_node >= 0:
         k_z = int(np.argmax(env[K.E_MAX_Z]))
@@ -941,14 +1072,15 @@ def simulate_pipeline(
         "summary": json.dumps(summary, default=float),
     }
     data = None
-    if writer is not None:
+    if run.writer is not None:
         # the result takes its name, then the checkpoint and the chunks go: a kill in between
         # leaves a finished output of this run, which a second call returns at once
-        writer.finish(env_ds, final_attrs)
-        if ckpt is not None:
-            ckpt.unlink(missing_ok=True)
-        writer.discard()
-    elif mem_t:
+        run.writer.finish(env_ds, final_attrs)
+        if run.ckpt is not None:
+            run.ckpt.unlink(missing_ok=True)
+        run.writer.discard()
+    elif records is not None and records[0]:
+        mem_t, mem_r = records
         tt = np.concatenate(mem_t)
         rr = np.concatenate(mem_r)
         data = xr.Dataset(
@@ -957,7 +1089,7 @@ def simulate_pipeline(
                 for name, (k, ln, u) in FIELDS.items()
             },
             coords={"time": tt, "x": ("node", x)},
-            attrs={**base_attrs, **final_attrs},
+            attrs={**run.base_attrs, **final_attrs},
         )
         data = annotate(xr.merge([data, env_ds], combine_attrs="override"))
     return PipelineResult(
@@ -973,8 +1105,8 @@ def simulate_pipeline(
         summary=summary,
         envelopes=env_ds,
         data=data,
-        netcdf=out_path,
-        run_id=run_id,
+        netcdf=run.out_path,
+        run_id=run.run_id,
     )
 
 
