@@ -82,7 +82,9 @@ def floor_storm(params, state0, ku, ka, dts, prows, vc, d, rho, ws, mass, ry_c, 
             w = s - yd1
             fy = ry * (half_rho_d * cd * w * abs(w) + finert)
             dfdyd = -ry * rho * d * cd * abs(w)
-            verley_sotberg_kernel(borrow(params), borrow(state), y + dy, v, borrow(trial), borrow(out))
+            verley_sotberg_kernel(
+                borrow(params), borrow(state), y + dy, v, borrow(trial), borrow(out)
+            )
             evals += 1
             r = c0 * (dy - dy_hat) + out[OUT_R] - fy
             if abs(r) <= tol:

@@ -65,7 +65,8 @@ def main() -> None:
     fm = MorisonLift()
     red = LoadReductions()
     ry_c, rz_c = red.constant_factors()
-    mass = pipe.structural_mass + fm.added_mass_coefficient * pipe.seawater_density * np.pi * d * d / 4
+    rho = pipe.seawater_density
+    mass = pipe.structural_mass + fm.added_mass_coefficient * rho * np.pi * d * d / 4
     params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
     state0 = np.array(soil.initial_state(), dtype=float)
 
@@ -102,11 +103,14 @@ def main() -> None:
         raise SystemExit("no seed ran the whole storm: choose a heavier pipe")
     load = os.getloadavg()
     print(f"storm: {storm.duration_s / 3600:.2f} h, dt_max = {args.dt} s, {len(ratio)} pairs")
-    print(f"storm kernel (simulate_storm_section, no records): median {np.median(kernel_cpu):.4f} CPU-s/storm")
-    print(f"floor (_floor.floor_storm):                        median {np.median(floor_cpu):.4f} CPU-s/storm")
+    k, f = np.median(kernel_cpu), np.median(floor_cpu)
+    print(f"storm kernel (simulate_storm_section, no records): median {k:.4f} CPU-s/storm")
+    print(f"floor (_floor.floor_storm): median {f:.4f} CPU-s/storm")
     med = float(np.median(ratio))
-    print(f"kernel / floor: median {med:.2f} (paired), aim <= 1.5: {'met' if med <= 1.5 else 'NOT met'}")
-    print(f"load average (1, 5, 15 min): {load[0]:.2f} {load[1]:.2f} {load[2]:.2f} on {os.cpu_count()} cores")
+    verdict = "met" if med <= 1.5 else "NOT met"
+    print(f"kernel / floor: median {med:.2f} (paired), aim <= 1.5: {verdict}")
+    la = " ".join(f"{v:.2f}" for v in load)
+    print(f"load average (1, 5, 15 min): {la} on {os.cpu_count()} cores")
 
 
 if __name__ == "__main__":
