@@ -72,6 +72,7 @@ class ReliabilityRun:
     climate: dict[str, Any] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     target: dict[str, Any] = field(default_factory=dict)
+    plans: list[dict[str, Any]] = field(default_factory=list)
 
 
 def run_reliability(
@@ -103,6 +104,7 @@ def run_reliability(
     params = (climate.parameters() if climate is not None else []) + user
     out.mkdir(parents=True, exist_ok=True)
     estimates = []
+    plans = []
     with Campaign(
         model,
         out / "campaign.zarr",
@@ -127,8 +129,9 @@ def run_reliability(
                 pilot_storms=setup.form_storms,
             )
             estimates.append(e)
+            plans.append(storm_plan(e, setup.target_cv, camp.stats))
             if on_estimate is not None:
-                on_estimate(e, storm_plan(e, setup.target_cv, camp.stats))
+                on_estimate(e, plans[-1])
         stats = camp.stats
         fails = camp.store.failures()
     notes += _estimate_notes(setup, estimates, len(fails))
@@ -149,6 +152,7 @@ def run_reliability(
         climate=info,
         notes=notes,
         target=target_comparison(estimates, setup.safety_class),
+        plans=plans,
     )
 
 
@@ -349,8 +353,8 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
     ``case``, ``out`` and ``files``): ``success`` (false when a storm run failed numerically),
     ``diameter`` [m], ``storms_per_year`` [1/year], ``inputs`` (the random inputs, the storm
     seed last), ``climate``, ``estimates``, ``design``, ``campaign`` (requested, computed,
-    reused, failed, seconds_per_storm [s]), ``target`` (:func:`target_comparison`) and
-    ``notes``."""
+    reused, failed, seconds_per_storm [s]), ``target`` (:func:`target_comparison`), ``plan``
+    (per limit, :func:`storm_plan`) and ``notes``."""
     stats = [s for s in (r.stats, r.design_stats) if s is not None]
     computed = sum(s.computed for s in stats)
     failed = sum(s.failed for s in stats) + sum(e.failed_runs for e in r.estimates)
@@ -372,6 +376,7 @@ def run_payload(r: ReliabilityRun) -> dict[str, Any]:
             ),
         },
         "target": r.target,
+        "plan": r.plans,
         "notes": r.notes,
     }
 
