@@ -290,40 +290,13 @@ def simulate_storm_section(
         message += f"; lift-off {summary['n_liftoff']} time(s), pipe free of soil while lifted"
     data = None
     if s.record_interval is not None:
-        prov = provenance(
-            "simulate_storm_section",
-            {"soil_model": soil.name, **dict(soil.parameters())},
-            diameter=d,
-            submerged_weight=pipe.submerged_weight,
-            mass=mass,
-            seed=int(kin.seed),
-            current=kin.current,
-            storm=_describe_storm(storm_obj),
-            stage_parameters=kin.stage_parameters,
-            reductions={
-                "permeable_seabed": red.permeable_seabed,
-                "penetration": red.penetration,
-                "trench_depth_over_d": red.trench_depth_over_d,
-                "trench_angle_deg": red.trench_angle_deg,
-            },
-            dt_max=s.dt_max,
-            status=int(status),
-            message=message,
-            max_displacement=ymax,
-            criteria_0_5D=int(criteria["0.5D"]),
-            criteria_10D=int(criteria["10D"]),
-            out_of_range=int(t_out >= 0.0),
-            out_of_range_time=t_out,
-            soil_reference=soil.reference,
-            **fm.describe(),
-            **(dict(attrs) if attrs else {}),
-        )
-        data = records_dataset(recorder.records(), _REC_NAMES, K.REC_T, prov)
+        data = _records(recorder, pipe, soil, fm, red, s, kin, storm_obj, mass, ymax, criteria,
+                        status, message, t_out, attrs)  # fmt: skip
     return StormSectionResult(
         success=bool(success),
         status=int(status),
         message=message,
-        diameter=d,
+        diameter=pipe.outer_diameter,
         max_displacement=ymax,
         final_displacement=float(dyn[K.D_Y]),
         criteria=criteria,
@@ -483,6 +456,41 @@ def _summary(dyn, mass, z_lim) -> dict[str, float]:
         "mean_newton_iterations": float(dyn[K.D_N_ITER] / max(dyn[K.D_N_STEPS], 1.0)),
         "mass": float(mass),
     }
+
+
+def _records(recorder, pipe, soil, fm, red, s, kin, storm_obj, mass, ymax, criteria, status,
+             message, t_out, attrs) -> xr.Dataset:  # fmt: skip
+    """Stage of :func:`simulate_storm_section`: the recorded time series with the run's
+    provenance (:attr:`StormSectionResult.data`)."""
+    prov = provenance(
+        "simulate_storm_section",
+        {"soil_model": soil.name, **dict(soil.parameters())},
+        diameter=pipe.outer_diameter,
+        submerged_weight=pipe.submerged_weight,
+        mass=mass,
+        seed=int(kin.seed),
+        current=kin.current,
+        storm=_describe_storm(storm_obj),
+        stage_parameters=kin.stage_parameters,
+        reductions={
+            "permeable_seabed": red.permeable_seabed,
+            "penetration": red.penetration,
+            "trench_depth_over_d": red.trench_depth_over_d,
+            "trench_angle_deg": red.trench_angle_deg,
+        },
+        dt_max=s.dt_max,
+        status=int(status),
+        message=message,
+        max_displacement=ymax,
+        criteria_0_5D=int(criteria["0.5D"]),
+        criteria_10D=int(criteria["10D"]),
+        out_of_range=int(t_out >= 0.0),
+        out_of_range_time=t_out,
+        soil_reference=soil.reference,
+        **fm.describe(),
+        **(dict(attrs) if attrs else {}),
+    )
+    return records_dataset(recorder.records(), _REC_NAMES, K.REC_T, prov)
 
 
 def _describe_storm(storm: Storm | None) -> Any:
