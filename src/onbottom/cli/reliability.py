@@ -168,7 +168,7 @@ def plan_line(plan: dict, workers: int | None) -> str:
     cv = plan["target_cv"]
     head = f"  plan {plan['label']}: CV {cv:g} (95 % interval about ±{1.96 * cv:.2g}·P)"
     if not math.isfinite(n):
-        return f"{head}: no storm failed and none was computed here; storms needed unknown"
+        return f"{head}: storms needed unknown (P estimated as 0 or 1 from this sample)"
     need = f"{'at least ' if plan['lower_bound'] else ''}{n:,.0f} storms ({plan['method']})"
     if not math.isfinite(cpu):
         return f"{head} needs {need}; rate unknown (every storm was read back from the store)"
