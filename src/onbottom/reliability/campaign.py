@@ -12,8 +12,10 @@ identity, the task's input bytes and its seeds — the same inputs give the same
 the process, worker or run. A task whose key the store already holds is read back, not rerun.
 Missing tasks go to Dask (an embedded ``LocalCluster`` of single-threaded worker processes by
 default, a remote scheduler with ``scheduler``, or this process with ``n_workers = 0``), at most
-``4 × workers`` tasks in flight; finished tasks are appended to the store together, one commit
-every ``commit_interval`` seconds (default 2 s) and at the end of each block.
+``4 × workers`` submissions in flight, each of as many tasks as fit in about
+``submission_seconds`` of work at the measured rate; finished tasks are appended to the store
+together, one commit every ``commit_interval`` seconds (default 2 s) and at the end of each
+block.
 
 Store (Zarr v3 group, ``zarr`` ≥ 3.1; :class:`ResultStore`):
 
@@ -121,6 +123,12 @@ def run_task(model: CampaignModel, x: np.ndarray, seeds: np.ndarray) -> dict[str
         "seconds": time.perf_counter() - t0,
         "cpu_seconds": time.process_time() - c0,
     }
+
+
+def run_tasks(model: CampaignModel, rows: list[tuple[np.ndarray, np.ndarray]]) -> list[dict]:
+    """:func:`run_task` for each (inputs, seeds) of one Dask submission (several tasks: one
+    scheduler round trip for all of them)."""
+    return [run_task(model, x, seeds) for x, seeds in rows]
 
 
 class ResultStore:
@@ -356,6 +364,12 @@ class Campaign:
         small tasks do not cost a store commit each (the client's CPU, which competes with
         the workers on a small machine); a kill loses the tasks in flight and those finished
         within the last interval, an exception or interrupt none (they are committed first).
+    submission_seconds : float
+        Work per Dask submission [s] (0: one task per submission): consecutive tasks go to a
+        worker together, as many as the measured rate fits in this time (the first ones one
+        by one, to measure it), fewer at the end of a block so that every worker has work.
+        Tasks, their identities and the store are those of ``task_size``: only the
+        scheduler's round trips (per submission) are fewer.
     """
 
     def __init__(
@@ -369,8 +383,10 @@ class Campaign:
         client: Any = None,
         progress: Callable[[int], None] | None = None,
         commit_interval: float = 2.0,
+        submission_seconds: float = 0.5,
     ) -> None:
         self.model = model
+        self.submission_seconds = float(submission_seconds)
         self.commit_interval = float(commit_interval)
         if not (self.commit_interval >= 0.0 and math.isfinite(self.commit_interval)):
             raise InputError(
@@ -501,27 +517,43 @@ class Campaign:
         from distributed import as_completed
 
         client = self._ensure_client()
-        window = 4 * self.slots()
-        pending = iter(todo)
-        meta: dict[str, tuple] = {}
+        slots = self.slots()
+        window = 4 * slots
+        meta: dict[str, list] = {}
+        nxt = 0  # the next task of todo to submit
+        measured = [0.0, 0]  # worker seconds and tasks finished in this call
 
-        def submit(t):
-            _, a, b = t
-            f = client.submit(run_task, self._model_future, x[a:b], seeds[a:b], pure=False)
-            meta[f.key] = t
+        def group() -> int:
+            """Tasks per Dask submission: about ``submission_seconds`` of work by the rate
+            measured so far (1 until a task has finished), and few enough that every worker
+            still gets work at the end of the block."""
+            if not measured[1] or self.submission_seconds <= 0.0:
+                return 1
+            per_task = measured[0] / measured[1]
+            g = int(self.submission_seconds / per_task) if per_task > 0.0 else len(todo)
+            return max(1, min(g, (len(todo) - nxt) // (2 * slots)))
+
+        def submit():
+            nonlocal nxt
+            ts = todo[nxt : nxt + group()]
+            nxt += len(ts)
+            rows = [(x[a:b], seeds[a:b]) for _, a, b in ts]
+            f = client.submit(run_tasks, self._model_future, rows, pure=False)
+            meta[f.key] = ts
             return f
 
-        first = [submit(t) for t in _take(pending, window)]
+        first = [submit() for _ in range(min(window, len(todo)))]
         # results come with the completions (no round trip per task to fetch each)
         ac = as_completed(first, with_results=True)
         try:
             for batch in ac.batches():
                 done = []
-                for f, res in batch:
-                    done.append((meta.pop(f.key), res))
-                    nxt = next(pending, None)
-                    if nxt is not None:
-                        ac.add(submit(nxt))
+                for f, results in batch:
+                    done.extend(zip(meta.pop(f.key), results, strict=True))
+                    measured[0] += sum(r["seconds"] for r in results)
+                    measured[1] += len(results)
+                    if nxt < len(todo):
+                        ac.add(submit())
                 self._finish(done, x, seeds, out, status, unwritten)
                 self._commit(unwritten, last)
         except BaseException:  # do not leave the rest running on the cluster
