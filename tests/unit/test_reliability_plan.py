@@ -28,6 +28,7 @@ def test_monte_carlo_needs_the_binomial_count():
     from onbottom.reliability.run import storm_plan
 
     stats = CampaignStats(computed=100, compute_cpu_seconds=2.0)
+    stats.task_rates.extend([0.5, 0.02, 0.02, 0.019, 0.021])  # the first task compiled
     plan = storm_plan(_estimate(), 0.1, stats)
     # n = (1 - p)/(p CV^2) = 0.99/(0.01 * 0.01) = 9900 storms at 0.02 CPU-s each
     assert plan["storms"] == 9900.0
@@ -40,7 +41,9 @@ def test_importance_sampling_scales_its_sampled_storms_by_the_cv_ratio():
     from onbottom.reliability.run import storm_plan
 
     e = _estimate(method="importance", cv=0.2, storms=1200, pilot_storms=200)
-    plan = storm_plan(e, 0.1, CampaignStats(computed=10, compute_cpu_seconds=0.5))
+    stats = CampaignStats(computed=10, compute_cpu_seconds=0.5)
+    stats.task_rates.append(0.05)
+    plan = storm_plan(e, 0.1, stats)
     # (1200 - 200) * (0.2/0.1)^2 + 200 = 4200
     assert plan["storms"] == 4200.0
     assert plan["cpu_seconds"] == pytest.approx(4200 * 0.05)
@@ -52,6 +55,11 @@ def test_without_a_failure_or_a_computed_storm_the_plan_says_so():
     plan = storm_plan(_estimate(probability=0.0, failures=0), 0.1, CampaignStats())
     assert math.isnan(plan["storms"]) and math.isnan(plan["cpu_seconds"])
     assert plan["lower_bound"]
+    # an upper bound p <= 0.095 and no failing storm: Monte Carlo at the bound,
+    # 0.905/(0.095 * 0.01) = 952.6 -> at least 953 storms, whatever the method
+    e = _estimate(method="importance", probability=0.095, failures=0, upper_bound=True)
+    plan = storm_plan(e, 0.1, CampaignStats())
+    assert plan["storms"] == 953.0 and plan["lower_bound"] and plan["method"] == "monte_carlo"
 
 
 class _Model:

@@ -169,10 +169,13 @@ def plan_line(plan: dict, workers: int | None) -> str:
     head = f"  plan {plan['label']}: CV {cv:g} (95 % interval about ±{1.96 * cv:.2g}·P)"
     if not math.isfinite(n):
         return f"{head}: storms needed unknown (P estimated as 0 or 1 from this sample)"
-    need = f"{'at least ' if plan['lower_bound'] else ''}{n:,.0f} storms ({plan['method']})"
+    if plan["lower_bound"]:
+        need = f"at least {n:,.0f} storms by Monte Carlo (no failing storm yet: P at its bound)"
+    else:
+        need = f"{n:,.0f} storms ({plan['method']})"
     if not math.isfinite(cpu):
         return f"{head} needs {need}; rate unknown (every storm was read back from the store)"
-    w = workers if workers else (os.cpu_count() or 1)
+    w = max(1, workers if workers is not None else (os.cpu_count() or 1))
     return (
         f"{head} needs {need} = {cpu / 3600:.3g} CPU-h at the measured"
         f" {plan['cpu_seconds_per_storm'] * 1e3:.3g} CPU-ms/storm (~{cpu / w / 60:.3g} min on"

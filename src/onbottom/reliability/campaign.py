@@ -45,9 +45,10 @@ import math
 import os
 import time
 import traceback
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import ExitStack
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -334,6 +335,14 @@ class CampaignStats:
     failed: int = 0
     compute_seconds: float = 0.0
     compute_cpu_seconds: float = 0.0
+    task_rates: deque = field(default_factory=lambda: deque(maxlen=512), repr=False)
+    """CPU seconds per run of the last 512 tasks computed (the rate without the first tasks'
+    compilation: :meth:`cpu_seconds_per_run`)."""
+
+    def cpu_seconds_per_run(self) -> float:
+        """Median CPU seconds of a run over the recent tasks (NaN before any): robust to the
+        compilation that the first task of each worker pays."""
+        return float(np.median(self.task_rates)) if self.task_rates else math.nan
 
 
 class Campaign:
@@ -484,7 +493,9 @@ class Campaign:
             self.stats.computed += b - a
             self.stats.failed += int(np.count_nonzero(res["status"] == STATUS_RAISED))
             self.stats.compute_seconds += res["seconds"]
-            self.stats.compute_cpu_seconds += res.get("cpu_seconds", res["seconds"])
+            cpu = res.get("cpu_seconds", res["seconds"])
+            self.stats.compute_cpu_seconds += cpu
+            self.stats.task_rates.append(cpu / max(b - a, 1))
             unwritten.append((key, x[a:b], seeds[a:b], res))
         if self.progress:
             self.progress(sum(b - a for (_, a, b), _ in done))

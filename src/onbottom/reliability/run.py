@@ -276,29 +276,33 @@ def storm_plan(e: ExceedanceEstimate, target_cv: float, stats: CampaignStats) ->
     ``target_cv`` (the interval's half-width is about 1.96·CV of the probability), from its
     variance and the campaign's measured rate.
 
-    Monte Carlo: Var p̂ = p(1 − p)/n, so n = (1 − p)/(p·CV²) (with no failing storm, p is the
-    interval's upper end: n is then a lower bound). Importance sampling and subset simulation:
+    Monte Carlo: Var p̂ = p(1 − p)/n, so n = (1 − p)/(p·CV²); with no failing storm yet (p only
+    bounded from above) the same count at the bound, for any method: Monte Carlo needs at least
+    that many (``lower_bound``). Importance sampling and subset simulation:
     the variance falls as 1/n at a fixed sampling density (centre, level probability), so
     n = n_used·(CV/target)², the pilot storms on top. CPU seconds: n times the measured CPU
-    time of a storm in the workers (``stats.compute_cpu_seconds / stats.computed``; NaN when
-    no storm was computed in this run, all read back).
+    time of a storm in the workers (:meth:`CampaignStats.cpu_seconds_per_run`, the median over
+    the recent tasks, free of the first tasks' compilation; NaN when no storm was computed in
+    this run, all read back).
 
-    Returns ``label``, ``target_cv``, ``method``, ``storms`` (needed), ``storms_used``,
+    Returns ``label``, ``target_cv``, ``method`` (of the count), ``storms`` (needed),
+    ``storms_used``,
     ``lower_bound`` (True when p is only bounded), ``cpu_seconds_per_storm``,
     ``cpu_seconds``.
     """
     p = e.probability
     lower = bool(e.upper_bound or e.failures == 0)
-    if e.method == "monte_carlo" or not math.isfinite(e.cv) or e.cv <= 0.0:
+    mc = e.method == "monte_carlo" or lower or not math.isfinite(e.cv) or e.cv <= 0.0
+    if mc:
         n = (1.0 - p) / (p * target_cv**2) if 0.0 < p < 1.0 else math.nan
     else:
         n = (e.storms - e.pilot_storms) * (e.cv / target_cv) ** 2 + e.pilot_storms
-    rate = stats.compute_cpu_seconds / stats.computed if stats.computed else math.nan
+    rate = stats.cpu_seconds_per_run()
     storms = float(math.ceil(n)) if math.isfinite(n) else math.nan
     return {
         "label": e.label,
         "target_cv": float(target_cv),
-        "method": e.method,
+        "method": "monte_carlo" if mc else e.method,
         "storms": storms,
         "storms_used": int(e.storms),
         "lower_bound": lower,
