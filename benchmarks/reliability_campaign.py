@@ -60,10 +60,18 @@ def smoke_setup(setup):
     return replace(setup, storm=replace(st, storm=storm))
 
 
+def _workers_cpu(c: Campaign) -> float:
+    """CPU seconds of the campaign's worker processes so far (all of their threads)."""
+    return float(sum(c._ensure_client().run(time.process_time).values()))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--storms", type=int, default=100_000)
     ap.add_argument("--task-size", type=int, default=4)
+    ap.add_argument(
+        "--commit-interval", type=float, default=2.0, help="seconds between store commits"
+    )
     ap.add_argument(
         "--workers",
         type=int,
@@ -103,11 +111,22 @@ def main() -> None:
 
     me = psutil.Process()
     rate = {}
+    cpu_total = {}
     for workers in a.workers:
         tmp = Path(tempfile.mkdtemp())
-        with Campaign(model, tmp / "s.zarr", n_workers=workers, task_size=a.task_size) as c:
+        with Campaign(
+            model,
+            tmp / "s.zarr",
+            n_workers=workers,
+            task_size=a.task_size,
+            commit_interval=a.commit_interval,
+        ) as c:
             c.evaluate(x[:workers], seeds[:workers] + 10**9)  # start and compile the workers
             rss0 = me.memory_info().rss
+            cpu_w0 = _workers_cpu(c)
+            n_w0 = c.stats.computed
+            runs0 = c.stats.compute_cpu_seconds
+            c0 = time.process_time()
             t0 = time.perf_counter()
             half = a.storms // 2
             for lo, hi in ((0, half), (half, a.storms)):  # blocks, as an estimator asks
@@ -115,7 +134,10 @@ def main() -> None:
                 if lo == 0:
                     rss_half = me.memory_info().rss
             dt = time.perf_counter() - t0
+            client_cpu = (time.process_time() - c0) / a.storms
             rss1 = me.memory_info().rss
+            worker_cpu = (_workers_cpu(c) - cpu_w0) / (c.stats.computed - n_w0)
+            in_runs = (c.stats.compute_cpu_seconds - runs0) / (c.stats.computed - n_w0)
         size = sum(f.stat().st_size for f in (tmp / "s.zarr").rglob("*") if f.is_file())
         rate[workers] = a.storms / dt
         mib = 1024.0**2
@@ -126,8 +148,30 @@ def main() -> None:
             f" before, {rss_half / mib:.0f} after {half} storms, {rss1 / mib:.0f} after"
             f" {a.storms}"
         )
+        print(
+            f"  CPU per storm: worker processes {worker_cpu * 1e3:.2f} ms (of which the runs"
+            f" {in_runs * 1e3:.2f} ms), this"
+            f" process (client, scheduler, store) {client_cpu * 1e3:.2f} ms ="
+            f" {client_cpu / worker_cpu:.1%} of a storm"
+        )
+        cpu_total[workers] = (worker_cpu, client_cpu)
         shutil.rmtree(tmp, ignore_errors=True)
     print(f"load average (1, 5, 15 min) at the end: {os.getloadavg()}")
+    if 1 in cpu_total and 2 in cpu_total:
+        w1, _ = cpu_total[1]
+        w2, k2 = cpu_total[2]
+        # 2 workers on 2 cores share them with this process: 2 storms cost 2·w2 + 2·k2 CPU
+        eff_cpu = w1 / (w2 + k2)
+        t_1e5 = 1e5 * (w2 + k2) / 2.0
+        print(
+            f"CPU efficiency 1 -> 2 workers (CPU per storm of 1 worker / CPU per storm of 2"
+            f" workers and this process; idle 2 cores): {eff_cpu:.2f}; target >= 0.9:"
+            f" {'met' if eff_cpu >= 0.9 else 'NOT met'}"
+        )
+        print(
+            f"10^5 storms on 2 idle cores from the CPU per storm: {t_1e5 / 60:.1f} min;"
+            f" target <= 10 min: {'met' if t_1e5 <= 600 else 'NOT met'}"
+        )
     if 1 not in rate or 2 not in rate:
         return
     eff = rate[2] / (2.0 * rate[1])

@@ -59,9 +59,17 @@ FIGURES: dict[str, tuple[str, ...]] = {
     "penetration_f114.py": (rf"solve_embedment: +{NUM} ms",),
     "pipeline_storm.py": (rf"peak resident memory: {NUM} MB", rf"^ +20 +21 +{NUM}"),
     "pipeline_profile.py": (rf"measured step: {NUM} us CPU", rf"soil kernel {NUM} us"),
-    "reliability_campaign.py": (rf"1 worker\(s\): 4 storms in {NUM} s = {NUM} storms/s",),
+    "reliability_campaign.py": (
+        rf"1 worker\(s\): 4 storms in {NUM} s = {NUM} storms/s",
+        rf"CPU per storm: worker processes {NUM} ms",
+    ),
     "soil_trough_kernels.py": (rf"verley_sotberg_silica +1000 steps +{NUM} ns/step",),
     "stability_curves.py": (rf"{NUM} storms/h", rf"CPU time of the workers: {NUM} s"),
+    "storm_kernel_floor.py": (
+        rf"storm kernel \(simulate_storm_section, no records\): median {NUM} CPU-s/storm",
+        rf"floor \(_floor.floor_storm\): median {NUM} CPU-s/storm",
+        rf"kernel / floor: median {NUM} \(paired\), aim <= 1.5",
+    ),
     "storm_section.py": (
         rf"one storm, CPU time +best {NUM} s",
         rf"NetCDF write, compression level 4: {NUM} CPU-s",

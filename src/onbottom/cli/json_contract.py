@@ -471,6 +471,9 @@ CONTRACT: dict[str, Output] = {
             "target": "annual probability per limit against DNV-OS-F101's target for the"
             " safety class: source, safety_class, annual_target, limits [{label, annual, upper,"
             " verdict pass|fail|undecided}]",
+            "plan": "per limit: the storms and CPU time its estimator needs for the case's"
+            " target_cv at the measured rate (label, target_cv, method, storms, storms_used,"
+            " lower_bound, cpu_seconds_per_storm [s], cpu_seconds [s])",
             "files": "files written in --out (stores, figures, reliability.json, report.html)",
             "notes": "CV above target, failed runs",
         },

@@ -25,7 +25,10 @@ empty without a hindcast), ``estimates`` (per limit: ``label``, ``limit`` [m],
 ``f109``) or null,
 ``campaign`` (``requested``, ``computed``, ``reused``, ``failed``, ``seconds_per_storm``),
 ``target`` (the annual probabilities against DNV-OS-F101's target for the safety class: pass,
-fail or undecided by the 95 % interval), ``files``, ``notes``.
+fail or undecided by the 95 % interval), ``plan`` (per limit: the storms and CPU time its
+estimator needs for the case's ``target_cv`` at the measured rate,
+:func:`onbottom.reliability.run.storm_plan`; also printed on stderr as each limit finishes),
+``files``, ``notes``.
 """
 
 from __future__ import annotations
@@ -93,6 +96,7 @@ def _run_in(
 ) -> dict:
     """The run of :func:`_write_run` in its held ``--out`` folder."""
     import json
+    import sys
     import time
 
     from onbottom.reliability.run import planned_storms, run_payload, run_reliability
@@ -103,6 +107,14 @@ def _run_in(
         from tqdm.auto import tqdm
 
         bar = tqdm(total=planned_storms(setup), unit="storm", desc="reliability")
+
+    def on_estimate(e: Any, plan: dict) -> None:
+        line = plan_line(plan, n_workers)
+        if bar is not None:
+            bar.write(line, file=sys.stderr)
+        else:
+            click.echo(line, err=True)
+
     try:
         r = run_reliability(
             setup,
@@ -110,6 +122,7 @@ def _run_in(
             n_workers=n_workers,
             scheduler=scheduler,
             progress=bar.update if bar else None,
+            on_estimate=on_estimate,
         )
     finally:
         if bar is not None:
@@ -143,6 +156,31 @@ def _run_in(
             json_name="reliability.json",
         )
     return payload
+
+
+def plan_line(plan: dict, workers: int | None) -> str:
+    """One line: the storms and CPU time the estimator needs for the case's target CV
+    (:func:`onbottom.reliability.run.storm_plan`), and the wall time on the workers."""
+    import math
+    import os
+
+    n, cpu = plan["storms"], plan["cpu_seconds"]
+    cv = plan["target_cv"]
+    head = f"  plan {plan['label']}: CV {cv:g} (95 % interval about ±{1.96 * cv:.2g}·P)"
+    if not math.isfinite(n):
+        return f"{head}: storms needed unknown (P estimated as 0 or 1 from this sample)"
+    if plan["lower_bound"]:
+        need = f"at least {n:,.0f} storms by Monte Carlo (no failing storm yet: P at its bound)"
+    else:
+        need = f"{n:,.0f} storms ({plan['method']})"
+    if not math.isfinite(cpu):
+        return f"{head} needs {need}; rate unknown (every storm was read back from the store)"
+    w = max(1, workers if workers is not None else (os.cpu_count() or 1))
+    return (
+        f"{head} needs {need} = {cpu / 3600:.3g} CPU-h at the measured"
+        f" {plan['cpu_seconds_per_storm'] * 1e3:.3g} CPU-ms/storm (~{cpu / w / 60:.3g} min on"
+        f" {w} worker(s)); this run used {plan['storms_used']:,}"
+    )
 
 
 def check_budget(setup: Any, *, workers: int | None, force: bool) -> None:

@@ -29,6 +29,7 @@ import math
 import numpy as np
 from numba import literally
 
+from onbottom._jit import borrow
 from onbottom._jit import numba_njit as njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
@@ -141,7 +142,9 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
     du = du_hat
     eps_u = 4.0e-16 * (abs(u0) + abs(du_hat) + 1e-12)
     for it in range(max_iter):
-        lateral_step(model_id, params, state_old, u0 + du, v1, trial, out)
+        lateral_step(
+            model_id, borrow(params), borrow(state_old), u0 + du, v1, borrow(trial), borrow(out)
+        )
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return du, False, it + 1
@@ -157,7 +160,10 @@ def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_it
             return du, True, it + 1
         if abs(du_next - du) <= eps_u:
             # Newton correction below the resolution of u: converged to machine precision
-            lateral_step(model_id, params, state_old, u0 + du_next, v1, trial, out)
+            lateral_step(
+                model_id, borrow(params), borrow(state_old), u0 + du_next, v1, borrow(trial),
+                borrow(out),
+            )  # fmt: skip
             return du_next, True, it + 1
         du = du_next
     return du, False, max_iter
@@ -240,8 +246,9 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
             c0 = m / (dt * dt)
             du_hat = dt * v
         du, conv, iters = solve_step(
-            model_id, params, state, u, du_hat, c0, h1, v1, rtol, max_iter, trial, out
-        )
+            model_id, borrow(params), borrow(state), u, du_hat, c0, h1, v1, rtol, max_iter,
+            borrow(trial), borrow(out),
+        )  # fmt: skip
         if not math.isfinite(out[OUT_R]):
             return n, STATUS_SOIL_NAN
         u1 = u + du
@@ -269,7 +276,7 @@ def integrate(model_id, params, state, dyn, pt, ph, pv, settings, t_stop, rec, n
         dyn[D_A] = a1
         idx = idx1
         dyn[D_IDX] = idx1
-        _write(rec, n, t1, h1, v1, u1, v1dot, out)
+        _write(borrow(rec), n, t1, h1, v1, u1, v1dot, borrow(out))
         n += 1
         if iters <= 4 and abs(du) < 0.5 * du_max:
             dyn[D_DT] = min(2.0 * dt, dt_max)

@@ -50,7 +50,7 @@ import math
 import numpy as np
 from numba import literally
 
-from onbottom._jit import njit
+from onbottom._jit import borrow, njit, row_view
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
 from onbottom.hydro.kernel_contract import (
@@ -185,7 +185,7 @@ def parameter_row(fparams, j):
     jj = j if nc > 1 else 0
     if jj >= nc:
         jj = nc - 1
-    return fparams[jj]
+    return row_view(fparams, jj)
 
 
 @njit(cache=True)
@@ -257,7 +257,10 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
         forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
         fy = ry * fout[FO_FY]
         dfdyd = ry * fout[FO_DFY_DYD]
-        lateral_step(model_id, params, state, y0 + dy, ws - rz * fout[FO_FZ], trial, out)
+        lateral_step(
+            model_id, borrow(params), borrow(state), y0 + dy, ws - rz * fout[FO_FZ],
+            borrow(trial), borrow(out),
+        )  # fmt: skip
         big_r = out[OUT_R]
         if not math.isfinite(big_r):
             return dy, False, it + 1
@@ -272,7 +275,10 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
             forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
-            lateral_step(model_id, params, state, y0 + dy_next, ws - rz * fout[FO_FZ], trial, out)
+            lateral_step(
+                model_id, borrow(params), borrow(state), y0 + dy_next, ws - rz * fout[FO_FZ],
+                borrow(trial), borrow(out),
+            )  # fmt: skip
             return dy_next, True, it + 1
         dy = dy_next
     return dy, False, max_iter
@@ -398,8 +404,9 @@ def integrate(
         prow = parameter_row(fparams, j)
         ry, rz = load_reductions(settings, state[S_Z])
         dy, conv, iters = solve_step(
-            model_id, force_id, params, state, settings, prow, fstate, t1, u1, a1dot, y0, yd0, a0,
-            dt, ry, rz, trial, out, fs_new, fout,
+            model_id, force_id, borrow(params), borrow(state), borrow(settings), prow,
+            borrow(fstate), t1, u1, a1dot, y0, yd0, a0, dt, ry, rz, borrow(trial), borrow(out),
+            borrow(fs_new), borrow(fout),
         )  # fmt: skip
         dyn[D_N_ITER] += iters
         if not math.isfinite(out[OUT_R]):

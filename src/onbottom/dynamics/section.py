@@ -216,64 +216,15 @@ def simulate_section(
     -------
     SectionResult
     """
-    if not isinstance(programme, LoadProgramme):
-        raise InputError(f"programme = {type(programme).__name__} is invalid: need LoadProgramme")
-    if not isinstance(soil, LateralResistanceModel):
-        raise InputError(f"soil = {type(soil).__name__} is invalid: need LateralResistanceModel")
-    m = positive("mass", mass)
-    u_lim = (
-        math.inf
-        if displacement_limit is None
-        else positive("displacement_limit", displacement_limit)
+    m, u_lim, s, dt_max, dt_min = _checked(
+        programme, soil, mass, displacement_limit, after_limit, settings
     )
-    one_of("after_limit", after_limit, _AFTER)
-    s = settings if settings is not None else SolverSettings()
-    dt_max = s.dt_max if s.dt_max is not None else programme.sample_interval
-    dt_min = s.dt_min if s.dt_min is not None else dt_max * 1e-7
-    if dt_min > dt_max:
-        raise InputError(
-            f"SolverSettings.dt_min = {dt_min!r} is invalid: must be <= dt_max = {dt_max!r}"
-        )
-
-    st = np.zeros(K.N_SETTINGS)
-    st[K.ST_SCHEME] = _SCHEMES[s.integrator]
-    st[K.ST_DT_MAX] = dt_max
-    st[K.ST_DT_MIN] = dt_min
-    st[K.ST_DU_MAX] = s.max_displacement_increment
-    st[K.ST_RTOL] = s.force_tolerance
-    st[K.ST_MAX_ITER] = s.max_iterations
-    st[K.ST_U_LIMIT] = u_lim
-    st[K.ST_AFTER_LIMIT] = _AFTER[after_limit]
-    st[K.ST_GAMMA] = 0.5
-    st[K.ST_BETA] = 0.25
-    st[K.ST_MASS] = m
-
+    st = _settings_array(s, dt_max, dt_min, u_lim, after_limit, m)
     pt = np.ascontiguousarray(programme.time, dtype=float)
-    ph = np.ascontiguousarray(programme.horizontal_load, dtype=float)
-    pv = np.ascontiguousarray(programme.vertical_load, dtype=float)
-    params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
-    state = np.array(soil.initial_state(), dtype=float)
-    model_id = int(soil.model_id)
-
     dyn = np.zeros(K.N_DYN)
     dyn[K.D_T] = pt[0]
     dyn[K.D_DT] = dt_max
-    cap = int(min(max(4 * pt.size, 4096), 5_000_000))
-    rec = np.empty((cap, K.N_REC))
-    call_literal(K.initial_record, 1, model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
-
-    t_end = float(pt[-1])
-    chunk = (t_end - pt[0]) / int(s.chunks)
-    recorder = Recorder(rec, 1)
-    with progress_bar(progress, int(s.chunks), programme.name, "chunk") as bar:
-        status = drive(
-            lambda t_stop, rows, n0: call_literal(
-                K.integrate, 1, model_id, params, state, dyn, pt, ph, pv, st, t_stop, rows, n0
-            ),
-            lambda k: pt[0] + k * chunk if k < int(s.chunks) else t_end,
-            recorder=recorder,
-            bar=bar,
-        )
+    status, recorder = _integrate(programme, soil, s, st, dyn, progress)
     n = recorder.n
     rec = recorder.records()
     t_cross = float(dyn[K.D_T_CROSS]) if dyn[K.D_CROSSED] == 1.0 else None
@@ -282,32 +233,7 @@ def simulate_section(
         cycles = (t_cross - float(pt[0])) / programme.cycle_period
     u = rec[:, K.REC_U]
     w = rec[:, K.REC_W]
-    # lift-off: the vertical load of the programme (up to the end of the run) or of a step
-    t_end = float(rec[-1, K.REC_T]) if len(rec) else 0.0
-    tp = np.asarray(programme.time, float)
-    vp = np.asarray(programme.vertical_load, float)[tp <= t_end + 1e-12]
-    tp = tp[tp <= t_end + 1e-12]
-    v_all = np.concatenate([vp, rec[:, K.REC_V]])
-    t_all = np.concatenate([tp, rec[:, K.REC_T]])
-    z_lim = penetration_limit(soil)
-    outside = None
-    if v_all.size and float(np.min(v_all)) <= 0.0:
-        i = int(np.argmin(v_all))
-        outside = (
-            f"lift-off, the vertical load falls to {float(v_all[i]):.4g} N/m at t ="
-            f" {float(t_all[i]):.4g} s; the soil models hold for a pipe resting on the seabed,"
-            " V > 0"
-        )
-    elif float(np.max(w)) > z_lim:
-        i = int(np.argmax(w > z_lim))  # the first row beyond D/2
-        outside = penetration_reason(
-            z_lim,
-            float(rec[i, K.REC_T]),
-            f"y = {float(u[i]):.4g} m",
-            float(np.max(w)),
-            2.0 * z_lim,
-            f"the {soil.name} model",
-        )
+    outside = _outside_validity(programme, soil, rec)
     limit = status in (K.STATUS_LIMIT, K.STATUS_RUNAWAY_END) and t_cross is not None
     detail = f"|y| = {u_lim:.4g} m at t = {t_cross:.4g} s" if limit else ""
     success, status, message = run_outcome(
@@ -353,3 +279,105 @@ def simulate_section(
         cycles_to_limit=cycles,
         summary=summary,
     )
+
+
+def _checked(programme, soil, mass, displacement_limit, after_limit, settings):
+    """Stage of :func:`simulate_section`: the inputs checked; (m, |u| limit, settings,
+    dt_max, dt_min)."""
+    if not isinstance(programme, LoadProgramme):
+        raise InputError(f"programme = {type(programme).__name__} is invalid: need LoadProgramme")
+    if not isinstance(soil, LateralResistanceModel):
+        raise InputError(f"soil = {type(soil).__name__} is invalid: need LateralResistanceModel")
+    m = positive("mass", mass)
+    u_lim = (
+        math.inf
+        if displacement_limit is None
+        else positive("displacement_limit", displacement_limit)
+    )
+    one_of("after_limit", after_limit, _AFTER)
+    s = settings if settings is not None else SolverSettings()
+    dt_max = s.dt_max if s.dt_max is not None else programme.sample_interval
+    dt_min = s.dt_min if s.dt_min is not None else dt_max * 1e-7
+    if dt_min > dt_max:
+        raise InputError(
+            f"SolverSettings.dt_min = {dt_min!r} is invalid: must be <= dt_max = {dt_max!r}"
+        )
+    return m, u_lim, s, dt_max, dt_min
+
+
+def _settings_array(s, dt_max, dt_min, u_lim, after_limit, m):
+    """Stage of :func:`simulate_section`: the kernel's settings buffer (``ST_*``)."""
+    st = np.zeros(K.N_SETTINGS)
+    st[K.ST_SCHEME] = _SCHEMES[s.integrator]
+    st[K.ST_DT_MAX] = dt_max
+    st[K.ST_DT_MIN] = dt_min
+    st[K.ST_DU_MAX] = s.max_displacement_increment
+    st[K.ST_RTOL] = s.force_tolerance
+    st[K.ST_MAX_ITER] = s.max_iterations
+    st[K.ST_U_LIMIT] = u_lim
+    st[K.ST_AFTER_LIMIT] = _AFTER[after_limit]
+    st[K.ST_GAMMA] = 0.5
+    st[K.ST_BETA] = 0.25
+    st[K.ST_MASS] = m
+    return st
+
+
+def _integrate(programme, soil, s, st, dyn, progress):
+    """Stage of :func:`simulate_section`: the kernel's loop over the programme in chunks (the
+    progress bar's), from the first record; (status, recorder)."""
+    pt = np.ascontiguousarray(programme.time, dtype=float)
+    ph = np.ascontiguousarray(programme.horizontal_load, dtype=float)
+    pv = np.ascontiguousarray(programme.vertical_load, dtype=float)
+    params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
+    state = np.array(soil.initial_state(), dtype=float)
+    model_id = int(soil.model_id)
+    cap = int(min(max(4 * pt.size, 4096), 5_000_000))
+    rec = np.empty((cap, K.N_REC))
+    call_literal(K.initial_record, 1, model_id, params, state, dyn, pt, ph, pv, st, rec, 0)
+    t_end = float(pt[-1])
+    chunk = (t_end - pt[0]) / int(s.chunks)
+    recorder = Recorder(rec, 1)
+    with progress_bar(progress, int(s.chunks), programme.name, "chunk") as bar:
+        status = drive(
+            lambda t_stop, rows, n0: call_literal(
+                K.integrate, 1, model_id, params, state, dyn, pt, ph, pv, st, t_stop, rows, n0
+            ),
+            lambda k: pt[0] + k * chunk if k < int(s.chunks) else t_end,
+            recorder=recorder,
+            bar=bar,
+        )
+    return status, recorder
+
+
+def _outside_validity(programme, soil, rec) -> str | None:
+    """Stage of :func:`simulate_section`: why the run left the soil models' validity (lift-off:
+    the programme's or a step's V <= 0; penetration beyond :func:`penetration_limit`), or
+    None."""
+    u = rec[:, K.REC_U]
+    w = rec[:, K.REC_W]
+    # lift-off: the vertical load of the programme (up to the end of the run) or of a step
+    t_end = float(rec[-1, K.REC_T]) if len(rec) else 0.0
+    tp = np.asarray(programme.time, float)
+    vp = np.asarray(programme.vertical_load, float)[tp <= t_end + 1e-12]
+    tp = tp[tp <= t_end + 1e-12]
+    v_all = np.concatenate([vp, rec[:, K.REC_V]])
+    t_all = np.concatenate([tp, rec[:, K.REC_T]])
+    z_lim = penetration_limit(soil)
+    if v_all.size and float(np.min(v_all)) <= 0.0:
+        i = int(np.argmin(v_all))
+        return (
+            f"lift-off, the vertical load falls to {float(v_all[i]):.4g} N/m at t ="
+            f" {float(t_all[i]):.4g} s; the soil models hold for a pipe resting on the seabed,"
+            " V > 0"
+        )
+    if float(np.max(w)) > z_lim:
+        i = int(np.argmax(w > z_lim))  # the first row beyond D/2
+        return penetration_reason(
+            z_lim,
+            float(rec[i, K.REC_T]),
+            f"y = {float(u[i]):.4g} m",
+            float(np.max(w)),
+            2.0 * z_lim,
+            f"the {soil.name} model",
+        )
+    return None

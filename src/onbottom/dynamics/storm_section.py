@@ -253,6 +253,61 @@ def simulate_storm_section(
     attrs : mapping or None
         Extra provenance attributes.
     """
+    fm, red, s = _checked_models(pipe, soil, force_model, reductions, settings)
+    d = pipe.outer_diameter
+    kin, storm_obj = _kinematics(storm, pipe, depth, current, z0, sample_interval)
+    st, mass, dt_min = _settings_array(pipe, fm, red, s, kin)
+    z_lim = penetration_limit(soil)
+    st[K.ST_Z_LIMIT] = z_lim
+    dyn = np.zeros(K.N_DYN)
+    dyn[K.D_DT] = s.dt_max
+    status, recorder = _integrate(soil, fm, s, kin, st, dyn, progress)
+
+    ymax = float(dyn[K.D_YMAX])
+    # a runaway stop, even one flagged outside the model's validity below, meets no criterion
+    # at or above its stop limit
+    criteria = dynamic_criteria(
+        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
+    )
+    t_out = float(dyn[K.D_T_ZLIMIT])
+    limit = f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
+    outside = None
+    if t_out >= 0.0:
+        y_out = f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m"
+        model = f"the {soil.name} model"
+        outside = penetration_reason(z_lim, t_out, y_out, float(dyn[K.D_ZMAX]), d, model)
+    success, status, message = run_outcome(
+        logger,
+        status,
+        run="storm",
+        t=float(dyn[K.D_T]),
+        dt_min=dt_min,
+        detail=limit if status == K.STATUS_LIMIT else "",
+        outside=outside,
+    )
+    summary = _summary(dyn, mass, z_lim)
+    if summary["n_liftoff"] > 0 and status != K.STATUS_LIFTOFF:
+        message += f"; lift-off {summary['n_liftoff']} time(s), pipe free of soil while lifted"
+    data = None
+    if s.record_interval is not None:
+        data = _records(recorder, pipe, soil, fm, red, s, kin, storm_obj, mass, ymax, criteria,
+                        status, message, t_out, attrs)  # fmt: skip
+    return StormSectionResult(
+        success=bool(success),
+        status=int(status),
+        message=message,
+        diameter=pipe.outer_diameter,
+        max_displacement=ymax,
+        final_displacement=float(dyn[K.D_Y]),
+        criteria=criteria,
+        summary=summary,
+        data=data,
+    )
+
+
+def _checked_models(pipe, soil, force_model, reductions, settings):
+    """Stage of :func:`simulate_storm_section`: the pipe and soil checked, the force model,
+    reductions and settings with their defaults."""
     if not isinstance(pipe, Pipe):
         raise InputError(f"pipe = {type(pipe).__name__} is invalid: expected Pipe")
     if not isinstance(soil, LateralResistanceModel):
@@ -265,35 +320,44 @@ def simulate_storm_section(
         )
     red = reductions if reductions is not None else LoadReductions()
     s = settings if settings is not None else StormSolverSettings()
-    d = pipe.outer_diameter
-    if isinstance(storm, StormKinematics):
-        kin = storm
-        storm_obj = None
-    elif isinstance(storm, Storm):
-        if depth is None:
-            raise InputError("depth = None is invalid: the water depth [m] is needed")
-        consistency.scalar("depth", depth)
-        consistency.scalar("z0", z0)
-        consistency.scalar("sample_interval", sample_interval)
-        # errors only: the case files report the warnings of these rules with file and line
-        found = consistency.depth_and_diameter(depth, d, depth_field="depth")
-        for i, stage in enumerate(storm.stages):
-            found += consistency.sea_state(
-                stage.hs,
-                stage.tp,
-                depth,
-                hs_field=f"storm.stages[{i}].hs",
-                tp_field=f"storm.stages[{i}].tp",
-                depth_field="depth",
-            )
-        consistency.raise_first(found)
-        kin = storm_kinematics(
-            storm, depth, diameter=d, current=current, z0=z0, sample_interval=sample_interval
-        )
-        storm_obj = storm
-    else:
-        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
+    return fm, red, s
 
+
+def _kinematics(storm, pipe, depth, current, z0, sample_interval):
+    """Stage of :func:`simulate_storm_section`: the storm's kinematics (given, or synthesised
+    after the consistency rules of the depth and sea states); (kinematics, storm or None)."""
+    if isinstance(storm, StormKinematics):
+        return storm, None
+    if not isinstance(storm, Storm):
+        raise InputError(f"storm = {type(storm).__name__} is invalid: expected Storm")
+    d = pipe.outer_diameter
+    if depth is None:
+        raise InputError("depth = None is invalid: the water depth [m] is needed")
+    consistency.scalar("depth", depth)
+    consistency.scalar("z0", z0)
+    consistency.scalar("sample_interval", sample_interval)
+    # errors only: the case files report the warnings of these rules with file and line
+    found = consistency.depth_and_diameter(depth, d, depth_field="depth")
+    for i, stage in enumerate(storm.stages):
+        found += consistency.sea_state(
+            stage.hs,
+            stage.tp,
+            depth,
+            hs_field=f"storm.stages[{i}].hs",
+            tp_field=f"storm.stages[{i}].tp",
+            depth_field="depth",
+        )
+    consistency.raise_first(found)
+    kin = storm_kinematics(
+        storm, depth, diameter=d, current=current, z0=z0, sample_interval=sample_interval
+    )
+    return kin, storm
+
+
+def _settings_array(pipe, fm, red, s, kin):
+    """Stage of :func:`simulate_storm_section`: the kernel's settings buffer (``ST_*``),
+    the mass m + m_a [kg/m] and dt_min [s]."""
+    d = pipe.outer_diameter
     rho = pipe.seawater_density
     ca = fm.added_mass_coefficient
     mass = pipe.structural_mass + ca * rho * math.pi * d * d / 4.0
@@ -321,19 +385,21 @@ def simulate_storm_section(
     st[K.ST_DTS] = kin.sample_interval
     st[K.ST_T_END] = kin.duration
     st[K.ST_FORCE_MODEL] = fm.model_id
+    return st, mass, dt_min
+
+
+def _integrate(soil, fm, s, kin, st, dyn, progress):
+    """Stage of :func:`simulate_storm_section`: the kernel's loop over the storm in chunks
+    (the progress bar's), from the initial state; (status, recorder)."""
+    d = float(st[K.ST_D])
     fparams = parameter_rows(fm, kin.weights, kin.stage_parameters, kin.current, d)
     fstate = np.zeros(N_FORCE_STATE)
-    z_lim = penetration_limit(soil)
-    st[K.ST_Z_LIMIT] = z_lim
     params = np.ascontiguousarray(soil.packed_parameters(), dtype=float)
     state = np.array(soil.initial_state(), dtype=float)
     model_id = int(soil.model_id)
     force_id = int(fm.model_id)
     ku = np.ascontiguousarray(kin.velocity, dtype=float)
     ka = np.ascontiguousarray(kin.acceleration, dtype=float)
-
-    dyn = np.zeros(K.N_DYN)
-    dyn[K.D_DT] = s.dt_max
     if s.record_interval is None:
         rec = np.empty((0, K.N_REC))
     else:
@@ -363,30 +429,14 @@ def simulate_storm_section(
             status=status,
             bar=bar,
         )
+    return status, recorder
 
-    ymax = float(dyn[K.D_YMAX])
-    # a runaway stop, even one flagged outside the model's validity below, meets no criterion
-    # at or above its stop limit
-    criteria = dynamic_criteria(
-        ymax, d, s.stop_displacement_over_d, stopped=status == K.STATUS_LIMIT
-    )
+
+def _summary(dyn, mass, z_lim) -> dict[str, float]:
+    """Stage of :func:`simulate_storm_section`: the run's summary from the kernel's running
+    state (:attr:`StormSectionResult.summary`)."""
     t_out = float(dyn[K.D_T_ZLIMIT])
-    limit = f"{s.stop_displacement_over_d:g}D at t = {dyn[K.D_T_LIMIT]:.1f} s"
-    outside = None
-    if t_out >= 0.0:
-        y_out = f"y = {dyn[K.D_Y_ZLIMIT]:.4g} m"
-        model = f"the {soil.name} model"
-        outside = penetration_reason(z_lim, t_out, y_out, float(dyn[K.D_ZMAX]), d, model)
-    success, status, message = run_outcome(
-        logger,
-        status,
-        run="storm",
-        t=float(dyn[K.D_T]),
-        dt_min=dt_min,
-        detail=limit if status == K.STATUS_LIMIT else "",
-        outside=outside,
-    )
-    summary = {
+    return {
         "n_steps": int(dyn[K.D_N_STEPS]),
         "n_rejected": int(dyn[K.D_N_REJECT]),
         "time_of_max": float(dyn[K.D_T_YMAX]),
@@ -406,51 +456,41 @@ def simulate_storm_section(
         "mean_newton_iterations": float(dyn[K.D_N_ITER] / max(dyn[K.D_N_STEPS], 1.0)),
         "mass": float(mass),
     }
-    if summary["n_liftoff"] > 0 and status != K.STATUS_LIFTOFF:
-        message += f"; lift-off {summary['n_liftoff']} time(s), pipe free of soil while lifted"
-    data = None
-    if s.record_interval is not None:
-        rec = recorder.records()
-        prov = provenance(
-            "simulate_storm_section",
-            {"soil_model": soil.name, **dict(soil.parameters())},
-            diameter=d,
-            submerged_weight=pipe.submerged_weight,
-            mass=mass,
-            seed=int(kin.seed),
-            current=kin.current,
-            storm=_describe_storm(storm_obj),
-            stage_parameters=kin.stage_parameters,
-            reductions={
-                "permeable_seabed": red.permeable_seabed,
-                "penetration": red.penetration,
-                "trench_depth_over_d": red.trench_depth_over_d,
-                "trench_angle_deg": red.trench_angle_deg,
-            },
-            dt_max=s.dt_max,
-            status=int(status),
-            message=message,
-            max_displacement=ymax,
-            criteria_0_5D=int(criteria["0.5D"]),
-            criteria_10D=int(criteria["10D"]),
-            out_of_range=int(t_out >= 0.0),
-            out_of_range_time=t_out,
-            soil_reference=soil.reference,
-            **fm.describe(),
-            **(dict(attrs) if attrs else {}),
-        )
-        data = records_dataset(rec, _REC_NAMES, K.REC_T, prov)
-    return StormSectionResult(
-        success=bool(success),
+
+
+def _records(recorder, pipe, soil, fm, red, s, kin, storm_obj, mass, ymax, criteria, status,
+             message, t_out, attrs) -> xr.Dataset:  # fmt: skip
+    """Stage of :func:`simulate_storm_section`: the recorded time series with the run's
+    provenance (:attr:`StormSectionResult.data`)."""
+    prov = provenance(
+        "simulate_storm_section",
+        {"soil_model": soil.name, **dict(soil.parameters())},
+        diameter=pipe.outer_diameter,
+        submerged_weight=pipe.submerged_weight,
+        mass=mass,
+        seed=int(kin.seed),
+        current=kin.current,
+        storm=_describe_storm(storm_obj),
+        stage_parameters=kin.stage_parameters,
+        reductions={
+            "permeable_seabed": red.permeable_seabed,
+            "penetration": red.penetration,
+            "trench_depth_over_d": red.trench_depth_over_d,
+            "trench_angle_deg": red.trench_angle_deg,
+        },
+        dt_max=s.dt_max,
         status=int(status),
         message=message,
-        diameter=d,
         max_displacement=ymax,
-        final_displacement=float(dyn[K.D_Y]),
-        criteria=criteria,
-        summary=summary,
-        data=data,
+        criteria_0_5D=int(criteria["0.5D"]),
+        criteria_10D=int(criteria["10D"]),
+        out_of_range=int(t_out >= 0.0),
+        out_of_range_time=t_out,
+        soil_reference=soil.reference,
+        **fm.describe(),
+        **(dict(attrs) if attrs else {}),
     )
+    return records_dataset(recorder.records(), _REC_NAMES, K.REC_T, prov)
 
 
 def _describe_storm(storm: Storm | None) -> Any:

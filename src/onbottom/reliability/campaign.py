@@ -12,7 +12,10 @@ identity, the task's input bytes and its seeds — the same inputs give the same
 the process, worker or run. A task whose key the store already holds is read back, not rerun.
 Missing tasks go to Dask (an embedded ``LocalCluster`` of single-threaded worker processes by
 default, a remote scheduler with ``scheduler``, or this process with ``n_workers = 0``), at most
-``2 × workers`` tasks in flight, and each finished task is appended to the store at once.
+``4 × workers`` submissions in flight, each of as many tasks as fit in about
+``submission_seconds`` of work at the measured rate; finished tasks are appended to the store
+together, one commit every ``commit_interval`` seconds (default 2 s) and at the end of each
+block.
 
 Store (Zarr v3 group, ``zarr`` ≥ 3.1; :class:`ResultStore`):
 
@@ -27,10 +30,11 @@ Store (Zarr v3 group, ``zarr`` ≥ 3.1; :class:`ResultStore`):
 Every object write of zarr's ``LocalStore`` is atomic (temporary file, then rename). A batch is
 written as rows first, tasks second and the commit record last; after a kill at any instant the
 store opens at its last commit record and rows beyond it are overwritten. So a kill loses at
-most the tasks in flight, and a rerun repeats only those. Memory: the campaign holds the tasks
-in flight and the index of finished tasks (key → start, rows: about 250 bytes a task by
-tracemalloc, 750 bytes of resident memory: 75–230 MB for 10⁷ runs in tasks of 32) — flat in
-the number of runs otherwise.
+most the tasks in flight and those finished since the last commit (an exception or an
+interrupt loses none: they are committed first), and a rerun repeats only those.
+Memory: the campaign holds the tasks in flight, those not yet committed, and the index of
+finished tasks (key → start, rows: about 250 bytes a task by tracemalloc, 750 bytes of resident
+memory: 75–230 MB for 10⁷ runs in tasks of 32) — flat in the number of runs otherwise.
 """
 
 from __future__ import annotations
@@ -41,9 +45,10 @@ import math
 import os
 import time
 import traceback
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from contextlib import ExitStack
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -101,6 +106,7 @@ def run_task(model: CampaignModel, x: np.ndarray, seeds: np.ndarray) -> dict[str
     status = np.zeros(n, dtype=np.int32)
     messages: list[tuple[int, str]] = []
     t0 = time.perf_counter()
+    c0 = time.process_time()
     for i in range(n):
         try:
             r = model(x[i], int(seeds[i]))
@@ -118,7 +124,14 @@ def run_task(model: CampaignModel, x: np.ndarray, seeds: np.ndarray) -> dict[str
         "status": status,
         "messages": messages,
         "seconds": time.perf_counter() - t0,
+        "cpu_seconds": time.process_time() - c0,
     }
+
+
+def run_tasks(model: CampaignModel, rows: list[tuple[np.ndarray, np.ndarray]]) -> list[dict]:
+    """:func:`run_task` for each (inputs, seeds) of one Dask submission (several tasks: one
+    scheduler round trip for all of them)."""
+    return [run_task(model, x, seeds) for x, seeds in rows]
 
 
 class ResultStore:
@@ -314,13 +327,24 @@ class ResultStore:
 
 @dataclass
 class CampaignStats:
-    """Counters of a campaign: rows asked for, run here, read back, failed; compute seconds."""
+    """Counters of a campaign: rows asked for, run here, read back, failed; compute seconds
+    (wall time of the runs in the workers) and compute CPU seconds (their CPU time: the
+    measured rate of a storm, independent of other processes' load)."""
 
     requested: int = 0
     computed: int = 0
     reused: int = 0
     failed: int = 0
     compute_seconds: float = 0.0
+    compute_cpu_seconds: float = 0.0
+    task_rates: deque = field(default_factory=lambda: deque(maxlen=512), repr=False)
+    """CPU seconds per run of the last 512 tasks computed (the rate without the first tasks'
+    compilation: :meth:`cpu_seconds_per_run`)."""
+
+    def cpu_seconds_per_run(self) -> float:
+        """Median CPU seconds of a run over the recent tasks (NaN before any): robust to the
+        compilation that the first task of each worker pays."""
+        return float(np.median(self.task_rates)) if self.task_rates else math.nan
 
 
 class Campaign:
@@ -345,6 +369,18 @@ class Campaign:
         An open client to use.
     progress : callable or None
         Called with the number of rows finished (computed or read back) after each task.
+    commit_interval : float
+        Seconds between two commits of finished tasks to the store [s], >= 0 (0: a commit
+        per batch of finished tasks). Finished tasks are queued and written together, so that
+        small tasks do not cost a store commit each (the client's CPU, which competes with
+        the workers on a small machine); a kill loses the tasks in flight and those finished
+        within the last interval, an exception or interrupt none (they are committed first).
+    submission_seconds : float
+        Work per Dask submission [s] (0: one task per submission): consecutive tasks go to a
+        worker together, as many as the measured rate fits in this time (the first ones one
+        by one, to measure it), fewer at the end of a block so that every worker has work.
+        Tasks, their identities and the store are those of ``task_size``: only the
+        scheduler's round trips (per submission) are fewer.
     """
 
     def __init__(
@@ -357,8 +393,16 @@ class Campaign:
         scheduler: str | None = None,
         client: Any = None,
         progress: Callable[[int], None] | None = None,
+        commit_interval: float = 2.0,
+        submission_seconds: float = 0.5,
     ) -> None:
         self.model = model
+        self.submission_seconds = float(submission_seconds)
+        self.commit_interval = float(commit_interval)
+        if not (self.commit_interval >= 0.0 and math.isfinite(self.commit_interval)):
+            raise InputError(
+                f"commit_interval = {commit_interval!r} is invalid: a finite number of seconds >= 0"
+            )
         self.store = ResultStore(store, model.identity(), model.input_names, model.output_names)
         self.task_size = integer("task_size", task_size, 1, 10**4)
         self.n_workers = n_workers
@@ -443,49 +487,88 @@ class Campaign:
             self._compute(todo, x, seeds, out, status)
         return out, status
 
-    def _finish(self, done, x, seeds, out, status) -> None:
-        batch = []
+    def _finish(self, done, x, seeds, out, status, unwritten) -> None:
+        """Take finished tasks into ``out``/``status`` and the counters; queue their rows in
+        ``unwritten`` for the next store commit."""
         for (key, a, b), res in done:
             out[a:b], status[a:b] = res["outputs"], res["status"]
             self.stats.computed += b - a
             self.stats.failed += int(np.count_nonzero(res["status"] == STATUS_RAISED))
             self.stats.compute_seconds += res["seconds"]
-            batch.append((key, x[a:b], seeds[a:b], res))
-        self.store.append(batch)
+            cpu = res.get("cpu_seconds", res["seconds"])
+            self.stats.compute_cpu_seconds += cpu
+            self.stats.task_rates.append(cpu / max(b - a, 1))
+            unwritten.append((key, x[a:b], seeds[a:b], res))
         if self.progress:
             self.progress(sum(b - a for (_, a, b), _ in done))
 
+    def _commit(self, unwritten: list, last: list[float], force: bool = False) -> None:
+        """Append the queued tasks to the store when ``commit_interval`` has passed since
+        the last commit (or ``force``): one commit for many small tasks."""
+        now = time.perf_counter()
+        if unwritten and (force or now - last[0] >= self.commit_interval):
+            self.store.append(unwritten)
+            unwritten.clear()
+            last[0] = now
+
     def _compute(self, todo, x, seeds, out, status) -> None:
-        if self.serial:
-            for t in todo:
-                _, a, b = t
-                self._finish([(t, run_task(self.model, x[a:b], seeds[a:b]))], x, seeds, out, status)
-            return
+        unwritten: list = []
+        last = [time.perf_counter()]
+        try:
+            if self.serial:
+                for t in todo:
+                    _, a, b = t
+                    res = run_task(self.model, x[a:b], seeds[a:b])
+                    self._finish([(t, res)], x, seeds, out, status, unwritten)
+                    self._commit(unwritten, last)
+            else:
+                self._compute_on_dask(todo, x, seeds, out, status, unwritten, last)
+        finally:  # also on an interrupt: what finished is kept
+            self._commit(unwritten, last, force=True)
+
+    def _compute_on_dask(self, todo, x, seeds, out, status, unwritten, last) -> None:
         from distributed import as_completed
 
         client = self._ensure_client()
-        window = 2 * self.slots()
-        pending = iter(todo)
-        meta: dict[str, tuple] = {}
+        slots = self.slots()
+        window = 4 * slots
+        meta: dict[str, list] = {}
+        nxt = 0  # the next task of todo to submit
+        measured = [0.0, 0]  # worker seconds and tasks finished in this call
 
-        def submit(t):
-            _, a, b = t
-            f = client.submit(run_task, self._model_future, x[a:b], seeds[a:b], pure=False)
-            meta[f.key] = t
+        def group() -> int:
+            """Tasks per Dask submission: about ``submission_seconds`` of work by the rate
+            measured so far (1 until a task has finished), and few enough that every worker
+            still gets work at the end of the block."""
+            if not measured[1] or self.submission_seconds <= 0.0:
+                return 1
+            per_task = measured[0] / measured[1]
+            g = int(self.submission_seconds / per_task) if per_task > 0.0 else len(todo)
+            return max(1, min(g, (len(todo) - nxt) // (2 * slots)))
+
+        def submit():
+            nonlocal nxt
+            ts = todo[nxt : nxt + group()]
+            nxt += len(ts)
+            rows = [(x[a:b], seeds[a:b]) for _, a, b in ts]
+            f = client.submit(run_tasks, self._model_future, rows, pure=False)
+            meta[f.key] = ts
             return f
 
-        first = [submit(t) for t in _take(pending, window)]
-        ac = as_completed(first)
+        first = [submit() for _ in range(min(window, len(todo)))]
+        # results come with the completions (no round trip per task to fetch each)
+        ac = as_completed(first, with_results=True)
         try:
             for batch in ac.batches():
                 done = []
-                for f in batch:
-                    t = meta.pop(f.key)
-                    done.append((t, f.result()))
-                    nxt = next(pending, None)
-                    if nxt is not None:
-                        ac.add(submit(nxt))
-                self._finish(done, x, seeds, out, status)
+                for f, results in batch:
+                    done.extend(zip(meta.pop(f.key), results, strict=True))
+                    measured[0] += sum(r["seconds"] for r in results)
+                    measured[1] += len(results)
+                    if nxt < len(todo):
+                        ac.add(submit())
+                self._finish(done, x, seeds, out, status, unwritten)
+                self._commit(unwritten, last)
         except BaseException:  # do not leave the rest running on the cluster
             client.cancel([f for f in getattr(ac, "futures", ())])
             raise

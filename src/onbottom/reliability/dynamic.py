@@ -386,6 +386,20 @@ def estimate_exceedance(
         return ls(np.hstack([x, s]))
 
     rng = np.random.default_rng([seed, 0x5EED])
+    r, used, notes, design, pilot_calls = _run_estimator(
+        method, g, d, rng, block, n_max, target_cv, confidence, n_pilot, iters, ls, to_x, names
+    )
+    ls.check()
+    return _estimate(
+        r, used, notes, design, pilot_calls, ls, campaign, names, limit, label,
+        storms_per_year, design_life_years, confidence,
+    )  # fmt: skip
+
+
+def _run_estimator(method, g, d, rng, block, n_max, target_cv, confidence, n_pilot, iters, ls,
+                   to_x, names):  # fmt: skip
+    """Stage of :func:`estimate_exceedance`: run ``method`` on g in the standard space of
+    (u_X, u_S); returns (sampling result, method used, notes, design point, pilot storms)."""
     notes: list[str] = []
     design: dict[str, float] = {}
     used = method
@@ -426,10 +440,16 @@ def estimate_exceedance(
                 r.interval_kind = (
                     "one-sided upper bound from the pilot's unbiased block (no failing storm)"
                 )
+    return r, used, notes, design, pilot_calls
+
+
+def _estimate(r, used, notes, design, pilot_calls, ls, campaign, names, limit, label,
+              storms_per_year, design_life_years, confidence) -> ExceedanceEstimate:  # fmt: skip
+    """Stage of :func:`estimate_exceedance`: the estimate per storm, per year and per design
+    life with their intervals, what drives failure, and the campaign's counts."""
     p = r.probability
     annual = _annual(p, storms_per_year)
     lo_a, hi_a = _annual(r.low, storms_per_year), _annual(r.high, storms_per_year)
-    ls.check()
     kind = (
         "SRRC^2 shares of R^2 (rank regression on the first unbiased block: the bulk of the"
         " response)"

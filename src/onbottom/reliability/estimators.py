@@ -211,26 +211,9 @@ def estimate_failure_probability(
         median = np.asarray(to_x([0.0] * d), dtype=float).reshape(1, d)
         if float(counter(median)[0, 0]) <= 0.0:
             used = "monte_carlo"
+    centre = None
     if used in ("form", "importance"):
-        solver = ot.Cobyla() if form_strict else ot.AbdoRackwitz()
-        solver.setMaximumCallsNumber(integer("form_max_calls", form_max_calls, 10, 10**6))
-        in_range("form_tolerance", form_tolerance, 0.0, 0.1, low_inclusive=False)
-        if not form_strict:
-            solver.setCheckStatus(False)
-        for set_tol in (
-            solver.setMaximumAbsoluteError,
-            solver.setMaximumRelativeError,
-            solver.setMaximumResidualError,
-        ):  # the design point to 1e-10 in the standard space
-            set_tol(form_tolerance)
-        g_mean = float(counter(np.array([list(dist.getMean())]))[0, 0])
-        solver.setMaximumConstraintError(  # on g = 0, g's scale
-            (1e-9 if form_strict else form_tolerance) * max(1.0, abs(g_mean))
-        )
-        solver.setStartingPoint(dist.getMean())  # physical space (openturns 1.27)
-        form = ot.FORM(solver, event)
-        form.run()
-        res = form.getResult()
+        res = _run_form(event, dist, counter, form_max_calls, form_tolerance, form_strict)
         p_form = float(res.getEventProbability())
         if res.getIsStandardPointOriginInFailureSpace():
             p_form = 1.0 - p_form
@@ -242,38 +225,9 @@ def estimate_failure_probability(
             n: float(v) for n, v in zip(names, res.getPhysicalSpaceDesignPoint(), strict=True)
         }
         if method == "form":
-            # converged: the design point lies on g = 0 (to 1e-6 of g at the median point)
-            g_dp = float(counter(np.array([list(design.values())]))[0, 0])
-            median = [dist.getMarginal(i).computeQuantile(0.5)[0] for i in range(len(parameters))]
-            g_0 = float(counter(np.array([median]))[0, 0])
-            ok = abs(g_dp) <= 1e-6 * max(abs(g_0), 1e-300)
-            return FailureProbability(
-                probability=p_form,
-                cv=math.nan,
-                method=method,
-                evaluations=counter.calls,
-                reliability_index=float(res.getHasoferReliabilityIndex()),
-                importance=importance,
-                design_point=design,
-                converged=ok,
-                seed=seed,
-            )
+            return _form_result(res, p_form, importance, design, dist, counter, method, seed)
         centre = np.asarray(res.getStandardSpaceDesignPoint(), dtype=float)
-
-    def g_u(u: np.ndarray) -> np.ndarray:
-        out = []
-        for i in range(0, u.shape[0], block):
-            x = np.asarray(to_x(np.ascontiguousarray(u[i : i + block])))
-            out.append(counter(x).reshape(-1))
-        return np.concatenate(out)
-
-    rng = np.random.default_rng([seed, 0x5EED])
-    if used == "monte_carlo":
-        r = _sampling.monte_carlo(g_u, d, rng, block, n_max, target_cv)
-    elif used == "importance":
-        r = _sampling.importance(g_u, d, rng, centre, block, n_max, target_cv)
-    else:
-        r = _sampling.subset(g_u, d, rng, min(block, n_max), n_max)
+    r = _sample(used, counter, to_x, d, block, n_max, target_cv, seed, centre)
     p = r.probability
     return FailureProbability(
         probability=p,
@@ -291,3 +245,68 @@ def estimate_failure_probability(
         upper_bound=r.upper_bound,
         failures=r.failures,
     )
+
+
+def _run_form(event, dist, counter, form_max_calls, form_tolerance, form_strict):
+    """Stage of :func:`estimate_failure_probability`: FORM's design point (openturns result)
+    with Cobyla (``form_strict``) or Abdo–Rackwitz, started at the inputs' mean."""
+    import openturns as ot
+
+    solver = ot.Cobyla() if form_strict else ot.AbdoRackwitz()
+    solver.setMaximumCallsNumber(integer("form_max_calls", form_max_calls, 10, 10**6))
+    in_range("form_tolerance", form_tolerance, 0.0, 0.1, low_inclusive=False)
+    if not form_strict:
+        solver.setCheckStatus(False)
+    for set_tol in (
+        solver.setMaximumAbsoluteError,
+        solver.setMaximumRelativeError,
+        solver.setMaximumResidualError,
+    ):  # the design point to 1e-10 in the standard space
+        set_tol(form_tolerance)
+    g_mean = float(counter(np.array([list(dist.getMean())]))[0, 0])
+    solver.setMaximumConstraintError(  # on g = 0, g's scale
+        (1e-9 if form_strict else form_tolerance) * max(1.0, abs(g_mean))
+    )
+    solver.setStartingPoint(dist.getMean())  # physical space (openturns 1.27)
+    form = ot.FORM(solver, event)
+    form.run()
+    return form.getResult()
+
+
+def _form_result(res, p_form, importance, design, dist, counter, method, seed):
+    """Stage of :func:`estimate_failure_probability`: the FORM answer, ``converged`` when the
+    design point lies on g = 0 (to 1e-6 of g at the median point)."""
+    g_dp = float(counter(np.array([list(design.values())]))[0, 0])
+    median = [dist.getMarginal(i).computeQuantile(0.5)[0] for i in range(len(design))]
+    g_0 = float(counter(np.array([median]))[0, 0])
+    ok = abs(g_dp) <= 1e-6 * max(abs(g_0), 1e-300)
+    return FailureProbability(
+        probability=p_form,
+        cv=math.nan,
+        method=method,
+        evaluations=counter.calls,
+        reliability_index=float(res.getHasoferReliabilityIndex()),
+        importance=importance,
+        design_point=design,
+        converged=ok,
+        seed=seed,
+    )
+
+
+def _sample(used, counter, to_x, d, block, n_max, target_cv, seed, centre):
+    """Stage of :func:`estimate_failure_probability`: the sampling estimator ``used`` in the
+    standard normal space (blocks of ``block`` rows through ``counter``)."""
+
+    def g_u(u: np.ndarray) -> np.ndarray:
+        out = []
+        for i in range(0, u.shape[0], block):
+            x = np.asarray(to_x(np.ascontiguousarray(u[i : i + block])))
+            out.append(counter(x).reshape(-1))
+        return np.concatenate(out)
+
+    rng = np.random.default_rng([seed, 0x5EED])
+    if used == "monte_carlo":
+        return _sampling.monte_carlo(g_u, d, rng, block, n_max, target_cv)
+    if used == "importance":
+        return _sampling.importance(g_u, d, rng, centre, block, n_max, target_cv)
+    return _sampling.subset(g_u, d, rng, min(block, n_max), n_max)

@@ -775,6 +775,19 @@ def stability_curves(
         ``early_stop``, ``stopped_early``).
     """
     s = settings if settings is not None else CurveSettings()
+    ks, ms, ns = _checked_grid(k_values, m_values, n_values, soils, criteria)
+    items = [(so, k, m, n, c) for so in soils for n in ns for m in ms for k in ks for c in criteria]
+    t0 = time.perf_counter()
+    rows, workers = _run_points(
+        _PointJob(s), items, s, store, restart, identity, n_workers, scheduler, client, progress
+    )
+    wall = time.perf_counter() - t0
+    return _to_dataset(rows, list(soils), ns, ms, ks, list(criteria), s, wall, workers)
+
+
+def _checked_grid(k_values, m_values, n_values, soils, criteria):
+    """Stage of :func:`stability_curves`: the grid checked (sequences, names, ranges, no
+    repeated value); (K, M, N) as lists of floats."""
     for name, vals in (
         ("k_values", k_values),
         ("m_values", m_values),
@@ -807,9 +820,14 @@ def stability_curves(
             )
             err.field = name  # type: ignore[attr-defined]
             raise err
-    items = [(so, k, m, n, c) for so in soils for n in ns for m in ms for k in ks for c in criteria]
-    job = _PointJob(s)
-    t0 = time.perf_counter()
+    return ks, ms, ns
+
+
+def _run_points(job, items, s, store, restart, identity, n_workers, scheduler, client,
+                progress):  # fmt: skip
+    """Stage of :func:`stability_curves`: every point's row, those of ``store`` read back and
+    the rest computed (each kept in the store as it finishes); (rows in ``items`` order,
+    workers)."""
     ts = None
     done: dict[int, dict[str, Any]] = {}
     if store is not None:
@@ -849,9 +867,7 @@ def stability_curves(
                 len(done) + sum(1 for r in new.values() if not r["error"]), len(items), store
             )
         ) from None
-    rows = [done[i] if i in done else new[tuple(x)] for i, x in enumerate(items)]
-    wall = time.perf_counter() - t0
-    return _to_dataset(rows, list(soils), ns, ms, ks, list(criteria), s, wall, workers)
+    return [done[i] if i in done else new[tuple(x)] for i, x in enumerate(items)], workers
 
 
 def _point_key(item: tuple) -> dict[str, Any]:
@@ -923,37 +939,66 @@ def _per_seed_variables(data, c, idx, soils, ns, ms, ks, s) -> None:
 
 
 def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Dataset:
-    shape = (len(soils), len(ns), len(ms), len(ks))
+    """The sweep's dataset from its point rows: the variables per criterion
+    (:func:`_criterion_variables`), the attributes of the run (:func:`_run_attributes`) and of
+    each variable (:func:`_describe_variables`), and the combined out-of-range flag."""
     idx = {(r["soil"], r["N"], r["M"], r["K"], r["criterion"]): r for r in rows}
     data: dict[str, Any] = {}
     for c in criteria:
-        arrs = {name: np.full(shape, np.nan) for name in (*POINT_FIELDS, "out_of_range")}
-        for a, so in enumerate(soils):
-            for b, n in enumerate(ns):
-                for i, m in enumerate(ms):
-                    for j, k in enumerate(ks):
-                        r = idx[(so, n, m, k, c)]
-                        for name in arrs:
-                            arrs[name][a, b, i, j] = r.get(name, 0)
-        dims = ("soil", "N", "M", "K")
-        data[c] = (dims, arrs["L"])
-        data[f"{c}_over_2_plus_M_squared"] = (
-            dims,
-            arrs["L"] / (2.0 + np.asarray(ms))[None, None, :, None] ** 2,
-        )
-        data[f"{c}_bracket_low"] = (dims, arrs["L_low"])
-        data[f"{c}_bracket_high"] = (dims, arrs["L_high"])
-        data[f"{c}_bracket_width"] = (dims, arrs["bracket_width"])
-        data[f"{c}_converged"] = (dims, np.nan_to_num(arrs["converged"]).astype(np.int8))
-        for name in POINT_FIELDS:
-            if name.startswith("seed_"):
-                data[f"{c}_{name}"] = (dims, arrs[name])
-        data[f"{c}_evaluations"] = (dims, arrs["evaluations"])
-        data[f"{c}_storms"] = (dims, arrs["storms"])
-        data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
-        data[f"{c}_out_of_range"] = (dims, (arrs["out_of_range"] > 0).astype(np.int8))
-        if s.statistic == "fractile":
-            _per_seed_variables(data, c, idx, soils, ns, ms, ks, s)
+        _criterion_variables(data, c, idx, soils, ns, ms, ks, s)
+    coords: dict[str, Any] = {"soil": soils, "N": ns, "M": ms, "K": ks}
+    if s.statistic == "fractile":
+        coords["seed"] = np.arange(int(s.first_seed), int(s.first_seed) + int(s.seeds))
+    ds = xr.Dataset(data, coords=coords, attrs=_run_attributes(rows, s, wall, workers))
+    for c in criteria:
+        _describe_variables(ds, c, s)
+    ds["out_of_range"] = sum(ds[f"{c}_out_of_range"] for c in criteria).clip(max=1)
+    ds["out_of_range"] = ds["out_of_range"].astype(np.int8)
+    ds["out_of_range"].attrs.update(
+        long_name="1: a criterion's storms left the soil model's range (z > D/2)",
+        units="1",
+        flag_values="0 1",
+        flag_meanings="in_range out_of_range",
+    )
+    return annotate(ds)
+
+
+def _criterion_variables(data, c, idx, soils, ns, ms, ks, s) -> None:
+    """Stage of :func:`_to_dataset`: the variables of criterion ``c`` over (soil, N, M, K)
+    (and per seed with the statistic ``"fractile"``), added to ``data``."""
+    shape = (len(soils), len(ns), len(ms), len(ks))
+    arrs = {name: np.full(shape, np.nan) for name in (*POINT_FIELDS, "out_of_range")}
+    for a, so in enumerate(soils):
+        for b, n in enumerate(ns):
+            for i, m in enumerate(ms):
+                for j, k in enumerate(ks):
+                    r = idx[(so, n, m, k, c)]
+                    for name in arrs:
+                        arrs[name][a, b, i, j] = r.get(name, 0)
+    dims = ("soil", "N", "M", "K")
+    data[c] = (dims, arrs["L"])
+    data[f"{c}_over_2_plus_M_squared"] = (
+        dims,
+        arrs["L"] / (2.0 + np.asarray(ms))[None, None, :, None] ** 2,
+    )
+    data[f"{c}_bracket_low"] = (dims, arrs["L_low"])
+    data[f"{c}_bracket_high"] = (dims, arrs["L_high"])
+    data[f"{c}_bracket_width"] = (dims, arrs["bracket_width"])
+    data[f"{c}_converged"] = (dims, np.nan_to_num(arrs["converged"]).astype(np.int8))
+    for name in POINT_FIELDS:
+        if name.startswith("seed_"):
+            data[f"{c}_{name}"] = (dims, arrs[name])
+    data[f"{c}_evaluations"] = (dims, arrs["evaluations"])
+    data[f"{c}_storms"] = (dims, arrs["storms"])
+    data[f"{c}_runtime"] = (dims, arrs["runtime_s"])
+    data[f"{c}_out_of_range"] = (dims, (arrs["out_of_range"] > 0).astype(np.int8))
+    if s.statistic == "fractile":
+        _per_seed_variables(data, c, idx, soils, ns, ms, ks, s)
+
+
+def _run_attributes(rows, s, wall, workers) -> dict[str, Any]:
+    """Stage of :func:`_to_dataset`: the provenance and totals of the run (storms, times,
+    failures, points without a crossing, the statistic)."""
     failures = [
         {k2: r[k2] for k2 in ("soil", "K", "M", "N", "criterion", "message")}
         for r in rows
@@ -967,96 +1012,84 @@ def _to_dataset(rows, soils, ns, ms, ks, criteria, s, wall, workers) -> xr.Datas
     total_storms = int(sum(r["storms"] for r in rows))
     busy = float(sum(r["runtime_s"] for r in rows))
     cpu = float(sum(r["cpu_s"] for r in rows))
-    coords: dict[str, Any] = {"soil": soils, "N": ns, "M": ms, "K": ks}
-    if s.statistic == "fractile":
-        coords["seed"] = np.arange(int(s.first_seed), int(s.first_seed) + int(s.seeds))
-    ds = xr.Dataset(
-        data,
-        coords=coords,
-        attrs=provenance(
-            "stability_curves",
-            {k2: (v.describe() if k2 == "force_model" else v) for k2, v in s.__dict__.items()},
-            total_storms=total_storms,
-            wall_time_s=wall,
-            busy_time_s=busy,
-            cpu_time_s=cpu,
-            workers=workers,
-            storms_per_hour=total_storms / wall * 3600.0 if wall > 0 else math.nan,
-            failures=failures,
-            no_crossing=no_crossing,
-            method=(
-                "per-seed bisections in log L of each storm's max |y|, reported as a fractile"
-                " and the median over the seeds (onbottom.study.stability_curves)"
-                if s.statistic == "fractile"
-                else "bisection in log L of the seed-averaged max |y| of storms"
-                " (onbottom.study.stability_curves)"
-            ),
-            statistic=s.statistic,
-            statistic_description=STATISTICS[s.statistic],
-            seeds=int(s.seeds),
-            **(
-                {
-                    "fractile": float(s.fractile),
-                    "quantile_method": QUANTILE_METHOD,
-                    "early_stop": int(bool(s.early_stop)),
-                    "stopped_early": int(sum(r.get("stopped_early", 0) for r in rows)),
-                }
-                if s.statistic == "fractile"
-                else {}
-            ),
+    return provenance(
+        "stability_curves",
+        {k2: (v.describe() if k2 == "force_model" else v) for k2, v in s.__dict__.items()},
+        total_storms=total_storms,
+        wall_time_s=wall,
+        busy_time_s=busy,
+        cpu_time_s=cpu,
+        workers=workers,
+        storms_per_hour=total_storms / wall * 3600.0 if wall > 0 else math.nan,
+        failures=failures,
+        no_crossing=no_crossing,
+        method=(
+            "per-seed bisections in log L of each storm's max |y|, reported as a fractile"
+            " and the median over the seeds (onbottom.study.stability_curves)"
+            if s.statistic == "fractile"
+            else "bisection in log L of the seed-averaged max |y| of storms"
+            " (onbottom.study.stability_curves)"
+        ),
+        statistic=s.statistic,
+        statistic_description=STATISTICS[s.statistic],
+        seeds=int(s.seeds),
+        **(
+            {
+                "fractile": float(s.fractile),
+                "quantile_method": QUANTILE_METHOD,
+                "early_stop": int(bool(s.early_stop)),
+                "stopped_early": int(sum(r.get("stopped_early", 0) for r in rows)),
+            }
+            if s.statistic == "fractile"
+            else {}
         ),
     )
-    for c in criteria:
-        ds[c].attrs.update(
-            long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D: "
-            + (
-                f"the {s.fractile:g} fractile over {s.seeds} seeds of each seed's own L"
-                if s.statistic == "fractile"
-                else f"L of the mean over {s.seeds} seeds of the max |y| (mean of maxima)"
-            ),
-            units="1",
-            statistic=s.statistic,
-        )
-        ds[f"{c}_out_of_range"].attrs.update(
-            long_name=f"1: storms deciding {c} buried the pipe beyond the soil model's range",
-            units="1",
-            flag_values="0 1",
-            flag_meanings="in_range out_of_range",
-        )
-        ds[f"{c}_converged"].attrs.update(
-            long_name=f"1 if the bracket of {c} is within the tolerance asked for"
-            f" (relative width <= {s.tolerance:g}); 0: not converged, L is not reported",
-            units="1",
-        )
-        ds[f"{c}_bracket_width"].attrs.update(
-            long_name=f"relative width L_high/L_low - 1 of the final bracket of {c}", units="1"
-        )
-        for end in ("low", "high"):
-            for stat in ("mean", "min", "max"):
-                ds[f"{c}_seed_{stat}_{end}"].attrs.update(
-                    long_name=(
-                        f"{stat} over the seeds of max |y|/D at the {end} end of each seed's own"
-                        f" bracket of {c}"
-                        + (
-                            " (storms stopped early at the criterion count with the criterion)"
-                            if end == "low" and s.early_stop
-                            else ""
-                        )
-                        if s.statistic == "fractile"
-                        else f"{stat} over the seeds run of max |y|/D at the {end} end of the"
-                        f" bracket of {c}"
-                    ),
-                    units="1",
-                )
-    ds["out_of_range"] = sum(ds[f"{c}_out_of_range"] for c in criteria).clip(max=1)
-    ds["out_of_range"] = ds["out_of_range"].astype(np.int8)
-    ds["out_of_range"].attrs.update(
-        long_name="1: a criterion's storms left the soil model's range (z > D/2)",
+
+
+def _describe_variables(ds, c, s) -> None:
+    """Stage of :func:`_to_dataset`: long names, units and flags of criterion ``c``'s
+    variables."""
+    ds[c].attrs.update(
+        long_name=f"weight parameter L = w_s/(0.5 rho_w D U_s^2) at {CRITERIA[c]:g}D: "
+        + (
+            f"the {s.fractile:g} fractile over {s.seeds} seeds of each seed's own L"
+            if s.statistic == "fractile"
+            else f"L of the mean over {s.seeds} seeds of the max |y| (mean of maxima)"
+        ),
+        units="1",
+        statistic=s.statistic,
+    )
+    ds[f"{c}_out_of_range"].attrs.update(
+        long_name=f"1: storms deciding {c} buried the pipe beyond the soil model's range",
         units="1",
         flag_values="0 1",
         flag_meanings="in_range out_of_range",
     )
-    return annotate(ds)
+    ds[f"{c}_converged"].attrs.update(
+        long_name=f"1 if the bracket of {c} is within the tolerance asked for"
+        f" (relative width <= {s.tolerance:g}); 0: not converged, L is not reported",
+        units="1",
+    )
+    ds[f"{c}_bracket_width"].attrs.update(
+        long_name=f"relative width L_high/L_low - 1 of the final bracket of {c}", units="1"
+    )
+    for end in ("low", "high"):
+        for stat in ("mean", "min", "max"):
+            ds[f"{c}_seed_{stat}_{end}"].attrs.update(
+                long_name=(
+                    f"{stat} over the seeds of max |y|/D at the {end} end of each seed's own"
+                    f" bracket of {c}"
+                    + (
+                        " (storms stopped early at the criterion count with the criterion)"
+                        if end == "low" and s.early_stop
+                        else ""
+                    )
+                    if s.statistic == "fractile"
+                    else f"{stat} over the seeds run of max |y|/D at the {end} end of the"
+                    f" bracket of {c}"
+                ),
+                units="1",
+            )
 
 
 def curve_statistic(ds: xr.Dataset) -> dict[str, Any]:

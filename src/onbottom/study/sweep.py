@@ -160,27 +160,52 @@ def sweep(
     runner = _PointRunner(fn, fixed, _accepts_rng(fn))
 
     t0 = time.perf_counter()
+    results, engine = _run_points(
+        runner, jobs, client, scheduler_address, n_workers, threads_per_worker, batch_size,
+        progress, dashboard,
+    )  # fmt: skip
+    wall = time.perf_counter() - t0
+    ds = _dataset(results, axes, shape)
+    ds.attrs = provenance(
+        "sweep",
+        function=getattr(fn, "__qualname__", type(fn).__name__),
+        fixed={k: v for k, v in fixed.items() if isinstance(v, (str, int, float, bool))},
+        seed=int(root.entropy) if seed is None else int(seed),
+        n_points=n_points,
+        n_failed=int(ds["failed"].values.sum()),
+        wall_time=float(wall),
+        engine=engine,
+    )
+    # JSON-encode the seed entropy (it can exceed 64 bits)
+    ds.attrs["seed"] = str(ds.attrs["seed"])
+    return ds
+
+
+def _run_points(runner, jobs, client, scheduler_address, n_workers, threads_per_worker,
+                batch_size, progress, dashboard):  # fmt: skip
+    """Stage of :func:`sweep`: every point's (result, error), in this process or on Dask;
+    (results, engine)."""
     if client is None and scheduler_address is None and n_workers == 0:
-        engine = "serial"
         if progress:
             from tqdm.auto import tqdm
 
-            results = [runner(j) for j in tqdm(jobs, unit="run")]
-        else:
-            results = SerialMap()(runner, jobs)
-    else:
-        engine = "dask"
-        with dask_client(
-            client,
-            scheduler_address=scheduler_address,
-            n_workers=n_workers,
-            threads_per_worker=threads_per_worker,
-            dashboard=dashboard,
-        ) as c:
-            pmap = ParallelMap(c, batch_size=batch_size, progress=progress)
-            results = pmap(runner, jobs)
-    wall = time.perf_counter() - t0
+            return [runner(j) for j in tqdm(jobs, unit="run")], "serial"
+        return SerialMap()(runner, jobs), "serial"
+    with dask_client(
+        client,
+        scheduler_address=scheduler_address,
+        n_workers=n_workers,
+        threads_per_worker=threads_per_worker,
+        dashboard=dashboard,
+    ) as c:
+        pmap = ParallelMap(c, batch_size=batch_size, progress=progress)
+        return pmap(runner, jobs), "dask"
 
+
+def _dataset(results, axes, shape) -> xr.Dataset:
+    """Stage of :func:`sweep`: the outputs on the grid, ``failed`` and ``error``."""
+    names = list(axes)
+    n_points = math.prod(shape)
     out_names: list[str] = []
     for res, _ in results:
         if res is not None:
@@ -206,16 +231,4 @@ def sweep(
     ds["failed"].attrs["long_name"] = "the run raised an exception"
     ds["error"] = (names, errors.reshape(shape).astype(str))
     ds["error"].attrs["long_name"] = "exception of a failed run (empty if it succeeded)"
-    ds.attrs = provenance(
-        "sweep",
-        function=getattr(fn, "__qualname__", type(fn).__name__),
-        fixed={k: v for k, v in fixed.items() if isinstance(v, (str, int, float, bool))},
-        seed=int(root.entropy) if seed is None else int(seed),
-        n_points=n_points,
-        n_failed=int(failed.sum()),
-        wall_time=float(wall),
-        engine=engine,
-    )
-    # JSON-encode the seed entropy (it can exceed 64 bits)
-    ds.attrs["seed"] = str(ds.attrs["seed"])
     return ds
