@@ -751,3 +751,21 @@ def test_section_lift_off(tmp_path):
     )
     out = _result(["simulate", str(case), "--quiet"])
     assert out["success"] is False and out["status"] == -3 and "lift-off" in out["message"]
+
+
+@pytest.mark.parametrize(
+    ("model", "keys"),
+    [
+        ("sand", {"submerged_unit_weight": 1.0e4, "unit_weight": 2.0e4}),
+        ("calcareous", {"submerged_unit_weight": 1.0e4, "unit_weight": 2.0e4}),
+        ("clay", {"undrained_shear_strength": 5e3, "submerged_unit_weight": 6e3,
+                  "unit_weight": 1.6e4, "d50": 2e-4}),
+    ],
+)  # fmt: skip
+def test_a_seabed_key_the_model_does_not_read_is_refused(model, keys):
+    """The clay total unit weight on a sand (a key name inside another key's name) is refused,
+    naming the key, like d50 on clay."""
+    from onbottom.cases.tables import SeabedTable
+
+    with pytest.raises(ValueError, match="unit_weight does not apply|d50 does not apply"):
+        SeabedTable(model=model, **keys)

@@ -15,19 +15,6 @@ ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
 MAX_LINES = 120
 NUMBA_DECORATORS = {"njit", "numba_njit", "jit"}
 
-PENDING = {
-    # Being split into stages on other branches at the same time; the lead empties this set on
-    # merge (an entry that is no longer long fails the test, so the set cannot go stale).
-    "dynamics/section.py::simulate_section",
-    "dynamics/storm_section.py::simulate_storm_section",
-    "reliability/dynamic.py::estimate_exceedance",
-    "reliability/estimators.py::estimate_failure_probability",
-    "reliability/run.py::run_reliability",
-    "study/stability_curves.py::_to_dataset",
-    "study/stability_curves.py::stability_curves",
-    "study/sweep.py::sweep",
-}
-
 
 def _decorator_name(node: ast.expr) -> str:
     if isinstance(node, ast.Call):
@@ -71,15 +58,10 @@ def _long_functions() -> dict[str, str]:
 
 
 def test_no_function_over_120_lines():
-    offenders = [where for key, where in _long_functions().items() if key not in PENDING]
+    offenders = [where for key, where in _long_functions().items()]
     assert not offenders, (
         f"functions over {MAX_LINES} lines (split them into named stages):\n" + "\n".join(offenders)
     )
-
-
-def test_pending_entries_are_still_long():
-    stale = sorted(PENDING - set(_long_functions()))
-    assert not stale, f"no longer over {MAX_LINES} lines: remove from PENDING: {stale}"
 
 
 def test_the_scan_measures_def_to_end_and_skips_kernels(tmp_path):

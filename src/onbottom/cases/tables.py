@@ -144,7 +144,7 @@ _SOIL_KEYS_NOT_USED = {
     model: tuple(
         k
         for k in ("submerged_unit_weight", "unit_weight", "undrained_shear_strength", "d50")
-        if k not in used
+        if k not in used.split(", ")
     )
     for model, used in _SOIL_KEYS_USED.items()
 }
