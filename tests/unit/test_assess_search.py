@@ -3,10 +3,10 @@ functions with a known answer: no storms, hand-checkable."""
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
-
-import json
 
 from onbottom.assess.dynamic import bisect_dynamic, search_dynamic
 from onbottom.status import Status
