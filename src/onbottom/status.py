@@ -11,8 +11,10 @@ not valid). The closed-form solves that iterate use the same enumeration: the F1
 (:func:`onbottom.soil.penetration_f114.solve_embedment`: :attr:`Status.CONVERGED` or
 :attr:`Status.NOT_CONVERGED`), the F109 design solve (:class:`onbottom.checks.design.DesignResult`:
 :attr:`Status.CONVERGED`, :attr:`Status.AT_BOUND`; :attr:`Status.NO_SOLUTION` in the stability
-evaluation's design table), the calibration (:class:`onbottom.calibration.fit.CalibrationResult`:
-``CONVERGED``, ``NOT_CONVERGED``, ``NO_SOLUTION``) and the LAMMPS run
+evaluation's design table), the dynamic design search of the route assessment
+(:func:`onbottom.assess.dynamic.search_dynamic`: the same three), the calibration
+(:class:`onbottom.calibration.fit.CalibrationResult`: ``CONVERGED``, ``NOT_CONVERGED``,
+``NO_SOLUTION``) and the LAMMPS run
 (:class:`onbottom.dem.lammps_run.LammpsResult`: :attr:`Status.END` or :attr:`Status.RAISED`).
 A result's ``success`` is ``status.success``.
 Table: docs/conventions.md, "Solver status". This is a base module (every package may import

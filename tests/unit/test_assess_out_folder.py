@@ -66,6 +66,30 @@ def test_assess_budget_estimate_counts_the_search():
     assert estimate(build_route(parse_route_case(doc)), workers=1) is None
 
 
+def test_assess_budget_counts_one_pipeline_fe_storm_per_section():
+    """Hand calculation of the pipeline cost model (dynamics.pipeline.storm_run.run_cost:
+    1 µs per node-step, 0.5 MB per node-hour): 200 m / 5 m → 41 nodes; a storm of
+    0.02 h + 0.1 h = 432 s at dt_max 0.1 s → 4320 steps, 41 × 4320 × 1e-6 = 0.17712 CPU-s and
+    0.5e6 × 41 × 0.12 h = 2.46 MB of kinematics; one worker."""
+    from onbottom.cases.assess import build_route, parse_route_case
+    from onbottom.cli.assess import estimate
+
+    doc = route_document(sections=3, seeds=2)
+    base = estimate(build_route(parse_route_case(doc)), workers=1)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"sections": "every", "length": 200.0, "element_length": 5.0}
+    every = estimate(build_route(parse_route_case(doc)), workers=1)
+    per_storm, kinematics = 41 * 4320 * 1.0e-6, 0.5e6 * 41 * 0.12
+    assert every.runs == base.runs + 3
+    assert every.wall_s == pytest.approx(base.wall_s + 3 * per_storm)
+    assert every.memory_bytes == pytest.approx(base.memory_bytes + kinematics + 3 * 2000)
+    assert "3 pipeline storms" in every.what
+    doc["pipeline"]["sections"] = "governing"  # the governing section's FE storm only
+    governing = estimate(build_route(parse_route_case(doc)), workers=1)
+    assert governing.runs == base.runs + 1
+    assert governing.wall_s == pytest.approx(base.wall_s + per_storm)
+
+
 def test_reliability_of_1e9_storms_is_a_budget_refusal(tmp_path, capsys):
     pytest.importorskip("openturns")
     pytest.importorskip("zarr")

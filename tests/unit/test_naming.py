@@ -1,10 +1,11 @@
 """One name per thing (docs/contributing.md, "Names of readers and builders"; docs/conventions.md,
 "One name per quantity"): the readers and builders of case files follow one rule, two classes
-never share the name ``PipelineSettings``, and ``soil/`` writes ``y`` for the lateral
-displacement (never ``u``)."""
+never share the name ``PipelineSettings`` (nor any other name), and ``soil/`` writes ``y`` for
+the lateral displacement (never ``u``)."""
 
 from __future__ import annotations
 
+import ast
 import importlib
 import inspect
 import io
@@ -75,6 +76,34 @@ def test_one_pipeline_settings_class():
         if re.search(r"^class PipelineSettings\b", p.read_text(encoding="utf-8"), re.M)
     ]
     assert defs == [str(Path("dynamics/pipeline/solver.py"))]
+
+
+# Pairs not yet renamed, each with why: the entry names the class and the one file whose
+# definition is to be renamed.
+_SHARED_CLASS_NAMES = {
+    ("DesignResult", "reliability/design.py"): "the response-based design's result, to be"
+    " renamed beside checks.design.DesignResult (the F109 design solve) once the reliability"
+    " package's concurrent rework is merged",
+}
+
+
+def test_no_class_name_is_defined_twice():
+    """Two classes of one name are a reader's trap (which ``DesignTable`` is this?): every
+    class name of ``src/onbottom`` (private ones included) is defined once, but for the
+    justified pairs of :data:`_SHARED_CLASS_NAMES`."""
+    src = Path(onbottom.__file__).parent
+    where: dict[str, list[str]] = {}
+    for path in sorted(src.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ClassDef):
+                where.setdefault(node.name, []).append(path.relative_to(src).as_posix())
+    allowed = {name for name, _ in _SHARED_CLASS_NAMES}
+    twice = {n: files for n, files in where.items() if len(files) > 1 and n not in allowed}
+    assert not twice, twice
+    for (name, path), reason in _SHARED_CLASS_NAMES.items():
+        assert reason and path in where.get(name, []), (name, path)
+        assert len(where[name]) == 2, (name, where[name])
 
 
 _DISPLACEMENT_U = {"u", "du", "u_new", "u_old", "u_path", "S_U"}

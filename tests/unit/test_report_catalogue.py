@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from onbottom.report.registry import Section, UnavailableSection, section_catalogue
+from onbottom.report.registry import ReportSection, UnavailableSection, section_catalogue
 
 
 def _build(ctx):  # pragma: no cover - never run
@@ -12,9 +12,13 @@ def _build(ctx):  # pragma: no cover - never run
 
 def test_available_means_imported_and_requirements_importable():
     secs = [
-        Section(name="plain", title="Plain", order=1, build=_build),
-        Section(name="needs", title="Needs", order=2, build=_build, requires=("no_such_mod",)),
-        Section(name="has", title="Has", order=3, build=_build, slow=True, requires=("json",)),
+        ReportSection(name="plain", title="Plain", order=1, build=_build),
+        ReportSection(
+            name="needs", title="Needs", order=2, build=_build, requires=("no_such_mod",)
+        ),
+        ReportSection(
+            name="has", title="Has", order=3, build=_build, slow=True, requires=("json",)
+        ),
         UnavailableSection(name="gone", title="gone", order=1000, reason="not in this build"),
     ]
     assert section_catalogue(secs) == [

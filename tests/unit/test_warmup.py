@@ -64,6 +64,16 @@ def test_storm_target_compiles_both_force_models():
         assert {(MODEL_COULOMB, FORCE_MORISON), (MODEL_COULOMB, FORCE_WAKE)} <= got, fn
 
 
+def test_fixed_pipe_target_compiles_the_report_kernel_for_both_force_models():
+    """The assess report's V–H figure (hydro.fixed_pipe) finds its kernel compiled."""
+    from onbottom.hydro import _fixed_pipe_kernel as K
+    from onbottom.hydro._force_dispatch import FORCE_MORISON, FORCE_WAKE
+
+    warm_kernels(["fixed-pipe"], processes=1)
+    assert {(FORCE_MORISON,), (FORCE_WAKE,)} <= _literal_firsts(K.fixed_pipe_record, 1)
+    assert warm_kernels(["fixed-pipe"], processes=1).compiled == 0
+
+
 def test_targets_cover_the_default_models():
     """Every seabed kind of a case file maps to a soil model a storm target compiles; the
     force models compiled include the defaults of storm and assess."""
@@ -72,7 +82,7 @@ def test_targets_cover_the_default_models():
     from onbottom.soil.registry import SEABED_MODELS, soil_model_entry
 
     names = {t.name for t in TARGETS}
-    assert set(STORM_SEABEDS) | set(PIPELINE_SEABEDS) | {"section"} == names
+    assert set(STORM_SEABEDS) | set(PIPELINE_SEABEDS) | {"section", "fixed-pipe"} == names
 
     def model_class(kind: str) -> type:
         return soil_model_entry(SEABED_MODELS[kind]).cls

@@ -21,6 +21,7 @@ from onbottom.assess import assess
 from onbottom.assess import dynamic as dyn
 from onbottom.assess.output import comparison, write_outputs
 from onbottom.cases.assess import build_route, parse_route_case
+from onbottom.status import Status
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from assess_cases import route_document
@@ -114,7 +115,7 @@ def test_bisection_against_dense_scan():
     i = int(np.flatnonzero(xs == first)[0])
     assert np.all(gs[i:] <= 1.0)  # monotone on the scan after the first pass
     b = dyn.bisect_dynamic(g, 0.0, 0.2, d.thickness_tolerance_m)
-    assert b["status"] == 0
+    assert b["status"] is Status.CONVERGED
     lo, hi = b["bracket"]
     assert hi - lo <= d.thickness_tolerance_m
     assert g(hi, False)[0] <= 1.0 < g(lo, False)[0]  # a crossing, passing side returned
@@ -129,7 +130,7 @@ def test_bisection_against_dense_scan():
     s = dyn.search_dynamic(
         trials, 0.0, 0.2, tol, known=[(0.04, float(gs[k0]))], guesses=[first + 2 * step]
     )
-    assert s["status"] == 0
+    assert s["status"] is Status.CONVERGED
     lo2, hi2 = s["bracket"]
     # a bracket is closed within tol·(1 + 1e-9) (round-off of the trial values)
     assert hi2 - lo2 <= tol * (1 + 1e-9) and s["value"] == hi2

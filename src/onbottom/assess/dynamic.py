@@ -51,6 +51,7 @@ from typing import Any
 import numpy as np
 
 from onbottom.dynamics.storm_setup import StormSetup
+from onbottom.status import Status
 
 __all__ = [
     "DynamicTrials",
@@ -157,8 +158,9 @@ def bisect_dynamic(
 ) -> dict[str, Any]:
     """Smallest x in [lo, hi] with ``evaluate(x)[0] <= 1`` by bisection (see the module).
 
-    Returns value (None when the upper bound fails), status (0 found, 1 the lower bound
-    passes, 2 none in range), bracket, trials [(x, g)], storms.
+    Returns value (None when the upper bound fails), status (a :class:`~onbottom.status.Status`:
+    ``CONVERGED`` found, ``AT_BOUND`` the lower bound passes, ``NO_SOLUTION`` none in range),
+    bracket, trials [(x, g)], storms.
     """
     trials: list[tuple[float, float]] = []
     storms = 0
@@ -171,10 +173,11 @@ def bisect_dynamic(
         return v
 
     if g(hi) > 1.0:
-        return {"value": None, "status": 2, "bracket": [lo, hi], "trials": trials,
-                "storms": storms, "message": f"the upper bound {hi:g} fails"}  # fmt: skip
+        return {"value": None, "status": Status.NO_SOLUTION, "bracket": [lo, hi],
+                "trials": trials, "storms": storms,
+                "message": f"the upper bound {hi:g} fails"}  # fmt: skip
     if g(lo) <= 1.0:
-        return {"value": lo, "status": 1, "bracket": [lo, lo], "trials": trials,
+        return {"value": lo, "status": Status.AT_BOUND, "bracket": [lo, lo], "trials": trials,
                 "storms": storms, "message": f"the lower bound {lo:g} already passes"}  # fmt: skip
     a, b = lo, hi
     while b - a > tol:
@@ -183,8 +186,8 @@ def bisect_dynamic(
             b = m
         else:
             a = m
-    return {"value": b, "status": 0, "bracket": [a, b], "trials": trials, "storms": storms,
-            "message": f"bisection to {tol:g}"}  # fmt: skip
+    return {"value": b, "status": Status.CONVERGED, "bracket": [a, b], "trials": trials,
+            "storms": storms, "message": f"bisection to {tol:g}"}  # fmt: skip
 
 
 def scan_dynamic(
@@ -291,7 +294,7 @@ class _Points:
         self.pts[x] = float(v)
         return float(v)
 
-    def result(self, value: float | None, status: int, bracket: list, message: str, **more):
+    def result(self, value: float | None, status: Status, bracket: list, message: str, **more):
         return {"value": value, "status": status, "bracket": bracket, "trials": self.trials,
                 "storms": self.storms, **more, "message": message}  # fmt: skip
 
@@ -381,7 +384,8 @@ def search_dynamic(
     above it (steps of ``tol``) must pass too — g is not monotone near a runaway (one seed can
     run away at a heavier design and not at a lighter one); where one fails the ascent goes on
     above it (``non_monotone`` lists those values). Returns the keys of
-    :func:`bisect_dynamic` (value, status 0/1/2, bracket, trials, storms, message).
+    :func:`bisect_dynamic` (value, status CONVERGED/AT_BOUND/NO_SOLUTION, bracket, trials,
+    storms, message).
 
     Stages: the points known → the passing end → the failing end → ascent and confirmation,
     repeated above a value that fails the confirmation.
@@ -393,12 +397,12 @@ def search_dynamic(
     failing = sorted(x for x, v in g.pts.items() if v > 1.0)
     b = _passing_end(g, lo, hi, guesses, failing)
     if b is None:
-        return g.result(None, 2, [lo, hi], f"the upper bound {hi:g} fails")
+        return g.result(None, Status.NO_SOLUTION, [lo, hi], f"the upper bound {hi:g} fails")
     below = [f for f in failing if f < b]
     a = max(below) if below else None
     if a is None:
         if g(lo) <= 1.0:
-            return g.result(lo, 1, [lo, lo], f"the lower bound {lo:g} already passes")
+            return g.result(lo, Status.AT_BOUND, [lo, lo], f"the lower bound {lo:g} already passes")
         a = lo
     above: list[float] = []  # failing designs found above a passing one (g not monotone)
     while True:
@@ -417,7 +421,7 @@ def search_dynamic(
                 f"no design in range passes with its next heavier step: {bad:g} fails above"
                 f" the passing {b:g}, and the upper bound {hi:g} fails"
             )
-            return g.result(None, 2, [bad, hi], msg, non_monotone=above)
+            return g.result(None, Status.NO_SOLUTION, [bad, hi], msg, non_monotone=above)
     note = (
         ""
         if not above
@@ -428,4 +432,4 @@ def search_dynamic(
         f"ascent to {tol:g} from below, confirmed by the next {confirm} step(s) above (failing"
         f" trials stop at their first seed above the allowable){note}"
     )
-    return g.result(b, 0, [a, b], msg, non_monotone=above)
+    return g.result(b, Status.CONVERGED, [a, b], msg, non_monotone=above)

@@ -68,6 +68,7 @@ __all__ = [
     "governing_storm",
     "pipeline_trial",
     "run_governing_pipeline",
+    "section_fe_nodes",
     "section_storm",
 ]
 
@@ -207,6 +208,23 @@ def _mesh_for(route: Route, sec: Any, gov: dict[str, Any], value: float | None) 
             f" ({type(sec.seabed).__name__}) has no friction_coefficient; give the length"
         )
     return fe_mesh(setup.pipe, mu, sec.water_depth, _peak_period(setup, sec, gov["combination"]))
+
+
+def section_fe_nodes(route: Route, sec: Any) -> int:
+    """FE nodes of section ``sec``'s pipeline run, for its cost estimate: the route's
+    ``[pipeline]`` line, or with ``mesh = "rule"`` the largest :func:`fe_mesh` over the
+    section's load combinations at the given design (the given line where the seabed has no
+    friction coefficient: the run itself then refuses the rule)."""
+    p = route.pipeline
+    given = round(p.length / p.element_length) + 1
+    mu = getattr(sec.seabed, "friction_coefficient", None)
+    if p.mesh != "rule" or mu is None or not sec.storms:
+        return given
+    meshes = [
+        fe_mesh(c.setup.pipe, mu, sec.water_depth, _peak_period(c.setup, sec, c.name))
+        for c in sec.storms
+    ]
+    return max(m["n_elements"] for m in meshes) + 1
 
 
 def pipeline_trial(

@@ -59,7 +59,7 @@ class ClimateTable(StrictModel):
     current: bool = Field(False, description="current speed from the hindcast's joint model")
 
 
-class DesignTable(StrictModel):
+class ReliabilityDesignTable(StrictModel):
     return_period: float = Field(100.0, ge=1.0, le=1.0e4, description="[years]")
     contour_points: int = Field(
         12, ge=8, le=360, description="IFORM contour points [-] (the contour needs >= 8)"
@@ -84,7 +84,7 @@ class ReliabilityTable(StrictModel):
     form_storms: int = Field(150, ge=10, le=10**5, description="pilot storms per iteration")
     climate: ClimateTable | None = None
     inputs: dict[str, float | dict[str, Any]] = Field(default_factory=dict)
-    design: DesignTable | None = None
+    design: ReliabilityDesignTable | None = None
 
 
 class ReliabilityCase(StrictModel):

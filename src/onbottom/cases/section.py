@@ -110,7 +110,7 @@ class PresetTable(StrictModel):
     )
 
 
-class PipeTable(StrictModel):
+class SectionPipeTable(StrictModel):
     """``[pipe]``: D [m], submerged weight [kN/m], optional mass [kg/m] and C_a [-]."""
 
     outer_diameter: _Pos = Field(description="outer diameter D [m]")
@@ -121,7 +121,7 @@ class PipeTable(StrictModel):
     )
 
 
-class SoilTable(StrictModel):
+class SectionSoilTable(StrictModel):
     """``[soil]``: model and its parameters (μ [-], γ' [kN/m³], A, B, C [-])."""
 
     model: str = Field(
@@ -150,7 +150,7 @@ class SoilTable(StrictModel):
         return collect_model_tables(data, set(cls.model_fields))
 
 
-class SolverTable(StrictModel):
+class SectionSolverTable(StrictModel):
     """``[solver]``: stop criterion and step control (all optional)."""
 
     displacement_limit: _Pos | None = Field(None, description="terminal displacement [m]")
@@ -228,10 +228,10 @@ class SectionCase(StrictModel):
     """Schema of an ``onbottom simulate`` case file (module docstring)."""
 
     preset: PresetTable | None = None
-    pipe: PipeTable | None = None
-    soil: SoilTable | None = None
+    pipe: SectionPipeTable | None = None
+    soil: SectionSoilTable | None = None
     programme: dict[str, Any] | None = None  # checked by kind in load_section_case
-    solver: SolverTable = SolverTable()
+    solver: SectionSolverTable = SectionSolverTable()
 
 
 @dataclass(frozen=True)

@@ -38,11 +38,50 @@ def _refuse_case_in_out(case: Path, out: Path) -> None:
         raise err
 
 
+def _pipeline_estimate(route: Any, *, workers: int | None) -> Any:
+    """The :class:`~onbottom.study.budget.Estimate` of the pipeline FE level: one complete FE
+    storm per section with ``[pipeline] sections = "every"``, else one (the governing
+    section's, costed at the dearest section), each by the pipeline cost model
+    (:func:`onbottom.dynamics.pipeline.storm_run.run_cost`: nodes × steps at the largest time
+    step, kinematics per node-hour); None without ``[levels] pipeline_fe``. The design raised
+    above a failing FE run adds trials stopped at the allowable, not counted."""
+    from onbottom.assess.pipeline import section_fe_nodes
+    from onbottom.dynamics.pipeline.storm_run import run_cost
+    from onbottom.study import budget
+
+    if not route.levels.pipeline_fe:
+        return None
+    costs = [
+        max(
+            (
+                run_cost(nodes, c.setup.storm, route.pipeline.duration, c.setup.settings.dt_max)
+                for c in sec.storms
+            ),
+            key=lambda c: c.cpu_s,
+        )
+        for sec in route.sections
+        if sec.storms
+        for nodes in [section_fe_nodes(route, sec)]
+    ]
+    if not costs:
+        return None
+    if route.pipeline.sections != "every":
+        costs = [max(costs, key=lambda c: c.cpu_s)]
+    return budget.pipeline_storms(
+        len(costs),
+        max(c.cpu_s for c in costs),
+        max(c.memory_bytes for c in costs),
+        workers=workers,
+    )
+
+
 def estimate(route: Any, *, workers: int | None) -> Any:
     """The :class:`~onbottom.study.budget.Estimate` of a route's dynamic level: per section
     and load combination, the seeds at the given design and, with a design variable, the
     search's trials (about 3 + log2(range / tolerance), as the curves' bisection), each
-    a storm of ``[dynamic]`` build-up + peak at its time step; None without the dynamic level."""
+    a storm of ``[dynamic]`` build-up + peak at its time step; plus the pipeline FE storms of
+    :func:`_pipeline_estimate` (:func:`onbottom.study.budget.combined`); None without the
+    dynamic level."""
     import math
 
     from onbottom.study import budget
@@ -65,9 +104,11 @@ def estimate(route: Any, *, workers: int | None) -> Any:
     n = len(setups) * d.seeds * (1 + trials)
     st = setups[0]
     tp = max((x.tp for c in setups for x in getattr(c.storm, "stages", ())), default=10.0)
-    return budget.section_storms(
+    est = budget.section_storms(
         n, float(st.storm.duration_s), st.settings.dt_max, tp=tp, workers=workers
     )
+    fe = _pipeline_estimate(route, workers=workers)
+    return est if fe is None else budget.combined(est, fe)
 
 
 def check_budget(route: Any, *, workers: int | None, force: bool) -> None:

@@ -193,12 +193,16 @@ CONTRACT: dict[str, Output] = {
             "route": "{name, sections, variable, allowable}",
             "summary": "one item per KP section",
             "sections": "everything per section: checks with details, levels, per-seed dynamic"
-            " results and the search trials (key bisection), notes, the section's stability"
-            " case document",
+            " results and the search trials (key bisection: its status a solver status,"
+            " docs/conventions.md: 6 a design found, 7 the lower bound already passes, -6 no"
+            " value in the range passes), notes, the section's stability case document; with"
+            ' [pipeline] sections = "every", the section\'s own pipeline FE check (key'
+            ' pipeline_fe: the keys of `pipeline`, and mesh with [pipeline] mesh = "rule")',
             "comparison": "per section: absolute and dynamic designs, which is heavier, why",
             "validity": "assumptions and reconstructed models",
             "clauses": "check name -> F109 clause and equation",
-            "pipeline": "pipeline FE run of the governing section ([levels] pipeline_fe):"
+            "pipeline": "pipeline FE run of the governing section ([levels] pipeline_fe; with"
+            ' [pipeline] sections = "every", the governing section\'s own check):'
             " section, combination, seed, design_value, max_displacement_m, max_strain,"
             " strain_limit, strain_check, envelopes {x, max_abs_y, max_strain, max_abs_moment};"
             " null when not run",
@@ -223,8 +227,9 @@ CONTRACT: dict[str, Output] = {
                 "dynamic_value": "dynamic minimum (every seed within the allowable), or null",
                 "dynamic_curves_value": "minimum from the tool's own curve sweeps ([levels]"
                 " dynamic_curves), or null (not run / not covered)",
-                "pipeline_fe_value": "the design passing the pipeline FE (governing section"
-                " only; null elsewhere, or where no design in range passes it)",
+                "pipeline_fe_value": "the design passing the pipeline FE (the governing"
+                ' section, or every section with [pipeline] sections = "every"; null elsewhere,'
+                " or where no design in range passes it)",
                 "governing_level": "the level of the design value (the lightest passing, raised"
                 " to the generalized one by the design floor; pipeline_fe where the pipeline FE"
                 " raised it)",

@@ -323,7 +323,7 @@ def prepare_sample(
     saved = _read_checkpoint(ck, identity) if ck is not None and ck.exists() else None
     rng = np.random.default_rng(config.seed)
     diam, layers, tops = _draw_layers(config, rng)
-    run = _Run(config, diam, identity, ck, int(checkpoint_every), progress, clock)
+    run = _Preparation(config, diam, identity, ck, int(checkpoint_every), progress, clock)
     first_layer = run.resume(saved, rng) if saved is not None else 0
     for li, ix in enumerate(layers):
         if li < first_layer:
@@ -378,7 +378,7 @@ def prepare_to_file(
     return sample
 
 
-class _Run:
+class _Preparation:
     """One preparation in progress: its configuration, derived steps, simulation and checkpoint.
 
     Holds what the stage functions share: the step sizes and sub-cycling of each stage
@@ -590,7 +590,7 @@ def _draw_layers(
     return diam, layers, tops
 
 
-def _generate_layer(run: _Run, diam: np.ndarray, rng: np.random.Generator) -> None:
+def _generate_layer(run: _Preparation, diam: np.ndarray, rng: np.random.Generator) -> None:
     """Stage 1, per layer: lay the loose disks ``diam`` [m] out above the current surface.
 
     On a jittered square lattice (:func:`_lattice`) or by random sequential addition
@@ -634,7 +634,9 @@ def _lid_pressure_cap(config: DEMConfig) -> float:
     )
 
 
-def _compact_layer(run: _Run, li: int, n_l: int, stop: float, rng: np.random.Generator) -> None:
+def _compact_layer(
+    run: _Preparation, li: int, n_l: int, stop: float, rng: np.random.Generator
+) -> None:
     """Stage 2, per layer: the lid compresses layer ``li`` down to ``stop`` [m], then it settles.
 
     Gravity off, friction ``prep_friction``. The lid moves at ``lid_speed`` and pauses when
@@ -692,7 +694,7 @@ def _compact_layer(run: _Run, li: int, n_l: int, stop: float, rng: np.random.Gen
     run.clock.reset()
 
 
-def _release_lid(run: _Run) -> None:
+def _release_lid(run: _Preparation) -> None:
     """Stage 3: the lid is removed and the design contact (μ, μ_r) restored.
 
     Records the compacted void ratio (under the lid) and the start of the 1 g stage; with
@@ -717,7 +719,7 @@ def _release_lid(run: _Run) -> None:
     run.sim.set_soil_contact(run.config.contacts.soil)
 
 
-def _settle_1g(run: _Run) -> None:
+def _settle_1g(run: _Preparation) -> None:
     """Stage 4: gravity 1 g, cycled to equilibrium (``Preparation.relaxation``, resumable).
 
     Records convergence, final ratio and void ratio at 1 g in ``stage_values``.
@@ -730,7 +732,7 @@ def _settle_1g(run: _Run) -> None:
     run.stage_values.update(ok1=float(ok1), r1=r1, e_1g=run.sim.to_sample().void_ratio())
 
 
-def _ramp_gravity(run: _Run) -> None:
+def _ramp_gravity(run: _Preparation) -> None:
     """Stage 5: gravity ramped linearly from 1 g to N g over ``Loading.gravity_ramp_time``.
 
     In chunks of about 200 steps (stretched with the inertial mass scaling); with
@@ -758,7 +760,7 @@ def _ramp_gravity(run: _Run) -> None:
         run.save_stage(run.stage)
 
 
-def _settle_ng(run: _Run) -> None:
+def _settle_ng(run: _Preparation) -> None:
     """Stage 6: gravity N g, cycled to equilibrium (resumable); records its convergence."""
     assert run.sim is not None
     run.sim.set_gravity(0.0, -run.n_g * GRAVITY)
@@ -768,7 +770,7 @@ def _settle_ng(run: _Run) -> None:
     run.stage_values.update(ok2=float(ok2), r2=r2)
 
 
-def _finish(run: _Run) -> Sample:
+def _finish(run: _Preparation) -> Sample:
     """Stage 7: the specimen at rest (velocities, spins and rotations zeroed), with attributes.
 
     Void ratio after each stage, convergence and final ratio of each equilibrium stage, the

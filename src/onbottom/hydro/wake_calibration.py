@@ -49,7 +49,7 @@ from onbottom.hydro.wake import WakeModel
 
 __all__ = [
     "FITTED_CONSTANTS",
-    "CalibrationResult",
+    "WakeCalibrationResult",
     "compare_with_tables",
     "drive_fixed_pipe",
     "fit_wake_model",
@@ -174,7 +174,7 @@ def regular_peak_coefficients(
 
 
 @dataclass(frozen=True)
-class CalibrationResult:
+class WakeCalibrationResult:
     """Model against table over a K*, M* grid (arrays indexed [M*, K*], like F109's tables).
 
     ``ratio_y``, ``ratio_z`` = C_model/C_table; ``rms_log`` = RMS of ln(ratio) over both
@@ -279,13 +279,13 @@ def compare_with_tables(
     *,
     n_cycles: int = 4,
     steps_per_cycle: int = 400,
-) -> CalibrationResult:
+) -> WakeCalibrationResult:
     """Run the regular protocol over the grid and compare with the tables [M*, K*]."""
     k, m, ty, tz, kk, mm = _grid(k_grid, m_grid, cy_target, cz_target)
     cy, cz = regular_peak_coefficients(
         model, kk, mm, n_cycles=n_cycles, steps_per_cycle=steps_per_cycle
     )
-    return CalibrationResult(model, k, m, cy, cz, ty, tz, n_cycles, steps_per_cycle)
+    return WakeCalibrationResult(model, k, m, cy, cz, ty, tz, n_cycles, steps_per_cycle)
 
 
 def fit_wake_model(
@@ -298,7 +298,7 @@ def fit_wake_model(
     free: tuple[str, ...] = FITTED_CONSTANTS,
     n_cycles: int = 4,
     steps_per_cycle: int = 400,
-) -> CalibrationResult:
+) -> WakeCalibrationResult:
     """Least-squares fit of the ``free`` constants of ``start`` to the tables.
 
     Residuals: ln(C_model/C_table) of every cell of both tables (equal weights; the log makes

@@ -33,7 +33,7 @@ from onbottom._version import __version__
 from onbottom.errors import InputError
 from onbottom.report.content import SectionContent, SectionContext
 from onbottom.report.registry import (
-    Section,
+    ReportSection,
     UnavailableSection,
     load_sections,
     missing_requirements,
@@ -174,7 +174,7 @@ class ReportResult:
 
 
 def _select(
-    sections: Sequence[Section | UnavailableSection], only: Iterable[str] | None
+    sections: Sequence[ReportSection | UnavailableSection], only: Iterable[str] | None
 ) -> set[str] | None:
     if only is None:
         return None
@@ -194,7 +194,7 @@ def _select(
     return wanted
 
 
-def _run(sec: Section, ctx: SectionContext) -> RenderedSection:
+def _run(sec: ReportSection, ctx: SectionContext) -> RenderedSection:
     rs = RenderedSection(name=sec.name, title=sec.title, order=sec.order, state="ok")
     t0 = time.perf_counter()
     try:
@@ -389,7 +389,7 @@ def build_report(
 
 
 def _section_outcome(
-    sec: Section | UnavailableSection,
+    sec: ReportSection | UnavailableSection,
     wanted: set[str] | None,
     fast: bool,
     out_dir: Path,

@@ -25,7 +25,7 @@ from onbottom.report.content import SectionContent, SectionContext
 __all__ = [
     "REGISTRY",
     "SECTION_MODULES",
-    "Section",
+    "ReportSection",
     "UnavailableSection",
     "load_sections",
     "missing_requirements",
@@ -50,7 +50,7 @@ end; the order on the page comes from each section's ``order``)."""
 
 
 @dataclass(frozen=True, slots=True)
-class Section:
+class ReportSection:
     """A registered section.
 
     Attributes
@@ -92,7 +92,7 @@ class UnavailableSection:
     requires: tuple[str, ...] = field(default=())
 
 
-REGISTRY: dict[str, Section] = {}
+REGISTRY: dict[str, ReportSection] = {}
 """Registered sections by name (filled by importing the section modules)."""
 
 
@@ -127,7 +127,7 @@ def section(
         old = REGISTRY.get(name)
         if old is not None and old.module != fn.__module__:
             raise InputError(f"name = {name!r} is invalid: already registered by {old.module}")
-        REGISTRY[name] = Section(
+        REGISTRY[name] = ReportSection(
             name=name,
             title=title,
             order=int(order),
@@ -141,7 +141,7 @@ def section(
     return register
 
 
-def missing_requirements(sec: Section) -> list[str]:
+def missing_requirements(sec: ReportSection) -> list[str]:
     """The modules in ``sec.requires`` that this build cannot import."""
     missing = []
     for mod in sec.requires:
@@ -156,14 +156,14 @@ def missing_requirements(sec: Section) -> list[str]:
 
 def load_sections(
     modules: Iterable[str] = SECTION_MODULES,
-) -> list[Section | UnavailableSection]:
+) -> list[ReportSection | UnavailableSection]:
     """Import the section modules; return every section, ordered by ``order`` then name.
 
     A module that fails with :class:`ModuleNotFoundError` (a part of onbottom or an optional
     package missing from this build) becomes an :class:`UnavailableSection` carrying the
     missing module's name. Any other import error is a bug and propagates.
     """
-    found: dict[str, Section | UnavailableSection] = {}
+    found: dict[str, ReportSection | UnavailableSection] = {}
     for i, mod in enumerate(modules):
         full = f"onbottom.report.sections.{mod}"
         try:
@@ -180,7 +180,7 @@ def load_sections(
 
 
 def section_catalogue(
-    sections: Iterable[Section | UnavailableSection] | None = None,
+    sections: Iterable[ReportSection | UnavailableSection] | None = None,
 ) -> list[dict[str, str | bool]]:
     """The report's sections as ``onbottom report --list`` shows them: ``name``, ``title``,
     ``slow`` and ``available`` (its module imported and every module it ``requires``
@@ -191,7 +191,7 @@ def section_catalogue(
             "name": s.name,
             "title": s.title,
             "slow": s.slow,
-            "available": isinstance(s, Section) and not missing_requirements(s),
+            "available": isinstance(s, ReportSection) and not missing_requirements(s),
         }
         for s in secs
     ]

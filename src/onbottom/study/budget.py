@@ -32,6 +32,7 @@ __all__ = [
     "BUDGET_WALL_HOURS",
     "Estimate",
     "check",
+    "combined",
     "curve_points",
     "pipeline_storms",
     "section_storms",
@@ -164,6 +165,18 @@ def pipeline_storms(
     wall = run_seconds * math.ceil(n_storms / w)
     mem = w * memory_bytes + n_storms * RESULT_BYTES_PER_RUN
     return Estimate(n_storms, wall, mem, w, f"{n_storms} pipeline storms")
+
+
+def combined(first: Estimate, then: Estimate) -> Estimate:
+    """Two parts of one run, one after the other on the same workers: runs, wall time and
+    memory add (a worker may hold both parts' data), the workers are the larger count."""
+    return Estimate(
+        first.runs + then.runs,
+        first.wall_s + then.wall_s,
+        first.memory_bytes + then.memory_bytes,
+        max(first.workers, then.workers),
+        f"{first.what} + {then.what}",
+    )
 
 
 def sweep_points(n_points: int, *, workers: int | None) -> Estimate:

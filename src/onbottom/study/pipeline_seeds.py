@@ -66,7 +66,7 @@ def estimate_pipeline_seeds(run: PipelineStormRun, seeds: int | None, workers: i
 
 
 @dataclass(frozen=True)
-class _SeedJob:
+class _PipelineSeedJob:
     """One seed of a pipeline run (picklable: the built run travels to the workers)."""
 
     run: PipelineStormRun
@@ -236,7 +236,7 @@ def run_pipeline_seeds(
     from onbottom.errors import RunInterrupted
 
     n = pipeline_seed_count(run, seeds)
-    job = _SeedJob(run, os.fspath(output), n, progress and n == 1, restart)
+    job = _PipelineSeedJob(run, os.fspath(output), n, progress and n == 1, restart)
     first = run.setup.storm.seed
     res = None
     try:

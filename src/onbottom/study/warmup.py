@@ -26,7 +26,10 @@ Targets (:data:`TARGETS`, one kernel group each):
     (the clay section of the embedded ``assess`` route), × Morison and wake;
 ``section``
     the centrifuge-section kernel (``reproduce``, ``simulate``, ``calibrate``) with Verley &
-    Sotberg.
+    Sotberg;
+``fixed-pipe``
+    the fixed-pipe load kernel of ``assess``'s design report (its V–H figure:
+    :func:`onbottom.hydro.fixed_pipe.fixed_pipe_envelope`) × Morison and wake.
 
 Targets run in worker processes, as many as there are cores (at most one per target); the
 compile of each specialisation holds a cross-process lock (:func:`onbottom._jit.call_literal`)
@@ -76,6 +79,7 @@ TARGETS: tuple[WarmupTarget, ...] = (
     WarmupTarget("storm-clay", "storm-section kernel: clay (Verley & Lund)", 4.2),
     WarmupTarget("storm-rock", "storm-section kernel: rock (Coulomb)", 3.2),
     WarmupTarget("section", "centrifuge-section kernel: Verley & Sotberg", 2.0),
+    WarmupTarget("fixed-pipe", "fixed-pipe load kernel of the assess report's V–H figure", 1.5),
 )
 """The warm-up's kernel groups, the longest compile first (worker processes take them in
 this order). Each storm-section group compiles the Morison and the wake force model."""
@@ -231,6 +235,20 @@ def _pipeline(kind: str) -> None:
         simulate_pipeline(model, kin, settings=PipelineSettings(record_interval=1.0))
 
 
+def _fixed_pipe() -> None:
+    """The fixed-pipe load kernel × Morison, wake (the V–H figure of ``assess``'s report)."""
+    from onbottom.hydro.fixed_pipe import fixed_pipe_envelope
+    from onbottom.hydro.storm_kinematics import storm_kinematics
+
+    pipe = _pipe()
+    kin = storm_kinematics(_storm(), _DEPTH, diameter=pipe.outer_diameter)
+    for fm in _force_models():
+        fixed_pipe_envelope(
+            fm, kin, diameter=pipe.outer_diameter, submerged_weight=pipe.submerged_weight,
+            density=pipe.seawater_density,
+        )  # fmt: skip
+
+
 def _section() -> None:
     """The centrifuge-section kernel, Verley & Sotberg (``reproduce``, ``simulate``)."""
     from onbottom.dynamics.centrifuge import run_centrifuge_test
@@ -242,6 +260,7 @@ _RUNS: dict[str, Callable[[], None]] = {
     **{name: partial(_pipeline, kind) for name, kind in PIPELINE_SEABEDS.items()},
     **{name: partial(_storm_section, kind) for name, kind in STORM_SEABEDS.items()},
     "section": _section,
+    "fixed-pipe": _fixed_pipe,
 }
 
 
