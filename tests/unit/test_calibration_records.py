@@ -164,3 +164,15 @@ def test_records_without_y_and_z_are_refused_by_column_name(tmp_path):
     )
     with pytest.raises(InputError, match="column 'y' is missing"):
         TestRecord(name="x", data=ds, diameter=1.0)
+
+
+def test_record_from_result_keeps_the_name_it_is_given():
+    """The record is named by ``name``, never by a variable it copies."""
+    import xarray as xr
+
+    from onbottom.calibration.records import record_from_result
+
+    t = np.linspace(0.0, 1.0, 3)
+    ds = xr.Dataset({c: ("time", np.zeros(3)) for c in ("y", "z", "H", "V")}, coords={"time": t})
+    rec = record_from_result(ds, name="Inclined 1", diameter=1.0, programme="Inclined 1")
+    assert rec.name == "Inclined 1"

@@ -570,9 +570,9 @@ def record_from_result(
     if not isinstance(ds, xr.Dataset):
         raise InputError("record_from_result: result must be an xarray.Dataset or have .data")
     keep = xr.Dataset(coords={"time": np.asarray(ds["time"].values, dtype=float)})
-    for name in ("y", "z", "H", "V"):
-        if name in ds.variables:
-            keep[name] = ("time", np.asarray(ds[name].values, dtype=float))
+    for var in ("y", "z", "H", "V"):
+        if var in ds.variables:
+            keep[var] = ("time", np.asarray(ds[var].values, dtype=float))
     attrs = ds.attrs
     if diameter is None:
         try:
