@@ -80,11 +80,7 @@ def test_one_pipeline_settings_class():
 
 # Pairs not yet renamed, each with why: the entry names the class and the one file whose
 # definition is to be renamed.
-_SHARED_CLASS_NAMES = {
-    ("DesignResult", "reliability/design.py"): "the response-based design's result, to be"
-    " renamed beside checks.design.DesignResult (the F109 design solve) once the reliability"
-    " package's concurrent rework is merged",
-}
+_SHARED_CLASS_NAMES: dict[tuple[str, str], str] = {}
 
 
 def test_no_class_name_is_defined_twice():

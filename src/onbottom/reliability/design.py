@@ -33,11 +33,11 @@ import numpy as np
 from onbottom._validate import in_range, integer
 from onbottom.reliability.campaign import Campaign
 
-__all__ = ["DesignResult", "response_based_design"]
+__all__ = ["ResponseDesignResult", "response_based_design"]
 
 
 @dataclass(frozen=True)
-class DesignResult:
+class ResponseDesignResult:
     """Result of :func:`response_based_design` (displacements in m)."""
 
     return_period: float
@@ -84,7 +84,7 @@ def response_based_design(
     fractile: float = 0.9,
     upper_fraction: float = 0.6,
     current_given_hs: Callable[[float], float] | None = None,
-) -> DesignResult:
+) -> ResponseDesignResult:
     """Steps 1–4 of the module docstring.
 
     Parameters
@@ -147,7 +147,7 @@ def response_based_design(
     gov = max(top, key=lambda p: np.nan_to_num(p["fractile"], nan=-1.0))
     hs_f, tp_f = f109_sea_state
     y_f = run(float(hs_f), float(tp_f), n2)
-    return DesignResult(
+    return ResponseDesignResult(
         return_period=float(return_period),
         fractile=float(fractile),
         points=points,

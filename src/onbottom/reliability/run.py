@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from onbottom.reliability.campaign import Campaign, CampaignStats
-from onbottom.reliability.design import DesignResult, response_based_design
+from onbottom.reliability.design import ResponseDesignResult, response_based_design
 from onbottom.reliability.dynamic import ExceedanceEstimate, estimate_exceedance
 from onbottom.reliability.setup import ReliabilitySetup
 from onbottom.reliability.storm_model import StormModel
@@ -63,7 +63,7 @@ class ReliabilityRun:
     """What :func:`run_reliability` found."""
 
     estimates: list[ExceedanceEstimate]
-    design: DesignResult | None
+    design: ResponseDesignResult | None
     storms_per_year: float
     diameter: float
     inputs: list[str]
