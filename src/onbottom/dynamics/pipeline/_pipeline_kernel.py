@@ -294,7 +294,10 @@ def evaluate(
             for k in range(ab.shape[1]):
                 ab[j, k] = 0.0
     # internal forces (assembled as +f_int into p, then negated)
-    assemble_internal(d1, props, p, ab, want_k, fe, ke, mom, nax)
+    assemble_internal(
+        borrow(d1), borrow(props), borrow(p), borrow(ab), want_k, borrow(fe), borrow(ke),
+        borrow(mom), borrow(nax),
+    )  # fmt: skip
     for j in range(ndof):
         p[j] = -p[j] - spring[j] * d1[j]
         if want_k:
@@ -409,7 +412,10 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
             ab[j, k] = 0.0
     # np.bool_(True), not the literal True: numba compiles a separate specialisation of the
     # callee for each literal argument (first-run compile cost)
-    assemble_internal(d1, props, scratch, ab, np.bool_(True), fe, ke, mom, nax)
+    assemble_internal(
+        borrow(d1), borrow(props), borrow(scratch), borrow(ab), np.bool_(True), borrow(fe),
+        borrow(ke), borrow(mom), borrow(nax),
+    )  # fmt: skip
     for j in range(ndof):
         ab[j, 0] += spring[j]
     for i in range(kt_u.shape[0]):
@@ -579,8 +585,10 @@ def integrate(
             if n_rec >= cap:
                 return n_rec, STATUS_CHUNK
             _record(
-                settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, n_rec, mom, nax
-            )
+                borrow(settings), borrow(props), borrow(nodes), borrow(vec), borrow(sstate),
+                borrow(node_r), borrow(node_f), borrow(vcont), borrow(rec), n_rec, borrow(mom),
+                borrow(nax),
+            )  # fmt: skip
             rec_t[n_rec] = t
             n_rec += 1
             scal[SC_K_OUT] = k_out + 1
@@ -599,9 +607,12 @@ def integrate(
             dt = limit_t - t
             clipped = True
         t1 = t + dt
-        kinematics_at(t1, kin_u, kin_a, t0k, dtk, k0k, ntk, uk, ak)
-        node_loads(force_id, settings, nodes, sstate, fparams, fstate, t1, uk, ak, v0, vcont, ry,
-                   fscr, fout)  # fmt: skip
+        kinematics_at(t1, borrow(kin_u), borrow(kin_a), t0k, dtk, k0k, ntk, borrow(uk), borrow(ak))
+        node_loads(
+            force_id, borrow(settings), borrow(nodes), borrow(sstate), borrow(fparams),
+            borrow(fstate), t1, borrow(uk), borrow(ak), borrow(v0), borrow(vcont), borrow(ry),
+            borrow(fscr), borrow(fout),
+        )  # fmt: skip
         c_a = 1.0 / (beta * dt * dt)
         c_v = gam / (beta * dt)
         for j in range(ndof):
@@ -623,14 +634,18 @@ def integrate(
             want_k = it == 0
             ok = evaluate(
                 soil_id, force_id,
-                settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst,
-                fparams, fstate, t1, d1, v1, uk, ak, vcont, ry, c_v, want_k,
-                p1, fh1, fs1, ab, trial, ftrial, node_r, node_f, node_fa, fe, ke, out, fout,
-                mom, nax, kt_u, kt_v,
+                borrow(settings), borrow(props), borrow(nodes), borrow(fixed), borrow(spring),
+                borrow(model_ids), borrow(sparams), borrow(sstate), borrow(axst),
+                borrow(fparams), borrow(fstate), t1, borrow(d1), borrow(v1), borrow(uk),
+                borrow(ak), borrow(vcont), borrow(ry), c_v, want_k,
+                borrow(p1), borrow(fh1), borrow(fs1), borrow(ab), borrow(trial), borrow(ftrial),
+                borrow(node_r), borrow(node_f), borrow(node_fa), borrow(fe), borrow(ke),
+                borrow(out), borrow(fout), borrow(mom), borrow(nax), borrow(kt_u), borrow(kt_v),
             )  # fmt: skip
             if not ok:
                 return n_rec, STATUS_SOIL_NAN
-            add_user_load(settings, uload, nodes, t1, p1, fh1)
+            add_user_load(borrow(settings), borrow(uload), borrow(nodes), t1, borrow(p1),
+                          borrow(fh1))  # fmt: skip
             # res holds −r (the Newton right-hand side; −0.0 on fixed DOFs, as −(0.0))
             rmax = 0.0
             for j in range(ndof):
@@ -663,7 +678,11 @@ def integrate(
                 refactor = math.log(tol / rmax) / math.log(rmax / r_prev) > REFACTOR_ITERS
             if refactor:
                 if not want_k:
-                    assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch)
+                    assemble_tangent(
+                        borrow(d1), borrow(props), borrow(spring), borrow(ab), borrow(fe),
+                        borrow(ke), borrow(mom), borrow(nax), borrow(kt_u), borrow(kt_v),
+                        borrow(scratch),
+                    )  # fmt: skip
                 # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
                 for j in range(ndof):
                     for k in range(HALF_BAND + 1):
@@ -676,12 +695,12 @@ def integrate(
                             if j + k < ndof:
                                 ab[j + k, k] = 0.0
                         ab[j, 0] = 1.0
-                neg = ldl_factor(ab)
+                neg = ldl_factor(borrow(ab))
                 scal[SC_N_FACTOR] += 1.0
                 if neg < 0:
                     return n_rec, STATUS_SINGULAR
             r_prev = rmax
-            ldl_solve(ab, res)
+            ldl_solve(borrow(ab), borrow(res))
             cmax = 0.0  # largest translational correction (u, v; not θ)
             for i in range(n_nodes):
                 cu = abs(res[NDOF_NODE * i])
@@ -751,7 +770,10 @@ def integrate(
                 scal[SC_DT] = min(dt * growth, dt_max)
             else:
                 scal[SC_DT] = dt
-        vmax = _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax)
+        vmax = _envelope(
+            borrow(settings), borrow(props), borrow(nodes), borrow(vec), borrow(sstate),
+            borrow(vcont), borrow(env), borrow(mom), borrow(nax),
+        )  # fmt: skip
         if vmax >= v_limit and math.isnan(scal[SC_T_LIMIT]):
             scal[SC_T_LIMIT] = t1
             if settings[ST_STOP_AT_LIMIT] != 0.0:
