@@ -10,8 +10,9 @@ importing it). A model whose kernel is missing from the dispatch fails
 Rules checked: 1 (deterministic), 2 (``state_old`` read only, every ``out`` slot written), 3
 (a zero state is valid), 4 (finite in, finite out; the Newton tangents ∂F/∂ẏ against central
 differences; ∂F_Y/∂ẏ <= 0), 5 (mirror symmetry from the zero state), 6 (the plain-Python twin
-equal to the kernel on a random record), NaN in gives a non-finite force (the step fails), and a
-case file naming the model through ``onbottom storm``.
+equal to the kernel on a random record), 7 (the optional two-stage form: bit for bit the
+kernel's state and outputs at several ẏ, or a no-op for a model without it), NaN in gives a
+non-finite force (the step fails), and a case file naming the model through ``onbottom storm``.
 """
 
 from __future__ import annotations
@@ -28,13 +29,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import recipe_models  # noqa: F401  (a model registered outside the package: it runs the suite too)
 from onbottom._jit import pure_python
 from onbottom.cli.main import cli
-from onbottom.hydro._force_dispatch import _KERNELS
+from onbottom.hydro._force_dispatch import _EVALUATE, _KERNELS, _PREPARE
 from onbottom.hydro.kernel_contract import (
     FO_DFY_DYD,
     FO_DFZ_DYD,
     FO_FY,
     FO_FZ,
     FO_SIZE,
+    N_FORCE_PREP,
     N_FORCE_STATE,
 )
 from onbottom.hydro.registry import FORCE_REGISTRY, build_force_model
@@ -164,3 +166,29 @@ def test_case_file_round_trip(name, tmp_path):
         assert ds.attrs["run_status"] == "complete"
         assert np.all(np.isfinite(ds["y"].values))
         assert ds.attrs["force_model"] == _model(name).name
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_two_stage_form_or_no_op(name):
+    """Rule 7: a model with the two-stage form gives the kernel's state and outputs, bit for
+    bit, from one prepare per step and one evaluation per ẏ; one without it returns False and
+    touches nothing (the solver then calls the kernel)."""
+    model_id = _model(name).model_id
+    assert model_id in _PREPARE and model_id in _EVALUATE
+    prepare, evaluate, kernel = _PREPARE[model_id], _EVALUATE[model_id], _kernel(name)
+    p, (t, u, a, yd) = _params(name), _record(2, n=200)
+    state = np.zeros(N_FORCE_STATE)
+    s_new, s_one = np.full(N_FORCE_STATE, -7.0), np.zeros(N_FORCE_STATE)
+    prep = np.full(N_FORCE_PREP, -7.0)
+    out, one = np.zeros(FO_SIZE), np.zeros(FO_SIZE)
+    for i in range(t.size):
+        prepared = prepare(p, state, t[i], u[i], a[i], 0.3, D, RHO, s_new, prep)
+        if not prepared:
+            assert np.all(s_new == -7.0) and np.all(prep == -7.0)  # a no-op
+            return
+        for v in (yd[i], yd[i] + 0.2, -0.4):
+            kernel(p, state, t[i], u[i], a[i], 0.3, v, D, RHO, s_one, one)
+            evaluate(p, prep, u[i], 0.3, v, D, RHO, out)
+            assert np.array_equal(out, one), (name, i, v)
+        assert np.array_equal(s_new, s_one), (name, i)
+        state = s_one.copy()

@@ -197,3 +197,40 @@ def test_example_cases_match_the_results_before_the_force_contract():
         # tolerance (p_ymax by 1.8e-9 m = 1e-7 relative); the step count is unchanged
         rel = 1e-6 if key in ("p_ymax", "p_work_hydro", "p_strain") else 1e-8
         assert got[key] == pytest.approx(value, rel=rel), key
+
+
+@pytest.mark.parametrize("lift_relative", [False, True])
+def test_section_two_stage_wake_equals_one_call_bit_for_bit(monkeypatch, lift_relative):
+    """The storm section prepares the wake model once per trial step (contract rule 7) and
+    evaluates it per Newton iterate; with the prepare stage off (every evaluation the one-call
+    kernel, as before) the records are the same bit for bit, rejected steps included."""
+    from onbottom.hydro.wake import WakeModel
+
+    for name in ("forces", "solve_step", "initial", "integrate", "prepare_forces"):
+        monkeypatch.setattr(SK, name, getattr(SK, name).py_func)
+    t = np.arange(0.0, 30.0 + 1e-9, 0.1)
+    u = 1.8 * np.sin(2 * np.pi * t / 8.0) * np.minimum(t / 8.0, 1.0)
+    kin = StormKinematics(
+        sample_interval=0.1, velocity=u, acceleration=np.gradient(u, 0.1), current=0.2,
+        duration=30.0, weights=np.ones((1, t.size)),
+        stage_parameters=[{"significant_velocity": 1.8, "mean_period": 8.0}],
+    )  # fmt: skip
+
+    def run():
+        return simulate_storm_section(
+            Pipe(outer_diameter=0.4, submerged_weight=300.0),
+            CoulombFriction(friction_coefficient=0.4),
+            kin,
+            force_model=WakeModel(lift_relative_velocity=lift_relative),
+            settings=StormSolverSettings(
+                dt_max=0.2, max_displacement_increment_over_d=0.005, record_interval=0.1
+            ),
+        )
+
+    two_stage = run()
+    monkeypatch.setattr(SK, "prepare_forces", lambda *args: False)
+    one_call = run()
+    assert two_stage.success and two_stage.summary["n_rejected"] > 0
+    for v in two_stage.data.data_vars:
+        np.testing.assert_array_equal(two_stage.data[v].values, one_call.data[v].values)
+    assert two_stage.summary == one_call.summary

@@ -249,3 +249,33 @@ def test_fit_recovers_known_constants():
     assert fit.model.lift_excess == pytest.approx(2.2, rel=1e-4)
     assert fit.model.drag_relaxation == pytest.approx(8.0, rel=1e-4)
     assert fit.rms_log < 1e-8
+
+
+@pytest.mark.parametrize("lift_relative", [False, True])
+def test_two_stage_form_equals_one_call_bit_for_bit(lift_relative):
+    """Contract rule 7: wake_prepare once per step, then wake_evaluate at several ẏ, gives the
+    state and the outputs of wake_kernel at each ẏ bit for bit; the twins' two stages equal
+    the kernel to round-off."""
+    from onbottom.hydro._force_contract import N_FORCE_PREP
+    from onbottom.hydro._wake_twin import wake_evaluate_py, wake_prepare_py
+
+    m = WakeModel(lift_relative_velocity=lift_relative)
+    p = m.parameters()
+    t, u, dudt, vc, ydot = _record(4, n=800)
+    _, states = _run(wk.wake_kernel, p, t, u, dudt, vc, ydot)
+    assert states[-1, wk.S_N_REVERSALS] >= 10
+    prep, prep_py = np.zeros(N_FORCE_PREP), np.zeros(N_FORCE_PREP)
+    s1, s2, s3 = (np.zeros(N_FORCE_STATE) for _ in range(3))
+    o1, o2, o3 = (np.zeros(FO_SIZE) for _ in range(3))
+    for i in range(1, t.size):
+        s_old = states[i - 1]
+        assert wk.wake_prepare(p, s_old, t[i], u[i], dudt[i], vc[i], D, RHO, s2, prep)
+        wake_prepare_py(p, s_old, t[i], u[i], dudt[i], vc[i], D, RHO, s3, prep_py)
+        for yd in (ydot[i], ydot[i] + 0.3, -0.7):
+            wk.wake_kernel(p, s_old, t[i], u[i], dudt[i], vc[i], yd, D, RHO, s1, o1)
+            wk.wake_evaluate(p, prep, u[i], vc[i], yd, D, RHO, o2)
+            wake_evaluate_py(p, prep_py, u[i], vc[i], yd, D, RHO, o3)
+            assert np.array_equal(o1, o2)
+            np.testing.assert_allclose(o3, o1, rtol=1e-12, atol=1e-9)
+        assert np.array_equal(s1, s2)
+        np.testing.assert_allclose(s3, s1, rtol=1e-12, atol=1e-12)

@@ -34,7 +34,10 @@ kernels return zero resistance) or the run stops (``LIFTOFF_STOP``); |y| >= y_li
 
 Force-model state: ``fstate`` (``N_FORCE_STATE`` slots, zeros at the start) is committed with
 the soil state when a step is accepted, from the force evaluation at the accepted (t₁, ẏ₁); the
-Newton iterations and rejected steps evaluate the model from the committed state only.
+Newton iterations and rejected steps evaluate the model from the committed state only. A model
+with the optional two-stage form (rule 7 of :mod:`onbottom.hydro._force_dispatch`: the wake
+model) is prepared once per trial step (its history and ``exp`` terms, which do not depend on
+ẏ) and evaluated per iterate from that, bit for bit the one-call kernel's values.
 
 Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
 ``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``fparams[nc, n_params]`` (the force model's
@@ -58,9 +61,12 @@ from onbottom.hydro.kernel_contract import (
     FO_FY,
     FO_FZ,
     FO_SIZE,
+    N_FORCE_PREP,
     penetration_reduction_y,
     penetration_reduction_z,
 )
+from onbottom.hydro.kernel_contract import force_evaluate_of as force_evaluate
+from onbottom.hydro.kernel_contract import force_prepare_of as force_prepare
 from onbottom.hydro.kernel_contract import force_step_of as force_step
 from onbottom.soil.base import (
     OUT_FRICTION,
@@ -223,12 +229,25 @@ def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout)
 
 
 @njit(cache=True)
+def prepare_forces(force_id, settings, prow, fstate, t, u, dudt, fstate_new, fprep):
+    """The force model's once-per-step stage at the trial step end t (contract rule 7 of
+    :mod:`onbottom.hydro._force_dispatch`): writes ``fstate_new`` and ``fprep``; False when the
+    model has none (then every evaluation calls :func:`forces`)."""
+    return force_prepare(
+        force_id, prow, fstate, t, u, dudt, settings[ST_CURRENT], settings[ST_D],
+        settings[ST_RHO], fstate_new, fprep,
+    )  # fmt: skip
+
+
+@njit(cache=True)
 def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0,
-               dt, ry, rz, trial, out, fs_new, fout):  # fmt: skip
+               dt, ry, rz, trial, out, fs_new, fout, prepared, fprep):  # fmt: skip
     """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
 
     ``prow``, ``fs``: the force parameters of the step and the committed force state;
     ``fs_new``, ``fout`` scratch of the force model (as ``trial``, ``out`` of the soil model);
+    ``prepared``: :func:`prepare_forces` has filled ``fs_new`` and ``fprep`` for this step, so
+    each iterate calls only the model's per-iterate stage (bit for bit :func:`forces`);
     ``ry``, ``rz`` the load reductions of the step (from the committed penetration). Each
     iterate evaluates the force model, then the soil under V = w_s − r_z F_Z (the force and
     soil calls are written out here, not wrapped, to keep the hot loop's calls few).
@@ -239,6 +258,9 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
     rtol = settings[ST_RTOL]
     ws = settings[ST_WS]
     max_iter = int(settings[ST_MAX_ITER])
+    vc = settings[ST_CURRENT]
+    d = settings[ST_D]
+    rho = settings[ST_RHO]
     c0 = m / (beta * dt * dt)
     cv = gam / (beta * dt)
     dy_hat = dt * yd0 + dt * dt * (0.5 - beta) * a0
@@ -254,7 +276,10 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
     eps = 4.0e-16 * (abs(y0) + abs(dy_hat) + 1e-12)
     for it in range(max_iter):
         yd1 = yd_base + cv * (dy - dy_hat)
-        forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+        if prepared:
+            force_evaluate(force_id, prow, fprep, u1, vc, yd1, d, rho, fout)
+        else:
+            forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
         fy = ry * fout[FO_FY]
         dfdyd = ry * fout[FO_DFY_DYD]
         lateral_step(
@@ -274,7 +299,10 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
             return dy, True, it + 1
         if abs(dy_next - dy) <= eps:
             yd1 = yd_base + cv * (dy_next - dy_hat)
-            forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
+            if prepared:
+                force_evaluate(force_id, prow, fprep, u1, vc, yd1, d, rho, fout)
+            else:
+                forces(force_id, settings, prow, fs, t1, u1, a1dot, yd1, fs_new, fout)
             lateral_step(
                 model_id, borrow(params), borrow(state), y0 + dy_next, ws - rz * fout[FO_FZ],
                 borrow(trial), borrow(out),
@@ -384,6 +412,7 @@ def integrate(
     out = np.empty(OUT_SIZE)
     fs_new = np.zeros_like(fstate)
     fout = np.empty(FO_SIZE)
+    fprep = np.zeros(N_FORCE_PREP)
     n = n0
     while True:
         t = dyn[D_T]
@@ -403,10 +432,14 @@ def integrate(
         u1, a1dot, j = flow_at(t1, kin_u, kin_a, dts)
         prow = parameter_row(fparams, j)
         ry, rz = load_reductions(settings, state[S_Z])
+        prepared = prepare_forces(
+            force_id, borrow(settings), prow, borrow(fstate), t1, u1, a1dot, borrow(fs_new),
+            borrow(fprep),
+        )  # fmt: skip
         dy, conv, iters = solve_step(
             model_id, force_id, borrow(params), borrow(state), borrow(settings), prow,
             borrow(fstate), t1, u1, a1dot, y0, yd0, a0, dt, ry, rz, borrow(trial), borrow(out),
-            borrow(fs_new), borrow(fout),
+            borrow(fs_new), borrow(fout), prepared, borrow(fprep),
         )  # fmt: skip
         dyn[D_N_ITER] += iters
         if not math.isfinite(out[OUT_R]):
@@ -426,7 +459,14 @@ def integrate(
         a1 = (dy - dy_hat) / (beta * dt * dt)
         yd1 = yd0 + dt * ((1.0 - gam) * a0 + gam * a1)
         # the force model at the accepted (t₁, ẏ₁): its loads and the force state to commit
-        forces(force_id, settings, prow, fstate, t1, u1, a1dot, yd1, fs_new, fout)
+        # (with a prepared model, fs_new already holds that state: it does not depend on ẏ)
+        if prepared:
+            force_evaluate(
+                force_id, prow, fprep, u1, settings[ST_CURRENT], yd1, settings[ST_D],
+                settings[ST_RHO], fout,
+            )  # fmt: skip
+        else:
+            forces(force_id, settings, prow, fstate, t1, u1, a1dot, yd1, fs_new, fout)
         fy = ry * fout[FO_FY]
         fz = rz * fout[FO_FZ]
         v = settings[ST_WS] - fz

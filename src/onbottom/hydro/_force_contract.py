@@ -23,3 +23,6 @@ FO_SIZE = 4
 
 N_FORCE_STATE = 16
 """Length of a force model's state vector (zeros at the start of a run)."""
+
+N_FORCE_PREP = 8
+"""Length of the scratch ``prep`` of a model's once-per-step stage (``force_prepare``)."""

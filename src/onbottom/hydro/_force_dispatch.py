@@ -45,6 +45,24 @@ reduction factor.
    F_Y → −F_Y and F_Z unchanged.
 6. The kernel has a plain-Python twin with the same arithmetic, tested to round-off, and
    tests of rules 2–5 (``tests/unit/test_force_kernels.py``).
+7. Optional two-stage form, for a model whose state update and most of its arithmetic do not
+   depend on ``ydot`` (the wake model's history and its ``exp`` terms). A solver that
+   evaluates one trial step at several ``ydot`` (its Newton iterations and the commit) may
+   call, once per trial step (each new ``t`` or ``state_old``, a halved step included),
+   ``prepared = force_prepare(model_id, params, state_old, t, u, dudt, vc, d, rho, state_new,
+   prep)`` and then, per ``ydot``, ``force_evaluate(model_id, params, prep, u, vc, ydot, d,
+   rho, out)`` in place of the kernel; ``prep`` is a scratch of
+   :data:`~onbottom.hydro._force_contract.N_FORCE_PREP` float64 slots owned by the solver.
+   ``force_prepare`` writes ``state_new`` as the kernel would (it does not depend on
+   ``ydot``) and returns True; ``force_evaluate`` writes ``out`` only and gives **bit for
+   bit** the kernel's ``out`` (same operations in the same order). A model without this
+   form returns False from ``force_prepare`` (a no-op) and the solver calls the kernel
+   per evaluation, as before; the one-call kernel stays valid for every model (the pipeline
+   FE uses it). Models with the two-stage form: the wake model
+   (:func:`~onbottom.hydro._wake_kernel.wake_prepare`,
+   :func:`~onbottom.hydro._wake_kernel.wake_evaluate`); registered models use the one-call
+   form. Tested: ``tests/unit/test_force_kernels.py`` (two-stage = one-call, bitwise, and
+   the twin) and ``tests/conformance/test_force_models.py``.
 
 What the solver does, not the kernel: the added mass on the pipe's own acceleration
 (ρ_w π D²/4 · ``added_mass_coefficient``, on the mass side); the DNV-RP-F109 reductions
@@ -67,7 +85,7 @@ from onbottom._jit import literal_dispatch, njit, registered_kernel_id
 from onbottom.hydro._force_contract import FO_SIZE
 from onbottom.hydro._fourier_kernel import fourier_kernel
 from onbottom.hydro._morison_kernel import morison_kernel
-from onbottom.hydro._wake_kernel import wake_kernel
+from onbottom.hydro._wake_kernel import wake_evaluate, wake_kernel, wake_prepare
 
 FORCE_MORISON = 0
 FORCE_WAKE = 1  # hydro/_wake_kernel.py, hydro/wake.py
@@ -116,6 +134,56 @@ def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, sta
 literal_dispatch(force_step_of, _KERNELS, force_step)
 
 
+@njit(cache=True)
+def no_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
+    """The once-per-step stage of a model without one (rule 7): nothing; returns False."""
+    return False
+
+
+@njit(cache=True)
+def no_evaluate(params, prep, u, vc, ydot, d, rho, out):
+    """The per-iterate stage of a model without one (never called: rule 7): NaN forces."""
+    for i in range(FO_SIZE):
+        out[i] = np.nan
+
+
+@njit(cache=True)
+def force_prepare(model_id, params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
+    """Once-per-step stage of force model ``model_id`` (rule 7); False when it has none."""
+    if model_id == FORCE_WAKE:
+        return wake_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep)
+    return False
+
+
+@njit(cache=True)
+def force_evaluate(model_id, params, prep, u, vc, ydot, d, rho, out):
+    """Per-iterate stage of force model ``model_id`` after :func:`force_prepare` (rule 7)."""
+    if model_id == FORCE_WAKE:
+        wake_evaluate(params, prep, u, vc, ydot, d, rho, out)
+    else:
+        no_evaluate(params, prep, u, vc, ydot, d, rho, out)
+
+
+_PREPARE = {FORCE_MORISON: no_prepare, FORCE_WAKE: wake_prepare, FORCE_FOURIER: no_prepare}
+_EVALUATE = {FORCE_MORISON: no_evaluate, FORCE_WAKE: wake_evaluate, FORCE_FOURIER: no_evaluate}
+
+
+def force_prepare_of(model_id, params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
+    """:func:`force_prepare` compiling only the stage of a literal ``model_id`` (as
+    :func:`force_step_of`); in plain Python too (False for a model without the stage)."""
+    stage = _PREPARE.get(model_id, no_prepare)
+    return stage(params, state_old, t, u, dudt, vc, d, rho, state_new, prep)
+
+
+def force_evaluate_of(model_id, params, prep, u, vc, ydot, d, rho, out):
+    """:func:`force_evaluate` compiling only the stage of a literal ``model_id``."""
+    _EVALUATE.get(model_id, no_evaluate)(params, prep, u, vc, ydot, d, rho, out)
+
+
+literal_dispatch(force_prepare_of, _PREPARE, force_prepare)
+literal_dispatch(force_evaluate_of, _EVALUATE, force_evaluate)
+
+
 FIRST_REGISTERED_ID = 1000
 """Force-model ids from here up belong to kernels added by :func:`register_force_kernel`."""
 
@@ -131,4 +199,6 @@ def register_force_kernel(kernel) -> int:
     """
     model_id = registered_kernel_id(kernel, FIRST_REGISTERED_ID)
     _KERNELS[model_id] = kernel
+    _PREPARE[model_id] = no_prepare  # the one-call form (rule 7)
+    _EVALUATE[model_id] = no_evaluate
     return model_id

@@ -110,6 +110,18 @@ S_STRENGTH = 15
 """Strength g of the last event: 1 for a reversal, g(r) for a slack, 0 before any [-]."""
 N_USED_STATE = 16
 
+PR_Q = 0
+"""q = U + V at the step end [m/s] (slots of ``prep``, written by :func:`wake_prepare`)."""
+PR_W = 1
+"""Wake velocity W at the step end [m/s]."""
+PR_CD = 2
+"""C_D = C_D∞ + excess at the step end [-]."""
+PR_CL = 3
+"""C_L = C_L∞ + excess at the step end [-]."""
+PR_INERTIA = 4
+"""Inertia force ρ (π D²/4) C_M U̇ [N/m]."""
+N_PREP = 5
+
 
 @njit(cache=True)
 def _sign(x):
@@ -156,8 +168,9 @@ def _slack_strength(params, peak, trough):
 
 
 @njit(cache=True)
-def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-    """Wake-model forces per unit length and the state after this evaluation (see module doc)."""
+def _history_step(params, state_old, t, u, dudt, vc, d, rho, state_new):
+    """The part of an evaluation that does not depend on ẏ: writes ``state_new`` (the history
+    after the flow at t) and returns (q, W, C_D, C_L, inertia force ρ (π D²/4) C_M U̇)."""
     for i in range(state_old.shape[0]):
         state_new[i] = state_old[i]
     q = u + vc
@@ -269,10 +282,16 @@ def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
     )
     cd = params[P_CD_STEADY] + exd
     cl = params[P_CL_STEADY] + exl
+    inertia = 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
+    return q, uw, cd, cl, inertia
+
+
+@njit(cache=True)
+def _forces(params, q, uw, cd, cl, inertia, u, vc, ydot, d, rho, out):
+    """The ẏ-dependent part: F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ from the history terms (module doc)."""
     ue = q + uw
     urel = ue - ydot
     drag = 0.5 * rho * d * cd * urel * abs(urel)
-    inertia = 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
     out[FO_FY] = drag + inertia
     out[FO_DFY_DYD] = -rho * d * cd * abs(urel)
     if params[P_LIFT_RELATIVE] != 0.0:
@@ -282,3 +301,36 @@ def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
     else:
         out[FO_FZ] = 0.5 * rho * d * cl * ue * ue
         out[FO_DFZ_DYD] = 0.0
+
+
+@njit(cache=True)
+def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """Wake-model forces per unit length and the state after this evaluation (see module doc).
+
+    The one-call form of the contract: :func:`wake_prepare` then :func:`wake_evaluate`, with
+    the same operations in the same order (bit for bit the same values)."""
+    q, uw, cd, cl, inertia = _history_step(params, state_old, t, u, dudt, vc, d, rho, state_new)
+    _forces(params, q, uw, cd, cl, inertia, u, vc, ydot, d, rho, out)
+
+
+@njit(cache=True)
+def wake_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
+    """Once-per-step stage (contract rule 7): the history after the flow at t into
+    ``state_new`` and the ẏ-independent terms into ``prep`` (``PR_*`` slots); returns True."""
+    q, uw, cd, cl, inertia = _history_step(params, state_old, t, u, dudt, vc, d, rho, state_new)
+    prep[PR_Q] = q
+    prep[PR_W] = uw
+    prep[PR_CD] = cd
+    prep[PR_CL] = cl
+    prep[PR_INERTIA] = inertia
+    return True
+
+
+@njit(cache=True)
+def wake_evaluate(params, prep, u, vc, ydot, d, rho, out):
+    """Per-iterate stage (contract rule 7): the forces at ``ydot`` from the terms
+    :func:`wake_prepare` left in ``prep``; the same values as :func:`wake_kernel`."""
+    _forces(
+        params, prep[PR_Q], prep[PR_W], prep[PR_CD], prep[PR_CL], prep[PR_INERTIA], u, vc, ydot,
+        d, rho, out,
+    )  # fmt: skip

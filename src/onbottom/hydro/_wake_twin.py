@@ -11,6 +11,7 @@ import math
 
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ
 from onbottom.hydro._wake_kernel import (
+    N_PREP,
     P_CD_STEADY,
     P_CL_STEADY,
     P_CM,
@@ -25,6 +26,11 @@ from onbottom.hydro._wake_kernel import (
     P_SLACK_EXPONENT,
     P_SLACK_THRESHOLD,
     P_WAKE_RATIO,
+    PR_CD,
+    PR_CL,
+    PR_INERTIA,
+    PR_Q,
+    PR_W,
     S_CD_END,
     S_CL_END,
     S_DIST,
@@ -42,7 +48,7 @@ from onbottom.hydro._wake_kernel import (
     S_WAKE0,
 )
 
-__all__ = ["wake_kernel_py"]
+__all__ = ["wake_evaluate_py", "wake_kernel_py", "wake_prepare_py"]
 
 
 def _smoothstep(x, lam):
@@ -124,6 +130,13 @@ def _history(params, so, t, q, d):
 
 def wake_kernel_py(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Plain-Python twin of :func:`onbottom.hydro._wake_kernel.wake_kernel`."""
+    prep = [0.0] * N_PREP
+    wake_prepare_py(params, state_old, t, u, dudt, vc, d, rho, state_new, prep)
+    wake_evaluate_py(params, prep, u, vc, ydot, d, rho, out)
+
+
+def wake_prepare_py(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
+    """Plain-Python twin of :func:`onbottom.hydro._wake_kernel.wake_prepare`."""
     q = u + vc
     h, kind, stroke = _history(params, state_old, t, q, d)
     state_new[:] = state_old
@@ -149,13 +162,20 @@ def wake_kernel_py(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, o
         state_new[slot] = h[key]
 
     u_wake, ex_d, ex_l = _terms(params, h, h["dist"] / d)
-    c_drag = params[P_CD_STEADY] + ex_d
-    c_lift = params[P_CL_STEADY] + ex_l
-    u_eff = q + u_wake
+    prep[PR_Q] = q
+    prep[PR_W] = u_wake
+    prep[PR_CD] = params[P_CD_STEADY] + ex_d
+    prep[PR_CL] = params[P_CL_STEADY] + ex_l
+    prep[PR_INERTIA] = 0.25 * math.pi * rho * d * d * params[P_CM] * dudt
+    return True
+
+
+def wake_evaluate_py(params, prep, u, vc, ydot, d, rho, out):
+    """Plain-Python twin of :func:`onbottom.hydro._wake_kernel.wake_evaluate`."""
+    u_wake, c_drag, c_lift = prep[PR_W], prep[PR_CD], prep[PR_CL]
+    u_eff = prep[PR_Q] + u_wake
     u_rel = u_eff - ydot
-    out[FO_FY] = 0.5 * rho * d * c_drag * u_rel * abs(u_rel) + (
-        0.25 * math.pi * rho * d * d * params[P_CM] * dudt
-    )
+    out[FO_FY] = 0.5 * rho * d * c_drag * u_rel * abs(u_rel) + prep[PR_INERTIA]
     out[FO_DFY_DYD] = -rho * d * c_drag * abs(u_rel)
     relative = params[P_LIFT_RELATIVE] != 0.0
     u_lift = ((u - ydot) + vc) + u_wake if relative else u_eff

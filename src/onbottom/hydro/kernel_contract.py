@@ -33,6 +33,14 @@ Exports
     length before the reductions; ``FO_SIZE`` the length of ``out``.
 ``N_FORCE_STATE``
     Length of a force model's state vector (zeros at the start of a run).
+:func:`force_prepare_of`, :func:`force_evaluate_of`
+    The optional two-stage form of rule 7 (non-literal ids: :func:`force_prepare`,
+    :func:`force_evaluate`): ``force_prepare_of(model_id, params, state_old, t,
+    u, dudt, vc, d, rho, state_new, prep) -> bool`` once per trial step, then
+    ``force_evaluate_of(model_id, params, prep, u, vc, ydot, d, rho, out)`` per ``ydot``, bit
+    for bit the kernel's ``out``; False from the first: call the kernel instead.
+``N_FORCE_PREP``
+    Length of the ``prep`` scratch of the two-stage form.
 :func:`penetration_reduction_y`, :func:`penetration_reduction_z`
     r_pen,y(z/D) and r_pen,z(z/D), DNV-RP-F109 (2017) Eqs 3.19–3.20 (numba; plain-Python twin
     :func:`onbottom.hydro.reductions.penetration_reduction`).
@@ -46,12 +54,17 @@ from onbottom.hydro._force_contract import (
     FO_FY,
     FO_FZ,
     FO_SIZE,
+    N_FORCE_PREP,
     N_FORCE_STATE,
 )
 from onbottom.hydro._force_dispatch import (
     FORCE_FOURIER,
     FORCE_MORISON,
     FORCE_WAKE,
+    force_evaluate,
+    force_evaluate_of,
+    force_prepare,
+    force_prepare_of,
     force_step,
     force_step_inline,
     force_step_of,
@@ -67,7 +80,12 @@ __all__ = [
     "FO_FY",
     "FO_FZ",
     "FO_SIZE",
+    "N_FORCE_PREP",
     "N_FORCE_STATE",
+    "force_evaluate",
+    "force_evaluate_of",
+    "force_prepare",
+    "force_prepare_of",
     "force_step",
     "force_step_inline",
     "force_step_of",
