@@ -384,7 +384,12 @@ def section_storm_flow(
     nbins = nfft // 2 + 1
     omega = dw * np.arange(nbins)
     active = (omega > 0.0) & (omega <= wmax) & (omega < math.pi / dts)
-    rot = np.exp(1j * random_phases(storm.seed, nbins))
+    # the active harmonics are j = 1 … J (ω_j increases): the phases are drawn for j <= J only
+    # (the generator's first draws, as from a draw of all N/2 + 1) and e^{iφ_j} computed there;
+    # the other harmonics carry no energy (zero coefficients)
+    n_active = int(np.count_nonzero(active))
+    rot = np.zeros(nbins, dtype=complex)
+    rot[active] = np.exp(1j * random_phases(storm.seed, n_active + 1)[1:])
     g2 = np.zeros(nbins)
     g2[active] = seabed_transfer(omega[active], depth) ** 2
     weights, dweights = stage_weights(storm, np.arange(n) * dts)
