@@ -40,6 +40,7 @@ import hashlib
 import math
 import pickle
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -147,11 +148,15 @@ class StormModel:
                 " [reliability.inputs]"
             )
 
+    @cached_property
+    def _climate_names(self) -> tuple[str, ...]:
+        """Names of the climate's standard normal inputs (made once: every run reads them)."""
+        return tuple(p.name for p in self.climate.parameters()) if self.climate else ()
+
     @property
     def input_names(self) -> tuple[str, ...]:
         """Columns of a row: the climate's standard normals first, then :attr:`inputs`."""
-        head = tuple(p.name for p in self.climate.parameters()) if self.climate else ()
-        return head + tuple(self.inputs)
+        return self._climate_names + tuple(self.inputs)
 
     @property
     def output_names(self) -> tuple[str, ...]:
@@ -199,7 +204,7 @@ class StormModel:
         direction = row.get("direction_deg", peak.direction_deg if peak else 90.0)
         if self.climate is not None:
             c = self.climate
-            u = np.array([[row[p.name] for p in c.parameters()]])
+            u = np.array([[row[name] for name in self._climate_names]])
             ss = c.sea_state(u)
             hs, tp = float(ss["hs"][0]), float(ss["tp"][0])
             k = int(ss["sector"][0])
