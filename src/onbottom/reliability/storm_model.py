@@ -259,6 +259,17 @@ class StormModel:
             current = replace(current, **cur)
         return soil, storm, current
 
+    @cached_property
+    def _run_settings(self) -> tuple[Any, bool]:
+        """The solver settings of every run (no records; the early stop when it comes before
+        the case's own runaway stop) and whether the early stop applies (made once)."""
+        settings = replace(self.setup.settings, record_interval=None)
+        own = settings.stop_displacement_over_d
+        early = self.stop_at is not None and self.stop_at / self.diameter < own
+        if early:
+            settings = replace(settings, stop_displacement_over_d=self.stop_at / self.diameter)
+        return settings, early
+
     def __call__(self, x: np.ndarray, seed: int) -> dict[str, float]:
         from onbottom.dynamics.storm_section import simulate_storm_section
 
@@ -266,11 +277,7 @@ class StormModel:
         soil, storm, current = self.build(x, seed)
         kw = s.kwargs()
         kw["current"] = current
-        settings = replace(s.settings, record_interval=None)
-        own = settings.stop_displacement_over_d
-        early = self.stop_at is not None and self.stop_at / self.diameter < own
-        if early:
-            settings = replace(settings, stop_displacement_over_d=self.stop_at / self.diameter)
+        settings, early = self._run_settings
         kw["settings"] = settings
         r = simulate_storm_section(s.pipe, soil, storm, **kw)
         peak = storm.stages[0]
