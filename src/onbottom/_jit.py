@@ -48,6 +48,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 import numba
+import numpy as np
 from numba import types as nbtypes
 from numba.core import cgutils
 from numba.core.dispatcher import Dispatcher
@@ -240,6 +241,23 @@ def literal_dispatch(pyfunc, kernels, general):
     return pyfunc
 
 
+_SIGNATURES: dict[tuple, tuple] = {}
+"""numba signatures of :func:`call_literal`'s calls by :func:`_type_key` of their arguments (the
+typing of a dozen arguments costs more than some kernels' calls)."""
+
+
+def _type_key(a: Any) -> Any:
+    """What numba's type of ``a`` depends on, cheaply: an exact ndarray's dtype, dimensions and
+    flags (contiguity, alignment, writeability: ``flags.num``), a float's type; anything else
+    typed by numba itself (its type is the key)."""
+    t = type(a)
+    if t is np.ndarray:
+        return (a.dtype, a.ndim, a.flags.num)
+    if t is float:
+        return float
+    return numba.typeof(a)
+
+
 def call_literal(kernel, n_literal, *args):
     """Call ``kernel(*args)`` with its first ``n_literal`` arguments (ints) as numba literals.
 
@@ -258,10 +276,15 @@ def call_literal(kernel, n_literal, *args):
     overloads = getattr(kernel, "overloads", None)
     if overloads is None:
         return kernel(*args)
-    sig = tuple(
-        numba.types.literal(operator.index(a)) if i < n_literal else kernel.typeof_pyval(a)
-        for i, a in enumerate(args)
-    )
+    key = (kernel, n_literal, *(_type_key(a) if i >= n_literal else a for i, a in enumerate(args)))
+    sig = _SIGNATURES.get(key)
+    if sig is None:
+        sig = tuple(
+            numba.types.literal(operator.index(a)) if i < n_literal else kernel.typeof_pyval(a)
+            for i, a in enumerate(args)
+        )
+        if len(_SIGNATURES) < 4096:
+            _SIGNATURES[key] = sig
     cres = overloads.get(sig)
     if cres is None:
         with _compile_lock(kernel, sig):

@@ -98,3 +98,33 @@ def test_section_flow_is_scaled_by_rd_and_the_direction_sign():
         rd = float(spreading_factor(s, wave_direction_deg=direction))
         sign = math.copysign(1.0, math.sin(math.radians(direction)))
         np.testing.assert_allclose(u, sign * rd * base, rtol=1e-12, atol=1e-15)
+
+
+def test_section_flow_equals_the_record_of_all_drawn_phases():
+    # the synthesiser draws phases for the harmonics that carry energy only: the record is bit
+    # for bit that of one phase per harmonic j = 0 … N/2 from the same generator (the first
+    # draws are the same), every stage scaled and blended as in the module docstring
+    a = SeaState(hs=3.0, tp=9.0, duration_s=120.0, direction_deg=60.0, spreading_s=4.0)
+    b = SeaState(hs=4.0, tp=11.0, duration_s=150.0, direction_deg=280.0)
+    storm = Storm(stages=(a, b), seed=7, build_up_s=30.0, decay_s=40.0, transition_s=20.0)
+    dts, depth = 0.2, 25.0
+    u, acc, weights = fs.section_storm_flow(storm, depth, dts, 5.0)
+    n = math.ceil(storm.duration_s / dts) + 1
+    nfft, dw = fs.harmonic_grid(n, dts, fast=True)
+    nbins = nfft // 2 + 1
+    omega = dw * np.arange(nbins)
+    active = (omega > 0.0) & (omega <= 5.0 * 2.0 * math.pi / 9.0) & (omega < math.pi / dts)
+    rot = np.exp(1j * fs.random_phases(7, nbins))
+    w, dwt = fs.stage_weights(storm, np.arange(n) * dts)
+    u_ref, a_ref = np.zeros(n), np.zeros(n)
+    for k, sea in enumerate(storm.stages):
+        s_uu = np.zeros(nbins)
+        s_uu[active] = fs.bed_spectrum(omega[active], depth, sea.hs, sea.tp, None)
+        rd = float(spreading_factor(sea.spreading_s, wave_direction_deg=sea.direction_deg))
+        sign = math.copysign(1.0, math.sin(math.radians(sea.direction_deg)))
+        spec = (0.5 * nfft) * fs.spectral_amplitudes(s_uu, dw) * rot * (rd * sign)
+        uk, ak = fs.harmonic_series(spec, omega, nfft, n)
+        fs.add_stage(u_ref, a_ref, w[k], dwt[k], uk, ak)
+    assert np.array_equal(u, u_ref)
+    assert np.array_equal(acc, a_ref)
+    assert np.array_equal(weights, w)

@@ -177,3 +177,30 @@ def test_every_kernel_module_compiles_through_jit():
             ):
                 offenders.append(f"{path.relative_to(root)}: numba.{node.attr}")
     assert not offenders, "kernels compiled outside onbottom._jit:\n" + "\n".join(offenders)
+
+
+def test_call_literal_memoised_signatures_follow_numba_typing():
+    # call_literal keeps the signature of each argument kind (dtype, dimensions, contiguity,
+    # writeability): arrays of other kinds get their own numba type, never a reused one
+    import numba
+    import numpy as np
+
+    @numba.njit
+    def total(a, x):
+        return a.sum() + x
+
+    ro = np.arange(6.0)
+    ro.flags.writeable = False
+    arrays = [
+        np.arange(6.0),
+        np.arange(6.0).reshape(2, 3),
+        np.asfortranarray(np.arange(6.0).reshape(2, 3)),
+        np.arange(12.0)[::2],
+        ro,
+        np.arange(6, dtype=np.int64),
+    ]
+    for a in arrays:
+        for x in (1.5, 2):
+            assert _jit.call_literal(total, 0, a, x) == a.sum() + x
+            assert (total.typeof_pyval(a), total.typeof_pyval(x)) in total.overloads
+    assert len({_jit._type_key(a) for a in arrays}) == len(arrays)

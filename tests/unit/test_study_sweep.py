@@ -76,9 +76,13 @@ def test_dask_cluster_two_workers_matches_serial():
 
     grid = {"a": np.arange(6.0), "b": np.arange(7.0)}
     serial = sweep(f, grid, seed=5, n_workers=0, progress=False)
+    trim = __import__("os").environ.get("MALLOC_TRIM_THRESHOLD_")  # before a nanny sets it
     with dask_client(n_workers=2) as client:
         env = client.run(lambda: __import__("os").environ.get("NUMBA_NUM_THREADS"))
         assert set(env.values()) == {"1"} and len(env) == 2
+        # glibc's allocator defaults: Dask's MALLOC_TRIM_THRESHOLD_ is not set in the workers
+        malloc = client.run(lambda: __import__("os").environ.get("MALLOC_TRIM_THRESHOLD_"))
+        assert set(malloc.values()) == {trim}
         assert all("127.0.0.1" in addr for addr in env)
         parallel = sweep(f, grid, seed=5, client=client, batch_size=4, progress=False)
         # the same cluster reached by address, as a remote scheduler would be

@@ -217,16 +217,11 @@ def stage_weights(storm: Storm, t: NDArray) -> tuple[NDArray, NDArray]:
     ends = [s + st.duration_s for s, st in zip(starts, storm.stages, strict=True)]
     h = 0.5 * storm.transition_s
     for k in range(ns):
-        up = np.ones(t.size)
-        dup = np.zeros(t.size)
-        if k > 0:
-            up, dup = _ramp(t, starts[k], h)
-        down = np.zeros(t.size)
-        ddown = np.zeros(t.size)
-        if k < ns - 1:
-            down, ddown = _ramp(t, ends[k], h)
-        w[k] = up - down
-        dw[k] = dup - ddown
+        # the first stage starts at 1, the last does not end: constants, not arrays
+        up, dup = _ramp(t, starts[k], h) if k > 0 else (1.0, 0.0)
+        down, ddown = _ramp(t, ends[k], h) if k < ns - 1 else (0.0, 0.0)
+        w[k] = np.subtract(up, down)
+        dw[k] = np.subtract(dup, ddown)
     env = np.ones(t.size)
     denv = np.zeros(t.size)
     if storm.build_up_s > 0.0:
@@ -384,7 +379,12 @@ def section_storm_flow(
     nbins = nfft // 2 + 1
     omega = dw * np.arange(nbins)
     active = (omega > 0.0) & (omega <= wmax) & (omega < math.pi / dts)
-    rot = np.exp(1j * random_phases(storm.seed, nbins))
+    # the active harmonics are j = 1 … J (ω_j increases): the phases are drawn for j <= J only
+    # (the generator's first draws, as from a draw of all N/2 + 1) and e^{iφ_j} computed there;
+    # the other harmonics carry no energy (zero coefficients)
+    n_active = int(np.count_nonzero(active))
+    rot = np.zeros(nbins, dtype=complex)
+    rot[active] = np.exp(1j * random_phases(storm.seed, n_active + 1)[1:])
     g2 = np.zeros(nbins)
     g2[active] = seabed_transfer(omega[active], depth) ** 2
     weights, dweights = stage_weights(storm, np.arange(n) * dts)

@@ -42,14 +42,29 @@ def wave_number(omega: np.ndarray | float, depth: float) -> np.ndarray:
     pos = w > 0.0
     wv = w[pos]
     # explicit start (deep-water value blended with shallow-water value) then Newton
-    kk = np.maximum(wv**2 / GRAVITY, wv / math.sqrt(GRAVITY * depth))
+    w2 = wv**2
+    kk = np.maximum(w2 / GRAVITY, wv / math.sqrt(GRAVITY * depth))
+    # f = g k tanh(kd) − ω², f' = g tanh(kd) + g k d (1 − tanh²(kd)); the work arrays are
+    # reused (in-place operations, the same operations in the same order)
+    th, gk, f, df = (np.empty_like(kk) for _ in range(4))
     for _ in range(50):
-        th = np.tanh(kk * depth)
-        f = GRAVITY * kk * th - wv**2
-        df = GRAVITY * th + GRAVITY * kk * depth * (1.0 - th**2)
-        step = f / df
-        kk = kk - step
-        if np.all(np.abs(step) <= 1e-14 * np.maximum(kk, 1e-30)):
+        np.multiply(kk, depth, out=th)
+        np.tanh(th, out=th)
+        np.multiply(GRAVITY, kk, out=gk)
+        np.multiply(gk, th, out=f)
+        f -= w2
+        np.multiply(th, th, out=df)
+        np.subtract(1.0, df, out=df)
+        gk *= depth
+        df *= gk
+        np.multiply(GRAVITY, th, out=gk)
+        df += gk
+        f /= df  # the Newton step
+        kk -= f
+        np.abs(f, out=f)
+        np.maximum(kk, 1e-30, out=df)
+        df *= 1e-14
+        if np.all(f <= df):
             break
     k[pos] = kk
     return k

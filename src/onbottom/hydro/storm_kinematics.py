@@ -149,6 +149,8 @@ class StormKinematics:
                 f"{cls}.acceleration has shape {a.shape}, velocity {u.shape}: must match"
             )
         for name, arr in (("velocity", u), ("acceleration", a)):
+            if np.isfinite(arr).all():
+                continue
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
                 raise InputError(

@@ -40,6 +40,7 @@ import hashlib
 import math
 import pickle
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -147,11 +148,15 @@ class StormModel:
                 " [reliability.inputs]"
             )
 
+    @cached_property
+    def _climate_names(self) -> tuple[str, ...]:
+        """Names of the climate's standard normal inputs (made once: every run reads them)."""
+        return tuple(p.name for p in self.climate.parameters()) if self.climate else ()
+
     @property
     def input_names(self) -> tuple[str, ...]:
         """Columns of a row: the climate's standard normals first, then :attr:`inputs`."""
-        head = tuple(p.name for p in self.climate.parameters()) if self.climate else ()
-        return head + tuple(self.inputs)
+        return self._climate_names + tuple(self.inputs)
 
     @property
     def output_names(self) -> tuple[str, ...]:
@@ -199,7 +204,7 @@ class StormModel:
         direction = row.get("direction_deg", peak.direction_deg if peak else 90.0)
         if self.climate is not None:
             c = self.climate
-            u = np.array([[row[p.name] for p in c.parameters()]])
+            u = np.array([[row[name] for name in self._climate_names]])
             ss = c.sea_state(u)
             hs, tp = float(ss["hs"][0]), float(ss["tp"][0])
             k = int(ss["sector"][0])
@@ -254,6 +259,17 @@ class StormModel:
             current = replace(current, **cur)
         return soil, storm, current
 
+    @cached_property
+    def _run_settings(self) -> tuple[Any, bool]:
+        """The solver settings of every run (no records; the early stop when it comes before
+        the case's own runaway stop) and whether the early stop applies (made once)."""
+        settings = replace(self.setup.settings, record_interval=None)
+        own = settings.stop_displacement_over_d
+        early = self.stop_at is not None and self.stop_at / self.diameter < own
+        if early:
+            settings = replace(settings, stop_displacement_over_d=self.stop_at / self.diameter)
+        return settings, early
+
     def __call__(self, x: np.ndarray, seed: int) -> dict[str, float]:
         from onbottom.dynamics.storm_section import simulate_storm_section
 
@@ -261,11 +277,7 @@ class StormModel:
         soil, storm, current = self.build(x, seed)
         kw = s.kwargs()
         kw["current"] = current
-        settings = replace(s.settings, record_interval=None)
-        own = settings.stop_displacement_over_d
-        early = self.stop_at is not None and self.stop_at / self.diameter < own
-        if early:
-            settings = replace(settings, stop_displacement_over_d=self.stop_at / self.diameter)
+        settings, early = self._run_settings
         kw["settings"] = settings
         r = simulate_storm_section(s.pipe, soil, storm, **kw)
         peak = storm.stages[0]

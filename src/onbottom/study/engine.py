@@ -9,7 +9,9 @@ scheduler; it can be passed to :func:`scipy.optimize.differential_evolution` as 
 Numba and BLAS threads inside the workers are capped to one (``NUMBA_NUM_THREADS``,
 ``OMP_NUM_THREADS``, ``MKL_NUM_THREADS``, ``OPENBLAS_NUM_THREADS`` = 1): the parallelism comes
 from the processes, and a 16-core machine running 16 workers each with 16 numba threads would
-be oversubscribed 16 times. The dashboard, when asked for, binds to 127.0.0.1 only.
+be oversubscribed 16 times. glibc's allocator keeps its defaults in the workers (Dask's
+``MALLOC_TRIM_THRESHOLD_`` is not set: :data:`_NANNY_ENV`). The dashboard, when asked for,
+binds to 127.0.0.1 only.
 
 Interrupts and kills: the embedded workers are started with SIGINT ignored, so a
 Ctrl-C in a terminal (sent to the whole process group) reaches this process only, which
@@ -55,6 +57,13 @@ WORKER_ENV: dict[str, str] = {
     "OPENBLAS_NUM_THREADS": "1",
 }
 """Environment set in every embedded worker process (one compute thread per process)."""
+
+_NANNY_ENV = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+"""Dask's nannies start their workers with ``MALLOC_TRIM_THRESHOLD_=65536`` (to give memory
+back to the system), which also turns off glibc's adaptive mmap threshold: every array of
+128 kB or more (a storm's flow series) is then mapped and unmapped, its pages faulted in
+afresh each time. The embedded workers keep glibc's defaults (a variable set in this
+process's environment still reaches them)."""
 
 
 PARENT_PID_ENV = "ONBOTTOM_PARENT_PID"
@@ -208,7 +217,9 @@ def dask_client(
         raise InputError(f"threads_per_worker = {threads_per_worker!r} is invalid: must be >= 1")
     # the workers ignore Ctrl-C (only this process handles it); distributed's internal HTTP
     # server moving off a busy default port is not worth a warning
-    with _sigint_ignored(), warnings.catch_warnings():
+    import dask
+
+    with _sigint_ignored(), warnings.catch_warnings(), dask.config.set(_NANNY_ENV):
         warnings.filterwarnings("ignore", message="Port .* is already in use")
         cluster = LocalCluster(
             n_workers=n,
