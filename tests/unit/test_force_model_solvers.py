@@ -96,15 +96,21 @@ def _python_kernels(monkeypatch, module, names):
     return captured
 
 
-def test_section_commits_the_force_state_on_accepted_steps_only(monkeypatch):
-    captured = _python_kernels(monkeypatch, SK, ["forces", "solve_step", "initial"])
+def _ramped_storm() -> StormKinematics:
+    """A 30-s regular flow (U = 1.8 m/s, T = 8 s) ramped over its first period, 0.2 m/s of
+    current: enough to slide a light pipe back and forth with rejected steps."""
     t = np.arange(0.0, 30.0 + 1e-9, 0.1)
     u = 1.8 * np.sin(2 * np.pi * t / 8.0) * np.minimum(t / 8.0, 1.0)
-    kin = StormKinematics(
+    return StormKinematics(
         sample_interval=0.1, velocity=u, acceleration=np.gradient(u, 0.1), current=0.2,
         duration=30.0, weights=np.ones((1, t.size)),
         stage_parameters=[{"significant_velocity": 1.8, "mean_period": 8.0}],
     )  # fmt: skip
+
+
+def test_section_commits_the_force_state_on_accepted_steps_only(monkeypatch):
+    captured = _python_kernels(monkeypatch, SK, ["forces", "solve_step", "initial"])
+    kin = _ramped_storm()
     res = simulate_storm_section(
         Pipe(outer_diameter=0.4, submerged_weight=300.0),
         CoulombFriction(friction_coefficient=0.4),
@@ -210,13 +216,7 @@ def test_section_two_stage_wake_equals_one_call_bit_for_bit(monkeypatch, lift_re
 
     for name in ("forces", "solve_step", "initial", "integrate", "prepare_forces"):
         monkeypatch.setattr(SK, name, getattr(SK, name).py_func)
-    t = np.arange(0.0, 30.0 + 1e-9, 0.1)
-    u = 1.8 * np.sin(2 * np.pi * t / 8.0) * np.minimum(t / 8.0, 1.0)
-    kin = StormKinematics(
-        sample_interval=0.1, velocity=u, acceleration=np.gradient(u, 0.1), current=0.2,
-        duration=30.0, weights=np.ones((1, t.size)),
-        stage_parameters=[{"significant_velocity": 1.8, "mean_period": 8.0}],
-    )  # fmt: skip
+    kin = _ramped_storm()
 
     def run():
         return simulate_storm_section(
