@@ -25,12 +25,14 @@ from assess_cases import route_document
 
 
 def _loader_setup(case, i, k, x):
-    """The storm loader on section ``i``'s storm document ``k`` with the trial pipe."""
+    """The storm loader on section ``i``'s storm document ``k`` with the trial pipe (``x``
+    None: the given pipe)."""
     from onbottom._casefile import parse_case
     from onbottom.cases.storm import StormCase, build_setup
 
     doc = case.storm_document(i, case.combination_names(i)[k])
-    doc["pipe"] = trial_pipe(doc["pipe"], case.solve_for, case.design.layer, x)
+    if x is not None:
+        doc["pipe"] = trial_pipe(doc["pipe"], case.solve_for, case.design.layer, x)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return build_setup(parse_case(StormCase, doc), None)
@@ -118,3 +120,55 @@ def test_mesh_rule_is_insensitive_to_the_soil_stiffness():
     """1/β ∝ k_s^(-1/4): twice the friction (twice k_s) shortens 1/β by 2^(1/4) = 1.19."""
     a, b = fe_mesh(PIPE, 0.3, 500.0, 8.0), fe_mesh(PIPE, 0.6, 500.0, 8.0)
     assert a["beta"] / b["beta"] == pytest.approx(2.0**-0.25)
+
+
+def _count_builds(monkeypatch):
+    """Count the ``onbottom storm`` loader's builds (:func:`onbottom.cases.storm.build_setup`)."""
+    import onbottom.cases.storm as storm_cases
+
+    calls = []
+    real = storm_cases.build_setup
+
+    def counted(case, path=None):
+        calls.append(case)
+        return real(case, path)
+
+    monkeypatch.setattr(storm_cases, "build_setup", counted)
+    return calls
+
+
+def test_each_storm_setup_is_built_once_and_is_the_loaders(monkeypatch):
+    """Validating a route builds each section's storm setups; building the route takes those
+    very objects (no second read), and the run builds none (trials are ``replace``-s)."""
+    from onbottom.assess import assess
+
+    calls = _count_builds(monkeypatch)
+    doc = route_document(sections=2, seeds=1, peak_hours=0.02)
+    doc["levels"] |= {"absolute": False}
+    case = parse_route_case(doc)
+    assert len(calls) == 2 * 2  # 2 sections x 2 load combinations
+    route = build_route(case)
+    assert len(calls) == 4
+    for i, s in enumerate(route.sections):
+        for k, c in enumerate(s.storms):
+            assert pickle.dumps(c.setup) == pickle.dumps(_loader_setup(case, i, k, None))
+    del calls[:]
+    assess(route, n_workers=0)
+    assert calls == []
+
+
+def test_load_route_validates_the_seeds_it_builds(tmp_path, monkeypatch):
+    """``load_route(seeds=N)`` validates the case with N seeds and builds each setup once."""
+    from assess_cases import route_toml
+    from onbottom.cases.assess import load_route
+
+    doc = route_document(sections=2, seeds=3)
+    path = tmp_path / "route.toml"
+    path.write_text(route_toml(doc), encoding="utf-8")
+    calls = _count_builds(monkeypatch)
+    route = load_route(path, seeds=1)
+    assert len(calls) == 4
+    assert {c.setup.seeds for s in route.sections for c in s.storms} == {1}
+    assert route.dynamic.seeds == 1
+    doc["dynamic"]["seeds"] = 1
+    assert route.identity == build_route(parse_route_case(doc)).identity

@@ -59,7 +59,7 @@ import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal, NoReturn
 
-from pydantic import Field, model_validator
+from pydantic import Field, PrivateAttr, model_validator
 
 from onbottom._casefile import (
     CaseFileError,
@@ -335,6 +335,9 @@ class RouteCase(StrictModel):
     dynamic: DynamicTable = DynamicTable()
     pipeline: RoutePipelineTable = RoutePipelineTable()
     metocean: dict[str, MetoceanTable] = Field(default_factory=dict)
+    _storms: dict[str, tuple[StormCase, StormSetup]] = PrivateAttr(default_factory=dict)
+    """The storm cases and setups built when the case was validated, by their storm document
+    (:func:`_built_storm`): :func:`build_route` takes them as they are."""
 
     # ---- per-section metocean ---------------------------------------------------------------
     def section_metocean(self, i: int) -> MetoceanTable:
@@ -488,8 +491,6 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
     if case.levels.dynamic and case.solve_for == "none":
         pass  # dynamic runs at the given weight only
     # each section through the stability and storm loaders (their checks, their messages)
-    from onbottom.cases.storm import StormCase, build_setup
-
     for i, s in enumerate(sections):
         key = f"route.sections[{i}]"
         label = f"<{key}>"
@@ -499,12 +500,7 @@ def _check_route(case: RouteCase, file: str, text: str | None) -> None:
             _check_section(sc, Checker(label, None))
             if case.levels.dynamic:
                 for name in case.combination_names(i):
-                    with warnings.catch_warnings():
-                        warnings.simplefilter("ignore")
-                        build_setup(
-                            parse_case(StormCase, case.storm_document(i, name), file=label),
-                            None,
-                        )
+                    _built_storm(case, case.storm_document(i, name), label)
         except CaseFileError as exc:
             route_key = _route_key(case, i, getattr(exc, "field", None) or "")
             inner = re.sub(r"^(?:<[^>]*>|" + re.escape(str(file)) + r")(?:, line \d+)?: ", "",
@@ -748,21 +744,24 @@ def trial_pipe(pipe: dict[str, Any], variable: str, layer: str, x: float) -> dic
     return p
 
 
-def _storm_case(doc: dict[str, Any]) -> StormCase:
-    """A section's storm document parsed as an ``onbottom storm`` case."""
-    from onbottom.cases.storm import StormCase
+def _built_storm(
+    case: RouteCase, doc: dict[str, Any], file: str | None = None
+) -> tuple[StormCase, StormSetup]:
+    """A section's storm document parsed as an ``onbottom storm`` case and built by its loader
+    (:func:`onbottom.cases.storm.build_setup`: its checks, its errors; ``file`` names the place
+    of an error): once per document and case, the validation's build kept on ``case`` for
+    :func:`build_route`. The loader's warnings are the route's, reported when it was read."""
+    from onbottom.cases.storm import StormCase, build_setup
 
-    return parse_case(StormCase, doc)
-
-
-def _storm_setup(case: StormCase) -> StormSetup:
-    """A section's storm case built by the ``onbottom storm`` loader (its warnings were
-    reported when the route was loaded)."""
-    from onbottom.cases.storm import build_setup
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        return build_setup(case, None)
+    key = json.dumps(doc, sort_keys=True)
+    hit = case._storms.get(key)
+    if hit is None:
+        storm_case = parse_case(StormCase, doc, file=file)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            hit = (storm_case, build_setup(storm_case, None))
+        case._storms[key] = hit
+    return hit
 
 
 def _soil_choice(case: StormCase) -> SoilChoice:
@@ -815,8 +814,9 @@ def _build_section(case: RouteCase, i: int) -> Section:
     trials = None
     if case.levels.dynamic:
         names = case.combination_names(i)
-        cases = [_storm_case(case.storm_document(i, n)) for n in names]
-        setups = tuple(_storm_setup(c) for c in cases)
+        built = [_built_storm(case, case.storm_document(i, n)) for n in names]
+        cases = [c for c, _ in built]
+        setups = tuple(st for _, st in built)
         storms = tuple(
             StormCombination(n, c.pipe.condition, st)
             for n, c, st in zip(names, cases, setups, strict=True)
@@ -915,9 +915,11 @@ def build_route(case: RouteCase, *, file: str | os.PathLike | None = None) -> Ro
 
 def load_route(path: str | os.PathLike, *, seeds: int | None = None) -> Route:
     """Read, validate and build a route case file (:func:`load_route_case`, then
-    :func:`build_route`); ``seeds`` replaces ``[dynamic] seeds`` (storms per evaluation)."""
-    case = load_route_case(path)
-    if seeds is not None:
-        dyn = case.dynamic.model_copy(update={"seeds": seeds})
-        case = case.model_copy(update={"dynamic": dyn})
+    :func:`build_route`); ``seeds`` replaces ``[dynamic] seeds`` (storms per evaluation)
+    before the case is validated, so the storm setups validated are those built."""
+    doc, text = read_toml(path)
+    dyn = doc.get("dynamic", {}) if isinstance(doc, dict) else None
+    if seeds is not None and isinstance(dyn, dict):  # else the schema names the table
+        doc = doc | {"dynamic": dyn | {"seeds": seeds}}
+    case = parse_route_case(doc, file=Path(path), text=text)
     return build_route(case, file=path)
