@@ -97,3 +97,101 @@ def test_the_fe_checks_every_sections_design_in_its_task():
             assert s["design_value"] == p["section_design"]
     heaviest = max(a.sections, key=lambda s: s["design_value"])
     assert a.pipeline["section"] == heaviest["name"]
+
+
+@pytest.fixture(scope="module")
+def every(tmp_path_factory):
+    """A two-section route with ``[pipeline] sections = "every"``, run into an output folder
+    (in this process), its outputs written: (route, assessment, folder, files written)."""
+    import sys
+    from pathlib import Path
+
+    from onbottom.assess import assess
+    from onbottom.assess.output import write_outputs
+    from onbottom.cases.assess import build_route, parse_route_case
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from assess_cases import route_document
+
+    doc = route_document(sections=2, seeds=1, peak_hours=0.05)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"sections": "every", "mesh": "rule", "end_conditions": "pinned"}
+    built = build_route(parse_route_case(doc))
+    out = tmp_path_factory.mktemp("every")
+    a = assess(built, out=out, n_workers=0)
+    files = write_outputs(a, out, pdf=False)["files"]
+    return built, a, out, files
+
+
+def test_every_section_writes_its_fe_results(every):
+    """One NetCDF per section checked (``pipeline/NN-<section>.nc``), complete, holding the
+    verdict the route reports for that section (max |y| = the envelope's maximum) and the
+    provenance of the other results; named in results.json and the files written."""
+    import json
+
+    import numpy as np
+
+    from onbottom.assess.core import pipeline_file
+    from onbottom.results import load_dataset
+
+    route, a, out, files = every
+    nc = sorted((out / "pipeline").glob("*.nc"))
+    assert [f.name for f in nc] == ["00-section-0.nc", "01-section-1.nc"]
+    saved = json.loads((out / "results.json").read_text(encoding="utf-8"))
+    for s, js in zip(a.sections, saved["sections"], strict=True):
+        p = s["pipeline_fe"]
+        f = pipeline_file(out, s["index"], s["name"])
+        assert p["netcdf"] == js["pipeline_fe"]["netcdf"] == str(f) and str(f) in files
+        ds = load_dataset(f)
+        assert ds.attrs["run_status"] == "complete"
+        assert float(ds["max_displacement"]) == p["max_displacement_m"]
+        assert float(ds["max_abs_y"].max()) == p["max_displacement_m"]
+        assert bool(ds["passed"]) == p["pass"]
+        assert float(ds["allowable"]) == p["allowable_m"]
+        x = np.nan if p["design_value"] is None else p["design_value"]
+        assert float(ds["design_value"]) == pytest.approx(x, nan_ok=True)
+        assert np.array_equal(ds["x"].values, p["envelopes"]["x"])
+        assert ds.sizes["node"] == p["n_nodes"]
+        attrs = ds.attrs
+        assert attrs["model"] == "onbottom.assess.pipeline_fe"
+        assert attrs["seed"] == p["seed"] and attrs["assess_section"] == s["name"]
+        assert attrs["case_identity"] == route.identity and route.identity
+        assert attrs["run_identity"] == s["identity"] and s["identity"]
+        assert attrs["onbottom_version"] and attrs["onbottom_content_hash"]
+        params = json.loads(attrs["parameters"])
+        assert params["n_nodes"] == p["n_nodes"] and params["sections"] == "every"
+        assert ds["max_displacement"].attrs["units"] == "m"
+    assert a.pipeline["netcdf"] in {s["pipeline_fe"]["netcdf"] for s in a.sections}
+    assert not list(out.glob("pipeline.nc")) and not list(out.rglob("*.tmp"))
+
+
+def test_the_report_names_each_sections_fe_results(every):
+    _route, a, out, _files = every
+    page = (out / "report.html").read_text(encoding="utf-8")
+    for s in a.sections:
+        assert f"Pipeline FE of {s['name']}" in page
+        assert f"pipeline/{s['index']:02d}-section-{s['index']}.nc" in page
+    checked = sum(bool(s["pipeline_fe"]["pass"]) for s in a.sections)
+    assert f"{checked} of 2 pass" in page
+    assert (out / "tables" / "assess_s0-pipeline.csv").is_file()
+
+
+def test_a_section_whose_fe_results_are_gone_is_run_again(every):
+    """Resume: a saved section is reused with its FE results; without them it is run again,
+    and the reason names the file."""
+    from onbottom.assess import assess
+
+    route, a, out, _files = every
+    again = assess(route, out=out, n_workers=0)
+    assert again.reused == ["section 0", "section 1"]
+    gone = out / "pipeline" / "01-section-1.nc"
+    gone.unlink()
+    third = assess(route, out=out, n_workers=0)
+    assert third.reused == ["section 0"]
+    assert third.recomputed[0][0] == "section 1"
+    assert "pipeline/01-section-1.nc" in third.recomputed[0][1]
+    assert gone.is_file()
+    assert (
+        third.sections[1]["pipeline_fe"]["max_displacement_m"]
+        == (a.sections[1]["pipeline_fe"]["max_displacement_m"])
+    )

@@ -31,7 +31,7 @@ from onbottom.assess._wording import (
     level_name,
     section_validity,
 )
-from onbottom.assess.core import Assessment
+from onbottom.assess.core import PIPELINE_FOLDER, Assessment
 from onbottom.assess.pipeline import DISAGREEMENT_FACTOR
 
 __all__ = ["MARKS", "SUMMARY_COLUMNS", "render", "report_context", "section_marks"]
@@ -106,7 +106,7 @@ def section_marks(s: dict[str, Any], a: Assessment) -> list[dict[str, str]]:
     # constants fitted by onbottom); constant Morison coefficients are not a reconstruction
     if "dynamic" in s["levels"] and (s["seabed_model"] == "sand" or a.route.force_model == "wake"):
         keys.append("R")
-    p = a.pipeline or {}
+    p = s.get("pipeline_fe") or a.pipeline or {}  # the section's own check, or the route's
     if p.get("index") == s["index"] and (p.get("at_section_design") or {}).get("disagree"):
         keys.append("S")
     if s.get("governing_level") == "pipeline_fe":
@@ -295,7 +295,7 @@ def _basis_tables(a: Assessment, T: Tables) -> list[dict[str, Any]]:
          " governing; not F109's tables)", "onbottom curves"],
         ["dynamic", "run" if lv.dynamic else "not run",
          f"every seed's max |y| ≤ {allow}, {r.dynamic.seeds} seeds per trial", "F109 §3.4"],
-        ["pipeline FE", "run (governing section)" if lv.pipeline_fe else "not run",
+        ["pipeline FE", f"run ({r.pipeline.sections} section)" if lv.pipeline_fe else "not run",
          f"max |y| ≤ {allow} on the line, fibre strain ≤ {100 * r.pipeline.strain_limit:g} %",
          "F109 §3.4.1; DNV-ST-F101 §5.4.12"],
     ]  # fmt: skip
@@ -374,8 +374,17 @@ def _absolute_worked(s: dict[str, Any], T: Tables) -> dict[str, Any] | None:
 
 
 # ---- pipeline FE --------------------------------------------------------------------------------
-def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str, Any]]:
-    """The pipeline FE of the governing section: lead, table, agreement, envelopes."""
+def _fe_file(p: dict[str, Any]) -> str:
+    """The check's NetCDF as a path from the output folder (``pipeline/NN-<section>.nc``)."""
+    f = Path(p["netcdf"])
+    return f"{f.parent.name}/{f.name}" if f.parent.name == PIPELINE_FOLDER else f.name
+
+
+def _pipeline_parts(
+    p: dict[str, Any], a: Assessment, T: Tables, tid: str = "pipeline"
+) -> list[dict[str, Any]]:
+    """The pipeline FE check ``p`` of the governing section (or of its own section, table
+    ``tid``): lead, table with its NetCDF, agreement, envelopes."""
     var = a.route.variable
     parts: list[dict[str, Any]] = []
     at = p.get("at_section_design") or {}
@@ -416,10 +425,14 @@ def _pipeline_parts(p: dict[str, Any], a: Assessment, T: Tables) -> list[dict[st
                      f"{tr}. {p['search']['message']}"))  # fmt: skip
     rows.append(("Run", f"{p['message']} (status {p['status']}); "
                  f"{p.get('cpu_time_s', math.nan):.1f} CPU-s in all"))  # fmt: skip
+    if p.get("netcdf"):
+        rows.append(("Results (NetCDF: envelopes, verdict, provenance)", _fe_file(p)))
     parts.append(
         T.add(
-            "pipeline",
-            "Pipeline FE of the governing section",
+            tid,
+            "Pipeline FE of the governing section"
+            if tid == "pipeline"
+            else f"Pipeline FE of {p['section']}",
             ["Item", "Value"],
             [[cell(k, text=True), cell(v, text=True)] for k, v in rows],
         )
@@ -616,7 +629,10 @@ def _section_parts(s: dict[str, Any], a: Assessment, T: Tables) -> list[dict[str
     if vh:
         parts.append(vh)
     parts += _dynamic_parts(s, a, T)
-    if a.pipeline and a.pipeline.get("index") == s["index"]:
+    if s.get("pipeline_fe"):  # [pipeline] sections = "every": the section's own check
+        parts.append({"kind": "h3", "id": f"fe{s['index']}", "text": "Pipeline FE"})
+        parts += _pipeline_parts(s["pipeline_fe"], a, T, tid=f"s{s['index']}-pipeline")
+    elif a.pipeline and a.pipeline.get("index") == s["index"]:
         parts.append({"kind": "h3", "id": f"fe{s['index']}", "text": "Pipeline FE"})
         parts += _pipeline_parts(a.pipeline, a, T)
     return parts + _validity_parts(s, a)
@@ -648,7 +664,12 @@ def report_context(
                 "v": f"{format_value(gov['design_value'], var)}",
             }
         )
-    if p is not None:
+    checked = [s["pipeline_fe"] for s in a.sections if s.get("pipeline_fe")]
+    if checked:  # [pipeline] sections = "every"
+        n = sum(bool(c["pass"]) for c in checked)
+        cards.append({"k": "pipeline FE (every section)", "v": f"{n} of {len(checked)} pass",
+                      "c": "pass" if n == len(checked) else "fail"})  # fmt: skip
+    elif p is not None:
         cards.append({"k": "pipeline FE (governing section)", "c": "pass" if p["pass"] else "fail",
                       "v": ("pass, design raised" if p.get("raised") else "pass")
                       if p["pass"] else "FAIL"})  # fmt: skip

@@ -71,6 +71,8 @@ from onbottom.results import (
 __all__ = ["Assessment", "assess"]
 
 SECTION_FOLDER = "sections"
+PIPELINE_FOLDER = "pipeline"
+"""Folder of the sections' pipeline FE results (``[pipeline] sections = "every"``)."""
 
 
 def _slug(name: str) -> str:
@@ -79,6 +81,12 @@ def _slug(name: str) -> str:
 
 def section_file(out: Path, i: int, name: str) -> Path:
     return out / SECTION_FOLDER / f"{i:02d}-{_slug(name)}.json"
+
+
+def pipeline_file(out: Path, i: int, name: str) -> Path:
+    """The pipeline FE results of section ``i`` (``[pipeline] sections = "every"``): the
+    NetCDF of :func:`onbottom.assess.pipeline.fe_dataset`, named as its ``sections/`` file."""
+    return out / PIPELINE_FOLDER / f"{i:02d}-{_slug(name)}.nc"
 
 
 @dataclass(frozen=True)
@@ -95,12 +103,15 @@ class _SectionJob:
 
     def __call__(self, _: Any = None) -> dict[str, Any]:
         t0, c0 = time.perf_counter(), time.process_time()
+        ident = _digest(self.identity) if self.identity else self.section.identity
         result = _run_section(self.route, self.section, self.index, self.curve_files)
         if _fe_every_section(self.route):
-            result = _section_pipeline(self.route, self.section, result)
+            result = _section_pipeline(
+                self.route, self.section, result, self.out, self.index, identity=ident
+            )
         result["wall_time_s"] = time.perf_counter() - t0
         result["cpu_time_s"] = time.process_time() - c0  # this worker's CPU (load-free cost)
-        result["identity"] = _digest(self.identity) if self.identity else self.section.identity
+        result["identity"] = ident
         result["identity_parts"] = self.identity
         if self.out is not None:
             path = section_file(Path(self.out), self.index, self.section.name)
@@ -113,18 +124,30 @@ def _fe_every_section(route: Route) -> bool:
     return route.levels.pipeline_fe and route.pipeline.sections == "every"
 
 
-def _section_pipeline(route: Route, sec: Section, result: dict[str, Any]) -> dict[str, Any]:
+def _section_pipeline(
+    route: Route,
+    sec: Section,
+    result: dict[str, Any],
+    out: str | None = None,
+    index: int = 0,
+    *,
+    identity: str = "",
+) -> dict[str, Any]:
     """The section's result with the pipeline FE check of its design (``pipeline_fe``: the
     document of :func:`onbottom.assess.pipeline.check_section_pipeline`, every FE storm stopped
     at the allowable) and its ``pipeline_fe`` level (:func:`_apply_pipeline`); unchanged where
-    the section has no design or no dynamic run."""
+    the section has no design or no dynamic run. ``out``: the output folder of its NetCDF
+    (:func:`pipeline_file` of section ``index``, run identity ``identity``; None: not
+    written)."""
     from onbottom.assess.pipeline import check_section_pipeline
 
     if not (result.get("dynamic") or {}).get("base") or (
         route.variable != "none" and result.get("design_value") is None
     ):
         return result
-    doc = _clean(check_section_pipeline(route, sec, result, None, early_stop=True))
+    name = pipeline_file(Path(), index, sec.name).as_posix()
+    doc = _clean(check_section_pipeline(route, sec, result, out, early_stop=True, name=name,
+                                        identity=identity))  # fmt: skip
     return _apply_pipeline(route, [result], doc)[0] | {"pipeline_fe": doc}
 
 
@@ -860,11 +883,14 @@ def assess(
             f = section_file(outp, i, s.name)
             if f.is_file():
                 old = read_saved(f, "saved section result")
-                if old and old.get("identity") == _digest(parts):
+                lost = _lost_pipeline_file(outp, i, s.name, old)
+                if old and old.get("identity") == _digest(parts) and not lost:
                     results[i] = old
                     reused.append(s.name)
                     continue
-                why = stale_reason(old.get("identity_parts"), parts) if old else "unreadable"
+                why = lost or (
+                    stale_reason(old.get("identity_parts"), parts) if old else "unreadable"
+                )
                 recomputed.append((s.name, why or "its run identity differs"))
         out_s = None if outp is None else str(outp)
         jobs.append(_SectionJob(settings, s, i, out_s, files, parts))
@@ -891,6 +917,24 @@ def assess(
     return Assessment(route=route, sections=sections, identity=route.identity,
                       wall_time_s=time.perf_counter() - t0, reused=reused,
                       source=source, pipeline=pipe, recomputed=recomputed)  # fmt: skip
+
+
+def _lost_pipeline_file(out: Path, i: int, name: str, old: dict[str, Any] | None) -> str:
+    """Why saved section ``i`` cannot be reused for its FE check's NetCDF (:func:`pipeline_file`):
+    gone or not a complete result; empty: it is there (its path in ``old`` made that of
+    ``out``), or the section wrote none."""
+    from onbottom.results import check_result_file
+
+    doc = (old or {}).get("pipeline_fe") or {}
+    if not doc.get("netcdf"):
+        return ""
+    f = pipeline_file(out, i, name)
+    try:
+        check_result_file(f)
+    except (ResultFileError, OSError):
+        return f"its pipeline FE results {f.relative_to(out).as_posix()} are missing or partial"
+    doc["netcdf"] = str(f)
+    return ""
 
 
 def _governing_section_pipeline(route: Route, sections: list[dict[str, Any]]) -> dict | None:
@@ -926,7 +970,7 @@ def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) ->
         old = read_saved(f, "saved pipeline result")
         if old and old.get("identity") == ident:
             return old | {"reused": True}
-    res = run_governing_pipeline(route, sections, out)
+    res = run_governing_pipeline(route, sections, out, identity=ident)
     res = _clean(res | {"identity": ident})
     if f is not None:
         write_text_atomic(f, checksum_json(res))

@@ -18,7 +18,11 @@ document),
 ``pipeline`` (the pipeline FE run of the governing section, ``[levels] pipeline_fe``: section,
 combination, seed, design value, max_displacement_m / _over_D, max_strain, strain_limit,
 strain_check, worst_node_x_m, status, envelopes {x, max_abs_y, max_strain, max_abs_moment}
-[m, m, -, N·m], wall_time_s; null when not run).
+[m, m, -, N·m], wall_time_s, netcdf; null when not run). The FE results are NetCDF files
+(:func:`onbottom.assess.pipeline.fe_dataset`): ``pipeline.nc`` of the governing section, or with
+``[pipeline] sections = "every"`` one per section checked, ``pipeline/NN-<section>.nc``, each
+named by its check's ``netcdf`` key (``sections[i].pipeline_fe.netcdf``) and listed in the
+files written.
 
 Figures are embedded (inline SVG, PNG as data URIs): the report is one self-contained file.
 """
@@ -60,6 +64,7 @@ __all__ = [
     "OutputFolder",
     "claim_output_folder",
     "comparison",
+    "fe_files",
     "format_value",
     "level_name",
     "provenance_block",
@@ -209,14 +214,16 @@ def write_outputs(
     notes: list[str] | tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """Write results.json, dynamic.nc, report.html and (WeasyPrint installed) report.pdf into
-    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``. ``notes``: warnings
-    raised while the route was read and run, listed in the report with the sections' own."""
+    ``out``; return ``{"files": [...], "pdf": str | None (why not)}``, the files listing also
+    the pipeline FE results the run wrote (:func:`fe_files`). ``notes``: warnings raised while
+    the route was read and run, listed in the report with the sections' own."""
     outp = Path(out)
     payload = results_payload(a, case_text)
     files = [write_text_atomic(outp / "results.json", json.dumps(payload, indent=1))]
     ds = a.dynamic_dataset()
     if ds.data_vars:
         files.append(save_dataset(ds, outp / "dynamic.nc"))
+    files += fe_files(a)
     ctx = report_context(a, payload, notes=notes)
     for tb in ctx["tables"]:
         files.append(write_text_atomic(outp / tb["csv"], tb["csv_text"]))
@@ -239,6 +246,15 @@ def write_outputs(
     return {"files": [str(f) for f in files], "pdf": why}
 
 
+def fe_files(a: Assessment) -> list[Path]:
+    """The pipeline FE results (NetCDF) of the route: each section's check with
+    ``[pipeline] sections = "every"`` (``pipeline/NN-<section>.nc``), else the governing
+    section's ``pipeline.nc``; those on disk, in section order."""
+    docs = [s.get("pipeline_fe") for s in a.sections] + [a.pipeline]
+    found = [Path(d["netcdf"]) for d in docs if d and d.get("netcdf")]
+    return [f for f in dict.fromkeys(found) if f.is_file()]
+
+
 # ---- the output folder: whose files, which run -----------------------------------------------
 MARK_NAME = ".onbottom-assess"
 """The file that marks a folder as written by ``onbottom assess`` (its files may be replaced)."""
@@ -247,7 +263,15 @@ LOCK_NAME = ".onbottom-assess.lock"
 """The lock file of the run writing a folder (its process id and host)."""
 
 _OWN_NAMES = frozenset(
-    {"results.json", "dynamic.nc", "report.html", "report.pdf", "sections", "pipeline.nc"}
+    {
+        "results.json",
+        "dynamic.nc",
+        "report.html",
+        "report.pdf",
+        "sections",
+        "pipeline.nc",
+        "pipeline",
+    }
 )
 
 RELIABILITY_NAMES = frozenset(

@@ -25,7 +25,8 @@ straight stretch of the governing section:
 Returned (results.json ``pipeline``): the section, combination, seed and design value, the
 max lateral displacement [m] and over D, the max strain and its check, the worst node, the
 status, the envelopes along the line (x, max |y|, max strain, max |moment|) and the run time;
-the NetCDF (records off: envelopes only) is ``pipeline.nc`` in the output folder.
+the NetCDF (records off: the envelopes and the verdict, :func:`fe_dataset`) is
+``pipeline.nc`` in the output folder.
 
 Design (one design that passes every level run). When the FE run fails at the section's
 design (max |y| above the route's allowable, or the strain above its limit), the design of that
@@ -48,7 +49,9 @@ in sections), on the section's worst storm (the combination and seed of
 of the section solver's search — with the search's passing trials as the first guesses above it
 (warm start), and every FE storm stopped once |y| passes the allowable (a passing run is
 complete by definition; a failing one is decided there). With ``mesh = "rule"`` the line length
-and element length follow :func:`fe_mesh`, stated in ``docs/assess.md``.
+and element length follow :func:`fe_mesh`, stated in ``docs/assess.md``. Each section's check is
+written by its task as ``pipeline/NN-<section>.nc`` (:func:`fe_dataset`), beside its
+``sections/NN-<section>.json``.
 """
 
 from __future__ import annotations
@@ -64,6 +67,7 @@ __all__ = [
     "DISAGREEMENT_FACTOR",
     "MESH_RULE",
     "check_section_pipeline",
+    "fe_dataset",
     "fe_mesh",
     "governing_storm",
     "pipeline_trial",
@@ -351,11 +355,12 @@ CAUSES = (
 
 
 def run_governing_pipeline(
-    route: Route, sections: list[dict[str, Any]], out: str | Path | None
+    route: Route, sections: list[dict[str, Any]], out: str | Path | None, *, identity: str = ""
 ) -> dict[str, Any] | None:
     """Run the pipeline FE of the governing section at its design and, where it fails, raise the
     design until it passes (see the module); None when no section qualifies. ``out``: folder of
-    ``pipeline.nc`` (the envelopes of the accepted run; None: not written).
+    ``pipeline.nc`` (:func:`fe_dataset` of the accepted run; None: not written); ``identity``:
+    its run identity (the resume key of ``sections/pipeline.json``).
 
     Returns the results.json ``pipeline`` document: the keys of :func:`governing_storm`, the
     line (length_m, element_length_m, n_nodes, end_conditions, strain_limit, duration_s), the
@@ -369,7 +374,9 @@ def run_governing_pipeline(
     if gov is None:
         return None
     result = next(s for s in sections if s["index"] == gov["index"])
-    return check_section_pipeline(route, route.sections[gov["index"]], result, out, gov=gov)
+    return check_section_pipeline(
+        route, route.sections[gov["index"]], result, out, gov=gov, identity=identity
+    )
 
 
 def check_section_pipeline(
@@ -380,6 +387,8 @@ def check_section_pipeline(
     *,
     gov: dict[str, Any] | None = None,
     early_stop: bool = False,
+    name: str = "pipeline.nc",
+    identity: str = "",
 ) -> dict[str, Any]:
     """The pipeline FE check of one section's design, raised until it passes (see the module).
 
@@ -388,10 +397,12 @@ def check_section_pipeline(
     with the section solver on the same storm and seed → the design raised where it fails,
     the section's passing trials as the first guesses → the document. ``section``: the
     :class:`~onbottom.assess.route.Section`; ``result``: its result (``design_value``,
-    ``levels``, ``dynamic``); ``out``: folder of ``pipeline.nc`` (None: not written);
-    ``early_stop``: stop the run at the section's design too once |y| passes the allowable
-    (its verdict is the complete run's; its max |y| a lower bound). Returns the keys of
-    :func:`run_governing_pipeline` and ``mesh``.
+    ``levels``, ``dynamic``); ``out``: the output folder of the NetCDF ``name`` (a path
+    relative to ``out``: :func:`fe_dataset` of the accepted run, written under a temporary name
+    and renamed; None: not written), ``identity`` its run identity; ``early_stop``: stop the run
+    at the section's design too once |y| passes the allowable (its verdict is the complete
+    run's; its max |y| a lower bound). Returns the keys of :func:`run_governing_pipeline`,
+    ``netcdf`` (the file, or None) and ``mesh``.
     """
     t0, c0 = time.perf_counter(), time.process_time()
     gov = section_storm(route, result) if gov is None else gov
@@ -407,15 +418,92 @@ def check_section_pipeline(
         search, accepted, res, value = _raise_design(
             route, gov, section, result, first, r0, trial_mesh
         )
-    env = res.envelopes
-    if out is not None and env is not None:
-        save_dataset(env.assign_attrs(assess_section=gov["section"],
-                                      combination=gov["combination"]),
-                     Path(out) / "pipeline.nc")  # fmt: skip
-    return _document(route, gov, mesh, accepted, res, search, value, at_design, out) | {
+    path = None if out is None or res.envelopes is None else Path(out) / name
+    doc = _document(route, gov, mesh, accepted, res, search, value, at_design, path) | {
         "cpu_time_s": time.process_time() - c0,
         "wall_time_s": time.perf_counter() - t0,
     }
+    if path is not None:
+        save_dataset(fe_dataset(route, doc, res, identity=identity), path)
+    return doc
+
+
+def fe_dataset(route: Route, doc: dict[str, Any], res: Any, *, identity: str = "") -> Any:
+    """The NetCDF of a section's FE check (``pipeline.nc``, ``pipeline/NN-<section>.nc``).
+
+    Parameters
+    ----------
+    route : Route
+        The route (its identity, variable and ``[pipeline]``).
+    doc : dict
+        The check's document (:func:`check_section_pipeline`).
+    res : PipelineResult
+        The accepted run (:func:`pipeline_trial`).
+    identity : str
+        The run identity of the check (the section's resume key).
+
+    Returns
+    -------
+    xarray.Dataset
+        The accepted run's envelopes along the line (dim ``node``, coordinate ``x`` [m]:
+        ``max_abs_y`` [m], ``max_strain`` [-], ``max_abs_moment`` [N·m], ...) and the verdict
+        as scalars: ``max_displacement`` [m] (the max |y| the route reports, the maximum of
+        ``max_abs_y``), ``allowable`` [m], ``line_max_strain`` [-], ``strain_limit`` [-],
+        ``passed`` (1: the accepted design passes), ``stopped_at_allowable`` (1: a stopped
+        run, max |y| a lower bound), ``max_displacement_at_section_design`` [m] and, with a
+        design variable, ``design_value`` and ``section_design`` [m or N/m; NaN: none passes].
+        Attributes: provenance (:func:`onbottom.results.provenance`: model
+        ``onbottom.assess.pipeline_fe``, ``parameters`` the FE line and limits, ``seed``,
+        ``case_identity`` the route's, ``run_identity``), the section, combination, condition,
+        solver status and message (``assess_section``, ``combination`` as before).
+    """
+    import numpy as np
+
+    from onbottom.results import annotate, provenance
+
+    unit = {"concrete_thickness": "m", "submerged_weight": "N/m"}.get(route.variable)
+    at = doc.get("at_section_design") or doc
+
+    def scalar(v: Any, units: str, long_name: str) -> tuple[tuple, Any, dict[str, str]]:
+        value = np.int8(v) if units == "flag" else np.float64(np.nan if v is None else v)
+        return (), value, {"long_name": long_name, "units": "1" if units == "flag" else units}
+
+    var = route.variable
+    data = {
+        "max_displacement": (doc["max_displacement_m"], "m", "largest |lateral displacement|"),
+        "allowable": (doc["allowable_m"], "m", "allowable lateral displacement"),
+        "line_max_strain": (doc["max_strain"], "1", "largest fibre strain on the line"),
+        "strain_limit": (doc["strain_limit"], "1", "strain limit"),
+        "max_displacement_at_section_design": (
+            at["max_displacement_m"],
+            "m",
+            "largest |lateral displacement| at the section design",
+        ),
+        "passed": (bool(doc["pass"]), "flag", "the accepted design passes the pipeline FE"),
+        "stopped_at_allowable": (
+            bool(doc.get("stopped_at_allowable")),
+            "flag",
+            "the run stopped at the allowable",
+        ),
+    }
+    if unit is not None:
+        data["design_value"] = (doc["design_value"], unit, f"design {var}")
+        data["section_design"] = (doc["section_design"], unit, f"section design {var}")
+    params = {
+        "length_m": doc["length_m"], "element_length_m": doc["element_length_m"],
+        "n_nodes": doc["n_nodes"], "end_conditions": doc["end_conditions"],
+        "strain_limit": doc["strain_limit"], "duration_s": doc["duration_s"],
+        "mesh": route.pipeline.mesh, "sections": route.pipeline.sections,
+        "early_stop": route.pipeline.sections == "every",
+    }  # fmt: skip
+    attrs = provenance(
+        "onbottom.assess.pipeline_fe", params, seed=int(doc["seed"]),
+        case_identity=route.identity, run_identity=identity, assess_section=doc["section"],
+        combination=doc["combination"], condition=str(doc.get("condition")),
+        variable=var, status=int(doc["status"]), message=str(doc["message"]),
+    )  # fmt: skip
+    scalars = {k: scalar(*v) for k, v in data.items()}
+    return annotate(res.envelopes.assign(scalars).assign_attrs(attrs))
 
 
 def _at_design(
@@ -493,9 +581,9 @@ def _document(
     search: dict[str, Any] | None,
     value: float | None,
     at_design: dict[str, Any],
-    out: str | Path | None,
+    path: Path | None,
 ) -> dict[str, Any]:
-    """The results.json ``pipeline`` document of a section's FE check."""
+    """The results.json ``pipeline`` document of a section's FE check (``path``: its NetCDF)."""
     p = route.pipeline
     x0 = gov["design_value"]
     env = res.envelopes
@@ -524,7 +612,7 @@ def _document(
                 "max_strain": [float(v) for v in env["max_strain"].values],
                 "max_abs_moment": [float(v) for v in env["max_abs_moment"].values],
             },
-            "netcdf": None if out is None else str(Path(out) / "pipeline.nc"),
+            "netcdf": None if path is None else str(path),
         }
         | ({"mesh": mesh} if p.mesh == "rule" else {})
     )
