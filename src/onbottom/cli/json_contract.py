@@ -197,7 +197,8 @@ CONTRACT: dict[str, Output] = {
             " docs/conventions.md: 6 a design found, 7 the lower bound already passes, -6 no"
             " value in the range passes), notes, the section's stability case document; with"
             ' [pipeline] sections = "every", the section\'s own pipeline FE check (key'
-            ' pipeline_fe: the keys of `pipeline`, and mesh with [pipeline] mesh = "rule")',
+            ' pipeline_fe: the keys of `pipeline`, mesh with [pipeline] mesh = "rule", and'
+            " netcdf, the section's FE results pipeline/NN-<section>.nc in --out)",
             "comparison": "per section: absolute and dynamic designs, which is heavier, why",
             "validity": "assumptions and reconstructed models",
             "clauses": "check name -> F109 clause and equation",
@@ -206,7 +207,8 @@ CONTRACT: dict[str, Output] = {
             " section, combination, seed, design_value, max_displacement_m, max_strain,"
             " strain_limit, strain_check, envelopes {x, max_abs_y, max_strain, max_abs_moment};"
             " null when not run",
-            "files": "files written in --out",
+            "files": "files written in --out (with [levels] pipeline_fe: pipeline.nc; with"
+            ' [pipeline] sections = "every": pipeline/NN-<section>.nc per section)',
             "pdf": "why report.pdf was not written, or null",
         },
         {
