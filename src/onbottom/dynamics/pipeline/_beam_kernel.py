@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import borrow, njit, pure_python
+from onbottom._jit import njit, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]
@@ -35,6 +35,12 @@ N_EL_PROPS = 4
 
 NDOF_NODE = 3
 HALF_BAND = 5  # half-bandwidth of the assembled matrix (3 DOFs × 2 nodes − 1)
+
+
+@njit(cache=True)
+def chord_angle(dy, dx):
+    """Angle β = atan2(Δy, Δx) [rad] of the chord (Δx, Δy) [m]."""
+    return math.atan2(dy, dx)
 
 
 @njit(cache=True)
@@ -52,7 +58,7 @@ def element_local(d, e, props):
     il = 1.0 / ln
     c = dx * il
     s = dy * il
-    beta = math.atan2(dy, dx)
+    beta = chord_angle(dy, dx)
     ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
     t1 = d[i + 2] - beta
     t2 = d[i + 5] - beta
@@ -163,30 +169,83 @@ def element_energy(d, e, props):
 def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
     """Add the internal forces of all elements to ``f`` and (``want_k``) tangents to band ``ab``.
 
-    ``ab[i, k]`` holds the lower band A[i, i − k]; ``fe`` (6) and ``ke`` (6×6) are work arrays.
-    The nodal bending moment and axial force (see :func:`node_section_forces`) are written to
-    ``moment`` and ``axial`` (length n_nodes) on the way.
+    ``ab[i, k]`` holds the lower band A[i, i − k]. The nodal bending moment and axial force
+    (see :func:`node_section_forces`) are written to ``moment`` and ``axial`` (length n_nodes)
+    on the way. ``fe`` (6) and ``ke`` (6×6), work arrays of the element form, are not used:
+    the element's force and its tangent's 21 lower entries (:func:`element_force_tangent`,
+    same expressions in the same order) go straight into ``f`` and ``ab``.
     """
     n_el = props.shape[0]
     for i in range(moment.shape[0]):
         moment[i] = 0.0
         axial[i] = 0.0
     for e in range(n_el):
-        # borrowed: no reference counting of the four arrays per element call
-        n, m1, m2 = element_force_tangent(
-            borrow(d), e, borrow(props), borrow(fe), borrow(ke), want_k
-        )
+        i0 = NDOF_NODE * e
+        l0 = props[e, EL_L0]
+        du = d[i0 + 3] - d[i0]
+        dy = d[i0 + 4] - d[i0 + 1]
+        dx = l0 + du
+        ln = math.sqrt(dx * dx + dy * dy)
+        il = 1.0 / ln
+        c = dx * il
+        s = dy * il
+        beta = chord_angle(dy, dx)
+        ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
+        t1 = d[i0 + 2] - beta
+        t2 = d[i0 + 5] - beta
+        il0 = 1.0 / l0
+        eil = props[e, EL_EI] * il0
+        n = props[e, EL_N0] + props[e, EL_EA] * ul * il0
+        m1 = eil * (4.0 * t1 + 2.0 * t2)
+        m2 = eil * (2.0 * t1 + 4.0 * t2)
         moment[e] -= m1
         moment[e + 1] += m2
         axial[e] += n
         axial[e + 1] += n
-        i0 = NDOF_NODE * e
-        for p in range(6):
-            f[i0 + p] += fe[p]
+        msum = (m1 + m2) * il
+        # node b's force (node a's is its negative): N (c, s) + (M₁ + M₂)/L (s, −c)
+        fx = n * c + msum * s
+        fy = n * s - msum * c
+        f[i0] -= fx
+        f[i0 + 1] -= fy
+        f[i0 + 2] += m1
+        f[i0 + 3] += fx
+        f[i0 + 4] += fy
+        f[i0 + 5] += m2
         if want_k:
-            for p in range(6):
-                for q in range(p + 1):
-                    ab[i0 + p, p - q] += ke[p, q]
+            ka = props[e, EL_EA] / l0
+            kb = props[e, EL_EI] / l0
+            bb = n * il + 12.0 * kb * il * il
+            mm = msum * il
+            a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
+            a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
+            a01 = (ka - bb) * c * s + mm * (c * c - s * s)
+            h = 6.0 * kb * il
+            tu = -h * s
+            tv = h * c
+            k4 = 4.0 * kb
+            # row i0 + p, column i0 + q (q <= p) at ab[i0 + p, p - q]
+            ab[i0, 0] += a00
+            ab[i0 + 1, 1] += a01
+            ab[i0 + 1, 0] += a11
+            ab[i0 + 2, 2] += tu
+            ab[i0 + 2, 1] += tv
+            ab[i0 + 2, 0] += k4
+            ab[i0 + 3, 3] -= a00
+            ab[i0 + 3, 2] -= a01
+            ab[i0 + 3, 1] -= tu
+            ab[i0 + 3, 0] += a00
+            ab[i0 + 4, 4] -= a01
+            ab[i0 + 4, 3] -= a11
+            ab[i0 + 4, 2] -= tv
+            ab[i0 + 4, 1] += a01
+            ab[i0 + 4, 0] += a11
+            ab[i0 + 5, 5] += tu
+            ab[i0 + 5, 4] += tv
+            ab[i0 + 5, 3] += 2.0 * kb
+            ab[i0 + 5, 2] -= tu
+            ab[i0 + 5, 1] -= tv
+            ab[i0 + 5, 0] += k4
     for i in range(1, moment.shape[0] - 1):
         moment[i] *= 0.5
         axial[i] *= 0.5
