@@ -27,6 +27,10 @@ NUM = r"[-+]?\d[\d.,]*(?:e[-+]?\d+)?"
 
 FIGURES: dict[str, tuple[str, ...]] = {
     "assess_route.py": (rf"route '1': 1 sections, .* wall {NUM} s", rf"cost per section: {NUM}"),
+    "beam_kernel_rate.py": (
+        rf"assemble_internal forces only: {NUM} ns/element",
+        rf"assemble_internal forces \+ tangent: {NUM} ns/element",
+    ),
     "bench_dem.py": (rf"threads=1: {NUM} particle-steps/s",),
     "bench_dem_cell_order.py": (rf"cell order: best {NUM}, median {NUM} particle-steps/s",),
     "bench_dem_kernel_versions.py": (rf"best compaction 1 thr: this {NUM} ms, other {NUM} ms",),

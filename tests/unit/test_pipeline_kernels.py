@@ -157,7 +157,7 @@ def test_twins_match_kernels():
     assert B.strain_energy(d, props) == pytest.approx(B.strain_energy_py(d, props), rel=1e-13)
 
 
-@pytest.mark.parametrize("angle_deg", [0.0, 30.0, 120.0])
+@pytest.mark.parametrize("angle_deg", [0.0, 3.0, -5.0, 30.0, 120.0])
 def test_rigid_motion_makes_no_strain(angle_deg):
     """Rigid translation (10 m) plus rotation: no internal force, energy, moment or axial force."""
     ne = 10
@@ -179,6 +179,129 @@ def test_rigid_motion_makes_no_strain(angle_deg):
     mom, nax = np.zeros(ne + 1), np.zeros(ne + 1)
     B.node_section_forces(d, props, mom, nax)
     assert np.max(np.abs(mom)) < 1e-3 and np.max(np.abs(nax)) < 1e-3
+
+
+def _chord_samples(rng, n):
+    """(Δy, Δx) of chords: slopes within the series' range (uniform and log-uniform down to
+    1e-12, both signs) and beyond it (steep, vertical, backwards, zero, NaN)."""
+    t = np.concatenate([
+        rng.uniform(-B.ATAN_T_MAX, B.ATAN_T_MAX, n),
+        10.0 ** rng.uniform(-12.0, math.log10(B.ATAN_T_MAX), n) * rng.choice([-1.0, 1.0], n),
+        [B.ATAN_T_MAX, -B.ATAN_T_MAX, 0.0, -0.0],
+    ])  # fmt: skip
+    dx = rng.uniform(0.5, 5.0, t.size)
+    dy = t * dx
+    beyond = np.array([[1.0, 1.0], [-1.0, 1.0], [1.0, 0.0], [-1.0, 0.0], [0.3, -2.0], [-0.3, -2.0],
+                       [0.0, -2.0], [0.0, 0.0], [0.26, 2.0], [np.nan, 2.0]])  # fmt: skip
+    return np.concatenate([dy, beyond[:, 0]]), np.concatenate([dx, beyond[:, 1]])
+
+
+def test_chord_angle_is_atan2_within_an_ulp():
+    """The series of :func:`chord_angle` (|Δy/Δx| <= ATAN_T_MAX, Δx > 0) gives the library's
+    atan2 within 1 ulp (measured: equal in 80 % of 4·10⁵ samples, 1 ulp apart in the rest);
+    beyond that range it is the library's atan2 itself. The twin gives the kernel's bits."""
+    rng = np.random.default_rng(11)
+    dy, dx = _chord_samples(rng, 20000)
+    for y, x in zip(dy, dx, strict=True):
+        ref = math.atan2(y, x)
+        got = B.chord_angle(y, x)
+        assert B.chord_angle_py(y, x) == got or (math.isnan(got) and math.isnan(ref))
+        if math.isnan(ref):
+            assert math.isnan(got)
+        elif x > 0.0 and abs(y / x) <= B.ATAN_T_MAX:
+            assert abs(got - ref) <= math.ulp(ref), (y, x, got, ref)
+        else:
+            assert got == ref
+
+
+def _element_atan2(d, props):
+    """The element's local forces and global force with the library's atan2 for the chord
+    angle, as the kernel computed them before the series (reference, plain Python)."""
+    l0, ea, ei, n0 = props[0]
+    du = d[3] - d[0]
+    dy = d[4] - d[1]
+    dx = l0 + du
+    ln = math.sqrt(dx * dx + dy * dy)
+    il = 1.0 / ln
+    c, s = dx * il, dy * il
+    beta = math.atan2(dy, dx)
+    ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
+    t1, t2 = d[2] - beta, d[5] - beta
+    il0 = 1.0 / l0
+    n = n0 + ea * ul * il0
+    m1 = ei * il0 * (4.0 * t1 + 2.0 * t2)
+    m2 = ei * il0 * (2.0 * t1 + 4.0 * t2)
+    msum = (m1 + m2) * il
+    fx, fy = n * c + msum * s, n * s - msum * c
+    return np.array([-fx, -fy, m1, fx, fy, m2]), beta, ln, n, m1, m2
+
+
+def test_element_forces_equal_the_atan2_form():
+    """Against the library-atan2 form, over random element states (chords turned by up to
+    ±π/2 both ways, local rotations θ − β up to 0.1 rad, stretch up to 1e-3): the forces differ
+    only through the chord angle (≤ 1 ulp of β): |Δf| ≤ (6EI/L₀)·2ulp(β)·max(1, 2/L) plus a few
+    ulp of the terms, and within 1e-12 of the largest force component."""
+    rng = np.random.default_rng(12)
+    worst = 0.0
+    for k in range(3000):
+        props = _props(l0=rng.uniform(0.5, 5.0), ea=5e9, ei=rng.uniform(1e6, 1e8),
+                       n0=rng.uniform(-3e5, 3e5))  # fmt: skip
+        l0 = props[0, B.EL_L0]
+        phi = rng.uniform(-math.pi / 2, math.pi / 2) if k % 3 == 0 else rng.normal(scale=0.03)
+        ln = l0 * (1.0 + rng.uniform(-1e-3, 1e-3))
+        ua, va = rng.normal(scale=0.5, size=2)
+        d = np.array([ua, va, 0.0, ua - l0 + ln * math.cos(phi), va + ln * math.sin(phi), 0.0])
+        d[2], d[5] = phi + rng.uniform(-0.1, 0.1, 2) * 10.0 ** rng.uniform(-4, 0)
+        ref, beta, ln_, n, m1, m2 = _element_atan2(d, props)
+        fe, ke = np.zeros(6), np.zeros((6, 6))
+        B.element_force_tangent(d, 0, props, fe, ke, False)
+        kb = props[0, B.EL_EI] / l0
+        eps = np.finfo(float).eps
+        tol = 6.0 * kb * 2.0 * math.ulp(beta) * max(1.0, 2.0 / ln_)
+        tol += 8.0 * eps * (abs(n) + abs(m1) + abs(m2) + abs(m1 + m2) / ln_)
+        assert np.all(np.abs(fe - ref) <= tol), (d, fe - ref, tol)
+        worst = max(worst, float(np.max(np.abs(fe - ref)) / np.max(np.abs(ref))))
+    assert worst <= 1e-12
+
+
+def test_assembly_equals_the_element_form_bit_for_bit():
+    """assemble_internal writes each element's force and tangent straight into f and the band:
+    the same numbers, bit for bit, as adding :func:`element_force_tangent`'s fe and ke element
+    by element (forces only and with the tangent; mixed element properties)."""
+    rng = np.random.default_rng(13)
+    ne = 12
+    props = _props(ne=ne, n0=-5e4)
+    props[5:, B.EL_L0] = 1.5
+    props[8:, B.EL_EI] = 2e7
+    props[10:, B.EL_EA] = 3e9
+    for scale in (1e-3, 0.05, 0.6):
+        d = rng.normal(scale=scale, size=3 * (ne + 1))
+        f0 = rng.normal(size=d.size)
+        for want_k in (False, True):
+            f, ab = f0.copy(), np.zeros((d.size, 6))
+            mom, nax = np.zeros(ne + 1), np.zeros(ne + 1)
+            B.assemble_internal(d, props, f, ab, want_k, np.zeros(6), np.zeros((6, 6)), mom, nax)
+            f_ref, ab_ref = f0.copy(), np.zeros((d.size, 6))
+            mom_ref, nax_ref = np.zeros(ne + 1), np.zeros(ne + 1)
+            fe, ke = np.zeros(6), np.zeros((6, 6))
+            for e in range(ne):
+                n, m1, m2 = B.element_force_tangent(d, e, props, fe, ke, want_k)
+                mom_ref[e] -= m1
+                mom_ref[e + 1] += m2
+                nax_ref[e] += n
+                nax_ref[e + 1] += n
+                i0 = 3 * e
+                f_ref[i0 : i0 + 6] += fe
+                if want_k:
+                    for p in range(6):
+                        for q in range(p + 1):
+                            ab_ref[i0 + p, p - q] += ke[p, q]
+            mom_ref[1:-1] *= 0.5
+            nax_ref[1:-1] *= 0.5
+            np.testing.assert_array_equal(f, f_ref)
+            np.testing.assert_array_equal(ab, ab_ref)
+            np.testing.assert_array_equal(mom, mom_ref)
+            np.testing.assert_array_equal(nax, nax_ref)
 
 
 def test_kinematics_interpolation():

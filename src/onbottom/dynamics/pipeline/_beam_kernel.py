@@ -6,6 +6,7 @@ length L₀ (Crisfield, *Non-linear finite element analysis of solids and struct
 1991, §7.3 "a simple co-rotational element"):
 
     current chord  Δx = L₀ + u_b − u_a, Δy = v_b − v_a, L = √(Δx² + Δy²), β = atan2(Δy, Δx)
+                   (:func:`chord_angle`: a series for chords within ±7.1° of the axis)
     local strains  u_l = L − L₀ = ((u_b − u_a)(2L₀ + u_b − u_a) + Δy²)/(L + L₀)  (no cancellation)
                    θ₁ = θ_a − β, θ₂ = θ_b − β
     local forces   N = N₀ + EA u_l/L₀ (tension +),  M₁ = EI(4θ₁ + 2θ₂)/L₀, M₂ = EI(2θ₁ + 4θ₂)/L₀
@@ -24,7 +25,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import borrow, njit, pure_python
+from onbottom._jit import njit, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]
@@ -35,6 +36,44 @@ N_EL_PROPS = 4
 
 NDOF_NODE = 3
 HALF_BAND = 5  # half-bandwidth of the assembled matrix (3 DOFs × 2 nodes − 1)
+
+
+ATAN_T_MAX = 0.125
+"""Largest slope |t| = |Δy/Δx| whose chord angle :func:`chord_angle` takes from its series."""
+_A3 = -1.0 / 3.0
+_A5 = 1.0 / 5.0
+_A7 = -1.0 / 7.0
+_A9 = 1.0 / 9.0
+_A11 = -1.0 / 11.0
+_A13 = 1.0 / 13.0
+_A15 = -1.0 / 15.0
+_A17 = 1.0 / 17.0
+
+
+@njit(cache=True)
+def chord_angle(dy, dx):
+    """Angle β = atan2(Δy, Δx) [rad] of the chord (Δx, Δy) [m].
+
+    A pipe's chords lie within a few degrees of its initial axis. For Δx > 0 and a slope
+    t = Δy/Δx with |t| <= :data:`ATAN_T_MAX` (β within ±7.1°), β is the alternating series
+    atan t = t − t³/3 + t⁵/5 − … + t¹⁷/17 (Abramowitz & Stegun 1964, Eq. 4.4.42), summed by
+    Estrin's scheme in t² (a short dependency chain, where the library's atan2 is a call of
+    several times the cost). The truncation error is below the first omitted term,
+    |t|¹⁹/19 <= 3e-18·|t| (0.03 ulp); the correction to t is at most t²/3 <= 1/192 of it, so
+    the result keeps the rounding of t = Δy/Δx itself: within 1.4 ulp of the exact angle and
+    1 ulp of the library's atan2 (tests). Any other chord (steeper, backwards, NaN): the
+    library's atan2.
+    """
+    if dx > 0.0:
+        t = dy / dx
+        t2 = t * t
+        if t2 <= ATAN_T_MAX * ATAN_T_MAX:
+            # Estrin's scheme: the pairs and powers in parallel (short dependency chain)
+            t4 = t2 * t2
+            p = (_A3 + t2 * _A5) + t4 * (_A7 + t2 * _A9)
+            q = (_A11 + t2 * _A13) + t4 * (_A15 + t2 * _A17)
+            return t + (t * t2) * (p + (t4 * t4) * q)
+    return math.atan2(dy, dx)
 
 
 @njit(cache=True)
@@ -52,7 +91,7 @@ def element_local(d, e, props):
     il = 1.0 / ln
     c = dx * il
     s = dy * il
-    beta = math.atan2(dy, dx)
+    beta = chord_angle(dy, dx)
     ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
     t1 = d[i + 2] - beta
     t2 = d[i + 5] - beta
@@ -163,30 +202,102 @@ def element_energy(d, e, props):
 def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
     """Add the internal forces of all elements to ``f`` and (``want_k``) tangents to band ``ab``.
 
-    ``ab[i, k]`` holds the lower band A[i, i − k]; ``fe`` (6) and ``ke`` (6×6) are work arrays.
-    The nodal bending moment and axial force (see :func:`node_section_forces`) are written to
-    ``moment`` and ``axial`` (length n_nodes) on the way.
+    ``ab[i, k]`` holds the lower band A[i, i − k]. The nodal bending moment and axial force
+    (see :func:`node_section_forces`) are written to ``moment`` and ``axial`` (length n_nodes)
+    on the way. ``fe`` (6) and ``ke`` (6×6), work arrays of the element form, are not used:
+    the element's force and its tangent's 21 lower entries (:func:`element_force_tangent`,
+    same expressions in the same order) go straight into ``f`` and ``ab``. The quotients of
+    the element properties (1/L₀, EA/L₀, EI/L₀) are computed again only where a property
+    differs from the previous element's (equal operands, equal quotient: a uniform pipe
+    divides once per call, not per element).
     """
     n_el = props.shape[0]
     for i in range(moment.shape[0]):
         moment[i] = 0.0
         axial[i] = 0.0
+    # operands of the quotients last computed (NaN: none yet)
+    q_l0 = math.nan
+    k_l0 = math.nan
+    k_ea = math.nan
+    k_ei = math.nan
+    il0 = 0.0
+    ka = 0.0
+    kb = 0.0
     for e in range(n_el):
-        # borrowed: no reference counting of the four arrays per element call
-        n, m1, m2 = element_force_tangent(
-            borrow(d), e, borrow(props), borrow(fe), borrow(ke), want_k
-        )
+        i0 = NDOF_NODE * e
+        l0 = props[e, EL_L0]
+        if l0 != q_l0:
+            q_l0 = l0
+            il0 = 1.0 / l0
+        du = d[i0 + 3] - d[i0]
+        dy = d[i0 + 4] - d[i0 + 1]
+        dx = l0 + du
+        ln = math.sqrt(dx * dx + dy * dy)
+        il = 1.0 / ln
+        c = dx * il
+        s = dy * il
+        beta = chord_angle(dy, dx)
+        ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
+        t1 = d[i0 + 2] - beta
+        t2 = d[i0 + 5] - beta
+        ea = props[e, EL_EA]
+        ei = props[e, EL_EI]
+        eil = ei * il0
+        n = props[e, EL_N0] + ea * ul * il0
+        m1 = eil * (4.0 * t1 + 2.0 * t2)
+        m2 = eil * (2.0 * t1 + 4.0 * t2)
         moment[e] -= m1
         moment[e + 1] += m2
         axial[e] += n
         axial[e + 1] += n
-        i0 = NDOF_NODE * e
-        for p in range(6):
-            f[i0 + p] += fe[p]
+        msum = (m1 + m2) * il
+        # node b's force (node a's is its negative): N (c, s) + (M₁ + M₂)/L (s, −c)
+        fx = n * c + msum * s
+        fy = n * s - msum * c
+        f[i0] -= fx
+        f[i0 + 1] -= fy
+        f[i0 + 2] += m1
+        f[i0 + 3] += fx
+        f[i0 + 4] += fy
+        f[i0 + 5] += m2
         if want_k:
-            for p in range(6):
-                for q in range(p + 1):
-                    ab[i0 + p, p - q] += ke[p, q]
+            if l0 != k_l0 or ea != k_ea or ei != k_ei:
+                k_l0 = l0
+                k_ea = ea
+                k_ei = ei
+                ka = ea / l0
+                kb = ei / l0
+            bb = n * il + 12.0 * kb * il * il
+            mm = msum * il
+            a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
+            a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
+            a01 = (ka - bb) * c * s + mm * (c * c - s * s)
+            h = 6.0 * kb * il
+            tu = -h * s
+            tv = h * c
+            k4 = 4.0 * kb
+            # row i0 + p, column i0 + q (q <= p) at ab[i0 + p, p - q]
+            ab[i0, 0] += a00
+            ab[i0 + 1, 1] += a01
+            ab[i0 + 1, 0] += a11
+            ab[i0 + 2, 2] += tu
+            ab[i0 + 2, 1] += tv
+            ab[i0 + 2, 0] += k4
+            ab[i0 + 3, 3] -= a00
+            ab[i0 + 3, 2] -= a01
+            ab[i0 + 3, 1] -= tu
+            ab[i0 + 3, 0] += a00
+            ab[i0 + 4, 4] -= a01
+            ab[i0 + 4, 3] -= a11
+            ab[i0 + 4, 2] -= tv
+            ab[i0 + 4, 1] += a01
+            ab[i0 + 4, 0] += a11
+            ab[i0 + 5, 5] += tu
+            ab[i0 + 5, 4] += tv
+            ab[i0 + 5, 3] += 2.0 * kb
+            ab[i0 + 5, 2] -= tu
+            ab[i0 + 5, 1] -= tv
+            ab[i0 + 5, 0] += k4
     for i in range(1, moment.shape[0] - 1):
         moment[i] *= 0.5
         axial[i] *= 0.5
@@ -234,3 +345,5 @@ assemble_internal_py = pure_python(assemble_internal)
 """Plain-Python twin of :func:`assemble_internal`."""
 strain_energy_py = pure_python(strain_energy)
 """Plain-Python twin of :func:`strain_energy`."""
+chord_angle_py = pure_python(chord_angle)
+"""Plain-Python twin of :func:`chord_angle`."""
