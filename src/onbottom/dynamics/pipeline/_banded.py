@@ -51,10 +51,11 @@ def _form_row(ab, i, j0, scale, mass, c_a, fixed):
 
 
 @njit(cache=True)
-def _factor(ab, form, scale, mass, c_a, fixed):
+def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
     """LDLᵀ of the band in ``ab`` in place; with ``form`` each row is first formed by
-    :func:`_form_row`. Returns the number of negative pivots, or −1 for a zero or non-finite
-    pivot."""
+    :func:`_form_row`; with ``fwd`` ``b`` is overwritten by L⁻¹b as the rows of L are made
+    (the operations of the forward pass of :func:`ldl_solve`). Returns the number of negative
+    pivots, or −1 for a zero or non-finite pivot."""
     n = ab.shape[0]
     w = ab.shape[1] - 1
     i_gen = n
@@ -84,6 +85,11 @@ def _factor(ab, form, scale, mass, c_a, fixed):
         if s < 0.0:
             n_neg += 1
         ab[i, 0] = 1.0 / s
+        if fwd:
+            y = b[i]
+            for k in range(j0, i):
+                y -= ab[i, i - k] * b[k]
+            b[i] = y
     if i_gen == n:
         return n_neg
     # full rows of half-bandwidth 5, the same operations: rN = 1/D of row i − N, aK/bK/cK/eK
@@ -104,6 +110,13 @@ def _factor(ab, form, scale, mass, c_a, fixed):
     c1 = ab[i0 - 3, 1]
     c2 = ab[i0 - 3, 2]
     e1 = ab[i0 - 4, 1]
+    x0 = x1 = x2 = x3 = x4 = 0.0
+    if fwd:
+        x0 = b[i0 - 5]
+        x1 = b[i0 - 4]
+        x2 = b[i0 - 3]
+        x3 = b[i0 - 2]
+        x4 = b[i0 - 1]
     for i in range(W_FIXED, n):
         q0 = ab[i, 0]
         q1 = ab[i, 1]
@@ -169,6 +182,15 @@ def _factor(ab, form, scale, mass, c_a, fixed):
         c1, c2 = b1, b2
         b1, b2, b3 = a1, a2, a3
         a1, a2, a3, a4 = l1, l2, l3, l4
+        if fwd:
+            y = b[i]
+            y -= l5 * x0
+            y -= l4 * x1
+            y -= l3 * x2
+            y -= l2 * x3
+            y -= l1 * x4
+            b[i] = y
+            x0, x1, x2, x3, x4 = x1, x2, x3, x4, y
     return n_neg
 
 
@@ -181,20 +203,21 @@ def ldl_factor(ab):
     negative pivots, or −1 if a pivot is zero or not finite.
     """
     unused = ab[0]
-    return _factor(ab, np.bool_(False), 1.0, unused, 0.0, unused)
+    return _factor(ab, np.bool_(False), 1.0, unused, 0.0, unused, np.bool_(False), unused)
 
 
 @njit(cache=True)
-def factor_jacobian(ab, scale, mass, c_a, fixed):
-    """Form J = c_a·M + scale·K from the tangent band K in ``ab`` and factor it in place.
+def factor_jacobian(ab, scale, mass, c_a, fixed, b):
+    """Form J = c_a·M + scale·K from the tangent band K in ``ab``, factor it in place and
+    start the solve of J x = b: ``b`` becomes L⁻¹b (:func:`ldl_solve_backward` finishes it).
 
     ``scale`` is 1 + α (HHT-α) [-], ``mass`` the lumped mass of each DOF [kg; kg·m² for a
     rotation], ``c_a`` = 1/(βΔt²) [1/s²], ``fixed`` non-zero on fixed DOFs (their row and
     column of J zero, a unit diagonal). The same operations, in the same order, as forming J
-    in ``ab`` and then :func:`ldl_factor` (bit for bit), in one pass. Returns what
-    :func:`ldl_factor` returns.
+    in ``ab``, :func:`ldl_factor` and the forward pass of :func:`ldl_solve` (bit for bit),
+    in one pass. Returns what :func:`ldl_factor` returns.
     """
-    return _factor(ab, np.bool_(True), scale, mass, c_a, fixed)
+    return _factor(ab, np.bool_(True), scale, mass, c_a, fixed, np.bool_(True), b)
 
 
 @njit(cache=True)
@@ -232,7 +255,17 @@ def ldl_solve(ab, b):
             s -= ab[i, 1] * x4
             b[i] = s
             x0, x1, x2, x3, x4 = x1, x2, x3, x4, s
-    # D⁻¹ and the backward pass in one sweep (b[i] is scaled before its own update, as in two)
+    ldl_solve_backward(borrow(ab), borrow(b))
+
+
+@njit(cache=True)
+def ldl_solve_backward(ab, b):
+    """The second half of :func:`ldl_solve`: x = D⁻¹y − Lᵀx in place of y = L⁻¹b in ``b``
+    (the terms of row i in descending column order, x_{i+1} last; b[i] is scaled by 1/D_i
+    before its own update)."""
+    n = ab.shape[0]
+    w = ab.shape[1] - 1
+    fixed = w == W_FIXED and n > 2 * W_FIXED
     i_stop = n - 1 - W_FIXED if fixed else -1
     for i in range(n - 1, i_stop, -1):
         s = b[i] * ab[i, 0]
@@ -263,5 +296,7 @@ ldl_factor_py = pure_python(ldl_factor)
 """Plain-Python twin of :func:`ldl_factor` (same source, interpreted)."""
 factor_jacobian_py = pure_python(factor_jacobian)
 """Plain-Python twin of :func:`factor_jacobian`."""
+ldl_solve_backward_py = pure_python(ldl_solve_backward)
+"""Plain-Python twin of :func:`ldl_solve_backward`."""
 ldl_solve_py = pure_python(ldl_solve)
 """Plain-Python twin of :func:`ldl_solve`."""
