@@ -2,14 +2,14 @@
 
 The pipeline Jacobian is symmetric with half-bandwidth ``w`` (5 for 3 DOFs per node and
 2-node elements); its lower band is stored as ``ab[i, k] = A[i, i − k]`` for k = 0..w
-(entries with i − k < 0 unused). :func:`ldl_factor` overwrites ``ab`` with the unit lower
-factor L (off-diagonals) and 1/D (``ab[i, 0]``: no division left in the solve) — O(n·w²)
-work, no pivoting (the effective
-dynamic matrix M/(βΔt²) + K_T is dominated by its diagonal for the steps the solver accepts;
-a zero pivot is reported, a negative one is allowed and counted). :func:`factor_jacobian`
-forms the HHT-α Jacobian from the tangent band in the same pass (scale, lumped mass, fixed
-DOFs decoupled: the same operations as forming it first). :func:`ldl_solve` solves A x = b
-in place in O(n·w).
+(entries with i − k < 0 unused). :func:`factor_jacobian` forms the HHT-α Jacobian from the
+tangent band (scale, lumped mass, fixed DOFs decoupled), overwrites ``ab`` with the unit
+lower factor L (off-diagonals) and 1/D (``ab[i, 0]``: no division left in the solve) and does
+the forward pass of the solve on a right-hand side, all in one sweep — O(n·w²) work, no
+pivoting (the effective dynamic matrix M/(βΔt²) + K_T is dominated by its diagonal for the
+steps the solver accepts; a zero pivot is reported, a negative one is allowed and counted);
+:func:`ldl_solve_backward` finishes that solve. :func:`ldl_factor` factors a band as it is;
+:func:`ldl_solve` solves A x = b in place with a kept factor, O(n·w).
 
 Half-bandwidth 5 (:data:`W_FIXED`) takes paths with constant trip counts and the previous
 rows' factor kept in registers (the factor's and the solve's loop-carried chains are a few
@@ -34,28 +34,18 @@ band take a path with constant trip counts and the previous rows in registers.""
 
 
 @njit(cache=True)
-def _form_row(ab, i, j0, scale, mass, c_a, fixed):
-    """Row i of J = c_a·M + scale·K in place (``ab`` holds K's band), fixed DOFs decoupled
-    (their rows and columns zero, a unit diagonal); j0 = max(i − w, 0)."""
-    if fixed[i] != 0.0:
-        for k in range(1, i - j0 + 1):
-            ab[i, k] = 0.0
-        ab[i, 0] = 1.0
-        return
-    for k in range(1, i - j0 + 1):
-        if fixed[i - k] != 0.0:
-            ab[i, k] = 0.0
-        else:
-            ab[i, k] *= scale
-    ab[i, 0] = ab[i, 0] * scale + mass[i] * c_a
+def factor_jacobian(ab, scale, mass, c_a, fixed, b):
+    """Form J = c_a·M + scale·K from the tangent band K in ``ab``, factor it in place and
+    start the solve of J x = b: ``b`` becomes L⁻¹b (:func:`ldl_solve_backward` finishes it).
 
-
-@njit(cache=True)
-def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
-    """LDLᵀ of the band in ``ab`` in place; with ``form`` each row is first formed by
-    :func:`_form_row`; with ``fwd`` ``b`` is overwritten by L⁻¹b as the rows of L are made
-    (the operations of the forward pass of :func:`ldl_solve`). Returns the number of negative
-    pivots, or −1 for a zero or non-finite pivot."""
+    ``scale`` is 1 + α (HHT-α) [-], ``mass`` the lumped mass of each DOF [kg; kg·m² for a
+    rotation], ``c_a`` = 1/(βΔt²) [1/s²], ``fixed`` non-zero on fixed DOFs (their row and
+    column of J zero, a unit diagonal). Row by row (``ab[j, 0]`` already holds 1/D_j for
+    j < i): with t_k = L_ik·D_k, L_ij·D_j = J_ij − Σ_k t_k L_jk and D_i = J_ii − Σ_k t_k L_ik,
+    then y_i = b_i − Σ_k L_ik y_k — the same operations, in the same order, as forming J in
+    ``ab``, factoring it and the forward pass of :func:`ldl_solve` (bit for bit), in one pass.
+    Returns the number of negative pivots, or −1 if a pivot is zero or not finite.
+    """
     n = ab.shape[0]
     w = ab.shape[1] - 1
     i_gen = n
@@ -69,8 +59,19 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
         j0 = i - w
         if j0 < 0:
             j0 = 0
-        if form:
-            _form_row(borrow(ab), i, j0, scale, borrow(mass), c_a, borrow(fixed))
+        # row i of J = c_a·M + scale·K, fixed DOFs decoupled (zero row and column, unit
+        # diagonal)
+        if fixed[i] != 0.0:
+            for k in range(1, i - j0 + 1):
+                ab[i, k] = 0.0
+            ab[i, 0] = 1.0
+        else:
+            for k in range(1, i - j0 + 1):
+                if fixed[i - k] != 0.0:
+                    ab[i, k] = 0.0
+                else:
+                    ab[i, k] *= scale
+            ab[i, 0] = ab[i, 0] * scale + mass[i] * c_a
         for j in range(j0, i):
             s = ab[i, i - j]
             for k in range(j0, j):
@@ -85,11 +86,10 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
         if s < 0.0:
             n_neg += 1
         ab[i, 0] = 1.0 / s
-        if fwd:
-            y = b[i]
-            for k in range(j0, i):
-                y -= ab[i, i - k] * b[k]
-            b[i] = y
+        y = b[i]
+        for k in range(j0, i):
+            y -= ab[i, i - k] * b[k]
+        b[i] = y
     if i_gen == n:
         return n_neg
     # full rows of half-bandwidth 5, the same operations: rN = 1/D of row i − N, aK/bK/cK/eK
@@ -110,13 +110,11 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
     c1 = ab[i0 - 3, 1]
     c2 = ab[i0 - 3, 2]
     e1 = ab[i0 - 4, 1]
-    x0 = x1 = x2 = x3 = x4 = 0.0
-    if fwd:
-        x0 = b[i0 - 5]
-        x1 = b[i0 - 4]
-        x2 = b[i0 - 3]
-        x3 = b[i0 - 2]
-        x4 = b[i0 - 1]
+    x0 = b[i0 - 5]
+    x1 = b[i0 - 4]
+    x2 = b[i0 - 3]
+    x3 = b[i0 - 2]
+    x4 = b[i0 - 1]
     for i in range(W_FIXED, n):
         q0 = ab[i, 0]
         q1 = ab[i, 1]
@@ -124,18 +122,16 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
         q3 = ab[i, 3]
         q4 = ab[i, 4]
         q5 = ab[i, 5]
-        if form:
-            # :func:`_form_row` on the row in registers
-            if fixed[i] != 0.0:
-                q0 = 1.0
-                q1 = q2 = q3 = q4 = q5 = 0.0
-            else:
-                q0 = q0 * scale + mass[i] * c_a
-                q1 = 0.0 if fixed[i - 1] != 0.0 else q1 * scale
-                q2 = 0.0 if fixed[i - 2] != 0.0 else q2 * scale
-                q3 = 0.0 if fixed[i - 3] != 0.0 else q3 * scale
-                q4 = 0.0 if fixed[i - 4] != 0.0 else q4 * scale
-                q5 = 0.0 if fixed[i - 5] != 0.0 else q5 * scale
+        if fixed[i] != 0.0:  # the forming above, on the row in registers
+            q0 = 1.0
+            q1 = q2 = q3 = q4 = q5 = 0.0
+        else:
+            q0 = q0 * scale + mass[i] * c_a
+            q1 = 0.0 if fixed[i - 1] != 0.0 else q1 * scale
+            q2 = 0.0 if fixed[i - 2] != 0.0 else q2 * scale
+            q3 = 0.0 if fixed[i - 3] != 0.0 else q3 * scale
+            q4 = 0.0 if fixed[i - 4] != 0.0 else q4 * scale
+            q5 = 0.0 if fixed[i - 5] != 0.0 else q5 * scale
         t0 = q5
         l5 = t0 * r5
         s = q4
@@ -182,15 +178,14 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
         c1, c2 = b1, b2
         b1, b2, b3 = a1, a2, a3
         a1, a2, a3, a4 = l1, l2, l3, l4
-        if fwd:
-            y = b[i]
-            y -= l5 * x0
-            y -= l4 * x1
-            y -= l3 * x2
-            y -= l2 * x3
-            y -= l1 * x4
-            b[i] = y
-            x0, x1, x2, x3, x4 = x1, x2, x3, x4, y
+        y = b[i]
+        y -= l5 * x0
+        y -= l4 * x1
+        y -= l3 * x2
+        y -= l2 * x3
+        y -= l1 * x4
+        b[i] = y
+        x0, x1, x2, x3, x4 = x1, x2, x3, x4, y
     return n_neg
 
 
@@ -198,26 +193,12 @@ def _factor(ab, form, scale, mass, c_a, fixed, fwd, b):
 def ldl_factor(ab):
     """Factor the symmetric band matrix held in ``ab`` (n × (w+1)) in place.
 
-    Row by row (``ab[j, 0]`` already holds 1/D_j for j < i): with t_k = L_ik·D_k,
-    L_ij·D_j = A_ij − Σ_k t_k L_jk and D_i = A_ii − Σ_k t_k L_ik. Returns the number of
+    :func:`factor_jacobian` with nothing to form (scale 1, no mass, no fixed DOF: x·1 = x and
+    x + 0 = x exactly, the same factor) and a zero right-hand side. Returns the number of
     negative pivots, or −1 if a pivot is zero or not finite.
     """
-    unused = ab[0]
-    return _factor(ab, np.bool_(False), 1.0, unused, 0.0, unused, np.bool_(False), unused)
-
-
-@njit(cache=True)
-def factor_jacobian(ab, scale, mass, c_a, fixed, b):
-    """Form J = c_a·M + scale·K from the tangent band K in ``ab``, factor it in place and
-    start the solve of J x = b: ``b`` becomes L⁻¹b (:func:`ldl_solve_backward` finishes it).
-
-    ``scale`` is 1 + α (HHT-α) [-], ``mass`` the lumped mass of each DOF [kg; kg·m² for a
-    rotation], ``c_a`` = 1/(βΔt²) [1/s²], ``fixed`` non-zero on fixed DOFs (their row and
-    column of J zero, a unit diagonal). The same operations, in the same order, as forming J
-    in ``ab``, :func:`ldl_factor` and the forward pass of :func:`ldl_solve` (bit for bit),
-    in one pass. Returns what :func:`ldl_factor` returns.
-    """
-    return _factor(ab, np.bool_(True), scale, mass, c_a, fixed, np.bool_(True), b)
+    n = ab.shape[0]
+    return factor_jacobian(ab, 1.0, np.zeros(n), 0.0, np.zeros(n), np.zeros(n))
 
 
 @njit(cache=True)
@@ -292,10 +273,10 @@ def ldl_solve_backward(ab, b):
             y1, y2, y3, y4, y5 = s, y1, y2, y3, y4
 
 
-ldl_factor_py = pure_python(ldl_factor)
-"""Plain-Python twin of :func:`ldl_factor` (same source, interpreted)."""
 factor_jacobian_py = pure_python(factor_jacobian)
-"""Plain-Python twin of :func:`factor_jacobian`."""
+"""Plain-Python twin of :func:`factor_jacobian` (same source, interpreted)."""
+ldl_factor_py = pure_python(ldl_factor)
+"""Plain-Python twin of :func:`ldl_factor`."""
 ldl_solve_backward_py = pure_python(ldl_solve_backward)
 """Plain-Python twin of :func:`ldl_solve_backward`."""
 ldl_solve_py = pure_python(ldl_solve)
