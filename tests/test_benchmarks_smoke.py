@@ -31,6 +31,11 @@ FIGURES: dict[str, tuple[str, ...]] = {
         rf"assemble_internal forces only: {NUM} ns/element",
         rf"assemble_internal forces \+ tangent: {NUM} ns/element",
     ),
+    "band_solver_rate.py": (
+        rf"factor_jacobian \(form, factor, forward\) +{NUM} us",
+        rf"ldl_solve +{NUM} us",
+        rf"band solver per Newton step .*: {NUM} us",
+    ),
     "bench_dem.py": (rf"threads=1: {NUM} particle-steps/s",),
     "bench_dem_cell_order.py": (rf"cell order: best {NUM}, median {NUM} particle-steps/s",),
     "bench_dem_kernel_versions.py": (rf"best compaction 1 thr: this {NUM} ms, other {NUM} ms",),

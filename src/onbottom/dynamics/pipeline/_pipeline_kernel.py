@@ -41,7 +41,12 @@ import numpy as np
 from numba import literally
 
 from onbottom._jit import borrow, call_literal, njit, row_view
-from onbottom.dynamics.pipeline._banded import ldl_factor, ldl_solve
+from onbottom.dynamics.pipeline._banded import (
+    factor_jacobian,
+    ldl_factor,
+    ldl_solve,
+    ldl_solve_backward,
+)
 from onbottom.dynamics.pipeline._beam_kernel import (
     HALF_BAND,
     NDOF_NODE,
@@ -683,24 +688,18 @@ def integrate(
                         borrow(ke), borrow(mom), borrow(nax), borrow(kt_u), borrow(kt_v),
                         borrow(scratch),
                     )  # fmt: skip
-                # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled
-                for j in range(ndof):
-                    for k in range(HALF_BAND + 1):
-                        ab[j, k] *= 1.0 + alpha
-                    ab[j, 0] += mass[j] * c_a
-                for j in range(ndof):
-                    if fixed[j] != 0.0:
-                        for k in range(1, HALF_BAND + 1):
-                            ab[j, k] = 0.0
-                            if j + k < ndof:
-                                ab[j + k, k] = 0.0
-                        ab[j, 0] = 1.0
-                neg = ldl_factor(borrow(ab))
+                # Jacobian: mass + (1 + α) K_T, fixed DOFs decoupled, formed as it is
+                # factored; the solve's forward pass on res done in the same sweep
+                neg = factor_jacobian(
+                    borrow(ab), 1.0 + alpha, borrow(mass), c_a, borrow(fixed), borrow(res)
+                )
                 scal[SC_N_FACTOR] += 1.0
                 if neg < 0:
                     return n_rec, STATUS_SINGULAR
+                ldl_solve_backward(borrow(ab), borrow(res))
+            else:
+                ldl_solve(borrow(ab), borrow(res))
             r_prev = rmax
-            ldl_solve(borrow(ab), borrow(res))
             cmax = 0.0  # largest translational correction (u, v; not θ)
             for i in range(n_nodes):
                 cu = abs(res[NDOF_NODE * i])
