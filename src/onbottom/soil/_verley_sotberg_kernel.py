@@ -249,7 +249,9 @@ def _grown(z_old, zi, work, smax, ks, d, gd3, b, half, base):
     return z_old
 
 
-@njit(cache=True)
+# inlined into the kernel (numba IR): a called helper costs the kernel a status check after the
+# call, whose error exit keeps numba from pruning the reference counts of the kernel's arrays
+@njit(cache=True, inline="always")
 def counted_length(mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s_new, y1, y2):
     """Length [m] of the increment s_old -> s_new that adds to the work E of Eq 6 [I].
 
@@ -309,7 +311,16 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     integrand_passive = params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE
     growth = params[P_WORK_LAW] != WORK_LAW_NONE
     mode = params[P_WORK_COUNTING]
+    reversal = params[P_REVERSAL]
     agdd = params[P_A] * g * d * d  # A·γ'D² of Eqs 3-4
+    b_fac = params[P_B]
+    if params[P_B_PLACEMENT] == B_INSIDE:
+        b_fac = math.sqrt(b_fac)
+    half = 0.5
+    if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
+        half = 1.0
+    cap_trough = params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH
+    zi_laid = params[P_ZI]
 
     y_old = state_old[S_Y]
     f_old = state_old[S_FRICTION]
@@ -383,8 +394,11 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
             tp_last = s_old
         # work and penetration growth over the part of the increment inside region 2 that
         # counts (P_WORK_COUNTING)
-        du2 = counted_length(mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s_new,
-                             y1, y2)  # fmt: skip
+        du2 = 0.0
+        if max(abs(s_old), a_new) > y1:  # else the increment lies in region 1: nothing counts
+            du2 = counted_length(
+                mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s_new, y1, y2
+            )
         if du2 > 0.0 and v_load > 0.0:
             memo_p = _memo_power(z, d, memo_z, memo_p)
             memo_z = z
@@ -401,10 +415,9 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
                 mean = 0.5 * (abs(f_old + p_old) + abs(f + p_pred))
             work = work + mean * du2
             if growth:
-                b, half = _growth_factors(params)
-                base = zi if params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH else params[P_ZI]
+                base = zi if cap_trough else zi_laid
                 smax_c = min(max(smax, a_new), y2)
-                z = _grown(z, zi, work, smax_c, ks, d, g * d**3, b, half, base)
+                z = _grown(z, zi, work, smax_c, ks, d, g * d**3, b_fac, half, base)
         smax = max(smax, a_new)
         if a_new > y2:
             # first passage of y2: breakout starts, z2 frozen, work reset
@@ -473,7 +486,7 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     # equilibrates the applied load, so a change of its sign beyond θ·μV (hysteresis) is a
     # reversal of the load; the berm pushing back under a one-way load cannot make R < 0
     if v_load > 0.0:
-        thr = params[P_REVERSAL] * mu * v_load
+        thr = reversal * mu * v_load
         new_dir = 0.0
         if r_new >= thr:
             new_dir = 1.0
