@@ -237,12 +237,16 @@ def _grown(z_old, zi, work, smax, ks, d, gd3, b, half, base):
     base of its cap."""
     if smax <= 0.0:
         return z_old
+    # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
+    # (sqrt is correctly rounded, pow within 1 ulp of it)
+    z_cap = base + b * half * d * math.sqrt(smax / (ks * d))
+    if z_cap <= z_old:
+        # min(Eq 6, Eq 8) <= z_old whatever Eq 6 gives: its power is not needed (the pipe
+        # has dug to Eq 8's cap for its amplitude, the usual case under cyclic motion)
+        return z_old
     z_work = zi
     if work > 0.0:
-        # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
-        # (sqrt is correctly rounded, pow within 1 ulp of it)
         z_work = zi + b * 0.23 * d * math.sqrt(work / gd3) * (ks * smax / d) ** (-0.31)
-    z_cap = base + b * half * d * math.sqrt(smax / (ks * d))
     z_new = min(z_work, z_cap)
     if z_new > z_old:
         return z_new
