@@ -72,6 +72,7 @@ FIGURES: dict[str, tuple[str, ...]] = {
         rf"1 worker\(s\): 4 storms in {NUM} s = {NUM} storms/s",
         rf"CPU per storm: worker processes {NUM} ms",
     ),
+    "soil_kernel_rate.py": (rf"V&S kernel, pipeline calling pattern: {NUM} ns/call",),
     "soil_trough_kernels.py": (rf"verley_sotberg_silica +1000 steps +{NUM} ns/step",),
     "stability_curves.py": (rf"{NUM} storms/h", rf"CPU time of the workers: {NUM} s"),
     "storm_kernel_floor.py": (

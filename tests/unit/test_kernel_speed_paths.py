@@ -97,3 +97,49 @@ def test_row_view_and_borrow_alias_the_array_in_a_kernel_and_in_python():
     np.testing.assert_array_equal(a, expected)
     assert np.shares_memory(row_view(a0, 2), a0)
     assert borrow(w) is w
+
+
+def test_vs_kernel_compiles_without_reference_counting():
+    """The V&S kernel's compiled function makes no reference-count call (NRT_incref/decref)
+    and calls no helper (every helper inlined): the pipeline FE calls it once per node and
+    Newton iteration, where those calls cost about a third of it. A helper that takes an
+    array, or a called (not inlined) helper whose status check adds an exit, brings them back.
+    """
+    import re
+
+    f = njit(VK.verley_sotberg_kernel.py_func)  # uncached: numba inspects only fresh code
+    p = np.zeros(VK.N_PARAMS)
+    s, t, out = np.zeros(VK.N_STATE), np.zeros(VK.N_STATE), np.zeros(OUT_SIZE)
+    f(p, s, 0.0, 1.0, t, out)
+    ir = f.inspect_llvm(f.signatures[0])
+    bodies = {
+        re.match(r"define[^@]*@([\w.$]+)", x).group(1): x
+        for x in re.split(r"\n(?=define )", ir)
+        if x.startswith("define")
+    }
+    kernel = "21verley_sotberg_kernel"  # the mangled name of the function, not of its module
+    (body,) = (x for name, x in bodies.items() if kernel in name and "cpython" not in name)
+    calls = set(re.findall(r"call [^@]*@([\w.$]+)", body))
+    assert not {c for c in calls if c.startswith("NRT_")}, calls
+    assert calls <= {"llvm.fabs.f64", "llvm.pow.f64", "sqrt"} | {
+        c for c in calls if c.startswith("llvm.masked.")
+    }, calls
+
+
+def test_vs_kernel_keeps_the_slots_of_a_longer_state_row(calc_model):
+    """A state row longer than the model's (the pipeline's nodes on several soil models)
+    gives the same step in the model's slots and keeps its other slots."""
+    m = calc_model
+    p = m.packed_parameters()
+    n = VK.N_STATE
+    long_old = np.concatenate([m.initial_state(), [7.5, -2.0, np.pi]])
+    short_new, out_a = np.zeros(n), np.zeros(OUT_SIZE)
+    long_new, out_b = np.full(n + 3, np.nan), np.zeros(OUT_SIZE)
+    for du, v in ((0.01, 10.5e3), (0.3, 9e3), (-0.2, -1.0)):
+        short_old = long_old[:n].copy()
+        VK.verley_sotberg_kernel(p, short_old, short_old[0] + du, v, short_new, out_a)
+        VK.verley_sotberg_kernel(p, long_old, long_old[0] + du, v, long_new, out_b)
+        np.testing.assert_array_equal(long_new[:n], short_new)
+        np.testing.assert_array_equal(long_new[n:], [7.5, -2.0, np.pi])
+        np.testing.assert_array_equal(out_a, out_b)
+        long_old = long_new.copy()

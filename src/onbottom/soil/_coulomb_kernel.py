@@ -8,6 +8,7 @@ from __future__ import annotations
 from onbottom._jit import njit
 from onbottom.soil._trough import spring_work
 from onbottom.soil.base import (
+    N_COMMON_STATE,
     OUT_DISSIPATED,
     OUT_FRICTION,
     OUT_PASSIVE,
@@ -56,7 +57,9 @@ def coulomb_kernel(params, state_old, y_new, v_load, state_new, out):
     delta = params[P_DELTA]
     dy = y_new - state_old[S_Y]
     f, k = friction_return_map(state_old[S_FRICTION], dy, v_load, mu, delta)
-    for i in range(state_old.shape[0]):
+    # the common slots are all written below; a longer row (a solver's nodes on several
+    # models) keeps its other slots
+    for i in range(N_COMMON_STATE, state_old.shape[0]):
         state_new[i] = state_old[i]
     state_new[S_Y] = y_new
     state_new[S_FRICTION] = f

@@ -148,17 +148,39 @@ def peak_passive(params, z, v_load):
 @njit(cache=True)
 def penetration_power(params, z):
     """(z/D)^1.25 of V&S Eqs 3-4 (0 for z <= 0)."""
-    if z <= 0.0:
-        return 0.0
-    return (z / params[P_D]) ** 1.25
+    return _power(z, params[P_D])
 
 
 @njit(cache=True)
-def memo_power(params, z, key, value):
+def _power(z, d):
+    """(z/D)^1.25 at diameter ``d`` (0 for z <= 0)."""
+    if z <= 0.0:
+        return 0.0
+    return (z / d) ** 1.25
+
+
+@njit(cache=True)
+def _memo_power(z, d, key, value):
     """(z/D)^1.25, taken from the memo (``key``, ``value``) when z equals its key."""
     if z == key:
         return value
-    return penetration_power(params, z)
+    return _power(z, d)
+
+
+@njit(cache=True)
+def passive_factor(ks, f109):
+    """Factor of A·γ'D²·(z/D)^1.25 in the peak passive force at K_s = γ'D²/V.
+
+    V&S Eqs 3-4: 5 − 0.15 K_s up to K_s = 20, then 2; DNV-RP-F109 §3.4.6 (``f109``): the
+    same up to κ_s = 26.7, then 1.
+    """
+    if f109:
+        if ks <= KS_SWITCH_F109:
+            return 5.0 - 0.15 * ks
+        return 1.0
+    if ks <= KS_SWITCH_VS:
+        return 5.0 - 0.15 * ks
+    return 2.0
 
 
 @njit(cache=True)
@@ -168,21 +190,7 @@ def peak_passive_from_power(params, zp, v_load):
     g = params[P_GAMMA]
     ks = g * d * d / v_load
     base = params[P_A] * g * d * d * zp
-    if params[P_PASSIVE_LAW] == PASSIVE_DNV_F109:
-        if ks <= KS_SWITCH_F109:
-            return base * (5.0 - 0.15 * ks)
-        return base
-    if ks <= KS_SWITCH_VS:
-        return base * (5.0 - 0.15 * ks)
-    return 2.0 * base
-
-
-@njit(cache=True)
-def _peak(params, z, zp, v_load):
-    """:func:`peak_passive` at z given its power zp = (z/D)^1.25 (same arithmetic)."""
-    if v_load <= 0.0 or z <= 0.0:
-        return 0.0
-    return peak_passive_from_power(params, zp, v_load)
+    return base * passive_factor(ks, params[P_PASSIVE_LAW] == PASSIVE_DNV_F109)
 
 
 @njit(cache=True)
@@ -206,59 +214,81 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
         return z_old
     d = params[P_D]
     g = params[P_GAMMA]
+    b, half = _growth_factors(params)
+    base = zi if params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH else params[P_ZI]
+    return _grown(z_old, zi, work, smax, g * d * d / v_load, d, g * d**3, b, half, base)
+
+
+@njit(cache=True)
+def _growth_factors(params):
+    """The factor B of Eqs 13-14 (B^0.5 inside the bracket) and Eq 8's factor (0.5 or 1)."""
     b = params[P_B]
     if params[P_B_PLACEMENT] == B_INSIDE:
         b = math.sqrt(b)
-    ks = g * d * d / v_load
-    z_work = zi
-    if work > 0.0:
-        # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
-        # (sqrt is correctly rounded, pow within 1 ulp of it)
-        z_work = zi + b * 0.23 * d * math.sqrt(work / (g * d**3)) * (ks * smax / d) ** (-0.31)
     half = 0.5
     if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
         half = 1.0
-    base = zi if params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH else params[P_ZI]
+    return b, half
+
+
+@njit(cache=True)
+def _grown(z_old, zi, work, smax, ks, d, gd3, b, half, base):
+    """:func:`grown_penetration` (V > 0, growth on) from K_s, γ'D³, B, Eq 8's factor and the
+    base of its cap."""
+    if smax <= 0.0:
+        return z_old
+    # square roots as math.sqrt, not ** 0.5: numba calls libm's pow for a float exponent
+    # (sqrt is correctly rounded, pow within 1 ulp of it)
     z_cap = base + b * half * d * math.sqrt(smax / (ks * d))
+    if z_cap <= z_old:
+        # min(Eq 6, Eq 8) <= z_old whatever Eq 6 gives: its power is not needed (the pipe
+        # has dug to Eq 8's cap for its amplitude, the usual case under cyclic motion)
+        return z_old
+    z_work = zi
+    if work > 0.0:
+        z_work = zi + b * 0.23 * d * math.sqrt(work / gd3) * (ks * smax / d) ** (-0.31)
     z_new = min(z_work, z_cap)
     if z_new > z_old:
         return z_new
     return z_old
 
 
-@njit(cache=True)
-def counted_length(params, state, s_old, s_new, y1, y2):
+# inlined into the kernel (numba IR): a called helper costs the kernel a status check after the
+# call, whose error exit keeps numba from pruning the reference counts of the kernel's arrays
+@njit(cache=True, inline="always")
+def counted_length(mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s_new, y1, y2):
     """Length [m] of the increment s_old -> s_new that adds to the work E of Eq 6 [I].
 
-    Region 2 is y1 <= |s| <= y2 (both sides). ``P_WORK_COUNTING`` limits it: to ground inside
-    the amplitude of the trough's turning points (swept ground), inside the smaller of the two
-    sides' turning excursions (two-sided), or to a trough whose load has reversed (gate);
-    the drift variants further limit it, once the pipe has turned in region 2, to ground
-    inside its turning amplitude plus the longest half-cycle it has made in the trough
-    (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance (``COUNT_LOAD_REVERSAL_SWEPT``),
-    or to that amplitude only when the pipe last turned on the same side of the trough centre
-    (``COUNT_LOAD_REVERSAL_SIDE``: a pipe that turns back and goes on is walking; a swing
-    from the other side is cyclic motion, however fast its amplitude grows).
+    Region 2 is y1 <= |s| <= y2 (both sides). ``mode`` (``P_WORK_COUNTING``) limits it: to
+    ground inside the amplitude of the trough's turning points (swept ground), inside the
+    smaller of the two sides' turning excursions (two-sided), or to a trough whose load has
+    reversed (gate); the drift variants further limit it, once the pipe has turned in region 2,
+    to ground inside its turning amplitude plus the longest half-cycle it has made in the
+    trough (``COUNT_LOAD_REVERSAL_DRIFT``) or without that allowance
+    (``COUNT_LOAD_REVERSAL_SWEPT``), or to that amplitude only when the pipe last turned on the
+    same side of the trough centre (``COUNT_LOAD_REVERSAL_SIDE``: a pipe that turns back and
+    goes on is walking; a swing from the other side is cyclic motion, however fast its
+    amplitude grows). The other arguments are the trough's state slots ``S_GATE``,
+    ``S_TURNED2``, ``S_TP_POS``, ``S_TP_NEG``, ``S_TP_LAST`` and ``S_HALF`` (``swing``).
     """
-    mode = params[P_WORK_COUNTING]
     hi = y2
     if mode == COUNT_ANY_REGION2:
         hi = y2
     elif mode == COUNT_SWEPT_GROUND:
-        hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
+        hi = min(y2, max(tp_pos, tp_neg))
     elif mode == COUNT_TWO_SIDED:
-        hi = min(y2, min(state[S_TP_POS], state[S_TP_NEG]))
+        hi = min(y2, min(tp_pos, tp_neg))
     else:
-        if state[S_GATE] <= 0.0:
+        if gate <= 0.0:
             return 0.0
         if mode == COUNT_LOAD_REVERSAL_SIDE:
             # beyond the turning amplitude only on a swing from the other side of the centre
-            if state[S_TURNED2] > 0.0 and sign(s_new) * sign(state[S_TP_LAST]) > 0.0:
-                hi = min(y2, max(state[S_TP_POS], state[S_TP_NEG]))
-        elif mode != COUNT_LOAD_REVERSAL and state[S_TURNED2] > 0.0:
-            reach = max(state[S_TP_POS], state[S_TP_NEG])
+            if turned2 > 0.0 and sign(s_new) * sign(tp_last) > 0.0:
+                hi = min(y2, max(tp_pos, tp_neg))
+        elif mode != COUNT_LOAD_REVERSAL and turned2 > 0.0:
+            reach = max(tp_pos, tp_neg)
             if mode == COUNT_LOAD_REVERSAL_DRIFT:
-                reach = reach + state[S_HALF]
+                reach = reach + swing
             hi = min(y2, reach)
     if hi <= y1:
         return 0.0
@@ -267,36 +297,72 @@ def counted_length(params, state, s_old, s_new, y1, y2):
 
 @njit(cache=True)
 def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
-    """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`)."""
+    """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`).
+
+    Every parameter and committed state slot is read into a local first and every state slot
+    written once at the end (the arrays may alias as far as the compiler knows, so reads
+    after writes would be repeated and shared subexpressions not shared).
+    """
+    mu = params[P_MU]
+    delta = params[P_DELTA]
+    d = params[P_D]
+    g = params[P_GAMMA]
     y1 = params[P_Y1]
     y2 = params[P_Y2]
     y3 = params[P_Y3]
-    d = params[P_D]
-    for i in range(state_old.shape[0]):
-        state_new[i] = state_old[i]
+    f109 = params[P_PASSIVE_LAW] == PASSIVE_DNV_F109
+    legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
+    integrand_passive = params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE
+    growth = params[P_WORK_LAW] != WORK_LAW_NONE
+    mode = params[P_WORK_COUNTING]
+    reversal = params[P_REVERSAL]
+    agdd = params[P_A] * g * d * d  # A·γ'D² of Eqs 3-4
+    b_fac = params[P_B]
+    if params[P_B_PLACEMENT] == B_INSIDE:
+        b_fac = math.sqrt(b_fac)
+    half = 0.5
+    if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
+        half = 1.0
+    cap_trough = params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH
+    zi_laid = params[P_ZI]
 
     y_old = state_old[S_Y]
-    dy = y_new - y_old
-    direction = sign(dy)
     f_old = state_old[S_FRICTION]
-    f, k_f = friction_return_map(f_old, dy, v_load, params[P_MU], params[P_DELTA])
-
-    phase = state_old[S_PHASE]
+    z = state_old[S_Z]
+    work = state_old[S_WORK]
+    soil_work_old = state_old[S_SOIL_WORK]
     y0 = state_old[S_Y0]
     zi = state_old[S_ZI]
     smax = state_old[S_SMAX]
     z2 = state_old[S_Z2]
-    z = state_old[S_Z]
-    work = state_old[S_WORK]
-
-    legacy = params[P_PASSIVE_RULE] == RULE_LEGACY_ELASTIC
-    p_old = state_old[S_PASSIVE]
+    phase = state_old[S_PHASE]
+    dir_old = state_old[S_DIR]
+    p_committed = state_old[S_PASSIVE]
     memo_z = state_old[S_MEMO_Z]
     memo_p = state_old[S_MEMO_P]
     memo_z3 = state_old[S_MEMO_Z3]
     memo_p3 = state_old[S_MEMO_P3]
+    load_dir = state_old[S_LOAD_DIR]
+    gate = state_old[S_GATE]
+    tp_pos = state_old[S_TP_POS]
+    tp_neg = state_old[S_TP_NEG]
+    turned2 = state_old[S_TURNED2]
+    tp_last = state_old[S_TP_LAST]
+    swing = state_old[S_HALF]
+
+    dy = y_new - y_old
+    direction = sign(dy)
+    f, k_f = friction_return_map(f_old, dy, v_load, mu, delta)
+    # K_s = γ'D²/V and the factor of the peak passive force at it (Eqs 3-4), once per call
+    ks = 0.0
+    fac = 0.0
+    if v_load > 0.0:
+        ks = g * d * d / v_load
+        fac = passive_factor(ks, f109)
+
+    p_old = p_committed
     # out of the trough and reversing: a new trough starts at the turning point [I]
-    if phase == PHASE_OUT and direction != 0.0 and direction != state_old[S_DIR]:
+    if phase == PHASE_OUT and direction != 0.0 and direction != dir_old:
         y0 = y_old
         zi = z
         smax = 0.0
@@ -304,12 +370,12 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
         work = 0.0
         phase = PHASE_TROUGH
         # the new trough has no turning points yet and its load has not reversed in it
-        state_new[S_GATE] = 0.0
-        state_new[S_TP_POS] = 0.0
-        state_new[S_TP_NEG] = 0.0
-        state_new[S_TURNED2] = 0.0
-        state_new[S_TP_LAST] = 0.0
-        state_new[S_HALF] = 0.0
+        gate = 0.0
+        tp_pos = 0.0
+        tp_neg = 0.0
+        turned2 = 0.0
+        tp_last = 0.0
+        swing = 0.0
         if not legacy:
             # the pipe leaves the berm it pushed: its force is released at the turning
             # point (a jump at zero displacement; the stored energy is dissipated)
@@ -321,35 +387,41 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
 
     if phase == PHASE_TROUGH:
         # a turning point of the pipe in the trough: s_old, where the motion reversed
-        if direction != 0.0 and state_old[S_DIR] != 0.0 and direction != state_old[S_DIR]:
-            if s_old > state_new[S_TP_POS]:
-                state_new[S_TP_POS] = s_old
-            if -s_old > state_new[S_TP_NEG]:
-                state_new[S_TP_NEG] = -s_old
+        if direction != 0.0 and dir_old != 0.0 and direction != dir_old:
+            if s_old > tp_pos:
+                tp_pos = s_old
+            if -s_old > tp_neg:
+                tp_neg = -s_old
             if abs(s_old) > y1:
-                state_new[S_TURNED2] = 1.0
-            state_new[S_HALF] = max(state_new[S_HALF], abs(s_old - state_new[S_TP_LAST]))
-            state_new[S_TP_LAST] = s_old
+                turned2 = 1.0
+            swing = max(swing, abs(s_old - tp_last))
+            tp_last = s_old
         # work and penetration growth over the part of the increment inside region 2 that
         # counts (P_WORK_COUNTING)
-        du2 = counted_length(params, state_new, s_old, s_new, y1, y2)
-        smax_c = min(max(smax, a_new), y2)
+        du2 = 0.0
+        if max(abs(s_old), a_new) > y1:  # else the increment lies in region 1: nothing counts
+            du2 = counted_length(
+                mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s_new, y1, y2
+            )
         if du2 > 0.0 and v_load > 0.0:
-            memo_p = memo_power(params, z, memo_z, memo_p)
+            memo_p = _memo_power(z, d, memo_z, memo_p)
             memo_z = z
-            fr2 = _peak(params, z, memo_p, v_load)
+            fr2 = agdd * memo_p * fac if z > 0.0 else 0.0
             if legacy:
                 mag_p, _slope = envelope(min(a_new, y2), 0.3 * fr2, fr2, fr2, y1, y2, y3)
                 p_pred = sign(s_new) * mag_p
             else:
                 mag_p, slope_p = envelope(a_new, 0.3 * fr2, fr2, fr2, y1, y2, y3)
                 p_pred, _k = push_only_passive(p_old, dy, s_new, mag_p, slope_p, 0.3 * fr2 / y1)
-            if params[P_WORK_INTEGRAND] == INTEGRAND_PASSIVE:
+            if integrand_passive:
                 mean = 0.5 * (abs(p_old) + abs(p_pred))
             else:
                 mean = 0.5 * (abs(f_old + p_old) + abs(f + p_pred))
             work = work + mean * du2
-            z = grown_penetration(params, z, zi, work, smax_c, v_load)
+            if growth:
+                base = zi if cap_trough else zi_laid
+                smax_c = min(max(smax, a_new), y2)
+                z = _grown(z, zi, work, smax_c, ks, d, g * d**3, b_fac, half, base)
         smax = max(smax, a_new)
         if a_new > y2:
             # first passage of y2: breakout starts, z2 frozen, work reset
@@ -359,28 +431,33 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     else:
         smax = max(smax, a_new)
 
-    if phase == PHASE_BREAKOUT:
-        z3 = residual_ratio(z2 / d) * z2
-        reach = min(smax, y3)
-        z = z2 + (z3 - z2) * (reach - y2) / (y3 - y2)
-        if a_new > y3:
-            phase = PHASE_OUT
-            z = z3
-
     # passive force about y0 bounded by the envelope
     if phase == PHASE_TROUGH:
-        memo_p = memo_power(params, z, memo_z, memo_p)
+        memo_p = _memo_power(z, d, memo_z, memo_p)
         memo_z = z
-        fr2 = _peak(params, z, memo_p, v_load)
+        fr2 = 0.0
+        if v_load > 0.0 and z > 0.0:
+            fr2 = agdd * memo_p * fac
         fr3 = fr2
     else:
-        memo_p = memo_power(params, z2, memo_z, memo_p)
-        memo_z = z2
-        fr2 = _peak(params, z2, memo_p, v_load)
         z3 = residual_ratio(z2 / d) * z2
-        memo_p3 = memo_power(params, z3, memo_z3, memo_p3)
+        if phase == PHASE_BREAKOUT:
+            reach = min(smax, y3)
+            z = z2 + (z3 - z2) * (reach - y2) / (y3 - y2)
+            if a_new > y3:
+                phase = PHASE_OUT
+                z = z3
+        memo_p = _memo_power(z2, d, memo_z, memo_p)
+        memo_z = z2
+        memo_p3 = _memo_power(z3, d, memo_z3, memo_p3)
         memo_z3 = z3
-        fr3 = _peak(params, z3, memo_p3, v_load)
+        fr2 = 0.0
+        fr3 = 0.0
+        if v_load > 0.0:
+            if z2 > 0.0:
+                fr2 = agdd * memo_p * fac
+            if z3 > 0.0:
+                fr3 = agdd * memo_p3 * fac
     fr1 = 0.3 * fr2
     mag, slope = envelope(a_new, fr1, fr2, fr3, y1, y2, y3)
     k_u = fr1 / y1
@@ -401,29 +478,28 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     r_new = f + passive
     if legacy:
         # trapezoidal work of a nonlinear-elastic force (the variant's own bookkeeping)
-        soil_work = state_old[S_SOIL_WORK] + 0.5 * (f_old + state_old[S_PASSIVE] + r_new) * dy
+        soil_work = soil_work_old + 0.5 * (f_old + p_committed + r_new) * dy
     else:
         # each spring: work along its return-mapped increment, from its start force
-        soil_work = state_old[S_SOIL_WORK] + elastoplastic_soil_work(
-            f_old, f, p_old, passive, s_new, mag, k_u, dy, v_load, params[P_MU], params[P_DELTA]
+        soil_work = soil_work_old + elastoplastic_soil_work(
+            f_old, f, p_old, passive, s_new, mag, k_u, dy, v_load, mu, delta
         )
-    stored = friction_energy(f, v_load, params[P_MU], params[P_DELTA]) + e_passive
+    stored = friction_energy(f, v_load, mu, delta) + e_passive
 
     # load direction from the soil reaction: at rest or sliding slowly the reaction R
     # equilibrates the applied load, so a change of its sign beyond θ·μV (hysteresis) is a
     # reversal of the load; the berm pushing back under a one-way load cannot make R < 0
     if v_load > 0.0:
-        thr = params[P_REVERSAL] * params[P_MU] * v_load
+        thr = reversal * mu * v_load
         new_dir = 0.0
         if r_new >= thr:
             new_dir = 1.0
         elif r_new <= -thr:
             new_dir = -1.0
         if new_dir != 0.0:
-            if state_old[S_LOAD_DIR] != 0.0 and new_dir != state_old[S_LOAD_DIR]:
-                if phase == PHASE_TROUGH:
-                    state_new[S_GATE] = 1.0
-            state_new[S_LOAD_DIR] = new_dir
+            if load_dir != 0.0 and new_dir != load_dir and phase == PHASE_TROUGH:
+                gate = 1.0
+            load_dir = new_dir
 
     region = region_of(a_new, y1, y2, y3)
     state_new[S_Y] = y_new
@@ -437,13 +513,22 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     state_new[S_SMAX] = smax
     state_new[S_Z2] = z2
     state_new[S_PHASE] = phase
-    if direction != 0.0:
-        state_new[S_DIR] = direction
+    state_new[S_DIR] = direction if direction != 0.0 else dir_old
     state_new[S_PASSIVE] = passive
     state_new[S_MEMO_Z] = memo_z
     state_new[S_MEMO_P] = memo_p
     state_new[S_MEMO_Z3] = memo_z3
     state_new[S_MEMO_P3] = memo_p3
+    state_new[S_LOAD_DIR] = load_dir
+    state_new[S_GATE] = gate
+    state_new[S_TP_POS] = tp_pos
+    state_new[S_TP_NEG] = tp_neg
+    state_new[S_TURNED2] = turned2
+    state_new[S_TP_LAST] = tp_last
+    state_new[S_HALF] = swing
+    # a longer state row (a solver's nodes on several models) keeps its other slots
+    for i in range(N_STATE, state_old.shape[0]):
+        state_new[i] = state_old[i]
 
     out[OUT_R] = r_new
     out[OUT_FRICTION] = f
