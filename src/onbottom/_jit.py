@@ -206,6 +206,8 @@ def jitted_only(fn: Callable) -> Any:
     Python still works: it compiles and calls :func:`python_entry` of the kernel (a second
     compile, with the wrapper; tests and profiling). Not for an entry point called through
     its compiled overloads (:func:`call_literal`)."""
+    if numba.config.DISABLE_JIT:
+        return fn
     options = {"error_model": "numpy", "no_cfunc_wrapper": True, "no_cpython_wrapper": True}
     options["nopython"] = True
 
@@ -223,6 +225,8 @@ def python_entry(kernel: Any) -> Any:
 
     Compiled from the same source under the name ``<name>_entry`` (numba's cache files are
     named by the function's qualified name: the two never share one); one per kernel."""
+    if not isinstance(kernel, Dispatcher):  # NUMBA_DISABLE_JIT: the plain function
+        return kernel
     got = _ENTRIES.get(kernel)
     if got is None:
         py = kernel.py_func
