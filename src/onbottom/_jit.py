@@ -13,6 +13,9 @@ a C-callable wrapper for every jitted function, used only when a function is pas
 first-class function value (ctypes/cffi), which the project never does; about a tenth of a
 first run's compiling.
 
+:func:`jitted_only` also drops the CPython wrapper, for kernels that only other kernels call
+(a Python call goes to their :func:`python_entry` copy).
+
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
 
