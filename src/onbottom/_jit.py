@@ -13,6 +13,9 @@ a C-callable wrapper for every jitted function, used only when a function is pas
 first-class function value (ctypes/cffi), which the project never does; about a tenth of a
 first run's compiling.
 
+:func:`jitted_only` also drops the CPython wrapper, for kernels that only other kernels call
+(a Python call goes to their :func:`python_entry` copy).
+
 Kernel modules import it in place of numba's: ``from onbottom._jit import njit``. numba is
 imported when this module is, i.e. only with a kernel module.
 
@@ -52,6 +55,7 @@ import numpy as np
 from numba import types as nbtypes
 from numba.core import cgutils
 from numba.core.dispatcher import Dispatcher
+from numba.core.registry import CPUDispatcher
 from numba.extending import intrinsic, overload
 from numba.np.arrayobj import make_array
 
@@ -59,10 +63,12 @@ __all__ = [
     "borrow",
     "cache_dir",
     "call_literal",
+    "jitted_only",
     "literal_dispatch",
     "njit",
     "numba_njit",
     "pure_python",
+    "python_entry",
     "row_view",
 ]
 
@@ -182,6 +188,59 @@ def njit(*args, **kwargs):
     kwargs.setdefault("error_model", "numpy")
     kwargs.setdefault("no_cfunc_wrapper", True)
     return numba_njit(*args, **kwargs)
+
+
+class _JittedOnlyDispatcher(CPUDispatcher):
+    """A dispatcher compiled without numba's CPython wrapper (:func:`jitted_only`); a call
+    from Python goes to :func:`python_entry` of it (its entry point would jump to the
+    missing wrapper)."""
+
+    def __call__(self, *args, **kwargs):
+        return python_entry(self)(*args, **kwargs)
+
+
+def jitted_only(fn: Callable) -> Any:
+    """:func:`njit` (``cache=True``) for a kernel called from other kernels, not from Python.
+
+    numba otherwise lowers, optimises and machine-compiles a CPython wrapper (the unboxing
+    of every argument) for each jitted function, though a callee's compiled code is used
+    only through its LLVM module, linked into the caller: for a small helper that is about
+    half of its compile. Same source, typing and arithmetic as :func:`njit`. A call from
+    Python still works: it compiles and calls :func:`python_entry` of the kernel (a second
+    compile, with the wrapper; tests and profiling). Not for an entry point called through
+    its compiled overloads (:func:`call_literal`)."""
+    if numba.config.DISABLE_JIT:
+        return fn
+    options = {"error_model": "numpy", "no_cfunc_wrapper": True, "no_cpython_wrapper": True}
+    options["nopython"] = True
+
+    def decorate(kw: dict) -> Any:
+        disp = _JittedOnlyDispatcher(py_func=fn, locals={}, targetoptions=options)
+        if kw.get("cache"):
+            disp.enable_caching()
+        return disp
+
+    return _cached(decorate, {"cache": True})
+
+
+def python_entry(kernel: Any) -> Any:
+    """The Python-callable :func:`njit` copy of the :func:`jitted_only` ``kernel``.
+
+    Compiled from the same source under the name ``<name>_entry`` (numba's cache files are
+    named by the function's qualified name: the two never share one); one per kernel."""
+    if not isinstance(kernel, Dispatcher):  # NUMBA_DISABLE_JIT: the plain function
+        return kernel
+    got = _ENTRIES.get(kernel)
+    if got is None:
+        py = kernel.py_func
+        copy = types.FunctionType(py.__code__, py.__globals__, py.__name__, py.__defaults__)
+        copy.__qualname__ = py.__qualname__ + "_entry"
+        copy.__doc__ = py.__doc__
+        got = _ENTRIES[kernel] = njit(cache=True)(copy)
+    return got
+
+
+_ENTRIES: dict = {}
 
 
 def literal_dispatch(pyfunc, kernels, general):

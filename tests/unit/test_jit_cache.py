@@ -204,3 +204,32 @@ def test_call_literal_memoised_signatures_follow_numba_typing():
             assert _jit.call_literal(total, 0, a, x) == a.sum() + x
             assert (total.typeof_pyval(a), total.typeof_pyval(x)) in total.overloads
     assert len({_jit._type_key(a) for a in arrays}) == len(arrays)
+
+
+def test_jitted_only_kernel_compiles_no_wrapper_and_python_calls_its_entry():
+    # a kernel for jitted callers only is compiled without numba's CPython wrapper; a call
+    # from Python goes to its python_entry copy (same source, own cache file), same result
+    import numba
+    import numpy as np
+
+    from onbottom.dynamics.pipeline import _pipeline_kernel as K
+
+    kernel = K.parameter_row
+    assert kernel.targetoptions["no_cpython_wrapper"]
+    settings = np.zeros(K.N_SETTINGS)
+    settings[K.ST_DT_KIN] = 1.0
+    fparams = np.arange(6.0).reshape(3, 2)
+
+    @numba.njit
+    def caller(settings, fparams, t):
+        return kernel(settings, fparams, t)[0]
+
+    assert caller(settings, fparams, 1.5) == fparams[1, 0]
+    for cres in kernel.overloads.values():  # compiled or loaded from numba's cache
+        assert cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name) != 0
+        assert cres.library.get_pointer_to_function(cres.fndesc.llvm_cpython_wrapper_name) == 0
+    np.testing.assert_array_equal(kernel(settings, fparams, 2.5), fparams[2])
+    entry = _jit.python_entry(kernel)
+    assert entry is _jit.python_entry(kernel)
+    assert entry.py_func.__qualname__ == "parameter_row_entry"
+    assert not entry.targetoptions.get("no_cpython_wrapper")

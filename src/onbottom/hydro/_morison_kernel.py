@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ
 
 P_CD = 0
@@ -30,7 +30,7 @@ P_LIFT_REL = 3
 N_PARAMS = 4
 
 
-@njit(cache=True)
+@jitted_only
 def morison_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Morison drag + inertia and lift (module docstring); stateless."""
     cd = params[P_CD]

@@ -40,7 +40,7 @@ import math
 import numpy as np
 from numba import literally
 
-from onbottom._jit import borrow, call_literal, njit, row_view
+from onbottom._jit import borrow, call_literal, jitted_only, njit, row_view
 from onbottom.dynamics.pipeline._banded import (
     factor_jacobian,
     ldl_factor,
@@ -189,7 +189,7 @@ STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 STATUS_SINGULAR = int(Status.SINGULAR)
 
 
-@njit(cache=True)
+@jitted_only
 def kinematics_at(t, kin_u, kin_a, t0, dtk, k0, nt, uk, ak):
     """Linear interpolation of the near-bed velocity and acceleration of every node at t.
 
@@ -227,7 +227,7 @@ def kinematics_at(t, kin_u, kin_a, t0, dtk, k0, nt, uk, ak):
         ak[i] = g * kin_a[j, i] + f * kin_a[j + 1, i]
 
 
-@njit(cache=True)
+@jitted_only
 def parameter_row(settings, fparams, t):
     """The force model's parameters at time t: the only row, or that of the left sample."""
     n = fparams.shape[0]
@@ -241,7 +241,7 @@ def parameter_row(settings, fparams, t):
     return fparams[k]
 
 
-@njit(cache=True)
+@jitted_only
 def node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0, vcont, ry, fscr,
                fout):  # fmt: skip
     """Contact load V = W_s − r_z F_Z and lateral reduction r_y of every node at time t.
@@ -271,7 +271,7 @@ def node_loads(force_id, settings, nodes, sstate, fparams, fstate, t, uk, ak, v0
         ry[i] = r_y
 
 
-@njit(cache=True)
+@jitted_only
 def evaluate(
     soil_id, force_id,
     settings, props, nodes, fixed, spring, model_ids, sparams, sstate, axst, fparams, fstate,
@@ -349,7 +349,7 @@ def evaluate(
     return True
 
 
-@njit(cache=True)
+@jitted_only
 def add_user_load(settings, uload, nodes, t, p, fext):
     """Add the user load's nodal forces ℓ·q(x, t) at time t to ``p`` and ``fext``.
 
@@ -405,7 +405,7 @@ def add_user_load(settings, uload, nodes, t, p, fext):
         fext[iu + 1] += qy
 
 
-@njit(cache=True)
+@jitted_only
 def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratch):
     """K_T at d₁ into ``ab`` from the beam and the nodal tangents stored by :func:`evaluate`
     at the same d₁ (same band as ``evaluate(..., want_k=True)``, without re-running the soil
@@ -428,7 +428,7 @@ def assemble_tangent(d1, props, spring, ab, fe, ke, mom, nax, kt_u, kt_v, scratc
         ab[NDOF_NODE * i + 1, 0] += kt_v[i]
 
 
-@njit(cache=True)
+@jitted_only
 def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, mom, nax):
     node_section_forces(vec[V_D], props, mom, nax)
     c = settings[ST_FIBRE]
@@ -448,7 +448,7 @@ def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, 
         rec[k, F_STRAIN, i] = abs(nax[i]) / ea + abs(mom[i]) * c / ei
 
 
-@njit(cache=True)
+@jitted_only
 def _envelope(settings, props, nodes, vec, sstate, vcont, env, mom, nax):
     c = settings[ST_FIBRE]
     ea = settings[ST_EA]
