@@ -37,7 +37,9 @@ the soil state when a step is accepted, from the force evaluation at the accepte
 Newton iterations and rejected steps evaluate the model from the committed state only. A model
 with the optional two-stage form (rule 7 of :mod:`onbottom.hydro._force_dispatch`: the wake
 model) is prepared once per trial step (its history and ``exp`` terms, which do not depend on
-ẏ) and evaluated per iterate from that, bit for bit the one-call kernel's values.
+ẏ) and evaluated per iterate from that, bit for bit the one-call kernel's values; its one-call
+kernel is not compiled into this module's functions
+(:func:`onbottom.hydro.kernel_contract.force_step_unprepared_of`).
 
 Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
 ``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``fparams[nc, n_params]`` (the force model's
@@ -67,7 +69,7 @@ from onbottom.hydro.kernel_contract import (
 )
 from onbottom.hydro.kernel_contract import force_evaluate_of as force_evaluate
 from onbottom.hydro.kernel_contract import force_prepare_of as force_prepare
-from onbottom.hydro.kernel_contract import force_step_of as force_step
+from onbottom.hydro.kernel_contract import force_step_unprepared_of as force_step
 from onbottom.soil.base import (
     OUT_FRICTION,
     OUT_PASSIVE,
@@ -239,7 +241,7 @@ def prepare_forces(force_id, settings, prow, fstate, t, u, dudt, fstate_new, fpr
     )  # fmt: skip
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0,
                dt, ry, rz, trial, out, fs_new, fout, prepared, fprep):  # fmt: skip
     """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
@@ -333,30 +335,28 @@ def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
     rec[n, REC_SOIL_WORK] = out[OUT_WORK]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def initial(model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec):
-    """Initial acceleration, running summary and first record (pipe at rest at y = 0)."""
-    literally(model_id)  # compile only the soil and force models used (module docstring)
-    literally(force_id)
+    """Initial acceleration, running summary and first record (pipe at rest at y = 0);
+    through :func:`integrate` (``n0 < 0``), inlined there. A model with the two-stage form
+    (rule 7) is evaluated through its stages, as the steps are: bit for bit its kernel."""
     trial = np.empty_like(state)
     out = np.empty(OUT_SIZE)
     fs_new = np.zeros_like(fstate)
     fout = np.empty(FO_SIZE)
+    fprep = np.zeros(N_FORCE_PREP)
     dts = settings[ST_DTS]
-    u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
+    t0 = dyn[D_T]
+    u0, a0, j = flow_at(t0, kin_u, kin_a, dts)
     ry, rz = load_reductions(settings, state[S_Z])
-    forces(
-        force_id,
-        settings,
-        parameter_row(fparams, j),
-        fstate,
-        dyn[D_T],
-        u0,
-        a0,
-        dyn[D_YD],
-        fs_new,
-        fout,
-    )
+    prow = parameter_row(fparams, j)
+    if prepare_forces(force_id, settings, prow, fstate, t0, u0, a0, fs_new, fprep):
+        force_evaluate(
+            force_id, prow, fprep, u0, settings[ST_CURRENT], dyn[D_YD], settings[ST_D],
+            settings[ST_RHO], fout,
+        )  # fmt: skip
+    else:
+        forces(force_id, settings, prow, fstate, t0, u0, a0, dyn[D_YD], fs_new, fout)
     fy = ry * fout[FO_FY]
     fz = rz * fout[FO_FZ]
     v = settings[ST_WS] - fz
@@ -395,10 +395,19 @@ def integrate(
 ):  # fmt: skip
     """Advance from dyn[D_T] to t_stop, the storm end, an event or a full record buffer.
 
-    Returns (rows written in total, status).
+    Returns (rows written in total, status). With ``n0 < 0``: the start instead
+    (:func:`initial`, inlined here; returns (its rows, ``STATUS_CHUNK``); ``t_stop`` unused),
+    so that one compiled function holds the whole storm: :func:`initial` and
+    :func:`solve_step` are inlined at numba-IR level (``inline="always"``), not compiled as
+    functions of their own, each of which would link, re-optimise and re-emit the soil and
+    force models' machine code once more.
     """
     literally(model_id)  # compile only the soil and force models used (module docstring)
     literally(force_id)
+    if n0 < 0:
+        return initial(
+            model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec
+        ), STATUS_CHUNK
     dt_max = settings[ST_DT_MAX]
     dt_min = settings[ST_DT_MIN]
     du_max = settings[ST_DU_MAX]
