@@ -41,6 +41,11 @@ model) is prepared once per trial step (its history and ``exp`` terms, which do 
 kernel is not compiled into this module's functions
 (:func:`onbottom.hydro.kernel_contract.force_step_unprepared_of`).
 
+Compiling: :func:`integrate` is the only entry point (``n0 < 0`` runs the start); the other
+functions of this module are inlined into it at numba-IR level (``inline="always"``), so a
+storm compiles one function over the soil and force models' kernels, not one per helper (each
+compiled function links, re-optimises and re-emits the machine code of everything it calls).
+
 Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
 ``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``fparams[nc, n_params]`` (the force model's
 parameters: one row, or one row per flow sample j), ``fstate[N_FORCE_STATE]`` (committed force
@@ -168,7 +173,7 @@ STATUS_STEP_FAILED = int(Status.STEP_FAILED)
 STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def flow_at(t, kin_u, kin_a, dts):
     """U, U̇ at time t by linear interpolation of the samples; index of the left sample."""
     n = kin_u.shape[0]
@@ -186,7 +191,7 @@ def flow_at(t, kin_u, kin_a, dts):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def parameter_row(fparams, j):
     """The force model's parameters for flow sample j: the only row, or row j (clamped)."""
     nc = fparams.shape[0]
@@ -196,7 +201,7 @@ def parameter_row(fparams, j):
     return row_view(fparams, jj)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def load_reductions(settings, z):
     """(r_y, r_z) = (r_const,y·r_pen,y(z/D), r_const,z·r_pen,z(z/D)) at the penetration z [m]."""
     ry = settings[ST_RY_CONST]
@@ -208,7 +213,7 @@ def load_reductions(settings, z):
     return ry, rz
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
     """The force model ``force_id`` (``settings[ST_FORCE_MODEL]``, passed as a literal) with the
     parameter row ``prow`` from the committed ``fstate``:
@@ -230,7 +235,7 @@ def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout)
     )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def prepare_forces(force_id, settings, prow, fstate, t, u, dudt, fstate_new, fprep):
     """The force model's once-per-step stage at the trial step end t (contract rule 7 of
     :mod:`onbottom.hydro._force_dispatch`): writes ``fstate_new`` and ``fprep``; False when the
@@ -314,7 +319,7 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
     return dy, False, max_iter
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
     rec[n, REC_T] = t
     rec[n, REC_Y] = y
@@ -340,9 +345,9 @@ def initial(model_id, force_id, params, state, settings, fparams, fstate, kin_u,
     """Initial acceleration, running summary and first record (pipe at rest at y = 0);
     through :func:`integrate` (``n0 < 0``), inlined there. A model with the two-stage form
     (rule 7) is evaluated through its stages, as the steps are: bit for bit its kernel."""
-    trial = np.empty_like(state)
+    trial = np.empty(state.shape[0])
     out = np.empty(OUT_SIZE)
-    fs_new = np.zeros_like(fstate)
+    fs_new = np.zeros(fstate.shape[0])
     fout = np.empty(FO_SIZE)
     fprep = np.zeros(N_FORCE_PREP)
     dts = settings[ST_DTS]
@@ -417,9 +422,9 @@ def integrate(
     rec_dt = settings[ST_REC_INTERVAL]
     stop_on_lift = settings[ST_LIFTOFF] == LIFTOFF_STOP
     cap = rec.shape[0]
-    trial = np.empty_like(state)
+    trial = np.empty(state.shape[0])
     out = np.empty(OUT_SIZE)
-    fs_new = np.zeros_like(fstate)
+    fs_new = np.zeros(fstate.shape[0])
     fout = np.empty(FO_SIZE)
     fprep = np.zeros(N_FORCE_PREP)
     n = n0
