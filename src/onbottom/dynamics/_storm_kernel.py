@@ -37,7 +37,14 @@ the soil state when a step is accepted, from the force evaluation at the accepte
 Newton iterations and rejected steps evaluate the model from the committed state only. A model
 with the optional two-stage form (rule 7 of :mod:`onbottom.hydro._force_dispatch`: the wake
 model) is prepared once per trial step (its history and ``exp`` terms, which do not depend on
-ẏ) and evaluated per iterate from that, bit for bit the one-call kernel's values.
+ẏ) and evaluated per iterate from that, bit for bit the one-call kernel's values; its one-call
+kernel is not compiled into this module's functions
+(:func:`onbottom.hydro.kernel_contract.force_step_unprepared_of`).
+
+Compiling: :func:`integrate` is the only entry point (``n0 < 0`` runs the start); the other
+functions of this module are inlined into it at numba-IR level (``inline="always"``), so a
+storm compiles one function over the soil and force models' kernels, not one per helper (each
+compiled function links, re-optimises and re-emits the machine code of everything it calls).
 
 Buffers (float64): ``settings[ST_*]``, ``dyn[D_*]`` (state + running summary, mutated),
 ``kin_u``, ``kin_a`` (U, U̇ at t = j·Δt_s), ``fparams[nc, n_params]`` (the force model's
@@ -67,7 +74,7 @@ from onbottom.hydro.kernel_contract import (
 )
 from onbottom.hydro.kernel_contract import force_evaluate_of as force_evaluate
 from onbottom.hydro.kernel_contract import force_prepare_of as force_prepare
-from onbottom.hydro.kernel_contract import force_step_of as force_step
+from onbottom.hydro.kernel_contract import force_step_unprepared_of as force_step
 from onbottom.soil.base import (
     OUT_FRICTION,
     OUT_PASSIVE,
@@ -166,7 +173,7 @@ STATUS_STEP_FAILED = int(Status.STEP_FAILED)
 STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def flow_at(t, kin_u, kin_a, dts):
     """U, U̇ at time t by linear interpolation of the samples; index of the left sample."""
     n = kin_u.shape[0]
@@ -184,7 +191,7 @@ def flow_at(t, kin_u, kin_a, dts):
     )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def parameter_row(fparams, j):
     """The force model's parameters for flow sample j: the only row, or row j (clamped)."""
     nc = fparams.shape[0]
@@ -194,7 +201,7 @@ def parameter_row(fparams, j):
     return row_view(fparams, jj)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def load_reductions(settings, z):
     """(r_y, r_z) = (r_const,y·r_pen,y(z/D), r_const,z·r_pen,z(z/D)) at the penetration z [m]."""
     ry = settings[ST_RY_CONST]
@@ -206,7 +213,7 @@ def load_reductions(settings, z):
     return ry, rz
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout):
     """The force model ``force_id`` (``settings[ST_FORCE_MODEL]``, passed as a literal) with the
     parameter row ``prow`` from the committed ``fstate``:
@@ -228,7 +235,7 @@ def forces(force_id, settings, prow, fstate, t, u, dudt, ydot, fstate_new, fout)
     )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def prepare_forces(force_id, settings, prow, fstate, t, u, dudt, fstate_new, fprep):
     """The force model's once-per-step stage at the trial step end t (contract rule 7 of
     :mod:`onbottom.hydro._force_dispatch`): writes ``fstate_new`` and ``fprep``; False when the
@@ -239,7 +246,7 @@ def prepare_forces(force_id, settings, prow, fstate, t, u, dudt, fstate_new, fpr
     )  # fmt: skip
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1dot, y0, yd0, a0,
                dt, ry, rz, trial, out, fs_new, fout, prepared, fprep):  # fmt: skip
     """Solve the Newmark residual for Δy (module docstring); returns (Δy, converged, iters).
@@ -312,7 +319,7 @@ def solve_step(model_id, force_id, params, state, settings, prow, fs, t1, u1, a1
     return dy, False, max_iter
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
     rec[n, REC_T] = t
     rec[n, REC_Y] = y
@@ -333,30 +340,28 @@ def _write(rec, n, t, y, yd, fy, fz, v, u, ry, rz, dyn, out):
     rec[n, REC_SOIL_WORK] = out[OUT_WORK]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def initial(model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec):
-    """Initial acceleration, running summary and first record (pipe at rest at y = 0)."""
-    literally(model_id)  # compile only the soil and force models used (module docstring)
-    literally(force_id)
-    trial = np.empty_like(state)
+    """Initial acceleration, running summary and first record (pipe at rest at y = 0);
+    through :func:`integrate` (``n0 < 0``), inlined there. A model with the two-stage form
+    (rule 7) is evaluated through its stages, as the steps are: bit for bit its kernel."""
+    trial = np.empty(state.shape[0])
     out = np.empty(OUT_SIZE)
-    fs_new = np.zeros_like(fstate)
+    fs_new = np.zeros(fstate.shape[0])
     fout = np.empty(FO_SIZE)
+    fprep = np.zeros(N_FORCE_PREP)
     dts = settings[ST_DTS]
-    u0, a0, j = flow_at(dyn[D_T], kin_u, kin_a, dts)
+    t0 = dyn[D_T]
+    u0, a0, j = flow_at(t0, kin_u, kin_a, dts)
     ry, rz = load_reductions(settings, state[S_Z])
-    forces(
-        force_id,
-        settings,
-        parameter_row(fparams, j),
-        fstate,
-        dyn[D_T],
-        u0,
-        a0,
-        dyn[D_YD],
-        fs_new,
-        fout,
-    )
+    prow = parameter_row(fparams, j)
+    if prepare_forces(force_id, settings, prow, fstate, t0, u0, a0, fs_new, fprep):
+        force_evaluate(
+            force_id, prow, fprep, u0, settings[ST_CURRENT], dyn[D_YD], settings[ST_D],
+            settings[ST_RHO], fout,
+        )  # fmt: skip
+    else:
+        forces(force_id, settings, prow, fstate, t0, u0, a0, dyn[D_YD], fs_new, fout)
     fy = ry * fout[FO_FY]
     fz = rz * fout[FO_FZ]
     v = settings[ST_WS] - fz
@@ -395,10 +400,19 @@ def integrate(
 ):  # fmt: skip
     """Advance from dyn[D_T] to t_stop, the storm end, an event or a full record buffer.
 
-    Returns (rows written in total, status).
+    Returns (rows written in total, status). With ``n0 < 0``: the start instead
+    (:func:`initial`, inlined here; returns (its rows, ``STATUS_CHUNK``); ``t_stop`` unused),
+    so that one compiled function holds the whole storm: :func:`initial` and
+    :func:`solve_step` are inlined at numba-IR level (``inline="always"``), not compiled as
+    functions of their own, each of which would link, re-optimise and re-emit the soil and
+    force models' machine code once more.
     """
     literally(model_id)  # compile only the soil and force models used (module docstring)
     literally(force_id)
+    if n0 < 0:
+        return initial(
+            model_id, force_id, params, state, settings, fparams, fstate, kin_u, kin_a, dyn, rec
+        ), STATUS_CHUNK
     dt_max = settings[ST_DT_MAX]
     dt_min = settings[ST_DT_MIN]
     du_max = settings[ST_DU_MAX]
@@ -408,9 +422,9 @@ def integrate(
     rec_dt = settings[ST_REC_INTERVAL]
     stop_on_lift = settings[ST_LIFTOFF] == LIFTOFF_STOP
     cap = rec.shape[0]
-    trial = np.empty_like(state)
+    trial = np.empty(state.shape[0])
     out = np.empty(OUT_SIZE)
-    fs_new = np.zeros_like(fstate)
+    fs_new = np.zeros(fstate.shape[0])
     fout = np.empty(FO_SIZE)
     fprep = np.zeros(N_FORCE_PREP)
     n = n0

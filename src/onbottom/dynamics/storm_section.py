@@ -406,12 +406,8 @@ def _integrate(soil, fm, s, kin, st, dyn, progress):
         per = max(s.record_interval, s.dt_max)
         cap = int(min(kin.duration / per * 1.2 + 1024, 2_000_000))
         rec = np.empty((cap, K.N_REC))
-    recorder = Recorder(
-        rec,
-        call_literal(
-            K.initial, 2, model_id, force_id, params, state, st, fparams, fstate, ku, ka, dyn, rec
-        ),
-    )
+    start = (params, state, st, fparams, fstate, ku, ka, dyn, 0.0, rec, -1)  # n0 < 0: the start
+    recorder = Recorder(rec, call_literal(K.integrate, 2, model_id, force_id, *start)[0])
 
     def advance(t_stop, rows, n0):
         args = (params, state, st, fparams, fstate, ku, ka, dyn, t_stop, rows, n0)

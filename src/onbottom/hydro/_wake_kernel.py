@@ -37,6 +37,10 @@ params (``P_*``, one row of :meth:`onbottom.hydro.wake.WakeModel.parameter_table
 C_D∞, C_L∞, C_M, ΔC_D, ΔC_L, λ_D, λ_L, α_w, λ_w, lift-relative flag, reversal tolerance, β,
 r_0, λ_o.
 
+The small helpers (:func:`_sign`, :func:`_onset`, :func:`_history_terms`,
+:func:`_slack_strength`) are inlined at numba-IR level (``inline="always"``): fewer functions to
+compile, the same operations.
+
 state (``S_*``; zeros = flow at rest, no history): see the constants below. Odd under mirror
 (u, U̇, V, ẏ → −): S_Q, S_SIGN and S_W_END; every other slot is even.
 """
@@ -123,7 +127,7 @@ PR_INERTIA = 4
 N_PREP = 5
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sign(x):
     if x > 0.0:
         return 1.0
@@ -132,7 +136,7 @@ def _sign(x):
     return 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _onset(x, lam):
     """φ: C¹ smoothstep from 0 at x = 0 to 1 at x = λ_o (distances in D); 1 when λ_o = 0."""
     if lam <= 0.0:
@@ -143,7 +147,7 @@ def _onset(x, lam):
     return xi * xi * (3.0 - 2.0 * xi)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _history_terms(params, sign, wake0, relax, w_end, cd_end, cl_end, x):
     """(W, C_D excess, C_L excess) at x = s/D into the present segment (blended onset)."""
     phi = _onset(x, params[P_ONSET])
@@ -154,7 +158,7 @@ def _history_terms(params, sign, wake0, relax, w_end, cd_end, cl_end, x):
     return w, exd, exl
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _slack_strength(params, peak, trough):
     """g(r) of a slack of depth r = (peak − trough)/peak (module doc), in [0, 1]."""
     r = (peak - trough) / peak

@@ -39,6 +39,11 @@ Exports
     u, dudt, vc, d, rho, state_new, prep) -> bool`` once per trial step, then
     ``force_evaluate_of(model_id, params, prep, u, vc, ydot, d, rho, out)`` per ``ydot``, bit
     for bit the kernel's ``out``; False from the first: call the kernel instead.
+:func:`force_step_unprepared_of`
+    As :func:`force_step_of`, for a solver that calls the kernel only where
+    :func:`force_prepare_of` returned False: with a literal id of a model with the two-stage
+    form it compiles to a NaN stub (:func:`prepared_only`, never called) instead of that
+    model's one-call kernel.
 ``N_FORCE_PREP``
     Length of the ``prep`` scratch of the two-stage form.
 :func:`penetration_reduction_y`, :func:`penetration_reduction_z`
@@ -48,6 +53,10 @@ Exports
 
 from __future__ import annotations
 
+import numpy as np
+
+from onbottom._jit import literal_dispatch, njit
+from onbottom.hydro import _force_dispatch
 from onbottom.hydro._force_contract import (
     FO_DFY_DYD,
     FO_DFZ_DYD,
@@ -89,6 +98,48 @@ __all__ = [
     "force_step",
     "force_step_inline",
     "force_step_of",
+    "force_step_unprepared_of",
     "penetration_reduction_y",
     "penetration_reduction_z",
 ]
+
+
+@njit(cache=True)
+def prepared_only(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
+    """The one-call slot of a model with the two-stage form in a solver that prepares it
+    (:func:`force_step_unprepared_of`): never called there; NaN forces (the step fails)."""
+    for i in range(FO_SIZE):
+        out[i] = np.nan
+
+
+class _UnpreparedKernels:
+    """The one-call kernels of the models without the two-stage form (rule 7), and
+    :func:`prepared_only` for those with it (a ``get`` view of the dispatch tables, so that
+    models registered later are included)."""
+
+    def get(self, model_id, default=None):
+        kernel = _force_dispatch._KERNELS.get(model_id)
+        if kernel is None:
+            return default
+        no_prepare = _force_dispatch.no_prepare
+        if _force_dispatch._PREPARE.get(model_id, no_prepare) is not no_prepare:
+            return prepared_only
+        return kernel
+
+
+def force_step_unprepared_of(
+    model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out
+):
+    """:func:`force_step_of` for a solver that calls the kernel only where
+    :func:`force_prepare_of` returned False (rule 7: a model without the two-stage form).
+
+    With a numba-literal ``model_id`` of a model that has the two-stage form this compiles to
+    :func:`prepared_only` (never called: its ``force_prepare_of`` returns True), so such a
+    solver does not compile that model's one-call kernel beside its two stages; for any other
+    model it is the model's kernel. In plain Python, and with a non-literal id, it is
+    :func:`force_step_of` (the one-call kernel of every model).
+    """
+    force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
+
+
+literal_dispatch(force_step_unprepared_of, _UnpreparedKernels(), force_step)
