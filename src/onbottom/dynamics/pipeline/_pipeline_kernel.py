@@ -291,20 +291,23 @@ def evaluate(
     Returns False if a soil kernel gave NaN.
     """
     ndof = d1.shape[0]
+    for j in range(ndof):
+        p[j] = 0.0
+        fh[j] = 0.0
+        fs[j] = 0.0
     if want_k:
         for j in range(ndof):
-            p[j] = 0.0
             for k in range(ab.shape[1]):
                 ab[j, k] = 0.0
-    else:
-        for j in range(ndof):
-            p[j] = 0.0
-    # internal forces (assembled as +f_int into p, then negated with the spring force in the
-    # node loop); fh and fs are written whole there (zero on θ, fh zero on u)
+    # internal forces (assembled as +f_int into p, then negated)
     assemble_internal(
         borrow(d1), borrow(props), borrow(p), borrow(ab), want_k, borrow(fe), borrow(ke),
         borrow(mom), borrow(nax),
     )  # fmt: skip
+    for j in range(ndof):
+        p[j] = -p[j] - spring[j] * d1[j]
+        if want_k:
+            ab[j, 0] += spring[j]
     dd = settings[ST_D]
     rho = settings[ST_RHO]
     prow = parameter_row(settings, fparams, t1)
@@ -313,14 +316,6 @@ def evaluate(
     for i in range(nodes.shape[0]):
         iu = NDOF_NODE * i
         iv = iu + 1
-        ith = iu + 2
-        p[iu] = -p[iu] - spring[iu] * d1[iu]
-        p[iv] = -p[iv] - spring[iv] * d1[iv]
-        p[ith] = -p[ith] - spring[ith] * d1[ith]
-        if want_k:
-            ab[iu, 0] += spring[iu]
-            ab[iv, 0] += spring[iv]
-            ab[ith, 0] += spring[ith]
         ell = nodes[i, ND_TRIB]
         ydot = v1[iv] if relvel else 0.0
         force_step(
@@ -342,12 +337,9 @@ def evaluate(
         node_r[i] = big_r
         node_f[i] = f_y
         node_fa[i] = fa
-        fh[iu] = 0.0
         fh[iv] = ell * f_y
-        fh[ith] = 0.0
-        fs[iu] = -ell * fa
         fs[iv] = -ell * big_r
-        fs[ith] = 0.0
+        fs[iu] = -ell * fa
         p[iv] += fh[iv] + fs[iv]
         p[iu] += fs[iu]
         kt_v[i] = ell * (out[OUT_TANGENT] - c_v * dfdv)
@@ -457,33 +449,6 @@ def _record(settings, props, nodes, vec, sstate, node_r, node_f, vcont, rec, k, 
         rec[k, F_STRAIN, i] = abs(nax[i]) / ea + abs(mom[i]) * c / ei
 
 
-@jitted_only
-def _envelope_node(env, i, v, z, vcont, mom, nax, c, ea, ei):
-    """Update the envelopes of node ``i`` with its committed lateral displacement ``v``,
-    penetration ``z``, contact load, moment and axial force; returns |v|."""
-    av = abs(v)
-    if av > env[E_ABS_V, i]:
-        env[E_ABS_V, i] = av
-    if v > env[E_MAX_V, i]:
-        env[E_MAX_V, i] = v
-    if v < env[E_MIN_V, i]:
-        env[E_MIN_V, i] = v
-    eps = abs(nax) / ea + abs(mom) * c / ei
-    if eps > env[E_STRAIN, i]:
-        env[E_STRAIN, i] = eps
-    if abs(mom) > env[E_ABS_M, i]:
-        env[E_ABS_M, i] = abs(mom)
-    if nax > env[E_MAX_N, i]:
-        env[E_MAX_N, i] = nax
-    if nax < env[E_MIN_N, i]:
-        env[E_MIN_N, i] = nax
-    if vcont < env[E_MIN_VCONT, i]:
-        env[E_MIN_VCONT, i] = vcont
-    if z > env[E_MAX_Z, i]:
-        env[E_MAX_Z, i] = z
-    return av
-
-
 @njit(cache=True)
 def integrate(
     soil_id, force_id,
@@ -523,13 +488,10 @@ def integrate(
     ntk = int(settings[ST_KIN_NT])
     pred = settings[ST_PREDICTOR]
     ctol = settings[ST_CTOL]
-    relvel = settings[ST_RELVEL] != 0.0
     z_limit = settings[ST_Z_LIMIT]
     fibre = settings[ST_FIBRE]
     ea = settings[ST_EA]
     ei = settings[ST_EI]
-    n_sst = sstate.shape[1]
-    n_fst = fstate.shape[1]
     mass = np.empty(ndof)
     for i in range(n_nodes):
         mass[NDOF_NODE * i] = nodes[i, ND_MASS_U]
@@ -551,7 +513,6 @@ def integrate(
     ke = np.empty((6, 6))
     out = np.empty(OUT_SIZE)
     d1 = np.empty(ndof)
-    d1n = np.empty(ndof)  # the corrected d₁ (swapped with d1 when kept)
     v1 = np.empty(ndof)
     a1 = np.empty(ndof)
     p1 = np.empty(ndof)
@@ -568,8 +529,6 @@ def integrate(
     v0 = vec[V_V]
     a0 = vec[V_A]
     pn = vec[V_P]
-    vfh = vec[V_FH]
-    vfs = vec[V_FS]
     n_rec = np.int64(0)  # not the literal 0: one specialisation of _record, not two
     if init:
         t = scal[SC_T]
@@ -643,14 +602,11 @@ def integrate(
         neg = 0
         r_prev = math.inf
         n_back = 0
-        dv_max = 0.0
         for it in range(max_iter):
             iters = it + 1
-            if relvel:  # the lateral velocity v₁ at d₁, the drag's relative velocity
-                for i in range(n_nodes):
-                    j = NDOF_NODE * i + 1
-                    a1[j] = c_a * (d1[j] - d0[j] - dt * v0[j]) - (0.5 / beta - 1.0) * a0[j]
-                    v1[j] = v0[j] + dt * ((1.0 - gam) * a0[j] + gam * a1[j])
+            for j in range(ndof):
+                a1[j] = c_a * (d1[j] - d0[j] - dt * v0[j]) - (0.5 / beta - 1.0) * a0[j]
+                v1[j] = v0[j] + dt * ((1.0 - gam) * a0[j] + gam * a1[j])
             # the tangent is assembled on the first iteration, later only when needed
             want_k = it == 0
             ok = evaluate(
@@ -667,24 +623,15 @@ def integrate(
                 return n_rec, STATUS_SOIL_NAN
             add_user_load(borrow(settings), borrow(uload), borrow(nodes), t1, borrow(p1),
                           borrow(fh1))  # fmt: skip
-            # a₁ at d₁, the largest lateral increment |v₁ − v_n| of d₁ and res = −r (the Newton
-            # right-hand side; −0.0 on fixed DOFs, as −(0.0)) in one pass
+            # res holds −r (the Newton right-hand side; −0.0 on fixed DOFs, as −(0.0))
             rmax = 0.0
-            dv_max = 0.0
-            for i in range(n_nodes):
-                for k in range(NDOF_NODE):
-                    j = NDOF_NODE * i + k
-                    a1[j] = c_a * (d1[j] - d0[j] - dt * v0[j]) - (0.5 / beta - 1.0) * a0[j]
-                    if k == 1:
-                        dv = abs(d1[j] - d0[j])
-                        if dv > dv_max:
-                            dv_max = dv
-                    if fixed[j] != 0.0:
-                        res[j] = -0.0
-                    else:
-                        res[j] = -(mass[j] * a1[j] - (1.0 + alpha) * p1[j] + alpha * pn[j])
-                        if abs(res[j]) > rmax:
-                            rmax = abs(res[j])
+            for j in range(ndof):
+                if fixed[j] != 0.0:
+                    res[j] = -0.0
+                else:
+                    res[j] = -(mass[j] * a1[j] - (1.0 + alpha) * p1[j] + alpha * pn[j])
+                    if abs(res[j]) > rmax:
+                        rmax = abs(res[j])
             if rmax <= tol and it > 0:
                 conv = True
                 break
@@ -725,29 +672,28 @@ def integrate(
             else:
                 ldl_solve(borrow(ab), borrow(res))
             r_prev = rmax
-            # the corrected d₁ into d1n with the largest translational correction (u, v; not
-            # θ); kept (d1n becomes d1, res the last correction) unless the step is accepted
-            cmax = 0.0
+            cmax = 0.0  # largest translational correction (u, v; not θ)
             for i in range(n_nodes):
-                iu = NDOF_NODE * i
-                cu = abs(res[iu])
-                cv = abs(res[iu + 1])
+                cu = abs(res[NDOF_NODE * i])
+                cv = abs(res[NDOF_NODE * i + 1])
                 if cu > cmax:
                     cmax = cu
                 if cv > cmax:
                     cmax = cv
-                d1n[iu] = d1[iu] + res[iu]
-                d1n[iu + 1] = d1[iu + 1] + res[iu + 1]
-                d1n[iu + 2] = d1[iu + 2] + res[iu + 2]
             if it > 0 and cmax <= ctol:
                 # the correction is below the displacement resolution: the residual sits on a
                 # jump of a discontinuous soil law (or at round-off); accept the evaluated state
                 conv = True
                 break
-            d1, d1n = d1n, d1
-            res, dlast = dlast, res
+            for j in range(ndof):
+                d1[j] += res[j]
+                dlast[j] = res[j]
         scal[SC_NITER] += iters
-        # dv_max is that of the accepted d₁ (the last evaluated): it matters only when conv
+        dv_max = 0.0
+        for i in range(n_nodes):
+            dv = abs(d1[NDOF_NODE * i + 1] - d0[NDOF_NODE * i + 1])
+            if dv > dv_max:
+                dv_max = dv
         good = conv and dv_max <= du_max
         if not good:
             if dt > dt_min * 1.000001:
@@ -758,26 +704,26 @@ def integrate(
                 return n_rec, STATUS_STEP_FAILED
         if neg > 0:
             scal[SC_NEG_PIVOT] += 1.0
-        # ---- commit (v₁ from a₁ of the accepted d₁), the work sums in DOF order, the
-        # states, the events and the envelopes in one pass over the nodes
+        # ---- commit
         whyd = 0.0
         wsoil = 0.0
         vmax = 0.0
+        for j in range(ndof):
+            dd = d1[j] - d0[j]
+            whyd += 0.5 * (vec[V_FH, j] + fh1[j]) * dd
+            wsoil += 0.5 * (vec[V_FS, j] + fs1[j]) * dd
+            d0[j] = d1[j]
+            v0[j] = v1[j]
+            a0[j] = a1[j]
+            pn[j] = p1[j]
+            vec[V_FH, j] = fh1[j]
+            vec[V_FS, j] = fs1[j]
+        scal[SC_W_HYD] += whyd
+        scal[SC_W_SOIL] += wsoil
         for i in range(n_nodes):
-            for k in range(NDOF_NODE):
-                j = NDOF_NODE * i + k
-                dd = d1[j] - d0[j]
-                whyd += 0.5 * (vfh[j] + fh1[j]) * dd
-                wsoil += 0.5 * (vfs[j] + fs1[j]) * dd
-                d0[j] = d1[j]
-                v0[j] = v0[j] + dt * ((1.0 - gam) * a0[j] + gam * a1[j])
-                a0[j] = a1[j]
-                pn[j] = p1[j]
-                vfh[j] = fh1[j]
-                vfs[j] = fs1[j]
-            for c in range(n_sst):
+            for c in range(sstate.shape[1]):
                 sstate[i, c] = trial[i, c]
-            for c in range(n_fst):
+            for c in range(fstate.shape[1]):
                 fstate[i, c] = ftrial[i, c]
             axst[i, 0] = d1[NDOF_NODE * i]
             axst[i, 1] = node_fa[i]
@@ -790,12 +736,31 @@ def integrate(
                     scal[SC_T_LIFT] = t1
                     scal[SC_LIFT_NODE] = i
                 scal[SC_N_LIFT] += 1.0
-            av = _envelope_node(env, i, d0[NDOF_NODE * i + 1], z, vcont[i], mom[i], nax[i],
-                                fibre, ea, ei)  # fmt: skip
+            v = d0[NDOF_NODE * i + 1]
+            av = abs(v)
+            if av > env[E_ABS_V, i]:
+                env[E_ABS_V, i] = av
+            if v > env[E_MAX_V, i]:
+                env[E_MAX_V, i] = v
+            if v < env[E_MIN_V, i]:
+                env[E_MIN_V, i] = v
+            mi = mom[i]
+            ni = nax[i]
+            eps = abs(ni) / ea + abs(mi) * fibre / ei
+            if eps > env[E_STRAIN, i]:
+                env[E_STRAIN, i] = eps
+            if abs(mi) > env[E_ABS_M, i]:
+                env[E_ABS_M, i] = abs(mi)
+            if ni > env[E_MAX_N, i]:
+                env[E_MAX_N, i] = ni
+            if ni < env[E_MIN_N, i]:
+                env[E_MIN_N, i] = ni
+            if vcont[i] < env[E_MIN_VCONT, i]:
+                env[E_MIN_VCONT, i] = vcont[i]
+            if z > env[E_MAX_Z, i]:
+                env[E_MAX_Z, i] = z
             if av > vmax:
                 vmax = av
-        scal[SC_W_HYD] += whyd
-        scal[SC_W_SOIL] += wsoil
         scal[SC_T] = t1
         scal[SC_NSTEP] += 1.0
         if not clipped:
