@@ -270,7 +270,7 @@ def test_no_production_python_calls_a_jitted_only_kernel():
                 return getattr(getattr(module, node.value.id, None), node.attr, None)
             return None
 
-        def visit(node, inside):
+        def visit(node, inside, rel=rel):
             if isinstance(node, ast.FunctionDef):
                 decorated = any(
                     ast.unparse(d).split("(")[0].split(".")[-1] in jitted
@@ -281,7 +281,7 @@ def test_no_production_python_calls_a_jitted_only_kernel():
                 if isinstance(target(node.func), _jit._JittedOnlyDispatcher):
                     offenders.append(f"{rel}:{node.lineno} {ast.unparse(node.func)}")
             for child in ast.iter_child_nodes(node):
-                visit(child, inside)
+                visit(child, inside, rel)
 
         visit(ast.parse(source), False)
     assert not offenders, "Python calls of jitted_only kernels:\n" + "\n".join(offenders)
