@@ -199,7 +199,7 @@ class _JittedOnlyDispatcher(CPUDispatcher):
         return python_entry(self)(*args, **kwargs)
 
 
-def jitted_only(fn: Callable) -> Any:
+def jitted_only(fn: Callable | None = None, /, *, error_model: str = "numpy") -> Any:
     """:func:`njit` (``cache=True``) for a kernel called from other kernels, not from Python.
 
     numba otherwise lowers, optimises and machine-compiles a CPython wrapper (the unboxing
@@ -208,10 +208,15 @@ def jitted_only(fn: Callable) -> Any:
     half of its compile. Same source, typing and arithmetic as :func:`njit`. A call from
     Python still works: it compiles and calls :func:`python_entry` of the kernel (a second
     compile, with the wrapper; tests and profiling). Not for an entry point called through
-    its compiled overloads (:func:`call_literal`)."""
+    its compiled overloads (:func:`call_literal`).
+
+    ``@jitted_only`` or ``@jitted_only(error_model="python")`` (the error model of a module
+    that keeps numba's defaults, :func:`numba_njit`; its :func:`python_entry` copy too)."""
+    if fn is None:
+        return lambda f: jitted_only(f, error_model=error_model)
     if numba.config.DISABLE_JIT:
         return fn
-    options = {"error_model": "numpy", "no_cfunc_wrapper": True, "no_cpython_wrapper": True}
+    options = {"error_model": error_model, "no_cfunc_wrapper": True, "no_cpython_wrapper": True}
     options["nopython"] = True
 
     def decorate(kw: dict) -> Any:
@@ -236,7 +241,8 @@ def python_entry(kernel: Any) -> Any:
         copy = types.FunctionType(py.__code__, py.__globals__, py.__name__, py.__defaults__)
         copy.__qualname__ = py.__qualname__ + "_entry"
         copy.__doc__ = py.__doc__
-        got = _ENTRIES[kernel] = njit(cache=True)(copy)
+        model = kernel.targetoptions.get("error_model", "numpy")
+        got = _ENTRIES[kernel] = njit(cache=True, error_model=model)(copy)
     return got
 
 

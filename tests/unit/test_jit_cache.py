@@ -233,3 +233,84 @@ def test_jitted_only_kernel_compiles_no_wrapper_and_python_calls_its_entry():
     assert entry is _jit.python_entry(kernel)
     assert entry.py_func.__qualname__ == "parameter_row_entry"
     assert not entry.targetoptions.get("no_cpython_wrapper")
+
+
+# plain-Python bodies that run only in the twins: the literal dispatchers (their jitted form
+# is a direct call compiled by onbottom._jit.literal_dispatch or an overload)
+_TWIN_ONLY = {"lateral_step_of", "lateral_step_node", "force_step_of", "force_step_unprepared_of"}
+
+
+def test_no_production_python_calls_a_jitted_only_kernel():
+    # a jitted_only kernel called from Python compiles a second copy (python_entry): every
+    # call of one outside jitted code would add compile time instead of saving it
+    import ast
+    import importlib
+    from pathlib import Path
+
+    import onbottom
+
+    jitted = ("njit", "jitted_only", "numba_njit", "overload", "intrinsic")
+    root = Path(onbottom.__file__).parent
+    offenders = []
+    for path in sorted(root.rglob("*.py")):
+        source = path.read_text(encoding="utf-8")
+        if "onbottom._jit" not in source and "_kernel" not in source:
+            continue
+        rel = path.relative_to(root.parent).with_suffix("")
+        name = ".".join(rel.parts[:-1] if rel.name == "__init__" else rel.parts)
+        try:
+            module = importlib.import_module(name)
+        except ImportError:  # optional dependencies (DEM, LAMMPS)
+            continue
+
+        def target(node, module=module):
+            if isinstance(node, ast.Name):
+                return getattr(module, node.id, None)
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
+                return getattr(getattr(module, node.value.id, None), node.attr, None)
+            return None
+
+        def visit(node, inside, rel=rel):
+            if isinstance(node, ast.FunctionDef):
+                decorated = any(
+                    ast.unparse(d).split("(")[0].split(".")[-1] in jitted
+                    for d in node.decorator_list
+                )
+                inside = inside or decorated or node.name in _TWIN_ONLY
+            if isinstance(node, ast.Call) and not inside:
+                if isinstance(target(node.func), _jit._JittedOnlyDispatcher):
+                    offenders.append(f"{rel}:{node.lineno} {ast.unparse(node.func)}")
+            for child in ast.iter_child_nodes(node):
+                visit(child, inside, rel)
+
+        visit(ast.parse(source), False)
+    assert not offenders, "Python calls of jitted_only kernels:\n" + "\n".join(offenders)
+
+
+def test_entry_points_keep_their_wrapper_and_jitted_only_its_error_model():
+    from onbottom.dynamics import _section_kernel, _storm_kernel
+    from onbottom.dynamics.pipeline import _pipeline_kernel
+    from onbottom.hydro import _fixed_pipe_kernel, wake_calibration
+    from onbottom.soil import _path, _vh_parabolic_kernel
+
+    entries = [
+        _storm_kernel.integrate,
+        _section_kernel.integrate,
+        _section_kernel.initial_record,
+        _pipeline_kernel.integrate,
+        _fixed_pipe_kernel.fixed_pipe_record,
+        _path.drive_path,
+        wake_calibration.drive_fixed_pipe,
+    ]
+    for kernel in entries:
+        assert not isinstance(kernel, _jit._JittedOnlyDispatcher), kernel
+        assert not kernel.targetoptions.get("no_cpython_wrapper"), kernel
+    # a module on numba's default error model keeps it for its callees and their entries
+    for kernel, model in (
+        (_vh_parabolic_kernel.flow_direction, "python"),
+        (_section_kernel.solve_step, "python"),
+        (_storm_kernel.safeguarded_update, "numpy"),
+    ):
+        assert isinstance(kernel, _jit._JittedOnlyDispatcher)
+        assert kernel.targetoptions["error_model"] == model
+        assert _jit.python_entry(kernel).targetoptions["error_model"] == model

@@ -17,12 +17,12 @@ tests/unit/test_newton_helper.py.
 
 from __future__ import annotations
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 
 __all__ = ["safeguarded_update"]
 
 
-@njit(cache=True)
+@jitted_only
 def safeguarded_update(x, r, c, tangent, lo, hi, have_lo, have_hi, eps):
     """One safeguarded Newton iterate from ``x`` with residual ``r`` = r(x).
 

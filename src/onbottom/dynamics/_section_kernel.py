@@ -29,7 +29,7 @@ import math
 import numpy as np
 from numba import literally
 
-from onbottom._jit import borrow
+from onbottom._jit import borrow, jitted_only
 from onbottom._jit import numba_njit as njit
 from onbottom.dynamics._newton import safeguarded_update
 from onbottom.dynamics.status import Status
@@ -107,7 +107,7 @@ STATUS_STEP_FAILED = int(Status.STEP_FAILED)
 STATUS_SOIL_NAN = int(Status.SOIL_NAN)
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def loads_at(t, pt, ph, pv, i0):
     """Linear interpolation of (H, V) at t, searching forward from index i0 (pt[i0] <= t)."""
     n = pt.shape[0]
@@ -124,7 +124,7 @@ def loads_at(t, pt, ph, pv, i0):
     return ph[i] + f * (ph[i + 1] - ph[i]), pv[i] + f * (pv[i + 1] - pv[i]), i
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def solve_step(model_id, params, state_old, u0, du_hat, c0, h1, v1, rtol, max_iter, trial, out):
     """Solve r(Δu) = c0·(Δu − Δû) + R(u0 + Δu) − h1 = 0 for the increment Δu.
 
@@ -181,7 +181,7 @@ def initial_record(model_id, params, state, dyn, pt, ph, pv, settings, rec, n):
     _write(rec, n, dyn[D_T], h0, v0, dyn[D_U], dyn[D_V], out)
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def _write(rec, n, t, h, v, u, udot, out):
     rec[n, REC_T] = t
     rec[n, REC_H] = h

@@ -81,7 +81,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onbottom._jit import literal_dispatch, njit, registered_kernel_id
+from onbottom._jit import jitted_only, literal_dispatch, njit, registered_kernel_id
 from onbottom.hydro._force_contract import FO_SIZE
 from onbottom.hydro._fourier_kernel import fourier_kernel
 from onbottom.hydro._morison_kernel import morison_kernel
@@ -92,7 +92,7 @@ FORCE_WAKE = 1  # hydro/_wake_kernel.py, hydro/wake.py
 FORCE_FOURIER = 2  # hydro/_fourier_kernel.py, hydro/fourier.py
 
 
-@njit(cache=True)
+@jitted_only
 def force_step(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Call the kernel of force model ``model_id`` (contract: the module docstring)."""
     if model_id == FORCE_MORISON:
@@ -134,20 +134,20 @@ def force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, sta
 literal_dispatch(force_step_of, _KERNELS, force_step)
 
 
-@njit(cache=True)
+@jitted_only
 def no_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
     """The once-per-step stage of a model without one (rule 7): nothing; returns False."""
     return False
 
 
-@njit(cache=True)
+@jitted_only
 def no_evaluate(params, prep, u, vc, ydot, d, rho, out):
     """The per-iterate stage of a model without one (never called: rule 7): NaN forces."""
     for i in range(FO_SIZE):
         out[i] = np.nan
 
 
-@njit(cache=True)
+@jitted_only
 def force_prepare(model_id, params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
     """Once-per-step stage of force model ``model_id`` (rule 7); False when it has none."""
     if model_id == FORCE_WAKE:
@@ -155,7 +155,7 @@ def force_prepare(model_id, params, state_old, t, u, dudt, vc, d, rho, state_new
     return False
 
 
-@njit(cache=True)
+@jitted_only
 def force_evaluate(model_id, params, prep, u, vc, ydot, d, rho, out):
     """Per-iterate stage of force model ``model_id`` after :func:`force_prepare` (rule 7)."""
     if model_id == FORCE_WAKE:

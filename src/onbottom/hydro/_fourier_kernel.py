@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ, N_FORCE_STATE
 
 P_NHARM = 0
@@ -105,7 +105,7 @@ M_CLIP = 0.95
 unbounded period estimate."""
 
 
-@njit(cache=True)
+@jitted_only
 def half_cycle_fraction(m):
     """f(m) = ½ + asin(m)/π: a half-cycle's share of a regular wave's period [-].
 
@@ -118,7 +118,7 @@ def half_cycle_fraction(m):
     return 0.5 + math.asin(m) / math.pi
 
 
-@njit(cache=True)
+@jitted_only
 def locate(params, start, n, x):
     """Cell ``i`` and fraction ``f`` of ``x`` on the grid ``params[start:start+n]``.
 
@@ -140,7 +140,7 @@ def locate(params, start, n, x):
     return i, (x - a) / (params[start + i + 1] - a), 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def grid_index(params, start, n, x):
     """Fractional index i + f of ``x`` on the grid ``params[start:start+n]`` (clamped) and 1.0
     if ``x`` lies outside the grid, else 0.0."""
@@ -148,7 +148,7 @@ def grid_index(params, start, n, x):
     return i + f, outside
 
 
-@njit(cache=True)
+@jitted_only
 def series(params, xk, xm, theta):
     """(Y, Z) values of A₀ + Σₙ (Aₙ cos nθ + Bₙ sin nθ), coefficients bilinear in the cell.
 
@@ -195,7 +195,7 @@ def series(params, xk, xm, theta):
     return sy, sz
 
 
-@njit(cache=True)
+@jitted_only
 def flow_phase(u_h, dudt_h, vc_h, period):
     """Half-cycle phase θ [rad] and wave amplitude A [m/s] from the instantaneous flow.
 
@@ -227,7 +227,7 @@ def flow_phase(u_h, dudt_h, vc_h, period):
     return theta, a
 
 
-@njit(cache=True)
+@jitted_only
 def fourier_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Fourier force model: F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ at time ``t`` (see the module docstring).
 

@@ -9,10 +9,10 @@ force law is in :mod:`onbottom.hydro._morison_kernel`.
 
 from __future__ import annotations
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 
 
-@njit(cache=True)
+@jitted_only
 def penetration_reduction_y(z_over_d):
     """r_pen,y = max(1 − 1.4 z_p/D, 0.3) (DNV-RP-F109 (2017) Eq 3.19); 1 for z_p <= 0."""
     if z_over_d <= 0.0:
@@ -20,7 +20,7 @@ def penetration_reduction_y(z_over_d):
     return max(1.0 - 1.4 * z_over_d, 0.3)
 
 
-@njit(cache=True)
+@jitted_only
 def penetration_reduction_z(z_over_d):
     """r_pen,z = 1 for z_p/D <= 0.1, else max(1 − 1.3 (z_p/D − 0.1), 0) (F109 (2017) Eq 3.20)."""
     if z_over_d <= 0.1:

@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only, njit
 from onbottom.hydro._force_contract import FO_DFY_DYD, FO_DFZ_DYD, FO_FY, FO_FZ
 
 P_CD_STEADY = 0
@@ -171,7 +171,7 @@ def _slack_strength(params, peak, trough):
     return lin ** params[P_SLACK_EXPONENT]
 
 
-@njit(cache=True)
+@jitted_only
 def _history_step(params, state_old, t, u, dudt, vc, d, rho, state_new):
     """The part of an evaluation that does not depend on ẏ: writes ``state_new`` (the history
     after the flow at t) and returns (q, W, C_D, C_L, inertia force ρ (π D²/4) C_M U̇)."""
@@ -290,7 +290,7 @@ def _history_step(params, state_old, t, u, dudt, vc, d, rho, state_new):
     return q, uw, cd, cl, inertia
 
 
-@njit(cache=True)
+@jitted_only
 def _forces(params, q, uw, cd, cl, inertia, u, vc, ydot, d, rho, out):
     """The ẏ-dependent part: F_Y, ∂F_Y/∂ẏ, F_Z, ∂F_Z/∂ẏ from the history terms (module doc)."""
     ue = q + uw
@@ -307,7 +307,7 @@ def _forces(params, q, uw, cd, cl, inertia, u, vc, ydot, d, rho, out):
         out[FO_DFZ_DYD] = 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """Wake-model forces per unit length and the state after this evaluation (see module doc).
 
@@ -317,7 +317,7 @@ def wake_kernel(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
     _forces(params, q, uw, cd, cl, inertia, u, vc, ydot, d, rho, out)
 
 
-@njit(cache=True)
+@jitted_only
 def wake_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
     """Once-per-step stage (contract rule 7): the history after the flow at t into
     ``state_new`` and the ẏ-independent terms into ``prep`` (``PR_*`` slots); returns True."""
@@ -330,7 +330,7 @@ def wake_prepare(params, state_old, t, u, dudt, vc, d, rho, state_new, prep):
     return True
 
 
-@njit(cache=True)
+@jitted_only
 def wake_evaluate(params, prep, u, vc, ydot, d, rho, out):
     """Per-iterate stage (contract rule 7): the forces at ``ydot`` from the terms
     :func:`wake_prepare` left in ``prep``; the same values as :func:`wake_kernel`."""

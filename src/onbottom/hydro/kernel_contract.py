@@ -55,7 +55,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from onbottom._jit import literal_dispatch, njit
+from onbottom._jit import jitted_only, literal_dispatch
 from onbottom.hydro import _force_dispatch
 from onbottom.hydro._force_contract import (
     FO_DFY_DYD,
@@ -104,7 +104,7 @@ __all__ = [
 ]
 
 
-@njit(cache=True)
+@jitted_only
 def prepared_only(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
     """The one-call slot of a model with the two-stage form in a solver that prepares it
     (:func:`force_step_unprepared_of`): never called there; NaN forces (the step fails)."""

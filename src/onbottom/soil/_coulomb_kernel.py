@@ -5,7 +5,7 @@ params: [mu, mobilisation_displacement]
 
 from __future__ import annotations
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 from onbottom.soil._trough import spring_work
 from onbottom.soil.base import (
     N_COMMON_STATE,
@@ -30,7 +30,7 @@ P_MU = 0
 P_DELTA = 1
 
 
-@njit(cache=True)
+@jitted_only
 def friction_return_map(f_old: float, dy: float, v_load: float, mu: float, delta: float):
     """Elastic predictor / plastic corrector for the Coulomb force (resisting +y).
 
@@ -51,7 +51,7 @@ def friction_return_map(f_old: float, dy: float, v_load: float, mu: float, delta
     return f_trial, k
 
 
-@njit(cache=True)
+@jitted_only
 def coulomb_kernel(params, state_old, y_new, v_load, state_new, out):
     mu = params[P_MU]
     delta = params[P_DELTA]

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba.extending import overload
 
-from onbottom._jit import literal_dispatch, njit, registered_kernel_id
+from onbottom._jit import jitted_only, literal_dispatch, njit, registered_kernel_id
 from onbottom.soil._coulomb_kernel import coulomb_kernel
 from onbottom.soil._verley_lund_kernel import verley_lund_kernel
 from onbottom.soil._verley_sotberg_kernel import verley_sotberg_kernel
@@ -37,7 +37,7 @@ MODEL_VERLEY_LUND = 2
 MODEL_VH_PARABOLIC = 3  # two-DOF force-resultant test model (onbottom.soil.vh_parabolic)
 
 
-@njit(cache=True)
+@jitted_only
 def lateral_step(model_id, params, state_old, y_new, v_load, state_new, out):
     """Call the kernel of model ``model_id`` (contract: :mod:`onbottom.soil.base`)."""
     if model_id == MODEL_COULOMB:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from onbottom._jit import njit
+from onbottom._jit import jitted_only
 
 __all__ = [
     "RULE_ELASTOPLASTIC",
@@ -32,7 +32,7 @@ PHASE_OUT = 2.0
 """Residual displacement passed: out of the trough until the next reversal."""
 
 
-@njit(cache=True)
+@jitted_only
 def envelope(a, fr1, fr2, fr3, y1, y2, y3):
     """Passive envelope magnitude and slope at distance ``a`` = |y − y0| from the trough centre.
 
@@ -51,7 +51,7 @@ def envelope(a, fr1, fr2, fr3, y1, y2, y3):
     return fr3, 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def overlap(a, b, lo, hi):
     """Length of the segment between ``a`` and ``b`` that lies inside [lo, hi]."""
     lo2 = max(min(a, b), lo)
@@ -61,7 +61,7 @@ def overlap(a, b, lo, hi):
     return 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def sign(x):
     """Sign of ``x`` as a float (0 for 0)."""
     if x > 0.0:
@@ -71,7 +71,7 @@ def sign(x):
     return 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def region_of(a, y1, y2, y3):
     """Region code 1–4 of the distance ``a`` from the trough centre."""
     if a <= y1:
@@ -83,7 +83,7 @@ def region_of(a, y1, y2, y3):
     return 4.0
 
 
-@njit(cache=True)
+@jitted_only
 def envelope_energy(a, fr1, fr2, fr3, y1, y2, y3):
     """∫₀^a envelope(x) dx [N·m/m]: energy of the nonlinear-elastic (legacy) passive spring."""
     e = 0.0
@@ -107,7 +107,7 @@ def envelope_energy(a, fr1, fr2, fr3, y1, y2, y3):
     return e + fr3 * (a - x0)
 
 
-@njit(cache=True)
+@jitted_only
 def side_bounds(s_new, mag):
     """Admissible passive force interval at s_new: [0, mag] for s > 0, [−mag, 0] for s < 0."""
     if s_new > 0.0:
@@ -117,7 +117,7 @@ def side_bounds(s_new, mag):
     return 0.0, 0.0
 
 
-@njit(cache=True)
+@jitted_only
 def push_only_start(p_old, s_new, mag):
     """Start of the elastic predictor: the committed force returned into the current bounds.
 
@@ -129,7 +129,7 @@ def push_only_start(p_old, s_new, mag):
     return min(max(p_old, lo), hi)
 
 
-@njit(cache=True)
+@jitted_only
 def push_only_passive(p_old, dy, s_new, mag, slope, k_u):
     """Push-only elastic–plastic passive force and its tangent [I].
 
@@ -153,7 +153,7 @@ def push_only_passive(p_old, dy, s_new, mag, slope, k_u):
     return p_trial, k_u
 
 
-@njit(cache=True)
+@jitted_only
 def friction_energy(f, v_load, mu, delta):
     """Elastic energy f²/(2k) of the friction spring, k = μV/δ [N·m/m] (0 when lifted off)."""
     cap = mu * v_load
@@ -162,7 +162,7 @@ def friction_energy(f, v_load, mu, delta):
     return 0.5 * f * f * delta / cap
 
 
-@njit(cache=True)
+@jitted_only
 def spring_work(x_old, x_new, x_trial, k):
     """Work done on an elastic–plastic spring over one return-mapped increment [N·m/m].
 
@@ -178,7 +178,7 @@ def spring_work(x_old, x_new, x_trial, k):
     return (x_new * x_new - x_old * x_old) / (2.0 * k) + x_new * (x_trial - x_new) / k
 
 
-@njit(cache=True)
+@jitted_only
 def elastoplastic_soil_work(f_old, f_new, p_old, p_new, s_new, mag, k_u, dy, v_load, mu, delta):
     """Work done on the soil over one increment by the friction and passive springs [N·m/m].
 

@@ -7,7 +7,7 @@ source run by the Python interpreter (:func:`onbottom._jit.pure_python`).
 
 from __future__ import annotations
 
-from onbottom._jit import njit, pure_python
+from onbottom._jit import jitted_only, pure_python
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,
@@ -64,7 +64,7 @@ S_PASSIVE = N_COMMON_STATE + 5  # committed passive force [N/m]
 N_STATE = N_COMMON_STATE + 6
 
 
-@njit(cache=True)
+@jitted_only
 def clay_passive(params, z):
     """F_R = 4.1·s_u·D·G_c^−0.39·(z/D)^1.31 [N/m] (F109 §3.4.6 with F_C·κ_c = s_u·D)."""
     if z <= 0.0:
@@ -72,7 +72,7 @@ def clay_passive(params, z):
     return params[P_KR] * (z / params[P_D]) ** 1.31
 
 
-@njit(cache=True)
+@jitted_only
 def verley_lund_kernel(params, state_old, y_new, v_load, state_new, out):
     """Verley & Lund clay kernel (contract: :mod:`onbottom.soil.base`)."""
     d = params[P_D]

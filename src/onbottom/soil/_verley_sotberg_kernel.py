@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit, pure_python
+from onbottom._jit import jitted_only, njit, pure_python
 from onbottom.soil._coulomb_kernel import friction_return_map
 from onbottom.soil._trough import (
     PHASE_BREAKOUT,
@@ -133,7 +133,7 @@ KS_SWITCH_VS = 20.0
 KS_SWITCH_F109 = 26.7
 
 
-@njit(cache=True)
+@jitted_only
 def peak_passive(params, z, v_load):
     """Peak passive force F_r [N/m] at penetration ``z`` under vertical load ``v_load``.
 
@@ -145,13 +145,13 @@ def peak_passive(params, z, v_load):
     return peak_passive_from_power(params, penetration_power(params, z), v_load)
 
 
-@njit(cache=True)
+@jitted_only
 def penetration_power(params, z):
     """(z/D)^1.25 of V&S Eqs 3-4 (0 for z <= 0)."""
     return _power(z, params[P_D])
 
 
-@njit(cache=True)
+@jitted_only
 def _power(z, d):
     """(z/D)^1.25 at diameter ``d`` (0 for z <= 0)."""
     if z <= 0.0:
@@ -159,7 +159,7 @@ def _power(z, d):
     return (z / d) ** 1.25
 
 
-@njit(cache=True)
+@jitted_only
 def _memo_power(z, d, key, value):
     """(z/D)^1.25, taken from the memo (``key``, ``value``) when z equals its key."""
     if z == key:
@@ -167,7 +167,7 @@ def _memo_power(z, d, key, value):
     return _power(z, d)
 
 
-@njit(cache=True)
+@jitted_only
 def passive_factor(ks, f109):
     """Factor of A·γ'D²·(z/D)^1.25 in the peak passive force at K_s = γ'D²/V.
 
@@ -183,7 +183,7 @@ def passive_factor(ks, f109):
     return 2.0
 
 
-@njit(cache=True)
+@jitted_only
 def peak_passive_from_power(params, zp, v_load):
     """:func:`peak_passive` from the power zp = (z/D)^1.25 (z > 0, V > 0)."""
     d = params[P_D]
@@ -193,7 +193,7 @@ def peak_passive_from_power(params, zp, v_load):
     return base * passive_factor(ks, params[P_PASSIVE_LAW] == PASSIVE_DNV_F109)
 
 
-@njit(cache=True)
+@jitted_only
 def residual_ratio(z2_over_d):
     """z3/z2 (V&S Eqs 9-10)."""
     if z2_over_d <= 0.1:
@@ -201,7 +201,7 @@ def residual_ratio(z2_over_d):
     return 0.5
 
 
-@njit(cache=True)
+@jitted_only
 def grown_penetration(params, z_old, zi, work, smax, v_load):
     """Penetration after work ``work`` and amplitude ``smax`` in region 2 (never below z_old).
 
@@ -219,7 +219,7 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     return _grown(z_old, zi, work, smax, g * d * d / v_load, d, g * d**3, b, half, base)
 
 
-@njit(cache=True)
+@jitted_only
 def _growth_factors(params):
     """The factor B of Eqs 13-14 (B^0.5 inside the bracket) and Eq 8's factor (0.5 or 1)."""
     b = params[P_B]
@@ -231,7 +231,7 @@ def _growth_factors(params):
     return b, half
 
 
-@njit(cache=True)
+@jitted_only
 def _grown(z_old, zi, work, smax, ks, d, gd3, b, half, base):
     """:func:`grown_penetration` (V > 0, growth on) from K_s, γ'D³, B, Eq 8's factor and the
     base of its cap."""
@@ -295,7 +295,7 @@ def counted_length(mode, gate, turned2, tp_pos, tp_neg, tp_last, swing, s_old, s
     return overlap(s_old, s_new, y1, hi) + overlap(s_old, s_new, -hi, -y1)
 
 
-@njit(cache=True)
+@jitted_only
 def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     """Verley & Sotberg kernel (contract: :mod:`onbottom.soil.base`).
 

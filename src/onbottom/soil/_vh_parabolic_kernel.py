@@ -22,8 +22,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import numba_njit as njit
-from onbottom._jit import pure_python
+from onbottom._jit import jitted_only, pure_python
 from onbottom.soil._trough import spring_work
 from onbottom.soil.base import (
     N_COMMON_STATE,
@@ -63,13 +62,13 @@ REGION_BEARING = 2.0  # vertical bearing failure in this increment (z moved down
 REGION_LIFTED = 3.0
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def yield_function(h, v, vp, mu):
     """f(V, H) = |H| − μV(1 − V/V_p) [N/m]: < 0 inside the surface, 0 on it."""
     return abs(h) - mu * v * (1.0 - v / vp)
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def flow_direction(v, vp, mu_flow):
     """∂g/∂V = −μ′(1 − 2V/V_p) of the plastic potential g = |H| − μ′V(1 − V/V_p) [-].
 
@@ -79,7 +78,7 @@ def flow_direction(v, vp, mu_flow):
     return -mu_flow * (1.0 - 2.0 * v / vp)
 
 
-@njit(cache=True)
+@jitted_only(error_model="python")
 def vh_parabolic_kernel(params, state_old, y_new, v_load, state_new, out):
     mu = params[P_MU]
     mu_f = params[P_MU_FLOW]

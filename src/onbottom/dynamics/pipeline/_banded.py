@@ -26,14 +26,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from onbottom._jit import borrow, njit, pure_python
+from onbottom._jit import borrow, jitted_only, pure_python
 
 W_FIXED = 5
 """Half-bandwidth of the pipeline Jacobian (3 DOFs per node, 2-node elements): rows with a full
 band take a path with constant trip counts and the previous rows in registers."""
 
 
-@njit(cache=True)
+@jitted_only
 def factor_jacobian(ab, scale, mass, c_a, fixed, b):
     """Form J = c_a·M + scale·K from the tangent band K in ``ab``, factor it in place and
     start the solve of J x = b: ``b`` becomes L⁻¹b (:func:`ldl_solve_backward` finishes it).
@@ -189,7 +189,7 @@ def factor_jacobian(ab, scale, mass, c_a, fixed, b):
     return n_neg
 
 
-@njit(cache=True)
+@jitted_only
 def ldl_factor(ab):
     """Factor the symmetric band matrix held in ``ab`` (n × (w+1)) in place.
 
@@ -201,7 +201,7 @@ def ldl_factor(ab):
     return factor_jacobian(ab, 1.0, np.zeros(n), 0.0, np.zeros(n), np.zeros(n))
 
 
-@njit(cache=True)
+@jitted_only
 def ldl_solve(ab, b):
     """Solve A x = b in place (``b`` becomes x) with the factor from :func:`ldl_factor`.
 
@@ -239,7 +239,7 @@ def ldl_solve(ab, b):
     ldl_solve_backward(borrow(ab), borrow(b))
 
 
-@njit(cache=True)
+@jitted_only
 def ldl_solve_backward(ab, b):
     """The second half of :func:`ldl_solve`: x = D⁻¹y − Lᵀx in place of y = L⁻¹b in ``b``
     (the terms of row i in descending column order, x_{i+1} last; b[i] is scaled by 1/D_i

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import njit, pure_python
+from onbottom._jit import jitted_only, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]
@@ -50,7 +50,7 @@ _A15 = -1.0 / 15.0
 _A17 = 1.0 / 17.0
 
 
-@njit(cache=True)
+@jitted_only
 def chord_angle(dy, dx):
     """Angle β = atan2(Δy, Δx) [rad] of the chord (Δx, Δy) [m].
 
@@ -76,7 +76,7 @@ def chord_angle(dy, dx):
     return math.atan2(dy, dx)
 
 
-@njit(cache=True)
+@jitted_only
 def element_local(d, e, props):
     """Chord and local quantities of element ``e`` at nodal displacements ``d``.
 
@@ -103,7 +103,7 @@ def element_local(d, e, props):
     return ln, c, s, ul, t1, t2, n, m1, m2
 
 
-@njit(cache=True)
+@jitted_only
 def element_force_tangent(d, e, props, fe, ke, want_k):
     """Global internal force ``fe`` (6) and, if ``want_k``, tangent ``ke`` (6×6) of element e.
 
@@ -159,7 +159,7 @@ def element_force_tangent(d, e, props, fe, ke, want_k):
     return n, m1, m2
 
 
-@njit(cache=True)
+@jitted_only
 def element_force_tangent_ref(d, e, props, fe, ke, want_k):
     """Reference form of :func:`element_force_tangent` (B^T D B + geometric terms; tests)."""
     ln, c, s, _ul, _t1, _t2, n, m1, m2 = element_local(d, e, props)
@@ -190,7 +190,7 @@ def element_force_tangent_ref(d, e, props, fe, ke, want_k):
     return n, m1, m2
 
 
-@njit(cache=True)
+@jitted_only
 def element_energy(d, e, props):
     """Strain energy of element e [J]: N₀u_l + ½EAu_l²/L₀ + ½θᵀD_bθ."""
     _ln, _c, _s, ul, t1, t2, _n, m1, m2 = element_local(d, e, props)
@@ -198,7 +198,7 @@ def element_energy(d, e, props):
     return props[e, EL_N0] * ul + 0.5 * props[e, EL_EA] * ul * ul / l0 + 0.5 * (m1 * t1 + m2 * t2)
 
 
-@njit(cache=True)
+@jitted_only
 def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
     """Add the internal forces of all elements to ``f`` and (``want_k``) tangents to band ``ab``.
 
@@ -303,7 +303,7 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
         axial[i] *= 0.5
 
 
-@njit(cache=True)
+@jitted_only
 def strain_energy(d, props):
     """Total strain energy of the beam [J]."""
     s = 0.0
@@ -312,7 +312,7 @@ def strain_energy(d, props):
     return s
 
 
-@njit(cache=True)
+@jitted_only
 def node_section_forces(d, props, moment, axial):
     """Bending moment [N·m] and effective axial force [N] at the nodes.
 
