@@ -53,10 +53,6 @@ Exports
 
 from __future__ import annotations
 
-import numpy as np
-
-from onbottom._jit import jitted_only, literal_dispatch
-from onbottom.hydro import _force_dispatch
 from onbottom.hydro._force_contract import (
     FO_DFY_DYD,
     FO_DFZ_DYD,
@@ -77,6 +73,7 @@ from onbottom.hydro._force_dispatch import (
     force_step,
     force_step_inline,
     force_step_of,
+    force_step_unprepared_of,
 )
 from onbottom.hydro._load_kernels import penetration_reduction_y, penetration_reduction_z
 
@@ -102,44 +99,3 @@ __all__ = [
     "penetration_reduction_y",
     "penetration_reduction_z",
 ]
-
-
-@jitted_only
-def prepared_only(params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out):
-    """The one-call slot of a model with the two-stage form in a solver that prepares it
-    (:func:`force_step_unprepared_of`): never called there; NaN forces (the step fails)."""
-    for i in range(FO_SIZE):
-        out[i] = np.nan
-
-
-class _UnpreparedKernels:
-    """The one-call kernels of the models without the two-stage form (rule 7), and
-    :func:`prepared_only` for those with it (a ``get`` view of the dispatch tables, so that
-    models registered later are included)."""
-
-    def get(self, model_id, default=None):
-        kernel = _force_dispatch._KERNELS.get(model_id)
-        if kernel is None:
-            return default
-        no_prepare = _force_dispatch.no_prepare
-        if _force_dispatch._PREPARE.get(model_id, no_prepare) is not no_prepare:
-            return prepared_only
-        return kernel
-
-
-def force_step_unprepared_of(
-    model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out
-):
-    """:func:`force_step_of` for a solver that calls the kernel only where
-    :func:`force_prepare_of` returned False (rule 7: a model without the two-stage form).
-
-    With a numba-literal ``model_id`` of a model that has the two-stage form this compiles to
-    :func:`prepared_only` (never called: its ``force_prepare_of`` returns True), so such a
-    solver does not compile that model's one-call kernel beside its two stages; for any other
-    model it is the model's kernel. In plain Python, and with a non-literal id, it is
-    :func:`force_step_of` (the one-call kernel of every model).
-    """
-    force_step_of(model_id, params, state_old, t, u, dudt, vc, ydot, d, rho, state_new, out)
-
-
-literal_dispatch(force_step_unprepared_of, _UnpreparedKernels(), force_step)
