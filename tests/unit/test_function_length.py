@@ -1,7 +1,8 @@
 """Unit test: no function or method in src/onbottom is over 120 lines, numba kernels aside.
 
 A function's length is from its ``def`` line to its last line (decorators excluded). A numba
-kernel (decorated with ``onbottom._jit.njit`` / ``numba_njit`` or numba's own ``njit`` / ``jit``)
+kernel (decorated with ``onbottom._jit.njit`` / ``jitted_only`` / ``numba_njit`` or numba's own
+``njit`` / ``jit``)
 may be longer: a kernel cannot call Python stages. A long driver is split into named stages a
 reader can follow (settings → setup → loop → result).
 """
@@ -13,7 +14,7 @@ import pathlib
 
 ROOT = pathlib.Path(__file__).resolve().parents[2] / "src" / "onbottom"
 MAX_LINES = 120
-NUMBA_DECORATORS = {"njit", "numba_njit", "jit"}
+NUMBA_DECORATORS = {"njit", "jitted_only", "numba_njit", "jit"}
 
 
 def _decorator_name(node: ast.expr) -> str:
@@ -69,6 +70,7 @@ def test_the_scan_measures_def_to_end_and_skips_kernels(tmp_path):
     src = (
         f"def long():\n{body}\n\n"
         f"@njit(cache=True)\ndef kernel():\n{body}\n\n"
+        f"@jitted_only\ndef callee():\n{body}\n\n"
         f"class C:\n    def short(self):\n        return 1\n"
     )
     path = tmp_path / "m.py"
