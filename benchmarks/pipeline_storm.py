@@ -16,13 +16,14 @@ figure a loaded machine distorts least).
 Prints, per mesh: kinematics time and memory, solver CPU time of this process (``run``, the
 figure that a shared, loaded machine distorts least) and wall time, steps, rejected steps,
 Newton iterations per step, µs per node-step, simulated/real time ratio, the 3.5-h storm's
-CPU time (measured when the run is the full storm, else extrapolated), max |y|/D and max z/D,
-and the process's peak resident memory so far (``resource.getrusage``; the meshes run in the
-order given, so the figure of the largest, last, is its peak). Then the 500-element storm's
-CPU time against 13 s, the µs per node-step of every mesh relative to the first (linear in
-nodes when they stay near 1) and the peak resident memory against 1 GB. ``--envelopes
-out.npz`` saves the envelopes of the last mesh (to compare two versions of the code: same
-storm, same mesh).
+CPU time (measured when the run is the full storm, else scaled from the short storm and not
+judged against the target: a storm's first minutes take more Newton iterations per step), max
+|y|/D and max z/D, and the process's peak resident memory so far (``resource.getrusage``; the
+meshes run in the order given, so the figure of the largest, last, is its peak). Then the
+500-element storm's CPU time against 13 s, the µs per node-step of every mesh relative to the
+first (linear in nodes when they stay near 1) and the peak resident memory against 1 GB.
+``--envelopes out.npz`` saves the envelopes of the last mesh (to compare two versions of the
+code: same storm, same mesh).
 """
 
 from __future__ import annotations
@@ -169,12 +170,18 @@ def main() -> None:
         if r["elements"] != 500:
             continue
         full = abs(r["sim_s"] - STORM_S) < 1.0
-        how = "measured" if full else "extrapolated from a shorter storm"
         t = r["full_storm_s"]
+        if full:
+            verdict = "met" if t <= TARGET_S else "NOT met"
+            how = "measured"
+        else:
+            # a short storm is its first minutes: more Newton iterations per step than the
+            # storm's average, so the scaled figure is not the storm's and is not judged
+            verdict = "not judged (run the storm: --build-up-hours 0.5 --peak-hours 3)"
+            how = "scaled from a shorter storm, indicative only"
         print(
             f"500 elements, 3.5-h storm ({how}): {t:.1f} s CPU"
-            f" ({STORM_S / t:.0f}x real time); target <= {TARGET_S:.0f} s (1000x):"
-            f" {'met' if t <= TARGET_S else 'NOT met'}"
+            f" ({STORM_S / t:.0f}x real time); target <= {TARGET_S:.0f} s (1000x): {verdict}"
         )
     if len(rows) > 1:
         us0 = rows[0]["us_node_step"]
