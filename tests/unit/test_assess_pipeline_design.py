@@ -195,3 +195,30 @@ def test_a_section_whose_fe_results_are_gone_is_run_again(every):
         third.sections[1]["pipeline_fe"]["max_displacement_m"]
         == (a.sections[1]["pipeline_fe"]["max_displacement_m"])
     )
+
+
+def test_a_governing_run_whose_netcdf_is_gone_is_run_again(tmp_path):
+    """Resume in the governing-section mode: the saved FE run is reused while its
+    ``pipeline.nc`` is there and complete; without it the FE runs again and writes it."""
+    import sys
+    from pathlib import Path
+
+    from onbottom.assess import assess
+    from onbottom.cases.assess import build_route, parse_route_case
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from assess_cases import route_document
+
+    doc = route_document(sections=1, seeds=1, peak_hours=0.05)
+    doc["levels"]["pipeline_fe"] = True
+    doc["pipeline"] = {"mesh": "rule", "end_conditions": "pinned"}
+    built = build_route(parse_route_case(doc))
+    first = assess(built, out=tmp_path, n_workers=0)
+    nc = tmp_path / "pipeline.nc"
+    assert nc.is_file() and not first.pipeline.get("reused")
+    assert assess(built, out=tmp_path, n_workers=0).pipeline.get("reused") is True
+    nc.unlink()
+    third = assess(built, out=tmp_path, n_workers=0)
+    assert not third.pipeline.get("reused")
+    assert nc.is_file()
+    assert third.pipeline["max_displacement_m"] == first.pipeline["max_displacement_m"]

@@ -937,6 +937,22 @@ def _lost_pipeline_file(out: Path, i: int, name: str, old: dict[str, Any] | None
     return ""
 
 
+def _governing_file_kept(out: Path, old: dict[str, Any]) -> bool:
+    """Whether the saved governing-section run's NetCDF (``pipeline.nc``) is still there and
+    complete (its path in ``old`` made that of ``out``); True when the run wrote none."""
+    from onbottom.results import check_result_file
+
+    if not old.get("netcdf"):
+        return True
+    f = out / "pipeline.nc"
+    try:
+        check_result_file(f)
+    except (ResultFileError, OSError):
+        return False
+    old["netcdf"] = str(f)
+    return True
+
+
 def _governing_section_pipeline(route: Route, sections: list[dict[str, Any]]) -> dict | None:
     """Where the FE checked every section: the check of the governing section (the heaviest
     design after the FE; ties: the highest dynamic utilisation), None when none ran."""
@@ -968,7 +984,7 @@ def _pipeline(route: Route, sections: list[dict[str, Any]], out: Path | None) ->
     f = None if out is None else out / SECTION_FOLDER / "pipeline.json"
     if f is not None and f.is_file():
         old = read_saved(f, "saved pipeline result")
-        if old and old.get("identity") == ident:
+        if old and old.get("identity") == ident and _governing_file_kept(out, old):
             return old | {"reused": True}
     res = run_governing_pipeline(route, sections, out, identity=ident)
     res = _clean(res | {"identity": ident})
