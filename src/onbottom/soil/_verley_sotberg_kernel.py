@@ -219,7 +219,7 @@ def grown_penetration(params, z_old, zi, work, smax, v_load):
     return _grown(z_old, zi, work, smax, g * d * d / v_load, d, g * d**3, b, half, base)
 
 
-@jitted_only
+@njit(cache=True, inline="always")
 def _growth_factors(params):
     """The factor B of Eqs 13-14 (B^0.5 inside the bracket) and Eq 8's factor (0.5 or 1)."""
     b = params[P_B]
@@ -317,12 +317,7 @@ def verley_sotberg_kernel(params, state_old, y_new, v_load, state_new, out):
     mode = params[P_WORK_COUNTING]
     reversal = params[P_REVERSAL]
     agdd = params[P_A] * g * d * d  # A·γ'D² of Eqs 3-4
-    b_fac = params[P_B]
-    if params[P_B_PLACEMENT] == B_INSIDE:
-        b_fac = math.sqrt(b_fac)
-    half = 0.5
-    if params[P_ZMAX_LAW] == ZMAX_LAW_NO_HALF:
-        half = 1.0
+    b_fac, half = _growth_factors(params)
     cap_trough = params[P_ZMAX_BASE] == ZMAX_BASE_TROUGH
     zi_laid = params[P_ZI]
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 
-from onbottom._jit import jitted_only, pure_python
+from onbottom._jit import jitted_only, njit, pure_python
 
 # element property columns
 EL_L0 = 0  # initial length L₀ [m]
@@ -76,14 +76,15 @@ def chord_angle(dy, dx):
     return math.atan2(dy, dx)
 
 
-@jitted_only
-def element_local(d, e, props):
-    """Chord and local quantities of element ``e`` at nodal displacements ``d``.
+@njit(cache=True, inline="always")
+def chord_kinematics(d, i, l0):
+    """Chord of the element whose first DOF is ``i`` (initial length ``l0`` [m]): (L, 1/L,
+    c, s, u_l, θ₁, θ₂) — its length, direction cosines, the elongation u_l = (L² − L₀²)/(L + L₀)
+    [m] and the end rotations relative to the chord angle β [rad].
 
-    Returns (L, c, s, u_l, θ₁, θ₂, N, M₁, M₂).
+    Inlined into its callers' numba IR (:func:`element_local`, :func:`assemble_internal`):
+    the element form and the assembly evaluate the same expressions in the same order.
     """
-    i = NDOF_NODE * e
-    l0 = props[e, EL_L0]
     du = d[i + 3] - d[i]
     dy = d[i + 4] - d[i + 1]
     dx = l0 + du
@@ -93,8 +94,17 @@ def element_local(d, e, props):
     s = dy * il
     beta = chord_angle(dy, dx)
     ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
-    t1 = d[i + 2] - beta
-    t2 = d[i + 5] - beta
+    return ln, il, c, s, ul, d[i + 2] - beta, d[i + 5] - beta
+
+
+@jitted_only
+def element_local(d, e, props):
+    """Chord and local quantities of element ``e`` at nodal displacements ``d``.
+
+    Returns (L, c, s, u_l, θ₁, θ₂, N, M₁, M₂).
+    """
+    l0 = props[e, EL_L0]
+    ln, _il, c, s, ul, t1, t2 = chord_kinematics(d, NDOF_NODE * e, l0)
     il0 = 1.0 / l0
     eil = props[e, EL_EI] * il0
     n = props[e, EL_N0] + props[e, EL_EA] * ul * il0
@@ -229,17 +239,7 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
         if l0 != q_l0:
             q_l0 = l0
             il0 = 1.0 / l0
-        du = d[i0 + 3] - d[i0]
-        dy = d[i0 + 4] - d[i0 + 1]
-        dx = l0 + du
-        ln = math.sqrt(dx * dx + dy * dy)
-        il = 1.0 / ln
-        c = dx * il
-        s = dy * il
-        beta = chord_angle(dy, dx)
-        ul = (du * (2.0 * l0 + du) + dy * dy) / (ln + l0)
-        t1 = d[i0 + 2] - beta
-        t2 = d[i0 + 5] - beta
+        _ln, il, c, s, ul, t1, t2 = chord_kinematics(d, i0, l0)
         ea = props[e, EL_EA]
         ei = props[e, EL_EI]
         eil = ei * il0

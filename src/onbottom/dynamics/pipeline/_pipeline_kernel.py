@@ -43,7 +43,6 @@ from numba import literally
 from onbottom._jit import borrow, call_literal, jitted_only, njit, row_view
 from onbottom.dynamics.pipeline._banded import (
     factor_jacobian,
-    ldl_factor,
     ldl_solve,
     ldl_solve_backward,
 )
@@ -816,6 +815,7 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
     ke = np.empty((6, 6))
     mom = np.empty(ndof // NDOF_NODE)
     nax = np.empty(ndof // NDOF_NODE)
+    no_mass = np.zeros(ndof)
     its = 0
     for ls in range(1, n_load_steps + 1):
         lam = ls / n_load_steps
@@ -838,16 +838,11 @@ def static_solve(props, fixed, spring, f_ext, d, n_load_steps, max_iter, tol):
                 conv = True
                 its = it
                 break
-            for j in range(ndof):
-                if fixed[j] != 0.0:
-                    for k in range(1, HALF_BAND + 1):
-                        ab[j, k] = 0.0
-                        if j + k < ndof:
-                            ab[j + k, k] = 0.0
-                    ab[j, 0] = 1.0
-            if ldl_factor(ab) < 0:
+            # the bare tangent (scale 1, no mass) with the fixed DOFs decoupled, factored,
+            # then the backward half of the solve
+            if factor_jacobian(ab, 1.0, no_mass, 0.0, fixed, res) < 0:
                 return -1
-            ldl_solve(ab, res)
+            ldl_solve_backward(ab, res)
             for j in range(ndof):
                 d[j] += res[j]
         if not conv:
