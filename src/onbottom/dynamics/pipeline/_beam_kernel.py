@@ -97,6 +97,26 @@ def chord_kinematics(d, i, l0):
     return ln, il, c, s, ul, d[i + 2] - beta, d[i + 5] - beta
 
 
+@njit(cache=True, inline="always")
+def tangent_blocks(n, msum, il, ka, kb, c, s):
+    """Entries of the element tangent's translational node block A (a00, a11, a01) and of
+    ∂f_θ/∂(u, v) at node a (tu, tv), from the axial force ``n`` [N], (M₁ + M₂)/L ``msum``
+    [N], 1/L ``il`` [1/m], EA/L₀ ``ka`` and EI/L₀ ``kb`` [N/m; N·m] and the chord's cosines.
+
+    A = ka a aᵀ + (N/L + 12kb/L²) b bᵀ + (M₁ + M₂)/L² (a bᵀ + b aᵀ) with a = (c, s),
+    b = (−s, c); ∂f_θ/∂(u, v) = −h z, h = 6kb/L: node a (−h s, h c), node b (h s, −h c).
+    Inlined into :func:`element_force_tangent` and :func:`assemble_internal` (the same
+    expressions in the same order).
+    """
+    bb = n * il + 12.0 * kb * il * il
+    mm = msum * il
+    a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
+    a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
+    a01 = (ka - bb) * c * s + mm * (c * c - s * s)
+    h = 6.0 * kb * il
+    return a00, a11, a01, -h * s, h * c
+
+
 @jitted_only
 def element_local(d, e, props):
     """Chord and local quantities of element ``e`` at nodal displacements ``d``.
@@ -138,15 +158,7 @@ def element_force_tangent(d, e, props, fe, ke, want_k):
     # nodes; expanding Bᵀ D B gives 4kb(e₃e₃ᵀ + e₆e₆ᵀ) + 2kb(e₃e₆ᵀ + e₆e₃ᵀ) + 12kb/L² z zᵀ
     # − 6kb/L [(e₃ + e₆) zᵀ + z (e₃ + e₆)ᵀ]. Translational node blocks: ±A with
     # A = ka a aᵀ + (N/L + 12kb/L²) b bᵀ + (M₁ + M₂)/L² (a bᵀ + b aᵀ).
-    bb = n * il + 12.0 * kb * il * il
-    mm = msum * il
-    a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
-    a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
-    a01 = (ka - bb) * c * s + mm * (c * c - s * s)
-    h = 6.0 * kb * il
-    # ∂f_θ/∂(u, v) = −h z: node a (−h s, h c), node b (h s, −h c)
-    tu = -h * s
-    tv = h * c
+    a00, a11, a01, tu, tv = tangent_blocks(n, msum, il, ka, kb, c, s)
     for i in range(6):
         for j in range(6):
             ke[i, j] = 0.0
@@ -267,14 +279,7 @@ def assemble_internal(d, props, f, ab, want_k, fe, ke, moment, axial):
                 k_ei = ei
                 ka = ea / l0
                 kb = ei / l0
-            bb = n * il + 12.0 * kb * il * il
-            mm = msum * il
-            a00 = ka * c * c + bb * s * s - 2.0 * mm * c * s
-            a11 = ka * s * s + bb * c * c + 2.0 * mm * c * s
-            a01 = (ka - bb) * c * s + mm * (c * c - s * s)
-            h = 6.0 * kb * il
-            tu = -h * s
-            tv = h * c
+            a00, a11, a01, tu, tv = tangent_blocks(n, msum, il, ka, kb, c, s)
             k4 = 4.0 * kb
             # row i0 + p, column i0 + q (q <= p) at ab[i0 + p, p - q]
             ab[i0, 0] += a00
